@@ -10,7 +10,7 @@ packages=(
   glslang-tools glslang-dev spirv-tools
   libglfw3-dev xvfb xauth
   libosd-dev
-  libtinygltf-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev libssl-dev libcurl4-openssl-dev
+  libtinygltf-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev libcli11-dev libssl-dev libcurl4-openssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   curl
 )

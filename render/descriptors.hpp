@@ -1,0 +1,27 @@
+#pragma once
+// Small helpers for the descriptor sets of the passes: one binding per listed descriptor,
+// numbered from 0.
+
+#include <initializer_list>
+#include <utility>
+
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+vk::raii::DescriptorSetLayout makeSetLayout(
+    const Device& device, std::initializer_list<std::pair<vk::DescriptorType, vk::ShaderStageFlags>> bindings);
+
+vk::raii::DescriptorPool makeDescriptorPool(const Device& device, std::uint32_t maxSets,
+                                            std::initializer_list<vk::DescriptorPoolSize> sizes);
+
+vk::raii::DescriptorSet allocateSet(const Device& device, const vk::raii::DescriptorPool& pool,
+                                    const vk::raii::DescriptorSetLayout& layout);
+
+void writeUniformBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                        const Buffer& buffer);
+
+void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                       const Image& image, const vk::raii::Sampler& sampler);
+
+}  // namespace mane::render

@@ -1,0 +1,85 @@
+#pragma once
+// What the renderer is given: plain data only (spans, matrices, texels). Scenes, physics and
+// subdiv convert their own types into these; render includes none of them (DESIGN.md).
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace mane::render {
+
+/// Tightly packed 8-bit RGBA texels, rows top to bottom.
+struct TextureData {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::span<const std::uint8_t> rgba;
+};
+
+/// A triangle list. `normals` and `uvs` are empty or hold one entry per position.
+struct MeshData {
+  std::span<const glm::vec3> positions;
+  std::span<const glm::vec3> normals;
+  std::span<const glm::vec2> uvs;
+  std::span<const std::uint32_t> indices;
+};
+
+/// A Lambert surface: albedo (sRGB texture times base colour) with an optional tangent-space
+/// normal map (OpenGL convention, +Y up in the map).
+struct MaterialData {
+  glm::vec3 baseColor{1.0f};
+  std::optional<TextureData> albedo;
+  std::optional<TextureData> normalMap;
+};
+
+/// Everything that stays the same from frame to frame; uploaded once.
+struct StaticScene {
+  std::vector<MeshData> meshes;
+  std::vector<MaterialData> materials;
+};
+
+struct MeshInstance {
+  std::size_t mesh = 0;
+  std::size_t material = 0;
+  glm::mat4 model{1.0f};  ///< object → world, metres
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 1.0f};  ///< metres, world space
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float verticalFovRadians = 0.7f;
+  float nearPlane = 0.01f;  ///< metres
+  float farPlane = 100.0f;  ///< metres
+
+  glm::mat4 view() const;
+  /// Right-handed, depth 0..1, Y flipped for Vulkan's downward framebuffer Y.
+  glm::mat4 projection(float aspect) const;
+};
+
+struct DirectionalLight {
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};  ///< unit vector from the surface towards the light
+  glm::vec3 color{1.0f};                   ///< linear RGB
+  float intensity = 1.0f;                  ///< irradiance scale at normal incidence
+};
+
+/// What changes every frame.
+struct FrameInput {
+  Camera camera;
+  std::vector<DirectionalLight> lights;
+  std::vector<MeshInstance> instances;
+  glm::vec3 ambient{0.03f};  ///< linear RGB added to every lit surface
+  glm::vec3 background{0.02f, 0.022f, 0.028f};
+  float exposure = 1.0f;  ///< linear scale before the sRGB encode
+};
+
+/// GPU time of each pass of one frame, in milliseconds, in the order the passes ran.
+struct PassTiming {
+  std::string pass;
+  double milliseconds = 0.0;
+};
+
+}  // namespace mane::render

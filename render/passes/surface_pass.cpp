@@ -1,0 +1,142 @@
+#include "render/passes/surface_pass.hpp"
+
+#include <cstring>
+
+#include "render/descriptors.hpp"
+
+namespace mane::render {
+namespace {
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+
+// std140 mirror of FrameUniforms in shaders/frame_uniforms.glsl.
+struct FrameUniforms {
+  glm::mat4 viewProjection;
+  glm::vec4 cameraPosition;
+  glm::vec4 ambient;
+  glm::vec4 lightDirection[SurfacePass::kMaxLights];
+  glm::vec4 lightRadiance[SurfacePass::kMaxLights];
+  glm::ivec4 lightCount;
+};
+
+// Push constants of shaders/surface.{vert,frag}.
+struct DrawConstants {
+  glm::mat4 model;
+  glm::vec4 baseColor;
+  glm::ivec4 flags;
+};
+
+Image textureOrDefault(const Device& device, const std::optional<TextureData>& texture, const std::uint8_t (&fallback)[4],
+                       vk::Format format) {
+  if (texture && texture->width > 0 && texture->height > 0)
+    return Image::texture(device, texture->width, texture->height, texture->rgba, format);
+  return Image::texture(device, 1, 1, fallback, format);
+}
+
+}  // namespace
+
+SurfacePass::SurfacePass(const Device& device, vk::Format colorFormat, vk::Format depthFormat,
+                         vk::SampleCountFlagBits samples)
+    : device_(&device) {
+  using Stage = vk::ShaderStageFlagBits;
+  frameLayout_ = makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, Stage::eVertex | Stage::eFragment}});
+  materialLayout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, Stage::eFragment},
+                                           {vk::DescriptorType::eCombinedImageSampler, Stage::eFragment}});
+  pipeline_ = makeGraphicsPipeline(
+      device,
+      GraphicsPipelineSettings{
+          .vertexShader = "surface.vert",
+          .fragmentShader = "surface.frag",
+          .vertexBindings = {{.binding = 0, .stride = sizeof(Vertex), .inputRate = vk::VertexInputRate::eVertex}},
+          .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)},
+                               {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
+                               {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)}},
+          .cullMode = vk::CullModeFlagBits::eNone,
+          .colorFormats = {colorFormat},
+          .depthFormat = depthFormat,
+          .depthTest = true,
+          .depthWrite = true,
+          .samples = samples,
+          .setLayouts = {*frameLayout_, *materialLayout_},
+          .pushConstants = {{Stage::eVertex | Stage::eFragment, 0, sizeof(DrawConstants)}}});
+  sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
+
+  frameUniforms_ = Buffer(device, sizeof(FrameUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
+                          vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  framePool_ = makeDescriptorPool(device, 1, {{vk::DescriptorType::eUniformBuffer, 1}});
+  frameSet_ = allocateSet(device, framePool_, frameLayout_);
+  writeUniformBuffer(device, frameSet_, 0, frameUniforms_);
+}
+
+void SurfacePass::setScene(const StaticScene& scene) {
+  meshes_.clear();
+  materials_.clear();
+  materialPool_ = nullptr;
+
+  for (const MeshData& mesh : scene.meshes) {
+    std::vector<Vertex> vertices(mesh.positions.size());
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+      vertices[i] = Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
+                           mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i]};
+    meshes_.push_back(GpuMesh{
+        .vertices = Buffer::withData(*device_, std::as_bytes(std::span(vertices)), vk::BufferUsageFlagBits::eVertexBuffer),
+        .indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
+        .indexCount = static_cast<std::uint32_t>(mesh.indices.size())});
+  }
+
+  if (scene.materials.empty()) return;
+  const auto count = static_cast<std::uint32_t>(scene.materials.size());
+  materialPool_ = makeDescriptorPool(*device_, count, {{vk::DescriptorType::eCombinedImageSampler, 2 * count}});
+  static constexpr std::uint8_t kWhite[4] = {255, 255, 255, 255};
+  static constexpr std::uint8_t kFlatNormal[4] = {128, 128, 255, 255};
+  for (const MaterialData& material : scene.materials) {
+    GpuMaterial gpu{
+        .albedo = textureOrDefault(*device_, material.albedo, kWhite, vk::Format::eR8G8B8A8Srgb),
+        .normalMap = textureOrDefault(*device_, material.normalMap, kFlatNormal, vk::Format::eR8G8B8A8Unorm),
+        .hasNormalMap = material.normalMap.has_value(),
+        .baseColor = material.baseColor,
+        .descriptors = allocateSet(*device_, materialPool_, materialLayout_)};
+    writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
+    writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
+    materials_.push_back(std::move(gpu));
+  }
+}
+
+void SurfacePass::update(const FrameInput& frame, float aspect) {
+  FrameUniforms uniforms{};
+  uniforms.viewProjection = frame.camera.projection(aspect) * frame.camera.view();
+  uniforms.cameraPosition = glm::vec4(frame.camera.position, 1.0f);
+  uniforms.ambient = glm::vec4(frame.ambient, 0.0f);
+  const std::size_t lights = std::min(frame.lights.size(), kMaxLights);
+  for (std::size_t i = 0; i < lights; ++i) {
+    uniforms.lightDirection[i] = glm::vec4(glm::normalize(frame.lights[i].direction), 0.0f);
+    uniforms.lightRadiance[i] = glm::vec4(frame.lights[i].color * frame.lights[i].intensity, 0.0f);
+  }
+  uniforms.lightCount = glm::ivec4(static_cast<int>(lights), 0, 0, 0);
+  std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));
+}
+
+void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const {
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 0, {*frameSet_}, {});
+  for (const MeshInstance& instance : frame.instances) {
+    if (instance.mesh >= meshes_.size() || instance.material >= materials_.size()) continue;
+    const GpuMesh& mesh = meshes_[instance.mesh];
+    const GpuMaterial& material = materials_[instance.material];
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 1, {*material.descriptors}, {});
+    const DrawConstants constants{instance.model, glm::vec4(material.baseColor, 1.0f),
+                                  glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0)};
+    commands.pushConstants<DrawConstants>(*pipeline_.layout,
+                                          vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0,
+                                          constants);
+    commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
+    commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
+    commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);
+  }
+}
+
+}  // namespace mane::render

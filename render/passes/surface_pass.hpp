@@ -1,0 +1,55 @@
+#pragma once
+// Opaque meshes lit by directional lights: albedo texture × base colour, tangent-space normal
+// map, Lambert diffuse plus ambient. The skin shading of the skin issue will replace the BRDF.
+
+#include <vector>
+
+#include "render/frame.hpp"
+#include "render/pipelines.hpp"
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+class SurfacePass {
+public:
+  static constexpr std::size_t kMaxLights = 4;  ///< must match shaders/frame_uniforms.glsl
+
+  SurfacePass(const Device& device, vk::Format colorFormat, vk::Format depthFormat, vk::SampleCountFlagBits samples);
+
+  /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError on failure.
+  void setScene(const StaticScene& scene);
+
+  /// Writes the frame's camera and lights; call before recording the frame.
+  void update(const FrameInput& frame, float aspect);
+
+  /// Draws every instance; call inside a dynamic rendering scope with matching formats.
+  void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
+
+private:
+  struct GpuMesh {
+    Buffer vertices;
+    Buffer indices;
+    std::uint32_t indexCount = 0;
+  };
+  struct GpuMaterial {
+    Image albedo;
+    Image normalMap;
+    bool hasNormalMap = false;
+    glm::vec3 baseColor{1.0f};
+    vk::raii::DescriptorSet descriptors{nullptr};
+  };
+
+  const Device* device_;
+  vk::raii::DescriptorSetLayout frameLayout_{nullptr};
+  vk::raii::DescriptorSetLayout materialLayout_{nullptr};
+  Pipeline pipeline_;
+  vk::raii::Sampler sampler_{nullptr};
+  vk::raii::DescriptorPool framePool_{nullptr};
+  vk::raii::DescriptorSet frameSet_{nullptr};
+  Buffer frameUniforms_;
+  vk::raii::DescriptorPool materialPool_{nullptr};
+  std::vector<GpuMesh> meshes_;
+  std::vector<GpuMaterial> materials_;
+};
+
+}  // namespace mane::render

@@ -1,0 +1,98 @@
+#include "render/pipelines.hpp"
+
+#include <stdexcept>
+
+#include "shaders/embedded.hpp"
+
+namespace mane::render {
+
+vk::raii::ShaderModule loadShader(const Device& device, std::string_view name) {
+  const auto words = shaders::findSpirv(name);
+  if (!words) throw std::logic_error("no embedded shader named " + std::string(name));
+  return vk::raii::ShaderModule(device.device(),
+                                vk::ShaderModuleCreateInfo{.codeSize = words->size_bytes(), .pCode = words->data()});
+}
+
+Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettings& settings) {
+  Pipeline result;
+  result.layout = vk::raii::PipelineLayout(
+      device.device(),
+      vk::PipelineLayoutCreateInfo{.setLayoutCount = static_cast<std::uint32_t>(settings.setLayouts.size()),
+                                   .pSetLayouts = settings.setLayouts.data(),
+                                   .pushConstantRangeCount = static_cast<std::uint32_t>(settings.pushConstants.size()),
+                                   .pPushConstantRanges = settings.pushConstants.data()});
+
+  const vk::raii::ShaderModule vertex = loadShader(device, settings.vertexShader);
+  const vk::raii::ShaderModule fragment = loadShader(device, settings.fragmentShader);
+  const std::array stages{
+      vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eVertex, .module = *vertex, .pName = "main"},
+      vk::PipelineShaderStageCreateInfo{
+          .stage = vk::ShaderStageFlagBits::eFragment, .module = *fragment, .pName = "main"}};
+  const vk::PipelineVertexInputStateCreateInfo vertexInput{
+      .vertexBindingDescriptionCount = static_cast<std::uint32_t>(settings.vertexBindings.size()),
+      .pVertexBindingDescriptions = settings.vertexBindings.data(),
+      .vertexAttributeDescriptionCount = static_cast<std::uint32_t>(settings.vertexAttributes.size()),
+      .pVertexAttributeDescriptions = settings.vertexAttributes.data()};
+  const vk::PipelineInputAssemblyStateCreateInfo inputAssembly{.topology = settings.topology};
+  const vk::PipelineViewportStateCreateInfo viewport{.viewportCount = 1, .scissorCount = 1};
+  const vk::PipelineRasterizationStateCreateInfo rasterization{.polygonMode = vk::PolygonMode::eFill,
+                                                               .cullMode = settings.cullMode,
+                                                               .frontFace = vk::FrontFace::eCounterClockwise,
+                                                               .lineWidth = 1.0f};
+  const vk::PipelineMultisampleStateCreateInfo multisample{.rasterizationSamples = settings.samples};
+  const vk::PipelineDepthStencilStateCreateInfo depthStencil{.depthTestEnable = settings.depthTest,
+                                                             .depthWriteEnable = settings.depthWrite,
+                                                             .depthCompareOp = vk::CompareOp::eLessOrEqual};
+
+  vk::PipelineColorBlendAttachmentState blend{.colorWriteMask =
+                                                  vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                                                  vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA};
+  if (settings.blend != Blend::kNone) {
+    // Both modes take the source as is: additive sums (opacity maps), premultiplied alpha
+    // composites over what is there.
+    const vk::BlendFactor source = vk::BlendFactor::eOne;
+    const vk::BlendFactor destination =
+        settings.blend == Blend::kAdditive ? vk::BlendFactor::eOne : vk::BlendFactor::eOneMinusSrcAlpha;
+    blend.blendEnable = VK_TRUE;
+    blend.srcColorBlendFactor = source;
+    blend.dstColorBlendFactor = destination;
+    blend.colorBlendOp = vk::BlendOp::eAdd;
+    blend.srcAlphaBlendFactor = source;
+    blend.dstAlphaBlendFactor = destination;
+    blend.alphaBlendOp = vk::BlendOp::eAdd;
+  }
+  const std::vector<vk::PipelineColorBlendAttachmentState> blends(settings.colorFormats.size(), blend);
+  const vk::PipelineColorBlendStateCreateInfo colorBlend{.attachmentCount = static_cast<std::uint32_t>(blends.size()),
+                                                         .pAttachments = blends.data()};
+  const std::array dynamicStates{vk::DynamicState::eViewport, vk::DynamicState::eScissor};
+  const vk::PipelineDynamicStateCreateInfo dynamic{.dynamicStateCount = dynamicStates.size(),
+                                                   .pDynamicStates = dynamicStates.data()};
+  const vk::PipelineRenderingCreateInfo rendering{
+      .colorAttachmentCount = static_cast<std::uint32_t>(settings.colorFormats.size()),
+      .pColorAttachmentFormats = settings.colorFormats.data(),
+      .depthAttachmentFormat = settings.depthFormat};
+
+  result.pipeline = vk::raii::Pipeline(device.device(), nullptr,
+                                       vk::GraphicsPipelineCreateInfo{.pNext = &rendering,
+                                                                      .stageCount = stages.size(),
+                                                                      .pStages = stages.data(),
+                                                                      .pVertexInputState = &vertexInput,
+                                                                      .pInputAssemblyState = &inputAssembly,
+                                                                      .pViewportState = &viewport,
+                                                                      .pRasterizationState = &rasterization,
+                                                                      .pMultisampleState = &multisample,
+                                                                      .pDepthStencilState = &depthStencil,
+                                                                      .pColorBlendState = &colorBlend,
+                                                                      .pDynamicState = &dynamic,
+                                                                      .layout = *result.layout});
+  return result;
+}
+
+void setViewportAndScissor(const vk::raii::CommandBuffer& commands, vk::Extent2D extent) {
+  commands.setViewport(0, vk::Viewport{.width = static_cast<float>(extent.width),
+                                       .height = static_cast<float>(extent.height),
+                                       .maxDepth = 1.0f});
+  commands.setScissor(0, vk::Rect2D{.extent = extent});
+}
+
+}  // namespace mane::render

@@ -1,0 +1,47 @@
+#pragma once
+// Shader modules from the embedded SPIR-V and a builder for the graphics pipelines of the
+// passes (dynamic rendering: no render pass or framebuffer objects).
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "render/device.hpp"
+
+namespace mane::render {
+
+/// A shader module for the embedded shader `name` ("lambert.frag"); throws when the build
+/// has no such shader (a programming error, not bad input).
+vk::raii::ShaderModule loadShader(const Device& device, std::string_view name);
+
+enum class Blend { kNone, kAdditive, kPremultipliedAlpha };
+
+struct GraphicsPipelineSettings {
+  std::string vertexShader;
+  std::string fragmentShader;
+  std::vector<vk::VertexInputBindingDescription> vertexBindings;
+  std::vector<vk::VertexInputAttributeDescription> vertexAttributes;
+  vk::PrimitiveTopology topology = vk::PrimitiveTopology::eTriangleList;
+  vk::CullModeFlags cullMode = vk::CullModeFlagBits::eNone;
+  std::vector<vk::Format> colorFormats;
+  Blend blend = Blend::kNone;
+  vk::Format depthFormat = vk::Format::eUndefined;
+  bool depthTest = false;
+  bool depthWrite = false;
+  vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
+  std::vector<vk::DescriptorSetLayout> setLayouts;
+  std::vector<vk::PushConstantRange> pushConstants;
+};
+
+struct Pipeline {
+  vk::raii::PipelineLayout layout{nullptr};
+  vk::raii::Pipeline pipeline{nullptr};
+};
+
+/// Viewport and scissor are dynamic state; set them when recording.
+Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettings& settings);
+
+/// A viewport covering `extent` with depth 0..1, and the matching scissor, set on `commands`.
+void setViewportAndScissor(const vk::raii::CommandBuffer& commands, vk::Extent2D extent);
+
+}  // namespace mane::render

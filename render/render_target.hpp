@@ -1,0 +1,43 @@
+#pragma once
+// The images a frame renders into: HDR colour (RGBA16F, multisampled where asked, resolved to
+// a single-sample image the post passes read), depth, and the 8-bit sRGB output.
+
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+struct RenderTargetSettings {
+  vk::Extent2D extent{1280, 720};
+  vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
+};
+
+class RenderTarget {
+public:
+  static constexpr vk::Format kHdrFormat = vk::Format::eR16G16B16A16Sfloat;
+  static constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
+  static constexpr vk::Format kOutputFormat = vk::Format::eR8G8B8A8Srgb;
+
+  RenderTarget(const Device& device, const RenderTargetSettings& settings);
+
+  vk::Extent2D extent() const { return settings_.extent; }
+  vk::SampleCountFlagBits samples() const { return settings_.samples; }
+  float aspect() const { return float(settings_.extent.width) / float(settings_.extent.height); }
+  bool multisampled() const { return settings_.samples != vk::SampleCountFlagBits::e1; }
+
+  /// Where the scene is drawn: the multisampled image, or `hdr()` itself without MSAA.
+  const Image& sceneColor() const { return multisampled() ? msaaColor_ : hdr_; }
+  /// Single-sample HDR colour (the resolve target under MSAA); sampled by post passes.
+  const Image& hdr() const { return hdr_; }
+  const Image& depth() const { return depth_; }
+  /// 8-bit sRGB display image; can be copied to the host or blitted to a swapchain.
+  const Image& output() const { return output_; }
+
+private:
+  RenderTargetSettings settings_;
+  Image msaaColor_;
+  Image hdr_;
+  Image depth_;
+  Image output_;
+};
+
+}  // namespace mane::render

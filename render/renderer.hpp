@@ -1,0 +1,56 @@
+#pragma once
+// Runs the passes of a frame into an offscreen RenderTarget: surfaces into HDR colour, then
+// the output pass to 8-bit sRGB. Reads the result back for PNG files, or leaves it for a
+// window to blit into its swapchain.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "render/frame.hpp"
+#include "render/gpu_timer.hpp"
+#include "render/passes/output_pass.hpp"
+#include "render/passes/surface_pass.hpp"
+#include "render/render_target.hpp"
+
+namespace mane::render {
+
+struct RendererSettings {
+  vk::Extent2D extent{1280, 720};
+  /// 1 or 4 (lavapipe offers no other counts).
+  std::uint32_t msaaSamples = 1;
+};
+
+class Renderer {
+public:
+  static Result<std::unique_ptr<Renderer>> create(const Device& device, const RendererSettings& settings);
+
+  /// Uploads meshes and textures that stay for many frames.
+  Result<void> setScene(const StaticScene& scene);
+
+  /// Records every pass of `frame`; leaves target().output() in TRANSFER_SRC layout.
+  void record(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
+
+  /// Renders `frame`, waits for it, and returns the GPU time of each pass.
+  Result<std::vector<PassTiming>> render(const FrameInput& frame);
+
+  /// The last rendered frame as sRGB-encoded RGBA8, rows top to bottom.
+  Result<std::vector<std::uint8_t>> readOutput() const;
+
+  /// GPU times of the last frame whose commands completed.
+  std::vector<PassTiming> lastTimings() const { return timer_.results(); }
+
+  const RenderTarget& target() const { return target_; }
+  const Device& device() const { return *device_; }
+
+private:
+  Renderer(const Device& device, const RendererSettings& settings);
+
+  const Device* device_;
+  RenderTarget target_;
+  SurfacePass surfaces_;
+  OutputPass output_;
+  GpuTimer timer_;
+};
+
+}  // namespace mane::render

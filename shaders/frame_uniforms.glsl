@@ -1,0 +1,11 @@
+// Per-frame data shared by the surface shaders; mirrors FrameUniforms in render/passes/surface_pass.cpp.
+const int kMaxLights = 4;
+
+layout(set = 0, binding = 0, std140) uniform FrameUniforms {
+  mat4 viewProjection;
+  vec4 cameraPosition;        // xyz metres
+  vec4 ambient;               // rgb linear
+  vec4 lightDirection[kMaxLights];  // xyz towards the light
+  vec4 lightRadiance[kMaxLights];   // rgb colour × intensity
+  ivec4 lightCount;           // x
+} frame;

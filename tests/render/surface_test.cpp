@@ -1,0 +1,118 @@
+// The Renderer end to end (surface pass → output pass → sRGB read-back) on a flat quad whose
+// shading is known in closed form: Lambert, E = ambient + Σ radiance·max(n·l, 0), encoded with
+// the sRGB transfer function (IEC 61966-2-1). The normal-map case checks the tangent frame and
+// the map's +Y-up convention: a texel tilted towards +X (or +Y) must brighten a light from +X
+// (or +Y) exactly as the tilted normal predicts.
+
+#include <array>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "render/renderer.hpp"
+#include "tests/support/vulkan_fixture.hpp"
+
+namespace mane::render {
+namespace {
+
+constexpr vk::Extent2D kExtent{96, 64};
+const std::array<glm::vec3, 4> kPositions{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(1, 1, 0),
+                                          glm::vec3(-1, 1, 0)};
+const std::array<glm::vec3, 4> kNormals{glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1),
+                                        glm::vec3(0, 0, 1)};
+// v = 0 is the top row of the image, as in glTF.
+const std::array<glm::vec2, 4> kUvs{glm::vec2(0, 1), glm::vec2(1, 1), glm::vec2(1, 0), glm::vec2(0, 0)};
+const std::array<std::uint32_t, 6> kIndices{0, 1, 2, 0, 2, 3};
+
+double srgbEncode(double linear) {
+  linear = std::clamp(linear, 0.0, 1.0);
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+double unorm(std::uint8_t value) { return value / 255.0; }
+
+struct Shot {
+  std::vector<std::uint8_t> rgba;
+  std::vector<PassTiming> timings;
+  std::array<int, 3> centre() const {
+    const std::size_t i = (std::size_t(kExtent.height / 2) * kExtent.width + kExtent.width / 2) * 4;
+    return {rgba[i], rgba[i + 1], rgba[i + 2]};
+  }
+};
+
+class Surface : public testing::VulkanTest {
+public:
+  Shot render(const MaterialData& material, const DirectionalLight& light, glm::vec3 ambient) {
+    auto renderer = Renderer::create(device(), {.extent = kExtent});
+    EXPECT_TRUE(renderer.has_value());
+    StaticScene scene{.meshes = {MeshData{kPositions, kNormals, kUvs, kIndices}}, .materials = {material}};
+    EXPECT_TRUE((*renderer)->setScene(scene).has_value());
+    FrameInput frame{.camera = {.position = {0, 0, 2}, .target = {0, 0, 0}},
+                     .lights = {light},
+                     .instances = {{.mesh = 0, .material = 0}},
+                     .ambient = ambient};
+    auto timings = (*renderer)->render(frame);
+    EXPECT_TRUE(timings.has_value());
+    auto rgba = (*renderer)->readOutput();
+    EXPECT_TRUE(rgba.has_value());
+    return {*rgba, *timings};
+  }
+};
+
+TEST_F(Surface, LambertOnAFlatQuadMatchesTheClosedForm) {
+  const glm::vec3 base(0.8f, 0.6f, 0.4f);
+  const glm::vec3 ambient(0.05f);
+  const DirectionalLight light{.direction = glm::normalize(glm::vec3(0, 0.6f, 0.8f)), .color = {1, 1, 1},
+                               .intensity = 0.9f};
+  const Shot shot = render({.baseColor = base}, light, ambient);
+  const auto centre = shot.centre();
+  for (int c = 0; c < 3; ++c) {
+    const double expected = 255.0 * srgbEncode(base[c] * (ambient[c] + 0.9 * 0.8));
+    // ±1: the sRGB encode of the attachment may round either way (Vulkan allows it).
+    EXPECT_NEAR(centre[c], expected, 1.0) << "channel " << c;
+  }
+  ASSERT_EQ(shot.timings.size(), 2u);
+  EXPECT_EQ(shot.timings[0].pass, "surfaces");
+  EXPECT_EQ(shot.timings[1].pass, "output");
+  for (const auto& timing : shot.timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
+}
+
+TEST_F(Surface, BackgroundOutsideTheQuad) {
+  const Shot shot = render({.baseColor = glm::vec3(1)}, {.direction = {0, 0, 1}}, glm::vec3(0));
+  const double expected = 255.0 * srgbEncode(0.02);  // FrameInput's default background red
+  EXPECT_NEAR(shot.rgba[0], expected, 1.0);
+}
+
+// A constant normal map tilted by the texel; the light comes along the tilt axis.
+void expectTiltedNormal(Surface& test, std::array<std::uint8_t, 4> texel, glm::vec3 lightDirection,
+                        std::size_t tiltAxis) {
+  std::vector<std::uint8_t> pixels;
+  for (int i = 0; i < 4; ++i) pixels.insert(pixels.end(), texel.begin(), texel.end());
+  const MaterialData material{.baseColor = glm::vec3(1.0f),
+                              .normalMap = TextureData{.width = 2, .height = 2, .rgba = pixels}};
+  const Shot shot = test.render(material, {.direction = lightDirection}, glm::vec3(0));
+  const glm::dvec3 mapped = glm::normalize(
+      glm::dvec3(unorm(texel[0]) * 2 - 1, unorm(texel[1]) * 2 - 1, unorm(texel[2]) * 2 - 1));
+  // Tangent frame of the quad: +u is world +X, map +Y (up in the image) is world +Y.
+  const double cosine = std::max(mapped[tiltAxis], 0.0);
+  const double expected = 255.0 * srgbEncode(cosine);
+  EXPECT_NEAR(shot.centre()[0], expected, 1.5) << "cosine " << cosine;
+}
+
+TEST_F(Surface, NormalMapTiltTowardsPlusXLightsFromPlusX) {
+  expectTiltedNormal(*this, {204, 128, 229, 255}, {1, 0, 0}, 0);
+}
+
+TEST_F(Surface, NormalMapTiltTowardsPlusYLightsFromPlusY) {
+  expectTiltedNormal(*this, {128, 204, 229, 255}, {0, 1, 0}, 1);
+}
+
+TEST_F(Surface, RejectsUnsupportedSettings) {
+  EXPECT_FALSE(Renderer::create(device(), {.extent = {0, 10}}).has_value());
+  const auto msaa = Renderer::create(device(), {.extent = {8, 8}, .msaaSamples = 2});
+  ASSERT_FALSE(msaa.has_value());
+  EXPECT_NE(msaa.error().message.find("MSAA"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mane::render
