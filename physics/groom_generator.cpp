@@ -1,0 +1,111 @@
+#include "physics/groom_generator.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mane::physics {
+
+namespace {
+
+glm::vec3 cross(const glm::vec3& a, const glm::vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+glm::vec3 normalized(const glm::vec3& v) {
+  return v / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+}
+
+// A uniformly distributed direction with y ≥ minY: rejection sampling in the cube (uniform in
+// the ball, then projected), which needs no trigonometry.
+glm::vec3 randomCapDirection(SplitMix64& rng, float minY) {
+  for (;;) {
+    const glm::vec3 p{rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f),
+                      rng.nextFloat(-1.0f, 1.0f)};
+    const float r2 = p.x * p.x + p.y * p.y + p.z * p.z;
+    if (r2 > 1.0f || r2 < 0.01f) continue;
+    const glm::vec3 n = p / std::sqrt(r2);
+    if (n.y >= minY) return n;
+  }
+}
+
+// tan(u) by its Taylor series to u⁷ (relative error below 0.4 % for |u| ≤ π/4); exact
+// arithmetic only, so the curl geometry is identical on every platform.
+float tanSeries(float u) {
+  const float u2 = u * u;
+  return u * (1.0f + u2 * (1.0f / 3.0f + u2 * (2.0f / 15.0f + u2 * (17.0f / 315.0f))));
+}
+
+}  // namespace
+
+Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings) {
+  const auto bad = [](const char* field, const char* expected) {
+    return fail(std::string("Groom settings: ") + field + " must be " + expected + ".");
+  };
+  if (settings.strandCount < 1) return bad("strandCount", "at least 1");
+  if (settings.particlesPerStrand < 2) return bad("particlesPerStrand", "at least 2");
+  if (!(settings.strandLength > 0.0f && std::isfinite(settings.strandLength)))
+    return bad("strandLength", "a positive number of metres");
+  if (!(settings.lengthJitter >= 0.0f && settings.lengthJitter < 1.0f))
+    return bad("lengthJitter", "in [0, 1)");
+  if (!(settings.scalpRadius > 0.0f && std::isfinite(settings.scalpRadius)))
+    return bad("scalpRadius", "a positive number of metres");
+  if (!(std::isfinite(settings.scalpCentre.x) && std::isfinite(settings.scalpCentre.y) &&
+        std::isfinite(settings.scalpCentre.z)))
+    return bad("scalpCentre", "finite");
+  if (!(settings.capMinNormalY >= -1.0f && settings.capMinNormalY <= 0.99f))
+    return bad("capMinNormalY", "in [-1, 0.99] (a cap with room for roots)");
+  if (!(settings.curlRadius >= 0.0f && std::isfinite(settings.curlRadius)))
+    return bad("curlRadius", "a non-negative number of metres");
+  if (!(std::abs(settings.curlAnglePerSegment) <= 1.5708f))
+    return bad("curlAnglePerSegment", "within [-pi/2, pi/2] radians");
+
+  // The per-segment helix rotation as an exact rational point on the unit circle:
+  // (cos θ, sin θ) = ((1 − t²)/(1 + t²), 2t/(1 + t²)) with t = tan(θ/2).
+  const float t = tanSeries(0.5f * settings.curlAnglePerSegment);
+  const float cosStep = (1.0f - t * t) / (1.0f + t * t);
+  const float sinStep = (2.0f * t) / (1.0f + t * t);
+  const bool curly = settings.curlRadius > 0.0f;
+
+  SplitMix64 rng(settings.seed);
+  std::vector<std::vector<glm::vec3>> strands(settings.strandCount);
+  for (std::vector<glm::vec3>& strand : strands) {
+    const glm::vec3 normal = randomCapDirection(rng, settings.capMinNormalY);
+    const glm::vec3 root = settings.scalpCentre + normal * settings.scalpRadius;
+    const float length =
+        settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
+    const float spacing = length / static_cast<float>(settings.particlesPerStrand - 1);
+
+    // A frame (u, v) around the growth axis, and a random starting phase on the circle.
+    const glm::vec3 helper = std::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    const glm::vec3 u = normalized(cross(normal, helper));
+    const glm::vec3 v = cross(normal, u);
+    float c = 1.0f;
+    float s = 0.0f;
+    for (;;) {
+      const float a = rng.nextFloat(-1.0f, 1.0f);
+      const float b = rng.nextFloat(-1.0f, 1.0f);
+      const float r2 = a * a + b * b;
+      if (r2 > 1.0f || r2 < 0.01f) continue;
+      const float r = std::sqrt(r2);
+      c = a / r;
+      s = b / r;
+      break;
+    }
+    const float c0 = c;
+    const float s0 = s;
+
+    strand.reserve(settings.particlesPerStrand);
+    for (std::size_t i = 0; i < settings.particlesPerStrand; ++i) {
+      glm::vec3 p = root + normal * (spacing * static_cast<float>(i));
+      if (curly) p += (u * (c - c0) + v * (s - s0)) * settings.curlRadius;
+      strand.push_back(p);
+      const float nextC = c * cosStep - s * sinStep;
+      const float nextS = s * cosStep + c * sinStep;
+      c = nextC;
+      s = nextS;
+    }
+  }
+  return strands;
+}
+
+}  // namespace mane::physics

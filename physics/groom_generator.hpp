@@ -1,0 +1,70 @@
+#pragma once
+// Procedural guide grooms for tests, benchmarks and the built-in demo content: roots scattered
+// over a spherical scalp cap, strands growing straight out of the scalp or as helical curls.
+//
+// Deterministic for a seed on every platform: the random numbers come from splitmix64 (Steele,
+// Lea & Flood 2014, "Fast Splittable Pseudorandom Number Generators"; the constants of Vigna's
+// reference implementation), floats are made from its top 24 bits, and the geometry uses only
+// + − × ÷ and sqrt (all correctly rounded by IEEE 754) — no std::uniform_real_distribution
+// (implementation-defined) and no libm trigonometry (which may differ between libraries).
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/error.hpp"
+
+namespace mane::physics {
+
+/// splitmix64: a 64-bit state advanced by a Weyl increment and scrambled by two xor-shift-
+/// multiply rounds. Tiny, fast, passes BigCrush, and fully specified by its constants.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(std::uint64_t seed) noexcept : state_(seed) {}
+
+  /// Next 64 random bits.
+  std::uint64_t next() noexcept {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+
+  /// Uniform float in [0, 1): the top 24 bits of `next()` times 2⁻²⁴ (exact in a float).
+  float nextFloat() noexcept {
+    return static_cast<float>(next() >> 40) * 0x1.0p-24f;
+  }
+
+  /// Uniform float in [lo, hi).
+  float nextFloat(float lo, float hi) noexcept { return lo + (hi - lo) * nextFloat(); }
+
+ private:
+  std::uint64_t state_;
+};
+
+/// Parameters of a procedural groom. Lengths in metres, angles in radians.
+struct GroomSettings {
+  std::uint64_t seed = 1;             ///< PRNG seed; equal seeds give bit-identical grooms
+  std::size_t strandCount = 64;       ///< number of guide strands (≥ 1)
+  std::size_t particlesPerStrand = 16;///< points per strand, root included (≥ 2)
+  float strandLength = 0.25f;         ///< mean length along the growth direction, m (> 0)
+  float lengthJitter = 0.1f;          ///< relative random variation of the length, in [0, 1)
+  glm::vec3 scalpCentre{0.0f};        ///< centre of the spherical scalp, head-local, m
+  float scalpRadius = 0.1f;           ///< scalp radius, m (> 0)
+  /// Roots cover the cap of the sphere whose outward normal has a Y component of at least this
+  /// (1 = only the crown, 0 = the upper hemisphere, −1 = the whole sphere).
+  float capMinNormalY = 0.2f;
+  float curlRadius = 0.0f;            ///< helix radius, m; 0 gives straight strands
+  /// Helix turn per segment, radians (|angle| ≤ π/2); used when curlRadius > 0.
+  float curlAnglePerSegment = 0.5f;
+};
+
+/// Generates guide strands (head-local points, root first, on the scalp) for `settings`.
+/// Each strand grows along the scalp normal at its root; curls wind around that axis and
+/// start at the root. Fails with a message naming the field when a setting is out of range.
+[[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroom(
+    const GroomSettings& settings);
+
+}  // namespace mane::physics

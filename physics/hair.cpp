@@ -1,0 +1,333 @@
+#include "physics/hair.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <system_error>
+#include <thread>
+
+#include <glm/vec4.hpp>
+
+#include "physics/constraints.hpp"
+#include "physics/hash.hpp"
+
+namespace mane::physics {
+
+namespace {
+
+constexpr std::uint32_t kNoFault = std::numeric_limits<std::uint32_t>::max();
+
+bool isFinite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) {
+  return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+std::string describe(const glm::vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", static_cast<double>(v.x),
+                static_cast<double>(v.y), static_cast<double>(v.z));
+  return text;
+}
+
+Result<void> checkTransform(const glm::mat4& m, const char* what) {
+  for (int column = 0; column < 4; ++column)
+    for (int row = 0; row < 4; ++row)
+      if (!std::isfinite(m[column][row]))
+        return fail(std::string("Hair system: ") + what + " has a non-finite entry at column " +
+                    std::to_string(column) + ", row " + std::to_string(row) + ".");
+  return {};
+}
+
+// Validates one input strand (index `s`): enough points, finite, no zero-length segments.
+Result<void> validateStrand(std::size_t s, std::span<const glm::vec3> points) {
+  if (points.size() < 2)
+    return fail("Hair strand " + std::to_string(s) + " has " + std::to_string(points.size()) +
+                " point(s); a guide strand needs at least 2 (a root and a tip).");
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!isFinite(points[i]))
+      return fail("Hair strand " + std::to_string(s) + ", particle " + std::to_string(i) +
+                  " is not finite (NaN or infinite): " + describe(points[i]) + ".");
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const glm::vec3 d = points[i] - points[i - 1];
+    const float length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    if (!std::isfinite(length))
+      return fail("Hair strand " + std::to_string(s) + ", particle " + std::to_string(i) +
+                  ": the segment from particle " + std::to_string(i - 1) +
+                  " is too long to represent in single precision.");
+    if (length < kMinSegmentLength)
+      return fail("Hair strand " + std::to_string(s) + ", particle " + std::to_string(i) +
+                  " is " + std::to_string(length) + " m from particle " + std::to_string(i - 1) +
+                  " (zero-length segment); consecutive points must be at least " +
+                  std::to_string(kMinSegmentLength) + " m apart.");
+  }
+  return {};
+}
+
+}  // namespace
+
+HairSystem::HairSystem(const SolverSettings& settings)
+    : settings_(settings), accumulator_(settings.fixedStep, settings.maxSubstepsPerFrame) {}
+
+Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> strands,
+                                      const SolverSettings& settings,
+                                      const glm::mat4& headTransform) {
+  if (auto valid = validateSettings(settings); !valid)
+    return std::unexpected(Error{"Hair system: " + valid.error().message});
+  if (auto valid = checkTransform(headTransform, "the initial head transform"); !valid)
+    return std::unexpected(valid.error());
+  if (strands.empty()) return fail("Hair groom is empty: no guide strands were given.");
+
+  std::size_t total = 0;
+  for (std::size_t s = 0; s < strands.size(); ++s) {
+    if (auto valid = validateStrand(s, strands[s]); !valid) return std::unexpected(valid.error());
+    total += strands[s].size();
+  }
+  if (total > std::numeric_limits<std::uint32_t>::max() - 1)
+    return fail("Hair groom has " + std::to_string(total) + " particles; at most 2^32 − 2 fit.");
+
+  HairSystem system(settings);
+  system.particles_.reserve(total);
+  system.restLocal_.reserve(total);
+  system.segmentLengths_.reserve(total);
+  system.restDistances_.reserve(total);
+  system.strands_.reserve(strands.size());
+  for (const std::vector<glm::vec3>& points : strands) {
+    GuideStrand strand;
+    strand.firstParticle = static_cast<std::uint32_t>(system.particles_.size());
+    strand.particleCount = static_cast<std::uint32_t>(points.size());
+    strand.rootLocal = points.front();
+    float alongStrand = 0.0f;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      float segment = 0.0f;
+      if (i > 0) {
+        const glm::vec3 d = points[i] - points[i - 1];
+        segment = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        alongStrand += segment;
+      }
+      // Roots have infinite mass (Jakobsen 2001, §3: "infinite mass" particles are moved only by
+      // the animation); every other particle weighs the same, 1 kg, as only mass ratios matter.
+      system.particles_.add(points[i], i == 0 ? 0.0f : 1.0f);
+      system.restLocal_.push_back(points[i]);
+      system.segmentLengths_.push_back(segment);
+      system.restDistances_.push_back(alongStrand);
+    }
+    system.strands_.push_back(strand);
+  }
+  system.faultParticle_.assign(strands.size(), kNoFault);
+  system.faultStep_.assign(strands.size(), 0);
+  system.placeAtRest(headTransform);
+  return system;
+}
+
+void HairSystem::placeAtRest(const glm::mat4& headTransform) {
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    particles_.positions[i] = transformPoint(headTransform, restLocal_[i]);
+    particles_.previousPositions[i] = particles_.positions[i];
+  }
+  previousHead_ = headTransform;
+  head_ = headTransform;
+}
+
+Result<void> HairSystem::setHeadTransform(const glm::mat4& headTransform) {
+  if (auto valid = checkTransform(headTransform, "the head transform"); !valid) return valid;
+  head_ = headTransform;
+  return {};
+}
+
+Result<void> HairSystem::teleport(const glm::mat4& headTransform) {
+  if (auto valid = checkTransform(headTransform, "the teleport transform"); !valid) return valid;
+  placeAtRest(headTransform);
+  std::fill(faultParticle_.begin(), faultParticle_.end(), kNoFault);
+  fault_.reset();
+  return {};
+}
+
+std::span<const glm::vec3> HairSystem::strandPositions(std::size_t strand) const {
+  assert(strand < strands_.size());
+  return {particles_.positions.data() + strands_[strand].firstParticle,
+          strands_[strand].particleCount};
+}
+
+std::span<const float> HairSystem::strandRestDistances(std::size_t strand) const {
+  assert(strand < strands_.size());
+  return {restDistances_.data() + strands_[strand].firstParticle, strands_[strand].particleCount};
+}
+
+double HairSystem::simulatedTime() const noexcept {
+  return static_cast<double>(accumulator_.stepsTaken()) * settings_.fixedStep;
+}
+
+Error HairSystem::faultError() const {
+  assert(fault_);
+  const double time = static_cast<double>(fault_->step) * settings_.fixedStep;
+  return Error{"Hair strand " + std::to_string(fault_->strand) + ", particle " +
+               std::to_string(fault_->particle) +
+               " became non-finite (NaN or infinite) at fixed step " +
+               std::to_string(fault_->step) + " (t = " + std::to_string(time) +
+               " s); the hair system has stopped advancing until teleport() resets it."};
+}
+
+Result<void> HairSystem::advance(double frameDt, unsigned threads) {
+  if (fault_) return std::unexpected(faultError());
+  if (!(std::isfinite(frameDt) && frameDt >= 0.0))
+    return fail("Hair system: frame duration must be a finite number of seconds ≥ 0, got " +
+                std::to_string(frameDt) + ".");
+
+  const StepPlan plan = accumulator_.plan(frameDt);
+  if (plan.substeps > 0) {
+    // A fixed partition into contiguous ranges of whole strands. Each strand's arithmetic is the
+    // same whichever worker runs it, so the partition affects speed only, never the result.
+    const std::size_t workers =
+        std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
+    const auto rangeBegin = [&](std::size_t w) { return strands_.size() * w / workers; };
+    std::vector<std::jthread> pool;
+    pool.reserve(workers - 1);
+    std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
+    for (std::size_t w = 1; w < workers; ++w) {
+      try {
+        pool.emplace_back([this, &plan, b = rangeBegin(w), e = rangeBegin(w + 1)] {
+          simulateStrands(b, e, plan);
+        });
+      } catch (const std::system_error&) {
+        inlineFrom = w;  // no more threads available: run the remaining ranges here
+        break;
+      }
+    }
+    simulateStrands(rangeBegin(0), rangeBegin(1), plan);
+    if (inlineFrom < workers) simulateStrands(rangeBegin(inlineFrom), strands_.size(), plan);
+    pool.clear();  // joins
+
+    // Lowest strand index first, so the report does not depend on which worker saw it first.
+    for (std::size_t s = 0; s < strands_.size(); ++s) {
+      if (faultParticle_[s] == kNoFault) continue;
+      fault_ = SimulationFault{s, faultParticle_[s], faultStep_[s]};
+      break;
+    }
+  }
+  previousHead_ = head_;
+  if (fault_) return std::unexpected(faultError());
+  return {};
+}
+
+void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand,
+                                 const StepPlan& plan) {
+  for (std::size_t s = firstStrand; s < endStrand; s += kStrandLanes)
+    simulateStrandBlock(s, std::min(kStrandLanes, endStrand - s), plan);
+}
+
+// Relaxing a strand is a chain of dependent sqrt and divide operations (each projection needs
+// the previous one's result), so one strand at a time leaves the CPU waiting on latency. Up to
+// kStrandLanes independent strands are therefore advanced side by side, their loops
+// interleaved. Each strand still sees exactly the same operations in the same order as if it
+// were simulated alone, so the grouping changes speed only, never a bit of the result.
+void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
+                                     const StepPlan& plan) {
+  struct Lane {
+    glm::vec3* x;
+    glm::vec3* previous;
+    const float* w;
+    const float* segment;
+    const float* reach;
+    std::size_t count;
+    glm::vec3 rootFrom;
+    glm::vec3 rootTravel;
+    bool active;
+  };
+  Lane lane[kStrandLanes];
+  std::size_t longest = 0;
+  for (std::size_t b = 0; b < lanes; ++b) {
+    const GuideStrand& strand = strands_[firstStrand + b];
+    const std::size_t first = strand.firstParticle;
+    const glm::vec3 rootFrom = transformPoint(previousHead_, strand.rootLocal);
+    lane[b] = Lane{particles_.positions.data() + first,
+                   particles_.previousPositions.data() + first,
+                   particles_.inverseMasses.data() + first,
+                   segmentLengths_.data() + first,
+                   restDistances_.data() + first,
+                   strand.particleCount,
+                   rootFrom,
+                   transformPoint(head_, strand.rootLocal) - rootFrom,
+                   true};
+    longest = std::max(longest, lane[b].count);
+  }
+  const float step = static_cast<float>(plan.fixedStep);
+  const float keep = 1.0f - settings_.damping;
+  const glm::vec3 kick = settings_.gravity * (step * step);
+  const std::uint64_t stepsBefore =
+      accumulator_.stepsTaken() - static_cast<std::uint64_t>(plan.substeps);
+
+  for (int k = 1; k <= plan.substeps; ++k) {
+    const float fraction = plan.fractionAt(k);
+    for (std::size_t b = 0; b < lanes; ++b) {
+      if (!lane[b].active) continue;
+      glm::vec3* x = lane[b].x;
+      glm::vec3* previous = lane[b].previous;
+      // The root is kinematic: it sits where the head puts it at this step's time.
+      previous[0] = x[0];
+      x[0] = lane[b].rootFrom + lane[b].rootTravel * fraction;
+      // Position Verlet with damping (Jakobsen 2001, §2), as integrateVerlet().
+      for (std::size_t i = 1; i < lane[b].count; ++i) {
+        if (lane[b].w[i] <= 0.0f) continue;
+        const glm::vec3 current = x[i];
+        x[i] = verletPosition(current, previous[i], keep, kick);
+        previous[i] = current;
+      }
+    }
+
+    for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
+      // Root to tip: the root's position reaches the tip within one sweep (Jakobsen 2001, §3).
+      for (std::size_t i = 1; i < longest; ++i)
+        for (std::size_t b = 0; b < lanes; ++b) {
+          const Lane& l = lane[b];
+          if (l.active && i < l.count)
+            projectDistance(l.x[i - 1], l.x[i], l.w[i - 1], l.w[i], l.segment[i]);
+        }
+      // Long-range attachments last, so every sweep ends with no particle farther from the
+      // root than its rest distance along the strand (Kim, Chentanez & Müller 2012).
+      if (settings_.tethers)
+        for (std::size_t i = 1; i < longest; ++i)
+          for (std::size_t b = 0; b < lanes; ++b) {
+            const Lane& l = lane[b];
+            if (l.active && i < l.count) projectTether(l.x[i], l.x[0], l.reach[i]);
+          }
+    }
+
+    for (std::size_t b = 0; b < lanes; ++b) {
+      if (!lane[b].active) continue;
+      const glm::vec3* x = lane[b].x;
+      const std::size_t count = lane[b].count;
+      // 0·v is 0 for every finite v and NaN for NaN or ±∞, so one sum tells whether any
+      // coordinate of the strand went bad; find which one only when it did. A bad strand stops
+      // where it is; the others carry on.
+      float probe = 0.0f;
+      for (std::size_t i = 0; i < count; ++i)
+        probe += 0.0f * x[i].x + 0.0f * x[i].y + 0.0f * x[i].z;
+      if (probe != 0.0f) {
+        std::size_t bad = 0;
+        while (bad < count && isFinite(x[bad])) ++bad;
+        faultParticle_[firstStrand + b] = static_cast<std::uint32_t>(std::min(bad, count - 1));
+        faultStep_[firstStrand + b] = stepsBefore + static_cast<std::uint64_t>(k);
+        lane[b].active = false;
+      }
+    }
+  }
+}
+
+std::uint64_t HairSystem::stateHash() const noexcept {
+  StateHasher hasher;
+  hasher.add(std::span<const glm::vec3>(particles_.positions));
+  hasher.add(std::span<const glm::vec3>(particles_.previousPositions));
+  const double backlog = accumulator_.backlog();
+  const std::uint64_t steps = accumulator_.stepsTaken();
+  hasher.addValue(backlog);
+  hasher.addValue(steps);
+  return hasher.value();
+}
+
+}  // namespace mane::physics

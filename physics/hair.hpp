@@ -1,0 +1,128 @@
+#pragma once
+// Guide hair strands simulated as Verlet particle chains (Jakobsen 2001): the root particle of
+// each strand is kinematic and follows a rigid head transform; the others fall under gravity and
+// are held together by distance constraints and long-range attachments to the root.
+//
+// Strands do not interact (no hair–hair forces yet), so a frame is simulated strand by strand,
+// in parallel over whole strands: every strand runs the same sequence of floating-point
+// operations whichever thread runs it, and no value is reduced across threads, so the state is
+// bit-identical for any thread count.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/error.hpp"
+#include "physics/particles.hpp"
+#include "physics/solver.hpp"
+
+namespace mane::physics {
+
+/// Smallest accepted distance between consecutive input points, metres. Shorter segments give
+/// the distance constraint no usable direction (it divides by the current length).
+inline constexpr float kMinSegmentLength = 1e-6f;
+
+/// One simulated guide strand: a contiguous run of particles, root first.
+struct GuideStrand {
+  std::uint32_t firstParticle = 0; ///< index of the root particle in `HairSystem::particles()`
+  std::uint32_t particleCount = 0; ///< root included; at least 2
+  glm::vec3 rootLocal{0.0f};       ///< root position in head-local space, metres
+};
+
+/// Where and when the simulation broke: the first (lowest-index) strand with a non-finite
+/// (NaN or infinite) particle position.
+struct SimulationFault {
+  std::size_t strand = 0;   ///< strand index, as in the input
+  std::size_t particle = 0; ///< particle index within the strand (0 = root)
+  std::uint64_t step = 0;   ///< fixed step (counted from creation, 1-based) that produced it
+};
+
+/// A set of guide strands attached to a rigid head.
+///
+/// Per frame: `setHeadTransform` (where the head is at the end of the frame), then `advance`.
+/// Each fixed step inside the frame places the roots on the straight line between their
+/// positions under the previous and the new head transform, at the step's time in the frame.
+/// Within one fixed step each strand runs, in order: root placement, Verlet integration, then
+/// `constraintIterations` sweeps of distance constraints root → tip followed by tethers.
+class HairSystem {
+ public:
+  /// Builds the system from guide strands given as points in head-local space (metres), root
+  /// first, placed in the world by `headTransform` (head-local → world) at rest.
+  /// Fails, naming the strand and particle, when the groom is empty, a strand has fewer than 2
+  /// points, a point is NaN or infinite, or two consecutive points are closer than
+  /// `kMinSegmentLength`; also when `settings` or `headTransform` are invalid.
+  [[nodiscard]] static Result<HairSystem> create(std::span<const std::vector<glm::vec3>> strands,
+                                                 const SolverSettings& settings,
+                                                 const glm::mat4& headTransform = glm::mat4(1.0f));
+
+  /// Sets the head-local → world transform that holds at the end of the next `advance` (a rigid
+  /// transform is expected; roots are interpolated linearly between frames). Fails, changing
+  /// nothing, when an entry is NaN or infinite.
+  [[nodiscard]] Result<void> setHeadTransform(const glm::mat4& headTransform);
+
+  /// Places every strand in its rest shape under `headTransform`, at rest (zero velocity), and
+  /// clears a recorded fault. For cuts and resets; fails when an entry is NaN or infinite.
+  [[nodiscard]] Result<void> teleport(const glm::mat4& headTransform);
+
+  /// Advances the simulation by a frame of `frameDt` seconds, split into whole fixed steps (the
+  /// remainder carries over to the next frame). `threads` ≥ 1 workers (0 counts as 1) simulate
+  /// disjoint ranges of strands; the result does not depend on `threads`.
+  /// Fails when `frameDt` is negative or not finite, or when a particle position becomes NaN or
+  /// infinite; in the latter case the message names the strand, the system stops advancing
+  /// (see `fault()`) until `teleport` resets it.
+  [[nodiscard]] Result<void> advance(double frameDt, unsigned threads = 1);
+
+  /// 64-bit FNV-1a hash (see hash.hpp) of the simulated state: all positions, all previous
+  /// positions, then the accumulator's backlog (double, seconds) and the fixed-step count.
+  [[nodiscard]] std::uint64_t stateHash() const noexcept;
+
+  /// Number of strands.
+  [[nodiscard]] std::size_t strandCount() const noexcept { return strands_.size(); }
+  /// Layout of every strand.
+  [[nodiscard]] std::span<const GuideStrand> strands() const noexcept { return strands_; }
+  /// Current world positions (metres) of strand `strand`'s particles, root first.
+  [[nodiscard]] std::span<const glm::vec3> strandPositions(std::size_t strand) const;
+  /// Rest distance (metres) from strand `strand`'s root to each of its particles along the
+  /// strand (0 for the root): the tether lengths.
+  [[nodiscard]] std::span<const float> strandRestDistances(std::size_t strand) const;
+  /// All particles, strands one after another.
+  [[nodiscard]] const Particles& particles() const noexcept { return particles_; }
+  /// The settings this system was created with.
+  [[nodiscard]] const SolverSettings& settings() const noexcept { return settings_; }
+  /// The recorded fault, if a particle has become non-finite.
+  [[nodiscard]] const std::optional<SimulationFault>& fault() const noexcept { return fault_; }
+  /// Fixed steps simulated since creation.
+  [[nodiscard]] std::uint64_t stepCount() const noexcept { return accumulator_.stepsTaken(); }
+  /// Simulated time since creation, seconds (step count × fixed step).
+  [[nodiscard]] double simulatedTime() const noexcept;
+
+ private:
+  explicit HairSystem(const SolverSettings& settings);
+
+  void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan);
+  void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
+
+  static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side
+  void placeAtRest(const glm::mat4& headTransform);
+  [[nodiscard]] Error faultError() const;
+
+  SolverSettings settings_;
+  FixedStepAccumulator accumulator_;
+  Particles particles_;
+  std::vector<GuideStrand> strands_;
+  std::vector<glm::vec3> restLocal_;      // rest positions in head-local space, per particle
+  std::vector<float> segmentLengths_;     // rest distance to the previous particle (0 at roots)
+  std::vector<float> restDistances_;      // rest distance to the root along the strand
+  std::vector<std::uint32_t> faultParticle_;  // per strand: first bad particle, or kNoFault
+  std::vector<std::uint64_t> faultStep_;      // per strand: step that made it bad
+  glm::mat4 previousHead_{1.0f};  // head transform at the end of the last advance
+  glm::mat4 head_{1.0f};          // head transform at the end of the next advance
+  std::optional<SimulationFault> fault_;
+};
+
+}  // namespace mane::physics
