@@ -1,0 +1,532 @@
+#include "scenes/gltf_loader.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <tiny_gltf.h>
+
+namespace mane::scenes {
+namespace {
+
+// Nodes nest at most this deep; deeper means a cycle (glTF forbids them) or a hostile file.
+constexpr int kMaxNodeDepth = 256;
+
+/// Everything a failure message needs: the file and the parsed model.
+struct Context {
+  const tinygltf::Model& model;
+  std::string file;
+
+  [[nodiscard]] std::unexpected<Error> error(const std::string& what) const {
+    return fail(file + ": " + what);
+  }
+};
+
+// Images are not needed for geometry; skipping them keeps loading fast and means a missing
+// or corrupt texture cannot fail a mesh load.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
+  return true;
+}
+
+std::string modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS (0)";
+    case TINYGLTF_MODE_LINE: return "LINES (1)";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP (2)";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP (3)";
+    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP (5)";
+    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN (6)";
+    default: return "unknown mode " + std::to_string(mode);
+  }
+}
+
+/// Copies `length` bytes at `offset` inside buffer view `viewIndex` to `out`, checking
+/// every index and range on the way.
+Result<void> copyFromView(const Context& ctx, int viewIndex, std::size_t offset,
+                          std::size_t stride, std::size_t elementSize, std::size_t count,
+                          unsigned char* out, const std::string& what) {
+  const auto& views = ctx.model.bufferViews;
+  if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= views.size()) {
+    return ctx.error(what + " refers to buffer view " + std::to_string(viewIndex) +
+                     ", but the file has " + std::to_string(views.size()) + " buffer views");
+  }
+  const tinygltf::BufferView& view = views[static_cast<std::size_t>(viewIndex)];
+  if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= ctx.model.buffers.size()) {
+    return ctx.error("buffer view " + std::to_string(viewIndex) + " refers to missing buffer " +
+                     std::to_string(view.buffer));
+  }
+  const std::vector<unsigned char>& data =
+      ctx.model.buffers[static_cast<std::size_t>(view.buffer)].data;
+  if (count == 0) return {};
+  const std::size_t end = offset + (count - 1) * stride + elementSize;
+  if (end > view.byteLength || view.byteOffset + view.byteLength > data.size()) {
+    return ctx.error(what + " reads bytes up to " + std::to_string(end) + " of buffer view " +
+                     std::to_string(viewIndex) + ", which holds " +
+                     std::to_string(view.byteLength) + " bytes (buffer " +
+                     std::to_string(view.buffer) + " has " + std::to_string(data.size()) +
+                     "): the file is truncated or the accessor is wrong");
+  }
+  const unsigned char* base = data.data() + view.byteOffset + offset;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::memcpy(out + i * elementSize, base + i * stride, elementSize);
+  }
+  return {};
+}
+
+/// Raw accessor contents, tightly packed: `count` elements of `elementSize` bytes, with
+/// the sparse substitution applied (glTF 2.0 §3.6.2.3). An accessor without a buffer view
+/// starts as zeros.
+struct DenseAccessor {
+  std::vector<unsigned char> bytes;
+  std::size_t count = 0;
+  int componentType = 0;
+  int components = 0;
+  bool normalized = false;
+};
+
+Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::string& role) {
+  const auto& accessors = ctx.model.accessors;
+  if (index < 0 || static_cast<std::size_t>(index) >= accessors.size()) {
+    return ctx.error(role + " refers to accessor " + std::to_string(index) +
+                     ", but the file has " + std::to_string(accessors.size()) + " accessors");
+  }
+  const tinygltf::Accessor& accessor = accessors[static_cast<std::size_t>(index)];
+  const std::string what = role + " (accessor " + std::to_string(index) + ")";
+  const int componentSize = tinygltf::GetComponentSizeInBytes(
+      static_cast<std::uint32_t>(accessor.componentType));
+  const int components =
+      tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
+  if (componentSize <= 0 || components <= 0) {
+    return ctx.error(what + " has an invalid component type " +
+                     std::to_string(accessor.componentType) + " or type " +
+                     std::to_string(accessor.type));
+  }
+  DenseAccessor dense;
+  dense.count = accessor.count;
+  dense.componentType = accessor.componentType;
+  dense.components = components;
+  dense.normalized = accessor.normalized;
+  const std::size_t elementSize = static_cast<std::size_t>(componentSize * components);
+  dense.bytes.assign(dense.count * elementSize, 0);
+
+  if (accessor.bufferView >= 0) {
+    if (static_cast<std::size_t>(accessor.bufferView) >= ctx.model.bufferViews.size()) {
+      return ctx.error(what + " refers to missing buffer view " +
+                       std::to_string(accessor.bufferView));
+    }
+    // ByteStride() is -1 when byteStride is not a multiple of the component size.
+    const int stride =
+        accessor.ByteStride(ctx.model.bufferViews[static_cast<std::size_t>(accessor.bufferView)]);
+    if (stride <= 0) {
+      return ctx.error(what + " has an invalid byte stride in buffer view " +
+                       std::to_string(accessor.bufferView));
+    }
+    if (auto copied = copyFromView(ctx, accessor.bufferView, accessor.byteOffset,
+                                   static_cast<std::size_t>(stride), elementSize, dense.count,
+                                   dense.bytes.data(), what);
+        !copied) {
+      return std::unexpected(copied.error());
+    }
+  }
+
+  if (accessor.sparse.isSparse) {
+    const auto& sparse = accessor.sparse;
+    const std::size_t sparseCount = static_cast<std::size_t>(std::max(sparse.count, 0));
+    const int indexType = sparse.indices.componentType;
+    const int indexSize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(indexType));
+    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+      return ctx.error(what + " has sparse indices of component type " +
+                       std::to_string(indexType) + "; expected 5121, 5123 or 5125");
+    }
+    std::vector<unsigned char> indexBytes(sparseCount * static_cast<std::size_t>(indexSize));
+    std::vector<unsigned char> valueBytes(sparseCount * elementSize);
+    if (auto ok = copyFromView(ctx, sparse.indices.bufferView,
+                               static_cast<std::size_t>(sparse.indices.byteOffset),
+                               static_cast<std::size_t>(indexSize),
+                               static_cast<std::size_t>(indexSize), sparseCount,
+                               indexBytes.data(), what + " sparse indices");
+        !ok) {
+      return std::unexpected(ok.error());
+    }
+    if (auto ok = copyFromView(ctx, sparse.values.bufferView,
+                               static_cast<std::size_t>(sparse.values.byteOffset), elementSize,
+                               elementSize, sparseCount, valueBytes.data(),
+                               what + " sparse values");
+        !ok) {
+      return std::unexpected(ok.error());
+    }
+    for (std::size_t i = 0; i < sparseCount; ++i) {
+      std::uint32_t target = 0;
+      const unsigned char* p = indexBytes.data() + i * static_cast<std::size_t>(indexSize);
+      if (indexSize == 1) {
+        target = *p;
+      } else if (indexSize == 2) {
+        std::uint16_t v;
+        std::memcpy(&v, p, 2);
+        target = v;
+      } else {
+        std::memcpy(&target, p, 4);
+      }
+      if (target >= dense.count) {
+        return ctx.error(what + " sparse index " + std::to_string(target) +
+                         " is past the accessor's count " + std::to_string(dense.count));
+      }
+      std::memcpy(dense.bytes.data() + target * elementSize, valueBytes.data() + i * elementSize,
+                  elementSize);
+    }
+  }
+  return dense;
+}
+
+/// One component as a float; normalised integers map to [0, 1] or [-1, 1] (glTF 2.0
+/// §3.11, "Animations" table of normalisation formulas).
+float decodeComponent(const unsigned char* p, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      std::int8_t v;
+      std::memcpy(&v, p, 1);
+      return normalized ? std::max(static_cast<float>(v) / 127.0f, -1.0f) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? static_cast<float>(*p) / 255.0f : *p;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      std::int16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? std::max(static_cast<float>(v) / 32767.0f, -1.0f) : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      return normalized ? static_cast<float>(v) / 65535.0f : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      return static_cast<float>(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_INT: {
+      std::int32_t v;
+      std::memcpy(&v, p, 4);
+      return static_cast<float>(v);
+    }
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: {
+      double v;
+      std::memcpy(&v, p, 8);
+      return static_cast<float>(v);
+    }
+    default: {
+      float v;
+      std::memcpy(&v, p, 4);
+      return v;
+    }
+  }
+}
+
+/// A vertex attribute as floats, `components` per element (VEC2 → 2, VEC3 → 3).
+Result<std::vector<float>> readFloats(const Context& ctx, int index, int components,
+                                      const std::string& role) {
+  auto dense = readAccessor(ctx, index, role);
+  if (!dense) return std::unexpected(dense.error());
+  if (dense->components != components) {
+    return ctx.error(role + " (accessor " + std::to_string(index) + ") has " +
+                     std::to_string(dense->components) + " components per element; expected " +
+                     std::to_string(components));
+  }
+  const std::size_t size = static_cast<std::size_t>(
+      tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(dense->componentType)));
+  std::vector<float> out(dense->count * static_cast<std::size_t>(components));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i] = decodeComponent(dense->bytes.data() + i * size, dense->componentType,
+                             dense->normalized);
+  }
+  return out;
+}
+
+Result<std::vector<std::uint32_t>> readIndices(const Context& ctx, int index,
+                                               const std::string& role) {
+  auto dense = readAccessor(ctx, index, role);
+  if (!dense) return std::unexpected(dense.error());
+  const int type = dense->componentType;
+  if (dense->components != 1 || (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                                 type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                                 type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+    return ctx.error(role + " (accessor " + std::to_string(index) +
+                     ") must be SCALAR unsigned byte, short or int; it has component type " +
+                     std::to_string(type) + " and " + std::to_string(dense->components) +
+                     " components");
+  }
+  const std::size_t size =
+      static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(type)));
+  std::vector<std::uint32_t> out(dense->count);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const unsigned char* p = dense->bytes.data() + i * size;
+    if (size == 1) {
+      out[i] = *p;
+    } else if (size == 2) {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      out[i] = v;
+    } else {
+      std::memcpy(&out[i], p, 4);
+    }
+  }
+  return out;
+}
+
+glm::mat4 localMatrix(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::dmat4 m = glm::make_mat4(node.matrix.data());  // both column-major
+    return glm::mat4(m);
+  }
+  glm::mat4 m(1.0f);
+  if (node.translation.size() == 3) {
+    m[3] = glm::vec4(glm::vec3(glm::make_vec3(node.translation.data())), 1.0f);
+  }
+  if (node.rotation.size() == 4) {
+    // glTF stores (x, y, z, w); glm::quat's constructor takes w first.
+    const glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                      static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+    m = m * glm::mat4_cast(q);
+  }
+  if (node.scale.size() == 3) {
+    const glm::vec3 s(glm::make_vec3(node.scale.data()));
+    m[0] *= s.x;
+    m[1] *= s.y;
+    m[2] *= s.z;
+  }
+  return m;
+}
+
+/// Appends one primitive, transformed to world space, to `out`.
+Result<void> appendPrimitive(const Context& ctx, const tinygltf::Primitive& primitive,
+                             const std::string& where, const glm::mat4& world, Mesh& out,
+                             std::vector<bool>& hasUv) {
+  const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES) {
+    return ctx.error(where + " uses primitive mode " + modeName(mode) +
+                     "; only TRIANGLES (4) is supported");
+  }
+  const auto positionIt = primitive.attributes.find("POSITION");
+  if (positionIt == primitive.attributes.end()) {
+    return ctx.error(where + " has no POSITION attribute");
+  }
+  auto positions = readFloats(ctx, positionIt->second, 3, where + " POSITION");
+  if (!positions) return std::unexpected(positions.error());
+  const std::size_t vertexCount = positions->size() / 3;
+
+  std::vector<float> normals;
+  if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+    auto read = readFloats(ctx, it->second, 3, where + " NORMAL");
+    if (!read) return std::unexpected(read.error());
+    normals = std::move(*read);
+  }
+  std::vector<float> uvs;
+  if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
+    auto read = readFloats(ctx, it->second, 2, where + " TEXCOORD_0");
+    if (!read) return std::unexpected(read.error());
+    uvs = std::move(*read);
+  }
+  if ((!normals.empty() && normals.size() / 3 != vertexCount) ||
+      (!uvs.empty() && uvs.size() / 2 != vertexCount)) {
+    return ctx.error(where + " has attributes of different lengths (POSITION has " +
+                     std::to_string(vertexCount) + " elements)");
+  }
+
+  std::vector<std::uint32_t> indices;
+  if (primitive.indices >= 0) {
+    auto read = readIndices(ctx, primitive.indices, where + " indices");
+    if (!read) return std::unexpected(read.error());
+    indices = std::move(*read);
+  } else {
+    indices.resize(vertexCount);
+    for (std::size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<std::uint32_t>(i);
+  }
+  if (indices.size() % 3 != 0) {
+    return ctx.error(where + " has " + std::to_string(indices.size()) +
+                     " indices, which is not a multiple of 3");
+  }
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    if (indices[i] >= vertexCount) {
+      return ctx.error(where + " index " + std::to_string(i) + " is " +
+                       std::to_string(indices[i]) + " but the primitive has only " +
+                       std::to_string(vertexCount) + " vertices");
+    }
+  }
+
+  Mesh part;
+  part.positions.resize(vertexCount);
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    part.positions[v] = glm::vec3(world * glm::vec4(glm::make_vec3(&(*positions)[3 * v]), 1.0f));
+  }
+  // A mirroring transform flips the triangles' facing; swap two corners to keep it.
+  const glm::mat3 linear(world);
+  const bool mirrored = glm::determinant(linear) < 0.0f;
+  if (mirrored) {
+    for (std::size_t t = 0; t < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
+  }
+  part.indices = std::move(indices);
+  if (normals.empty()) {
+    computeSmoothNormals(part);
+  } else {
+    // Normals transform by the inverse transpose so non-uniform scale keeps them normal.
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
+    part.normals.resize(vertexCount);
+    for (std::size_t v = 0; v < vertexCount; ++v) {
+      const glm::vec3 n = normalMatrix * glm::make_vec3(&normals[3 * v]);
+      const float length = glm::length(n);
+      part.normals[v] = length > 0.0f ? n / length : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+  }
+
+  const auto base = static_cast<std::uint32_t>(out.positions.size());
+  out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+  out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
+  for (std::size_t v = 0; v < vertexCount; ++v) {
+    out.uvs.push_back(uvs.empty() ? glm::vec2(0.0f) : glm::make_vec2(&uvs[2 * v]));
+    hasUv.push_back(!uvs.empty());
+  }
+  for (std::uint32_t i : part.indices) out.indices.push_back(base + i);
+  return {};
+}
+
+Result<void> visitNode(const Context& ctx, int nodeIndex, const glm::mat4& parent, int depth,
+                       Mesh& out, std::vector<bool>& hasUv) {
+  const auto& nodes = ctx.model.nodes;
+  if (nodeIndex < 0 || static_cast<std::size_t>(nodeIndex) >= nodes.size()) {
+    return ctx.error("the scene refers to node " + std::to_string(nodeIndex) +
+                     ", but the file has " + std::to_string(nodes.size()) + " nodes");
+  }
+  if (depth > kMaxNodeDepth) {
+    return ctx.error("node " + std::to_string(nodeIndex) + " is nested more than " +
+                     std::to_string(kMaxNodeDepth) + " levels deep (a cycle in the node tree?)");
+  }
+  const tinygltf::Node& node = nodes[static_cast<std::size_t>(nodeIndex)];
+  const glm::mat4 world = parent * localMatrix(node);
+  if (node.mesh >= 0) {
+    if (static_cast<std::size_t>(node.mesh) >= ctx.model.meshes.size()) {
+      return ctx.error("node " + std::to_string(nodeIndex) + " refers to missing mesh " +
+                       std::to_string(node.mesh));
+    }
+    const tinygltf::Mesh& mesh = ctx.model.meshes[static_cast<std::size_t>(node.mesh)];
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const std::string where = "mesh " + std::to_string(node.mesh) + " ('" + mesh.name +
+                                "') primitive " + std::to_string(p);
+      if (auto ok = appendPrimitive(ctx, mesh.primitives[p], where, world, out, hasUv); !ok) {
+        return ok;
+      }
+    }
+  }
+  for (int child : node.children) {
+    if (auto ok = visitNode(ctx, child, world, depth + 1, out, hasUv); !ok) return ok;
+  }
+  return {};
+}
+
+/// tinygltf's own messages for a bad .glb header are terse ("Invalid glTF binary."); check
+/// the 12-byte header first so a truncated download says so.
+Result<void> checkGlbHeader(const std::string& file, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 20) {
+    return fail(file + ": truncated glTF binary: " + std::to_string(bytes.size()) +
+                " bytes, shorter than the 20-byte header");
+  }
+  std::uint32_t declared = 0;
+  std::memcpy(&declared, bytes.data() + 8, 4);
+  if (declared > bytes.size()) {
+    return fail(file + ": truncated glTF binary: the header declares " +
+                std::to_string(declared) + " bytes but the file has " +
+                std::to_string(bytes.size()));
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<Mesh> loadGltf(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    return fail(name + ": file not found");
+  }
+  std::ifstream stream(file, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(stream)),
+                                   std::istreambuf_iterator<char>());
+  if (!stream.good() && !stream.eof()) return fail(name + ": could not read the file");
+  if (bytes.size() > 0xFFFFFFFFu) return fail(name + ": file is larger than 4 GiB");
+
+  tinygltf::Model model;
+  std::string err;
+  std::string warn;
+  bool loaded = false;
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  try {
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(&skipImage, nullptr);
+    const std::string baseDir = file.parent_path().string();
+    if (binary) {
+      if (auto ok = checkGlbHeader(name, bytes); !ok) return std::unexpected(ok.error());
+      loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                           static_cast<unsigned int>(bytes.size()), baseDir);
+    } else {
+      loaded = loader.LoadASCIIFromString(&model, &err, &warn,
+                                          reinterpret_cast<const char*>(bytes.data()),
+                                          static_cast<unsigned int>(bytes.size()), baseDir);
+    }
+  } catch (const std::exception& e) {
+    return fail(name + ": not a valid glTF file: " + e.what());
+  }
+  if (!loaded) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    return fail(name + ": not a valid glTF file: " + (err.empty() ? "unknown error" : err));
+  }
+
+  const Context ctx{model, name};
+  Mesh mesh;
+  mesh.name = file.stem().string();
+  std::vector<bool> hasUv;
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (static_cast<std::size_t>(sceneIndex) >= model.scenes.size()) {
+      return ctx.error("the default scene " + std::to_string(sceneIndex) + " does not exist");
+    }
+    roots = model.scenes[static_cast<std::size_t>(sceneIndex)].nodes;
+  } else {
+    // No scene: glTF leaves the choice to the application; take every root node.
+    std::vector<bool> isChild(model.nodes.size(), false);
+    for (const auto& node : model.nodes) {
+      for (int child : node.children) {
+        if (child >= 0 && static_cast<std::size_t>(child) < isChild.size()) {
+          isChild[static_cast<std::size_t>(child)] = true;
+        }
+      }
+    }
+    for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    }
+  }
+  for (int root : roots) {
+    if (auto ok = visitNode(ctx, root, glm::mat4(1.0f), 0, mesh, hasUv); !ok) {
+      return std::unexpected(ok.error());
+    }
+  }
+  if (mesh.indices.empty()) {
+    return ctx.error("the default scene has no triangles");
+  }
+  if (std::find(hasUv.begin(), hasUv.end(), true) == hasUv.end()) mesh.uvs.clear();
+  return mesh;
+}
+
+}  // namespace mane::scenes

@@ -1,0 +1,399 @@
+#include "scenes/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "scenes/detail/json_fields.hpp"
+
+namespace mane::scenes {
+namespace {
+
+using detail::FieldError;
+using detail::ObjectFields;
+using Json = nlohmann::json;
+
+// Procedural mesh kinds the loader can build (scenes/procedural.hpp).
+const std::set<std::string> kProceduralMeshKinds = {"sphere"};
+
+glm::mat4 rotationMatrix(const glm::vec3& degrees) {
+  const glm::vec3 r = glm::radians(degrees);
+  glm::mat4 m(1.0f);
+  m = glm::rotate(m, r.z, glm::vec3(0, 0, 1));
+  m = glm::rotate(m, r.y, glm::vec3(0, 1, 0));
+  m = glm::rotate(m, r.x, glm::vec3(1, 0, 0));
+  return m;
+}
+
+void require(bool condition, const std::string& path, const std::string& message) {
+  if (!condition) throw FieldError{path, message};
+}
+
+glm::vec3 unitDirection(ObjectFields& fields, const std::string& key) {
+  const glm::vec3 v = fields.required<glm::vec3>(key);
+  const float length = glm::length(v);
+  require(length > 1e-6f, fields.child(key), "expected a non-zero direction");
+  return v / length;
+}
+
+OutputSettings parseOutput(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  OutputSettings output;
+  output.width = fields.optional<int>("width", output.width);
+  output.height = fields.optional<int>("height", output.height);
+  require(output.width > 0 && output.width <= 16384, fields.child("width"),
+          "expected a width in 1..16384 pixels");
+  require(output.height > 0 && output.height <= 16384, fields.child("height"),
+          "expected a height in 1..16384 pixels");
+  fields.finish();
+  return output;
+}
+
+Camera parseCamera(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Camera camera;
+  camera.position = fields.required<glm::vec3>("position");
+  camera.target = fields.required<glm::vec3>("target");
+  camera.up = fields.optional<glm::vec3>("up", camera.up);
+  camera.verticalFovDegrees = fields.optional<float>("fov_degrees", camera.verticalFovDegrees);
+  camera.nearPlane = fields.optional<float>("near", camera.nearPlane);
+  camera.farPlane = fields.optional<float>("far", camera.farPlane);
+  fields.finish();
+  require(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f,
+          fields.child("fov_degrees"), "expected a vertical field of view in (0, 180) degrees");
+  require(camera.nearPlane > 0.0f, fields.child("near"), "expected a near plane > 0 metres");
+  require(camera.farPlane > camera.nearPlane, fields.child("far"),
+          "expected a far plane beyond the near plane");
+  const glm::vec3 view = camera.target - camera.position;
+  require(glm::length(view) > 1e-6f, fields.child("target"),
+          "expected a target different from the position");
+  require(glm::length(glm::cross(view, camera.up)) > 1e-6f * glm::length(view),
+          fields.child("up"), "expected an up vector not parallel to the view direction");
+  return camera;
+}
+
+Light parseLight(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Light light;
+  const std::string kind = fields.required<std::string>("kind");
+  require(kind == "directional", fields.child("kind"),
+          "expected \"directional\" (the only light kind so far), got \"" + kind + "\"");
+  light.direction = unitDirection(fields, "direction");
+  light.colour = fields.optional<glm::vec3>("colour", light.colour);
+  light.intensity = fields.optional<float>("intensity", light.intensity);
+  fields.finish();
+  require(light.colour.r >= 0 && light.colour.g >= 0 && light.colour.b >= 0,
+          fields.child("colour"), "expected non-negative linear RGB");
+  require(light.intensity >= 0.0f, fields.child("intensity"), "expected an intensity >= 0");
+  return light;
+}
+
+Material parseMaterial(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Material material;
+  material.name = fields.required<std::string>("name");
+  require(!material.name.empty(), fields.child("name"), "expected a non-empty name");
+  const std::string kind = fields.optional<std::string>("kind", "lambert");
+  require(kind == "lambert", fields.child("kind"),
+          "expected \"lambert\" (the only material kind so far), got \"" + kind + "\"");
+  material.albedoTexture = fields.optional<std::string>("albedo_texture", "");
+  material.normalMap = fields.optional<std::string>("normal_map", "");
+  material.specularMap = fields.optional<std::string>("specular_map", "");
+  material.baseColour = fields.optional<glm::vec3>("base_colour", material.baseColour);
+  fields.finish();
+  return material;
+}
+
+Transform parseTransform(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Transform transform;
+  transform.translation = fields.optional<glm::vec3>("translation", transform.translation);
+  transform.rotationDegrees =
+      fields.optional<glm::vec3>("rotation_degrees", transform.rotationDegrees);
+  transform.scale = fields.optional<float>("scale", transform.scale);
+  require(transform.scale > 0.0f, fields.child("scale"), "expected a uniform scale > 0");
+  fields.finish();
+  return transform;
+}
+
+MeshInstance parseMesh(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  MeshInstance mesh;
+  mesh.name = fields.required<std::string>("name");
+  require(!mesh.name.empty(), fields.child("name"), "expected a non-empty name");
+  mesh.source = fields.required<std::string>("source");
+  require(!mesh.source.empty(), fields.child("source"),
+          "expected an asset name or \"procedural:<kind>\"");
+  if (mesh.isProcedural()) {
+    require(kProceduralMeshKinds.contains(mesh.proceduralKind()), fields.child("source"),
+            "unknown procedural mesh \"" + mesh.source + "\" (known: procedural:sphere)");
+  }
+  mesh.material = fields.optional<std::string>("material", "");
+  if (const Json* transform = fields.take("transform")) {
+    mesh.transform = parseTransform(*transform, fields.child("transform"));
+  }
+  fields.finish();
+  return mesh;
+}
+
+HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  HairSimulation sim;
+  sim.stepSeconds = fields.optional<float>("step", sim.stepSeconds);
+  sim.iterations = fields.optional<int>("iterations", sim.iterations);
+  sim.damping = fields.optional<float>("damping", sim.damping);
+  sim.gravity = fields.optional<glm::vec3>("gravity", sim.gravity);
+  fields.finish();
+  require(sim.stepSeconds > 0.0f && sim.stepSeconds <= 0.1f, fields.child("step"),
+          "expected a time step in (0, 0.1] seconds");
+  require(sim.iterations >= 1 && sim.iterations <= 1000, fields.child("iterations"),
+          "expected 1..1000 iterations");
+  require(sim.damping >= 0.0f && sim.damping < 1.0f, fields.child("damping"),
+          "expected a damping in [0, 1)");
+  return sim;
+}
+
+Groom parseGroom(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Groom groom;
+  groom.name = fields.required<std::string>("name");
+  groom.source = fields.required<std::string>("source");
+  require(!groom.source.empty(), fields.child("source"),
+          "expected a .tfx/.hair asset name or \"procedural\"");
+  groom.attachedMesh = fields.required<std::string>("attached_mesh");
+  groom.strandCount = fields.optional<int>("strands", 0);
+  groom.strandLengthMetres = fields.optional<float>("length", 0.0f);
+  require(groom.strandCount >= 0, fields.child("strands"), "expected a strand count >= 0");
+  require(groom.strandLengthMetres >= 0.0f, fields.child("length"),
+          "expected a length >= 0 metres");
+  if (const Json* sim = fields.take("simulation")) {
+    groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));
+  }
+  fields.finish();
+  return groom;
+}
+
+HeadMotion parseHeadMotion(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  HeadMotion motion;
+  motion.mesh = fields.required<std::string>("mesh");
+  const std::string kind = fields.required<std::string>("motion");
+  if (kind == "none") {
+    motion.kind = HeadMotionKind::none;
+  } else if (kind == "turn") {
+    motion.kind = HeadMotionKind::turn;
+  } else if (kind == "nod") {
+    motion.kind = HeadMotionKind::nod;
+  } else if (kind == "shake") {
+    motion.kind = HeadMotionKind::shake;
+  } else if (kind == "keyframes") {
+    motion.kind = HeadMotionKind::keyframes;
+  } else {
+    throw FieldError{fields.child("motion"), "expected one of \"none\", \"turn\", \"nod\", "
+                                             "\"shake\", \"keyframes\", got \"" + kind + "\""};
+  }
+  const bool periodic = motion.kind == HeadMotionKind::turn ||
+                        motion.kind == HeadMotionKind::nod || motion.kind == HeadMotionKind::shake;
+  if (periodic) {
+    motion.amplitudeDegrees = fields.required<float>("amplitude_degrees");
+    motion.frequencyHz = fields.required<float>("frequency_hz");
+    require(motion.frequencyHz >= 0.0f, fields.child("frequency_hz"),
+            "expected a frequency >= 0 Hz");
+  }
+  if (motion.kind == HeadMotionKind::keyframes) {
+    const Json& keys = fields.array("keyframes", true);
+    require(!keys.empty(), fields.child("keyframes"), "expected at least one keyframe");
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      ObjectFields key(keys[i], detail::indexPath(fields.child("keyframes"), i));
+      Keyframe frame;
+      frame.timeSeconds = key.required<float>("time");
+      frame.rotationDegrees = key.optional<glm::vec3>("rotation_degrees", frame.rotationDegrees);
+      frame.translation = key.optional<glm::vec3>("translation", frame.translation);
+      key.finish();
+      require(motion.keyframes.empty() || frame.timeSeconds > motion.keyframes.back().timeSeconds,
+              key.child("time"), "expected times in strictly increasing order");
+      motion.keyframes.push_back(frame);
+    }
+  }
+  fields.finish();
+  return motion;
+}
+
+SimulationSettings parseSimulation(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  SimulationSettings sim;
+  sim.stepSeconds = fields.optional<float>("step", sim.stepSeconds);
+  sim.maxStepsPerFrame = fields.optional<int>("max_steps_per_frame", sim.maxStepsPerFrame);
+  fields.finish();
+  require(sim.stepSeconds > 0.0f && sim.stepSeconds <= 0.1f, fields.child("step"),
+          "expected a time step in (0, 0.1] seconds");
+  require(sim.maxStepsPerFrame >= 1, fields.child("max_steps_per_frame"), "expected >= 1");
+  return sim;
+}
+
+template <class T, class Parse>
+std::vector<T> parseList(ObjectFields& fields, const std::string& key, Parse parse) {
+  std::vector<T> out;
+  const Json& items = fields.array(key, false);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out.push_back(parse(items[i], detail::indexPath(fields.child(key), i)));
+  }
+  return out;
+}
+
+/// Names must be unique and references must point at something.
+void checkReferences(const Scene& scene) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    require(names.insert(scene.materials[i].name).second,
+            "materials[" + std::to_string(i) + "].name",
+            "duplicate material name \"" + scene.materials[i].name + "\"");
+  }
+  names.clear();
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshInstance& mesh = scene.meshes[i];
+    const std::string path = "meshes[" + std::to_string(i) + "]";
+    require(names.insert(mesh.name).second, path + ".name",
+            "duplicate mesh name \"" + mesh.name + "\"");
+    require(mesh.material.empty() || scene.findMaterial(mesh.material), path + ".material",
+            "no material named \"" + mesh.material + "\" in materials");
+  }
+  for (std::size_t i = 0; i < scene.grooms.size(); ++i) {
+    const Groom& groom = scene.grooms[i];
+    require(scene.findMesh(groom.attachedMesh) != nullptr,
+            "grooms[" + std::to_string(i) + "].attached_mesh",
+            "no mesh named \"" + groom.attachedMesh + "\" in meshes");
+  }
+  if (scene.headMotion.kind != HeadMotionKind::none) {
+    require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
+            "no mesh named \"" + scene.headMotion.mesh + "\" in meshes");
+  }
+}
+
+Scene parseRoot(const Json& json) {
+  ObjectFields fields(json, "");
+  Scene scene;
+  scene.name = fields.required<std::string>("name");
+  if (const Json* output = fields.take("output")) scene.output = parseOutput(*output, "output");
+  const Json* camera = fields.take("camera");
+  if (!camera) throw FieldError{"camera", "required field is missing"};
+  scene.camera = parseCamera(*camera, "camera");
+  scene.lights = parseList<Light>(fields, "lights", parseLight);
+  scene.materials = parseList<Material>(fields, "materials", parseMaterial);
+  scene.meshes = parseList<MeshInstance>(fields, "meshes", parseMesh);
+  scene.grooms = parseList<Groom>(fields, "grooms", parseGroom);
+  if (const Json* animation = fields.take("animation")) {
+    ObjectFields anim(*animation, "animation");
+    if (const Json* head = anim.take("head")) scene.headMotion = parseHeadMotion(*head, "animation.head");
+    anim.finish();
+  }
+  if (const Json* sim = fields.take("simulation")) {
+    scene.simulation = parseSimulation(*sim, "simulation");
+  }
+  fields.finish();
+  checkReferences(scene);
+  return scene;
+}
+
+}  // namespace
+
+glm::mat4 Transform::matrix() const {
+  return glm::translate(glm::mat4(1.0f), translation) * rotationMatrix(rotationDegrees) *
+         glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+}
+
+std::string MeshInstance::proceduralKind() const {
+  return isProcedural() ? source.substr(kProceduralPrefix.size()) : std::string();
+}
+
+Keyframe HeadMotion::poseAt(float timeSeconds) const {
+  Keyframe pose;
+  pose.timeSeconds = timeSeconds;
+  const float phase = 2.0f * std::numbers::pi_v<float> * frequencyHz * timeSeconds;
+  switch (kind) {
+    case HeadMotionKind::none: break;
+    case HeadMotionKind::turn: pose.rotationDegrees.y = amplitudeDegrees * std::sin(phase); break;
+    case HeadMotionKind::nod: pose.rotationDegrees.x = amplitudeDegrees * std::sin(phase); break;
+    case HeadMotionKind::shake:
+      pose.rotationDegrees.y = amplitudeDegrees * std::sin(phase);
+      pose.rotationDegrees.x = 0.25f * amplitudeDegrees * std::sin(2.0f * phase);
+      break;
+    case HeadMotionKind::keyframes: {
+      if (keyframes.empty()) break;
+      if (timeSeconds <= keyframes.front().timeSeconds) return keyframes.front();
+      if (timeSeconds >= keyframes.back().timeSeconds) return keyframes.back();
+      const auto next = std::upper_bound(
+          keyframes.begin(), keyframes.end(), timeSeconds,
+          [](float t, const Keyframe& k) { return t < k.timeSeconds; });
+      const Keyframe& a = *(next - 1);
+      const Keyframe& b = *next;
+      const float s = (timeSeconds - a.timeSeconds) / (b.timeSeconds - a.timeSeconds);
+      pose.rotationDegrees = glm::mix(a.rotationDegrees, b.rotationDegrees, s);
+      pose.translation = glm::mix(a.translation, b.translation, s);
+      break;
+    }
+  }
+  return pose;
+}
+
+const Material* Scene::findMaterial(std::string_view name) const {
+  for (const Material& m : materials) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+const MeshInstance* Scene::findMesh(std::string_view name) const {
+  for (const MeshInstance& m : meshes) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh, float timeSeconds) {
+  if (scene.headMotion.kind == HeadMotionKind::none || scene.headMotion.mesh != mesh.name) {
+    return mesh.transform.matrix();
+  }
+  const Keyframe pose = scene.headMotion.poseAt(timeSeconds);
+  const Transform& t = mesh.transform;
+  // The head turns about its own placed origin: motion rotation after the mesh's rotation.
+  return glm::translate(glm::mat4(1.0f), t.translation + pose.translation) *
+         rotationMatrix(pose.rotationDegrees) * rotationMatrix(t.rotationDegrees) *
+         glm::scale(glm::mat4(1.0f), glm::vec3(t.scale));
+}
+
+Result<Scene> parseScene(std::string_view text, const std::filesystem::path& file) {
+  const std::string name = file.string();
+  Json json;
+  try {
+    json = Json::parse(text.begin(), text.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    return fail(name + ": invalid JSON: " + e.what());
+  }
+  try {
+    Scene scene = parseRoot(json);
+    scene.file = file;
+    return scene;
+  } catch (const FieldError& e) {
+    return fail(name + ": " + e.path + ": " + e.message);
+  } catch (const nlohmann::json::exception& e) {
+    return fail(name + ": " + e.what());
+  }
+}
+
+Result<Scene> loadScene(const std::filesystem::path& file) {
+  std::ifstream stream(file, std::ios::binary);
+  if (!stream) return fail(file.string() + ": cannot open the scene file (does it exist?)");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return parseScene(text.str(), file);
+}
+
+}  // namespace mane::scenes

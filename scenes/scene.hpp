@@ -1,0 +1,166 @@
+#pragma once
+// The scene description: what a JSON scene file (scenes/*.json, format in scenes/README.md)
+// holds once validated. Plain data; assets are referenced by manifest name, not loaded.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/error.hpp"
+
+namespace mane::scenes {
+
+/// Image size of the rendered output, in pixels.
+struct OutputSettings {
+  int width = 1280;
+  int height = 720;
+};
+
+/// A perspective camera; positions in metres.
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 3.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float verticalFovDegrees = 40.0f;  ///< full vertical field of view, degrees, in (0, 180)
+  float nearPlane = 0.05f;           ///< metres, > 0
+  float farPlane = 100.0f;           ///< metres, > nearPlane
+};
+
+enum class LightKind { directional };
+
+/// A light. Directional: parallel rays travelling along `direction` (from the light toward
+/// the scene; normalised on load), radiance `colour * intensity`.
+struct Light {
+  LightKind kind = LightKind::directional;
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};
+  glm::vec3 colour{1.0f};  ///< linear RGB, each ≥ 0
+  float intensity = 1.0f;  ///< ≥ 0, unitless scale
+};
+
+enum class MaterialKind { lambert };
+
+/// A surface material; texture fields hold asset names (empty: none).
+struct Material {
+  std::string name;
+  MaterialKind kind = MaterialKind::lambert;
+  std::string albedoTexture;
+  std::string normalMap;    ///< tangent-space normal map
+  std::string specularMap;
+  glm::vec3 baseColour{0.8f};  ///< linear RGB multiplier of the albedo texture, or the albedo
+};
+
+/// Placement of a mesh: scale, then rotation (X, then Y, then Z, about the fixed axes), then
+/// translation.
+struct Transform {
+  glm::vec3 translation{0.0f};      ///< metres
+  glm::vec3 rotationDegrees{0.0f};  ///< Euler angles, degrees
+  float scale = 1.0f;               ///< uniform, > 0
+
+  /// The model matrix T · Rz · Ry · Rx · S.
+  [[nodiscard]] glm::mat4 matrix() const;
+};
+
+/// Prefix of `MeshInstance::source` for built-in geometry, e.g. "procedural:sphere".
+inline constexpr std::string_view kProceduralPrefix = "procedural:";
+
+/// A mesh placed in the scene.
+struct MeshInstance {
+  std::string name;      ///< unique within the scene; grooms attach to it by this name
+  std::string source;    ///< asset name (.glb/.gltf/.obj) or "procedural:<kind>"
+  std::string material;  ///< name of a `Material` in the scene
+  Transform transform;
+
+  [[nodiscard]] bool isProcedural() const { return source.starts_with(kProceduralPrefix); }
+  /// "sphere" for "procedural:sphere"; empty for asset meshes.
+  [[nodiscard]] std::string proceduralKind() const;
+};
+
+/// Parameters of the Verlet hair solver for one groom.
+struct HairSimulation {
+  float stepSeconds = 1.0f / 120.0f;  ///< fixed time step, s, > 0
+  int iterations = 8;                 ///< constraint relaxation passes per step, ≥ 1
+  float damping = 0.02f;              ///< velocity fraction lost per step, in [0, 1)
+  glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
+};
+
+/// Hair or fur on a mesh.
+struct Groom {
+  std::string name;
+  std::string source;        ///< asset name of a .tfx/.hair file, or "procedural"
+  std::string attachedMesh;  ///< name of a `MeshInstance`; roots follow it
+  int strandCount = 0;       ///< procedural only: guide strands to grow (0: generator default)
+  float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
+  HairSimulation simulation;
+
+  [[nodiscard]] bool isProcedural() const { return source == "procedural"; }
+};
+
+/// A head pose at a time; the motion interpolates these linearly.
+struct Keyframe {
+  float timeSeconds = 0.0f;
+  glm::vec3 rotationDegrees{0.0f};  ///< Euler XYZ like `Transform`
+  glm::vec3 translation{0.0f};      ///< metres, added to the mesh's own translation
+};
+
+enum class HeadMotionKind {
+  none,       ///< the head stays still
+  turn,       ///< yaw about +Y: A·sin(2πft)
+  nod,        ///< pitch about +X: A·sin(2πft)
+  shake,      ///< a vigorous shake: yaw A·sin(2πft) plus pitch (A/4)·sin(4πft)
+  keyframes,  ///< piecewise-linear through `keyframes`, held after the last
+};
+
+/// Rigid motion of one mesh (the head); hair roots and cloth pins follow it.
+struct HeadMotion {
+  HeadMotionKind kind = HeadMotionKind::none;
+  std::string mesh;                 ///< the `MeshInstance` that moves
+  float amplitudeDegrees = 0.0f;    ///< turn / nod / shake
+  float frequencyHz = 0.0f;         ///< turn / nod / shake, ≥ 0
+  std::vector<Keyframe> keyframes;  ///< keyframes: strictly increasing times
+
+  /// The motion's pose at `timeSeconds` (rotation degrees XYZ, translation metres), to be
+  /// composed as T(mesh) · T(motion) · R(motion) · R(mesh) · S(mesh) — see `animatedMatrix`.
+  [[nodiscard]] Keyframe poseAt(float timeSeconds) const;
+};
+
+/// World-level simulation settings.
+struct SimulationSettings {
+  float stepSeconds = 1.0f / 120.0f;  ///< fixed step of the accumulator, s, > 0
+  int maxStepsPerFrame = 8;           ///< cap so a slow frame cannot spiral, ≥ 1
+};
+
+/// A validated scene.
+struct Scene {
+  std::filesystem::path file;  ///< the file it came from (empty when built in code)
+  std::string name;
+  OutputSettings output;
+  Camera camera;
+  std::vector<Light> lights;
+  std::vector<Material> materials;
+  std::vector<MeshInstance> meshes;
+  std::vector<Groom> grooms;
+  HeadMotion headMotion;
+  SimulationSettings simulation;
+
+  [[nodiscard]] const Material* findMaterial(std::string_view name) const;
+  [[nodiscard]] const MeshInstance* findMesh(std::string_view name) const;
+};
+
+/// The mesh's model matrix at `timeSeconds`, including the head motion when it targets it.
+[[nodiscard]] glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh,
+                                       float timeSeconds);
+
+/// Reads and validates a scene file. Errors name the file, the JSON field path (e.g.
+/// `lights[1].direction`) and what was expected; unknown fields are errors, so typos are
+/// caught. Cross-references (materials, attached meshes) are checked; asset names are not
+/// resolved here (a missing asset falls back later, see `loadSceneMesh`).
+[[nodiscard]] Result<Scene> loadScene(const std::filesystem::path& file);
+
+/// `loadScene` on text already in memory; `file` is used only in messages.
+[[nodiscard]] Result<Scene> parseScene(std::string_view text, const std::filesystem::path& file);
+
+}  // namespace mane::scenes

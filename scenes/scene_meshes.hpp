@@ -1,0 +1,34 @@
+#pragma once
+// Turning a scene's mesh entries into geometry, with the procedural fallback that lets the
+// main job run without third-party assets.
+
+#include <string>
+
+#include "common/error.hpp"
+#include "scenes/assets.hpp"
+#include "scenes/mesh.hpp"
+#include "scenes/scene.hpp"
+
+namespace mane::scenes {
+
+/// Radius, metres, of the sphere that stands in for a missing asset: about a head's size.
+inline constexpr float kFallbackSphereRadius = 0.1f;
+
+/// A mesh entry's geometry in its own (model) space; apply `MeshInstance::transform` or
+/// `animatedMatrix` to place it.
+struct LoadedMesh {
+  Mesh mesh;
+  bool procedural = false;  ///< built in, either by request or as a fallback
+  /// For the user when the result is not what the scene asked for, e.g. "asset X missing:
+  /// using a procedural sphere (...)"; empty otherwise. The caller prints it.
+  std::string note;
+};
+
+/// Builds a "procedural:<kind>" entry, or resolves and loads the asset. An asset that is
+/// missing everywhere (not shipped, offline) becomes a procedural sphere of
+/// `kFallbackSphereRadius` with a note. Errors are kept for what must not pass silently: a
+/// name the manifest does not list, a checksum mismatch, a file that does not parse.
+[[nodiscard]] Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance,
+                                               const AssetResolver& resolver);
+
+}  // namespace mane::scenes
