@@ -1,1 +1,23 @@
-int main() { return 0; }
+// The `mane` command-line program: one subcommand per file (info, render, sim, view).
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"mane: hair, fur and cloth simulation with a Vulkan renderer for skin, fur and hair"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Show the help of every subcommand");
+
+  mane::app::addInfoCommand(app);
+  mane::app::addRenderCommand(app);
+  mane::app::addSimCommand(app);
+  mane::app::addViewCommand(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  }
+  return mane::app::exitCode();
+}

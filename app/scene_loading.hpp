@@ -1,0 +1,21 @@
+#pragma once
+// What the render, sim and view commands share: the default scene, and loading a scene file
+// into a World with its fallback notes printed.
+
+#include <filesystem>
+#include <string>
+
+#include "scenes/world.hpp"
+
+namespace mane::app {
+
+/// scenes/nalu.json of the source tree this program was built from.
+std::filesystem::path defaultScenePath();
+
+/// Loads `scenePath` into a World, printing each fallback note as "note: ..." on stdout.
+Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings);
+
+/// Parses "WIDTHxHEIGHT" (e.g. 1280x720).
+Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text);
+
+}  // namespace mane::app

@@ -1,0 +1,163 @@
+// `mane view`: the scene in a window (GLFW + Vulkan swapchain) with an orbit camera.
+// Mouse: left drag orbits, wheel zooms. Keys: Space pauses the simulation, N steps one frame
+// while paused, Esc quits. The window title shows the frame time.
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <glm/glm.hpp>
+
+#include "app/commands.hpp"
+#include "app/scene_loading.hpp"
+#include "render/png.hpp"
+#include "render/renderer.hpp"
+#include "render/window.hpp"
+
+namespace mane::app {
+namespace {
+
+struct ViewOptions {
+  std::string scene = defaultScenePath().string();
+  int frames = 0;  ///< 0: until the window closes
+  std::string screenshot;
+  unsigned msaa = 1;
+  unsigned threads = 2;
+};
+
+// Spherical coordinates around the scene camera's target.
+struct OrbitCamera {
+  glm::vec3 target{0.0f};
+  float distance = 1.0f;
+  float yaw = 0.0f;    ///< radians about +Y
+  float pitch = 0.0f;  ///< radians above the horizon
+  double lastX = 0.0, lastY = 0.0;
+  bool dragging = false;
+
+  static OrbitCamera from(const render::Camera& camera) {
+    OrbitCamera orbit;
+    orbit.target = camera.target;
+    const glm::vec3 offset = camera.position - camera.target;
+    orbit.distance = glm::length(offset);
+    orbit.yaw = std::atan2(offset.x, offset.z);
+    orbit.pitch = std::asin(glm::clamp(offset.y / std::max(orbit.distance, 1e-6f), -1.0f, 1.0f));
+    return orbit;
+  }
+  glm::vec3 position() const {
+    return target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+  }
+};
+
+struct InputState {
+  OrbitCamera orbit;
+  bool paused = false;
+  bool stepOnce = false;
+};
+
+void installCallbacks(GLFWwindow* window, InputState& input) {
+  glfwSetWindowUserPointer(window, &input);
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    auto& state = *static_cast<InputState*>(glfwGetWindowUserPointer(w));
+    if (button == GLFW_MOUSE_BUTTON_LEFT) state.orbit.dragging = action == GLFW_PRESS;
+    glfwGetCursorPos(w, &state.orbit.lastX, &state.orbit.lastY);
+  });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    auto& orbit = static_cast<InputState*>(glfwGetWindowUserPointer(w))->orbit;
+    if (orbit.dragging) {
+      orbit.yaw -= float(x - orbit.lastX) * 0.01f;
+      orbit.pitch = glm::clamp(orbit.pitch + float(y - orbit.lastY) * 0.01f, -1.5f, 1.5f);
+    }
+    orbit.lastX = x;
+    orbit.lastY = y;
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+    auto& orbit = static_cast<InputState*>(glfwGetWindowUserPointer(w))->orbit;
+    orbit.distance = std::max(orbit.distance * std::pow(0.9f, float(dy)), 0.01f);
+  });
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+    if (action != GLFW_PRESS) return;
+    auto& state = *static_cast<InputState*>(glfwGetWindowUserPointer(w));
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
+    if (key == GLFW_KEY_SPACE) state.paused = !state.paused;
+    if (key == GLFW_KEY_N) state.stepOnce = true;
+  });
+}
+
+void run(const ViewOptions& options) {
+  auto world = loadWorld(options.scene, {});
+  if (!world) return failWith(world.error().message);
+  const auto width = static_cast<std::uint32_t>(world->scene().output.width);
+  const auto height = static_cast<std::uint32_t>(world->scene().output.height);
+
+  auto window = render::Window::open("mane — " + world->scene().name, width, height);
+  if (!window) return failWith(window.error().message);
+  render::DeviceSettings deviceSettings = render::deviceSettingsFromEnvironment();
+  deviceSettings.instanceExtensions = (*window)->requiredInstanceExtensions();
+  deviceSettings.presentation = true;
+  auto device = render::Device::create(deviceSettings);
+  if (!device) return failWith(device.error().message);
+  auto swapchain = render::Swapchain::create(**device, **window);
+  if (!swapchain) return failWith(swapchain.error().message);
+  auto renderer = render::Renderer::create(**device, {.extent = {width, height}, .msaaSamples = options.msaa});
+  if (!renderer) return failWith(renderer.error().message);
+  if (auto uploaded = (*renderer)->setScene(world->staticScene()); !uploaded) return failWith(uploaded.error().message);
+
+  InputState input;
+  input.orbit = OrbitCamera::from(world->frameInput().camera);
+  installCallbacks((*window)->handle(), input);
+
+  auto last = std::chrono::steady_clock::now();
+  double smoothedMs = 0.0;
+  for (int frame = 0; !(*window)->shouldClose() && (options.frames == 0 || frame < options.frames); ++frame) {
+    glfwPollEvents();
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    smoothedMs = frame == 0 ? dt * 1e3 : 0.9 * smoothedMs + 0.1 * dt * 1e3;
+    if (!input.paused || input.stepOnce) {
+      // Real time, capped so a slow frame (lavapipe) plays in slow motion rather than jumping.
+      if (auto advanced = world->advance(std::min(dt, 1.0 / 30.0), options.threads); !advanced)
+        return failWith(advanced.error().message);
+      input.stepOnce = false;
+    }
+    render::FrameInput frameInput = world->frameInput();
+    frameInput.camera.position = input.orbit.position();
+    frameInput.camera.target = input.orbit.target;
+    if (auto rendered = (*renderer)->render(frameInput); !rendered) return failWith(rendered.error().message);
+    if (auto presented = (*swapchain)->present((*renderer)->target().output()); !presented)
+      return failWith(presented.error().message);
+    char title[160];
+    std::snprintf(title, sizeof(title), "mane — %s — %.1f ms/frame%s", world->scene().name.c_str(), smoothedMs,
+                  input.paused ? " (paused)" : "");
+    glfwSetWindowTitle((*window)->handle(), title);
+  }
+  (*device)->device().waitIdle();
+  if (!options.screenshot.empty()) {
+    auto pixels = (*renderer)->readOutput();
+    if (!pixels) return failWith(pixels.error().message);
+    if (auto written = render::writePng(options.screenshot, width, height, *pixels); !written)
+      return failWith(written.error().message);
+    std::cout << "wrote " << options.screenshot << '\n';
+  }
+  succeed();
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app) {
+  auto options = std::make_shared<ViewOptions>();
+  auto* command = app.add_subcommand("view", "Open the scene in a window: drag to orbit, wheel to zoom, Space to pause");
+  command->add_option("scene", options->scene, "Scene file (JSON)")->capture_default_str();
+  command->add_option("--frames", options->frames, "Close after this many frames (0: when the window closes)")->check(CLI::Range(0, 10000000));
+  command->add_option("--screenshot", options->screenshot, "Write the last frame to this PNG file before closing");
+  command->add_option("--msaa", options->msaa, "Samples per pixel (1 or 4)")->check(CLI::IsMember({1u, 4u}))->capture_default_str();
+  command->add_option("--threads", options->threads, "Simulation threads")->check(CLI::Range(1u, 64u))->capture_default_str();
+  command->callback([options] { run(*options); });
+}
+
+}  // namespace mane::app

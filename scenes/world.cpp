@@ -1,0 +1,179 @@
+#include "scenes/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "physics/groom_generator.hpp"
+#include "physics/hash.hpp"
+
+namespace mane::scenes {
+namespace {
+
+render::TextureData textureOf(const Image& image) {
+  return {static_cast<std::uint32_t>(image.width), static_cast<std::uint32_t>(image.height), image.rgba};
+}
+
+physics::SolverSettings solverSettings(const HairSimulation& simulation, const SimulationSettings& world) {
+  physics::SolverSettings settings;
+  settings.fixedStep = simulation.stepSeconds;
+  settings.gravity = simulation.gravity;
+  settings.damping = simulation.damping;
+  settings.constraintIterations = simulation.iterations;
+  settings.maxSubstepsPerFrame = world.maxStepsPerFrame;
+  return settings;
+}
+
+}  // namespace
+
+Result<World> World::create(Scene scene, const AssetResolver& resolver, const WorldSettings& settings) {
+  World world;
+  world.scene_ = std::move(scene);
+  if (auto loaded = world.loadMeshes(resolver); !loaded) return std::unexpected(loaded.error());
+  if (settings.loadTextures) {
+    if (auto loaded = world.loadMaterials(resolver); !loaded) return std::unexpected(loaded.error());
+  } else {
+    world.materials_.resize(world.scene_.materials.size());
+  }
+  if (auto loaded = world.loadGrooms(); !loaded) return std::unexpected(loaded.error());
+  return world;
+}
+
+Result<void> World::loadMeshes(const AssetResolver& resolver) {
+  for (const MeshInstance& instance : scene_.meshes) {
+    auto loaded = loadSceneMesh(instance, resolver);
+    if (!loaded) return std::unexpected(loaded.error());
+    if (!loaded->note.empty()) notes_.push_back(loaded->note);
+    meshes_.push_back(std::move(*loaded));
+  }
+  return {};
+}
+
+Result<void> World::loadMaterials(const AssetResolver& resolver) {
+  auto loadTexture = [&](const std::string& asset, const std::string& material,
+                         const char* role) -> Result<std::optional<Image>> {
+    if (asset.empty()) return std::optional<Image>();
+    auto lookup = resolver.lookup(asset);
+    if (!lookup) return std::unexpected(lookup.error());
+    if (!lookup->path) {
+      notes_.push_back("material " + material + ": " + role + " " + asset + " missing (" + lookup->missingReason +
+                       "): rendering without it");
+      return std::optional<Image>();
+    }
+    auto image = loadImage(*lookup->path);
+    if (!image) return std::unexpected(image.error());
+    return std::optional<Image>(std::move(*image));
+  };
+  for (const Material& material : scene_.materials) {
+    LoadedMaterial loaded;
+    auto albedo = loadTexture(material.albedoTexture, material.name, "albedo texture");
+    if (!albedo) return std::unexpected(albedo.error());
+    auto normal = loadTexture(material.normalMap, material.name, "normal map");
+    if (!normal) return std::unexpected(normal.error());
+    loaded.albedo = std::move(*albedo);
+    loaded.normalMap = std::move(*normal);
+    materials_.push_back(std::move(loaded));
+  }
+  return {};
+}
+
+Result<void> World::loadGrooms() {
+  for (const Groom& groom : scene_.grooms) {
+    const auto meshIt = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
+                                     [&](const MeshInstance& mesh) { return mesh.name == groom.attachedMesh; });
+    const auto meshIndex = static_cast<std::size_t>(meshIt - scene_.meshes.begin());
+    if (!groom.isProcedural()) {
+      notes_.push_back("groom " + groom.name + ": loading " + groom.source +
+                       " is not supported yet (only procedural grooms): skipped");
+      continue;
+    }
+    // Procedural guides on a spherical scalp fitted to the attached mesh's bounds (in the
+    // mesh's own space): centred on the box, radius from its width and depth.
+    const Bounds bounds = meshes_[meshIndex].mesh.bounds();
+    physics::GroomSettings settings;
+    settings.seed = 1 + grooms_.size();
+    if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
+    if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
+    if (!bounds.isEmpty()) {
+      settings.scalpCentre = bounds.centre();
+      settings.scalpRadius = 0.5f * std::max(bounds.size().x, bounds.size().z);
+    }
+    auto strands = physics::generateGroom(settings);
+    if (!strands) return fail("groom " + groom.name + ": " + strands.error().message);
+    auto hair = physics::HairSystem::create(*strands, solverSettings(groom.simulation, scene_.simulation),
+                                            animatedMatrix(scene_, *meshIt, 0.0f));
+    if (!hair) return fail("groom " + groom.name + ": " + hair.error().message);
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair)});
+  }
+  return {};
+}
+
+Result<void> World::advance(double frameDt, unsigned threads) {
+  if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("frame time must be finite and ≥ 0");
+  time_ += frameDt;
+  for (std::size_t i = 0; i < grooms_.size(); ++i) {
+    SimulatedGroom& groom = grooms_[i];
+    const glm::mat4 head = animatedMatrix(scene_, scene_.meshes[groom.mesh], static_cast<float>(time_));
+    if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
+    if (auto advanced = groom.hair.advance(frameDt, threads); !advanced)
+      return fail("groom " + scene_.grooms[i].name + ": " + advanced.error().message);
+  }
+  return {};
+}
+
+render::StaticScene World::staticScene() const {
+  render::StaticScene result;
+  for (const LoadedMesh& loaded : meshes_)
+    result.meshes.push_back(render::MeshData{loaded.mesh.positions, loaded.mesh.normals, loaded.mesh.uvs,
+                                             loaded.mesh.indices});
+  for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
+    render::MaterialData material{.baseColor = scene_.materials[i].baseColour};
+    if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);
+    if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
+    result.materials.push_back(material);
+  }
+  return result;
+}
+
+render::FrameInput World::frameInput() const {
+  render::FrameInput frame;
+  const Camera& camera = scene_.camera;
+  frame.camera = render::Camera{.position = camera.position,
+                                .target = camera.target,
+                                .up = camera.up,
+                                .verticalFovRadians = glm::radians(camera.verticalFovDegrees),
+                                .nearPlane = camera.nearPlane,
+                                .farPlane = camera.farPlane};
+  for (const Light& light : scene_.lights)
+    // The scene says where light travels; the renderer wants the way back to the light.
+    frame.lights.push_back({.direction = -light.direction, .color = light.colour, .intensity = light.intensity});
+  for (std::size_t i = 0; i < scene_.meshes.size(); ++i) {
+    const MeshInstance& mesh = scene_.meshes[i];
+    std::size_t material = 0;
+    for (std::size_t m = 0; m < scene_.materials.size(); ++m)
+      if (scene_.materials[m].name == mesh.material) material = m;
+    frame.instances.push_back(
+        {.mesh = i, .material = material, .model = animatedMatrix(scene_, mesh, static_cast<float>(time_))});
+  }
+  return frame;
+}
+
+std::uint64_t World::stateHash() const {
+  physics::StateHasher hasher;
+  for (const SimulatedGroom& groom : grooms_) hasher.addValue(groom.hair.stateHash());
+  hasher.addValue(time_);
+  return hasher.value();
+}
+
+std::size_t World::guideStrandCount() const {
+  std::size_t count = 0;
+  for (const SimulatedGroom& groom : grooms_) count += groom.hair.strandCount();
+  return count;
+}
+
+std::size_t World::particleCount() const {
+  std::size_t count = 0;
+  for (const SimulatedGroom& groom : grooms_) count += groom.hair.particles().size();
+  return count;
+}
+
+}  // namespace mane::scenes

@@ -1,0 +1,74 @@
+#pragma once
+// The per-frame world of a scene (DESIGN.md, "The frame"): it owns the loaded meshes,
+// textures and hair systems, and per frame runs animate → simulate, then hands the renderer
+// plain data. The composition root: the only place physics, subdiv and render meet.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/error.hpp"
+#include "physics/hair.hpp"
+#include "render/frame.hpp"
+#include "scenes/assets.hpp"
+#include "scenes/image.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/scene_meshes.hpp"
+
+namespace mane::scenes {
+
+struct WorldSettings {
+  /// Decode the materials' textures (the renderer needs them; `mane sim` does not).
+  bool loadTextures = true;
+};
+
+class World {
+public:
+  /// Loads every mesh, texture and groom of `scene`. Missing assets fall back to procedural
+  /// content with a note (see `notes`); unusable files are errors.
+  static Result<World> create(Scene scene, const AssetResolver& resolver, const WorldSettings& settings = {});
+
+  const Scene& scene() const { return scene_; }
+  /// What differs from what the scene asked for (fallbacks, skipped content), for people.
+  const std::vector<std::string>& notes() const { return notes_; }
+  /// Seconds of animation played so far.
+  double time() const { return time_; }
+
+  /// Animates the head to `time() + frameDt`, moves hair roots with it and simulates.
+  /// `threads` ≥ 1 workers; results do not depend on it.
+  Result<void> advance(double frameDt, unsigned threads);
+
+  /// Meshes and materials for the renderer; views into this world, valid while it lives.
+  render::StaticScene staticScene() const;
+  /// Camera, lights and mesh placements at the current time.
+  render::FrameInput frameInput() const;
+
+  /// Hash of every simulated state (all grooms, in scene order) and of the animation clock.
+  std::uint64_t stateHash() const;
+  std::size_t guideStrandCount() const;
+  std::size_t particleCount() const;
+
+private:
+  struct LoadedMaterial {
+    std::optional<Image> albedo;
+    std::optional<Image> normalMap;
+  };
+  struct SimulatedGroom {
+    std::size_t mesh = 0;  ///< index into scene_.meshes the roots follow
+    physics::HairSystem hair;
+  };
+
+  World() = default;
+  Result<void> loadMeshes(const AssetResolver& resolver);
+  Result<void> loadMaterials(const AssetResolver& resolver);
+  Result<void> loadGrooms();
+
+  Scene scene_;
+  std::vector<LoadedMesh> meshes_;
+  std::vector<LoadedMaterial> materials_;
+  std::vector<SimulatedGroom> grooms_;
+  std::vector<std::string> notes_;
+  double time_ = 0.0;
+};
+
+}  // namespace mane::scenes

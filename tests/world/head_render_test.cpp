@@ -1,0 +1,62 @@
+// The default scene end to end: scene file → World (assets through the resolver) → Renderer on
+// lavapipe with validation on → image.
+//
+// Two checks. An independent one: the head covers a plausible part of the frame, is lit on the
+// side facing the key light and is skin-coloured where lit (red > green > blue, as in the
+// albedo map), so a black, blank or untextured frame fails whatever the golden says. Then the
+// golden image (tests/golden/nalu_head.png, lavapipe, Mesa 22.3.6) within a tolerance that
+// allows rasterizer rounding, not a changed picture.
+
+#include <gtest/gtest.h>
+
+#include "render/renderer.hpp"
+#include "scenes/world.hpp"
+#include "tests/support/image_compare.hpp"
+#include "tests/support/vulkan_fixture.hpp"
+
+namespace mane::scenes {
+namespace {
+
+constexpr std::uint32_t kWidth = 320;
+constexpr std::uint32_t kHeight = 180;
+
+class NaluHead : public testing::VulkanTest {};
+
+TEST_F(NaluHead, RendersTheLitTexturedHead) {
+  auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto resolver = AssetResolver::createDefault();
+  ASSERT_TRUE(resolver.has_value()) << resolver.error().message;
+  auto world = World::create(std::move(*scene), *resolver);
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  ASSERT_TRUE(world->notes().empty()) << "assets missing: " << world->notes().front();
+
+  auto renderer = render::Renderer::create(device(), {.extent = {kWidth, kHeight}, .msaaSamples = 4});
+  ASSERT_TRUE(renderer.has_value()) << renderer.error().message;
+  ASSERT_TRUE((*renderer)->setScene(world->staticScene()).has_value());
+  const render::FrameInput frame = world->frameInput();
+  ASSERT_TRUE((*renderer)->render(frame).has_value());
+  auto pixels = (*renderer)->readOutput();
+  ASSERT_TRUE(pixels.has_value());
+
+  // Pixels that differ clearly from the background belong to the head.
+  const auto background = pixels->begin();  // the top-left corner is background in this framing
+  std::size_t head = 0, skinLike = 0;
+  for (std::size_t i = 0; i < pixels->size(); i += 4) {
+    const int r = (*pixels)[i], g = (*pixels)[i + 1], b = (*pixels)[i + 2];
+    if (std::abs(r - background[0]) + std::abs(g - background[1]) + std::abs(b - background[2]) < 12) continue;
+    ++head;
+    if (r > 60 && r > g && g > b) ++skinLike;
+  }
+  const double coverage = double(head) / (kWidth * kHeight);
+  EXPECT_GT(coverage, 0.10) << "the head should fill a good part of the frame";
+  EXPECT_LT(coverage, 0.90) << "the background should still show";
+  EXPECT_GT(double(skinLike) / double(head), 0.5) << "lit skin is red > green > blue";
+
+  const auto comparison = testing::compareWithGolden(
+      "nalu_head", {kWidth, kHeight, *pixels}, {.maxChannelDifference = 6, .maxFailingFraction = 0.005});
+  EXPECT_TRUE(comparison.passed) << comparison.message;
+}
+
+}  // namespace
+}  // namespace mane::scenes
