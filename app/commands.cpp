@@ -2,6 +2,8 @@
 
 #include <iostream>
 
+#include "render/device.hpp"
+
 namespace mane::app {
 namespace {
 int gExitCode = 0;
@@ -18,5 +20,13 @@ void failWith(const std::string& reason) {
 }
 
 int exitCode() { return gExitCode; }
+
+bool checkValidation(const render::Device& device) {
+  const auto messages = device.validationMessages();
+  for (const std::string& message : messages) std::cerr << message << '\n';
+  if (messages.empty()) return true;
+  failWith(std::to_string(messages.size()) + " Vulkan validation messages");
+  return false;
+}
 
 }  // namespace mane::app

@@ -7,6 +7,9 @@
 namespace CLI {
 class App;
 }
+namespace mane::render {
+class Device;
+}
 
 namespace mane::app {
 
@@ -20,5 +23,9 @@ void addViewCommand(CLI::App& app);
 void succeed();
 void failWith(const std::string& reason);
 int exitCode();
+
+/// Prints the validation layer's messages (MANE_VALIDATION=1 or a debug build) on stderr and
+/// fails the command when there were any; returns whether there were none.
+bool checkValidation(const render::Device& device);
 
 }  // namespace mane::app

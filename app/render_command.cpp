@@ -105,11 +105,7 @@ void run(const RenderOptions& options) {
     std::cout << "\nwrote " << options.frames << " frames to "
               << std::filesystem::absolute(outDir).lexically_normal().string() << "/" << stem << "_NNNN.png\n";
   printTimingTable(timings);
-  // With MANE_VALIDATION=1 (or a debug build) the layer's findings are shown, not swallowed.
-  const auto messages = (*device)->validationMessages();
-  for (const std::string& message : messages) std::cerr << message << '\n';
-  if (!messages.empty()) return failWith(std::to_string(messages.size()) + " Vulkan validation messages");
-  succeed();
+  if (checkValidation(**device)) succeed();
 }
 
 }  // namespace

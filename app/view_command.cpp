@@ -144,7 +144,7 @@ void run(const ViewOptions& options) {
       return failWith(written.error().message);
     std::cout << "wrote " << options.screenshot << '\n';
   }
-  succeed();
+  if (checkValidation(**device)) succeed();
 }
 
 }  // namespace

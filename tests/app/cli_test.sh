@@ -42,6 +42,14 @@ case $case in
     "$mane" render --size 12by7 --out "$scratch/out" 2>"$scratch/err" >/dev/null && fail "bad --size accepted"
     grep -q "WIDTHxHEIGHT" "$scratch/err" || fail "bad --size message: $(cat "$scratch/err")"
     ;;
+  view-under-xvfb)
+    # A real window on a virtual display, presented through the swapchain on lavapipe.
+    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view --frames 30 --screenshot "$scratch/view.png" \
+      >"$scratch/log" 2>&1 || fail "mane view failed: $(cat "$scratch/log")"
+    # The lit head compresses to well over 20 kB; an empty frame of one colour to about 4 kB.
+    size=$(stat -c %s "$scratch/view.png") || fail "no screenshot"
+    [ "$size" -gt 20000 ] || fail "the screenshot looks blank ($size bytes)"
+    ;;
   help-for-each-command)
     for command in info render sim view; do
       "$mane" "$command" --help | grep -qi "usage" || fail "$command --help"

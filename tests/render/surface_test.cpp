@@ -86,8 +86,8 @@ TEST_F(Surface, BackgroundOutsideTheQuad) {
 // A constant normal map tilted by the texel; the light comes along the tilt axis.
 void expectTiltedNormal(Surface& test, std::array<std::uint8_t, 4> texel, glm::vec3 lightDirection,
                         std::size_t tiltAxis) {
-  std::vector<std::uint8_t> pixels;
-  for (int i = 0; i < 4; ++i) pixels.insert(pixels.end(), texel.begin(), texel.end());
+  std::vector<std::uint8_t> pixels(16);
+  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = texel[i % 4];
   const MaterialData material{.baseColor = glm::vec3(1.0f),
                               .normalMap = TextureData{.width = 2, .height = 2, .rgba = pixels}};
   const Shot shot = test.render(material, {.direction = lightDirection}, glm::vec3(0));
