@@ -1,0 +1,70 @@
+// Frame time of the default scene on the device mane picks (lavapipe here), against a baseline
+// measured in the same run: the same passes with nothing to draw (clear + output pass). The
+// README reports the ratio, which is steadier across machines than milliseconds.
+//
+//   build/release/bench/mane_render_bench --benchmark_min_time=2
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "render/renderer.hpp"
+#include "scenes/world.hpp"
+
+namespace {
+
+using namespace mane;
+
+struct Fixture {
+  std::unique_ptr<render::Device> device;
+  std::optional<scenes::World> world;
+};
+
+Fixture& fixture() {
+  static Fixture instance = [] {
+    Fixture result;
+    auto device = render::Device::create(render::deviceSettingsFromEnvironment());
+    if (!device) {
+      std::fprintf(stderr, "render bench: %s\n", device.error().message.c_str());
+      std::exit(1);
+    }
+    result.device = std::move(*device);
+    auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
+    auto resolver = scenes::AssetResolver::createDefault();
+    if (!scene || !resolver) {
+      std::fprintf(stderr, "render bench: cannot load scenes/nalu.json\n");
+      std::exit(1);
+    }
+    auto world = scenes::World::create(std::move(*scene), *resolver);
+    if (!world) {
+      std::fprintf(stderr, "render bench: %s\n", world.error().message.c_str());
+      std::exit(1);
+    }
+    result.world = std::move(*world);
+    return result;
+  }();
+  return instance;
+}
+
+// state.range(0): 1 draws the scene, 0 draws nothing (the baseline). range(1): MSAA samples.
+void BM_NaluFrame(benchmark::State& state) {
+  Fixture& f = fixture();
+  auto renderer = render::Renderer::create(*f.device, {.extent = {1280, 720},
+                                                       .msaaSamples = static_cast<std::uint32_t>(state.range(1))});
+  if (!renderer || !(*renderer)->setScene(f.world->staticScene())) return state.SkipWithError("renderer setup failed");
+  render::FrameInput frame = f.world->frameInput();
+  if (state.range(0) == 0) frame.instances.clear();
+  for (auto _ : state)
+    if (!(*renderer)->render(frame)) return state.SkipWithError("render failed");
+  state.SetLabel(f.device->info().name);
+}
+BENCHMARK(BM_NaluFrame)
+    ->ArgNames({"scene", "msaa"})
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Args({1, 4})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
