@@ -1,0 +1,88 @@
+// The World: what the renderer and the simulation receive from a scene file.
+
+#include <gtest/gtest.h>
+
+#include "render/renderer.hpp"
+#include "scenes/world.hpp"
+#include "tests/support/vulkan_fixture.hpp"
+
+namespace mane::scenes {
+namespace {
+
+const std::filesystem::path kNalu = std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json";
+
+// A resolver that finds nothing and never downloads: a machine without ../shared/assets.
+AssetResolver resolverWithoutAssets() {
+  AssetResolverSettings settings = defaultAssetResolverSettings();
+  settings.searchRoots.clear();
+  settings.cacheDirectory.clear();
+  settings.allowDownload = false;
+  auto resolver = AssetResolver::create(settings);
+  EXPECT_TRUE(resolver.has_value());
+  return *resolver;
+}
+
+TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
+  auto scene = loadScene(kNalu);
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const Scene copy = *scene;
+  auto resolver = AssetResolver::createDefault();
+  ASSERT_TRUE(resolver.has_value());
+  auto world = World::create(std::move(*scene), *resolver);
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+
+  const render::FrameInput frame = world->frameInput();
+  EXPECT_EQ(frame.camera.position, copy.camera.position);
+  EXPECT_NEAR(frame.camera.verticalFovRadians, copy.camera.verticalFovDegrees * 3.14159265f / 180.0f, 1e-6f);
+  ASSERT_EQ(frame.lights.size(), copy.lights.size());
+  // Scenes give the direction light travels; the renderer wants the direction to the light.
+  EXPECT_EQ(frame.lights[0].direction, -copy.lights[0].direction);
+  ASSERT_EQ(frame.instances.size(), copy.meshes.size());
+
+  const render::StaticScene statics = world->staticScene();
+  ASSERT_EQ(statics.meshes.size(), 1u);
+  EXPECT_EQ(statics.meshes[0].positions.size(), 9279u);  // LeePerrySmith, ../shared/assets/README.md
+  EXPECT_EQ(statics.meshes[0].indices.size(), 3u * 17684u);
+  ASSERT_EQ(statics.materials.size(), 1u);
+  ASSERT_TRUE(statics.materials[0].albedo.has_value());
+  EXPECT_EQ(statics.materials[0].albedo->width, 1024u);
+  ASSERT_TRUE(statics.materials[0].normalMap.has_value());
+}
+
+TEST(World, AdvancingMovesTheHeadAndTheHair) {
+  auto scene = loadScene(kNalu);
+  ASSERT_TRUE(scene.has_value());
+  auto world = World::create(std::move(*scene), *AssetResolver::createDefault(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  const glm::mat4 before = world->frameInput().instances[0].model;
+  const std::uint64_t hashBefore = world->stateHash();
+  ASSERT_TRUE(world->advance(0.5, 1).has_value());
+  EXPECT_NE(world->frameInput().instances[0].model, before) << "the nalu head turns";
+  EXPECT_NE(world->stateHash(), hashBefore);
+  EXPECT_DOUBLE_EQ(world->time(), 0.5);
+  EXPECT_FALSE(world->advance(-1.0, 1).has_value());
+}
+
+class WorldWithoutAssets : public testing::VulkanTest {};
+
+TEST_F(WorldWithoutAssets, FallsBackToProceduralContentAndSaysSo) {
+  auto scene = loadScene(kNalu);
+  ASSERT_TRUE(scene.has_value());
+  auto world = World::create(std::move(*scene), resolverWithoutAssets());
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  ASSERT_FALSE(world->notes().empty());
+  EXPECT_NE(world->notes().front().find("procedural sphere"), std::string::npos) << world->notes().front();
+
+  // It still renders: the sphere stands where the head was and is lit.
+  auto renderer = render::Renderer::create(device(), {.extent = {160, 90}});
+  ASSERT_TRUE(renderer.has_value());
+  ASSERT_TRUE((*renderer)->setScene(world->staticScene()).has_value());
+  ASSERT_TRUE((*renderer)->render(world->frameInput()).has_value());
+  auto pixels = (*renderer)->readOutput();
+  ASSERT_TRUE(pixels.has_value());
+  const std::size_t centre = (45 * 160 + 80) * 4;
+  EXPECT_GT((*pixels)[centre], (*pixels)[0] + 40) << "the centre shows the lit sphere, the corner the background";
+}
+
+}  // namespace
+}  // namespace mane::scenes
