@@ -1,6 +1,8 @@
 // The `mane` command-line program: one subcommand per file (info, render, sim, view).
 
 #include <CLI/CLI.hpp>
+#include <exception>
+#include <string>
 
 #include "app/commands.hpp"
 
@@ -18,6 +20,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
+  } catch (const std::exception& error) {
+    // Modules return errors as values; this is the last resort for what slipped through.
+    mane::app::failWith(std::string("internal error: ") + error.what());
   }
   return mane::app::exitCode();
 }

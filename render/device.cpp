@@ -34,12 +34,12 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFl
   return VK_FALSE;
 }
 
-DevicePreference preferenceFromEnvironment(DevicePreference fallback) {
+Result<DevicePreference> preferenceFromEnvironment(DevicePreference fallback) {
   const char* value = std::getenv("MANE_DEVICE");
-  if (!value) return fallback;
+  if (!value || !*value) return fallback;
   if (std::strcmp(value, "lavapipe") == 0) return DevicePreference::kLavapipe;
   if (std::strcmp(value, "gpu") == 0) return DevicePreference::kGpu;
-  return fallback;
+  return fail(std::string("MANE_DEVICE=") + value + ": expected lavapipe or gpu");
 }
 
 bool hasExtension(const std::vector<vk::ExtensionProperties>& available, const char* name) {
@@ -76,19 +76,22 @@ DeviceSettings deviceSettingsFromEnvironment() {
   settings.validation = true;
 #endif
   if (const char* value = std::getenv("MANE_VALIDATION")) settings.validation = std::strcmp(value, "0") != 0;
-  settings.preference = preferenceFromEnvironment(DevicePreference::kAuto);
+  settings.preference = preferenceFromEnvironment(DevicePreference::kAuto).value_or(DevicePreference::kAuto);
   return settings;
 }
 
 Device::Device() : log_(std::make_unique<detail::ValidationLog>()) {}
 
 Device::~Device() {
-  if (*device_) device_.waitIdle();
+  // Owners of GPU work are destroyed before the device; wait for it, but never throw here.
+  if (*device_) static_cast<void>(device_.getDispatcher()->vkDeviceWaitIdle(*device_));
 }
 
 Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) {
   DeviceSettings settings = requested;
-  settings.preference = preferenceFromEnvironment(settings.preference);
+  const auto preference = preferenceFromEnvironment(settings.preference);
+  if (!preference) return std::unexpected(preference.error());
+  settings.preference = *preference;
   std::unique_ptr<Device> self(new Device());
   try {
     const std::uint32_t loaderVersion = self->context_.enumerateInstanceVersion();
@@ -181,6 +184,10 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
     enabledCore.fillModeNonSolid = core.fillModeNonSolid;
     enabled.get<vk::PhysicalDeviceVulkan12Features>().hostQueryReset = v12.hostQueryReset;
     enabled.get<vk::PhysicalDeviceVulkan12Features>().shaderFloat16 = v12.shaderFloat16;
+    // Needed for the DEPTH_ATTACHMENT_OPTIMAL layout of our depth-only images.
+    if (!v12.separateDepthStencilLayouts)
+      return fail(std::string(properties.deviceName.data()) + " lacks separate depth/stencil layouts");
+    enabled.get<vk::PhysicalDeviceVulkan12Features>().separateDepthStencilLayouts = VK_TRUE;
     enabled.get<vk::PhysicalDeviceVulkan13Features>().dynamicRendering = VK_TRUE;
     enabled.get<vk::PhysicalDeviceVulkan13Features>().synchronization2 = VK_TRUE;
 
@@ -227,7 +234,7 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
             {"host query reset", v12.hostQueryReset == VK_TRUE},
             {"validation layers", settings.validation},
         }};
-  } catch (const vk::SystemError& error) {
+  } catch (const std::exception& error) {
     return fail(std::string("Vulkan device creation failed: ") + error.what());
   }
   return self;

@@ -3,6 +3,7 @@
 // otherwise, turns the validation layers on where asked, and collects their messages so a
 // test can fail on any of them.
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -72,15 +73,17 @@ public:
   std::uint32_t queueFamily() const { return queueFamily_; }
   const vk::PhysicalDeviceLimits& limits() const { return limits_; }
 
-  /// Records commands with `record`, submits them and waits for the queue to finish.
+  /// Records commands with `record`, submits them and waits for the queue to finish. Not
+  /// thread-safe: one thread records at a time (the command pool is shared).
   void submitAndWait(const std::function<void(const vk::raii::CommandBuffer&)>& record) const;
 
   /// A memory type index with all of `required` among those allowed by `typeBits`.
   std::uint32_t findMemoryType(std::uint32_t typeBits, vk::MemoryPropertyFlags required) const;
 
   /// Bytes of device memory currently allocated through resources.hpp.
-  std::uint64_t allocatedBytes() const { return allocatedBytes_; }
-  void trackAllocation(std::int64_t bytes) const { allocatedBytes_ += bytes; }
+  std::uint64_t allocatedBytes() const { return allocatedBytes_.load(); }
+  /// Called by resources.hpp's owners when they allocate (+) or free (−) device memory.
+  void trackAllocation(std::int64_t bytes) const { allocatedBytes_ += static_cast<std::uint64_t>(bytes); }
 
   /// Validation warnings and errors seen so far (empty when validation is off).
   std::vector<std::string> validationMessages() const;
@@ -89,6 +92,9 @@ public:
 private:
   Device();
 
+  // Declared first so it is destroyed last: the layer may still report while the device and
+  // messenger below are destroyed.
+  std::unique_ptr<detail::ValidationLog> log_;
   vk::raii::Context context_;
   vk::raii::Instance instance_{nullptr};
   vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
@@ -99,8 +105,7 @@ private:
   std::uint32_t queueFamily_ = 0;
   vk::PhysicalDeviceLimits limits_{};
   DeviceInfo info_;
-  std::unique_ptr<detail::ValidationLog> log_;
-  mutable std::uint64_t allocatedBytes_ = 0;
+  mutable std::atomic<std::uint64_t> allocatedBytes_ = 0;
 };
 
 }  // namespace mane::render

@@ -29,15 +29,56 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
                 std::to_string(settings.extent.height) + " exceeds the device's framebuffer limit");
   try {
     return std::unique_ptr<Renderer>(new Renderer(device, settings));
-  } catch (const vk::SystemError& error) {
+  } catch (const std::exception& error) {
     return fail(std::string("creating the renderer failed: ") + error.what());
   }
 }
 
+namespace {
+
+// The contract of MeshData and TextureData (frame.hpp), checked before anything reaches the GPU.
+Result<void> validateScene(const StaticScene& scene, const vk::PhysicalDeviceLimits& limits) {
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshData& mesh = scene.meshes[m];
+    const std::string name = "mesh " + std::to_string(m);
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+      return fail(name + ": " + std::to_string(mesh.normals.size()) + " normals for " +
+                  std::to_string(mesh.positions.size()) + " positions");
+    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+      return fail(name + ": " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(mesh.positions.size()) +
+                  " positions");
+    if (mesh.indices.size() % 3 != 0) return fail(name + ": the index count is not a multiple of 3");
+    for (std::size_t i = 0; i < mesh.indices.size(); ++i)
+      if (mesh.indices[i] >= mesh.positions.size())
+        return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) + " but there are " +
+                    std::to_string(mesh.positions.size()) + " positions");
+  }
+  auto checkTexture = [&](const std::optional<TextureData>& texture, const std::string& name) -> Result<void> {
+    if (!texture) return {};
+    if (texture->width == 0 || texture->height == 0 ||
+        texture->rgba.size() != std::size_t(texture->width) * texture->height * 4)
+      return fail(name + ": " + std::to_string(texture->rgba.size()) + " bytes for a " + std::to_string(texture->width) +
+                  "x" + std::to_string(texture->height) + " RGBA texture");
+    if (texture->width > limits.maxImageDimension2D || texture->height > limits.maxImageDimension2D)
+      return fail(name + ": " + std::to_string(texture->width) + "x" + std::to_string(texture->height) +
+                  " exceeds the device's limit of " + std::to_string(limits.maxImageDimension2D));
+    return {};
+  };
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    const std::string name = "material " + std::to_string(m);
+    if (auto ok = checkTexture(scene.materials[m].albedo, name + " albedo"); !ok) return ok;
+    if (auto ok = checkTexture(scene.materials[m].normalMap, name + " normal map"); !ok) return ok;
+  }
+  return {};
+}
+
+}  // namespace
+
 Result<void> Renderer::setScene(const StaticScene& scene) {
+  if (auto valid = validateScene(scene, device_->limits()); !valid) return valid;
   try {
     surfaces_.setScene(scene);
-  } catch (const vk::SystemError& error) {
+  } catch (const std::exception& error) {
     return fail(std::string("uploading the scene failed: ") + error.what());
   }
   return {};
@@ -102,9 +143,13 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
 }
 
 Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
+  for (std::size_t i = 0; i < frame.instances.size(); ++i)
+    if (!surfaces_.canDraw(frame.instances[i]))
+      return fail("instance " + std::to_string(i) + " names mesh " + std::to_string(frame.instances[i].mesh) +
+                  " and material " + std::to_string(frame.instances[i].material) + ", which the scene does not have");
   try {
     device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) { record(commands, frame); });
-  } catch (const vk::SystemError& error) {
+  } catch (const std::exception& error) {
     return fail(std::string("rendering the frame failed: ") + error.what());
   }
   return timer_.results();
@@ -116,7 +161,7 @@ Result<std::vector<std::uint8_t>> Renderer::readOutput() const {
     std::vector<std::uint8_t> rgba(bytes.size());
     std::memcpy(rgba.data(), bytes.data(), bytes.size());
     return rgba;
-  } catch (const vk::SystemError& error) {
+  } catch (const std::exception& error) {
     return fail(std::string("reading the frame back failed: ") + error.what());
   }
 }

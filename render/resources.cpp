@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <stdexcept>
 
 namespace mane::render {
 
@@ -76,25 +77,34 @@ Image::Image(const Device& device, const ImageSettings& settings)
                               .subresourceRange = {settings.aspect, 0, settings.mipLevels, 0, 1}});
 }
 
+void imageBarrier(const vk::raii::CommandBuffer& commands, vk::Image image, const vk::ImageSubresourceRange& range,
+                  vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess,
+                  vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
+  const vk::ImageMemoryBarrier2 barrier{.srcStageMask = srcStage,
+                                        .srcAccessMask = srcAccess,
+                                        .dstStageMask = dstStage,
+                                        .dstAccessMask = dstAccess,
+                                        .oldLayout = from,
+                                        .newLayout = to,
+                                        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                        .image = image,
+                                        .subresourceRange = range};
+  commands.pipelineBarrier2(vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
+}
+
 void transition(const vk::raii::CommandBuffer& commands, const Image& image, vk::ImageLayout from, vk::ImageLayout to,
                 vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage,
                 vk::AccessFlags2 dstAccess) {
-  const vk::ImageMemoryBarrier2 barrier{
-      .srcStageMask = srcStage,
-      .srcAccessMask = srcAccess,
-      .dstStageMask = dstStage,
-      .dstAccessMask = dstAccess,
-      .oldLayout = from,
-      .newLayout = to,
-      .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-      .image = *image.image(),
-      .subresourceRange = {image.settings().aspect, 0, image.settings().mipLevels, 0, 1}};
-  commands.pipelineBarrier2(vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
+  imageBarrier(commands, *image.image(), {image.settings().aspect, 0, image.settings().mipLevels, 0, 1}, from, to,
+               srcStage, srcAccess, dstStage, dstAccess);
 }
 
 Image Image::texture(const Device& device, std::uint32_t width, std::uint32_t height,
                      std::span<const std::uint8_t> rgba, vk::Format format) {
+  // Callers validate at their boundary (Renderer::setScene); this guards the GPU copy.
+  if (width == 0 || height == 0 || rgba.size() != std::size_t(width) * height * 4)
+    throw std::invalid_argument("texture texels do not match its size");
   const std::uint32_t mipLevels = std::bit_width(std::max(width, height));
   Image result(device, ImageSettings{.extent = {width, height},
                                      .format = format,
@@ -109,17 +119,8 @@ Image Image::texture(const Device& device, std::uint32_t width, std::uint32_t he
     const vk::Image image = *result.image();
     auto mipBarrier = [&](std::uint32_t level, vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 src,
                           vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dst, vk::AccessFlags2 dstAccess) {
-      const vk::ImageMemoryBarrier2 barrier{.srcStageMask = src,
-                                            .srcAccessMask = srcAccess,
-                                            .dstStageMask = dst,
-                                            .dstAccessMask = dstAccess,
-                                            .oldLayout = from,
-                                            .newLayout = to,
-                                            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                            .image = image,
-                                            .subresourceRange = {vk::ImageAspectFlagBits::eColor, level, 1, 0, 1}};
-      commands.pipelineBarrier2(vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &barrier});
+      imageBarrier(commands, image, {vk::ImageAspectFlagBits::eColor, level, 1, 0, 1}, from, to, src, srcAccess, dst,
+                   dstAccess);
     };
     using Stage = vk::PipelineStageFlagBits2;
     using Access = vk::AccessFlagBits2;

@@ -60,8 +60,10 @@ Result<std::unique_ptr<Swapchain>> Swapchain::create(const Device& device, const
     vk::raii::SurfaceKHR surface(device.instance(), raw);
     if (!device.physicalDevice().getSurfaceSupportKHR(device.queueFamily(), *surface))
       return fail(device.info().name + " cannot present to this window from its graphics queue");
-    return std::unique_ptr<Swapchain>(new Swapchain(device, window, std::move(surface)));
-  } catch (const vk::SystemError& error) {
+    std::unique_ptr<Swapchain> swapchain(new Swapchain(device, window, std::move(surface)));
+    if (auto built = swapchain->rebuild(); !built) return std::unexpected(built.error());
+    return swapchain;
+  } catch (const std::exception& error) {
     return fail(std::string("creating the swapchain failed: ") + error.what());
   }
 }
@@ -70,7 +72,6 @@ Swapchain::Swapchain(const Device& device, const Window& window, vk::raii::Surfa
     : device_(&device), window_(&window), surface_(std::move(surface)) {
   const auto& vkDevice = device.device();
   imageAvailable_ = vk::raii::Semaphore(vkDevice, vk::SemaphoreCreateInfo{});
-  renderFinished_ = vk::raii::Semaphore(vkDevice, vk::SemaphoreCreateInfo{});
   frameDone_ = vk::raii::Fence(vkDevice, vk::FenceCreateInfo{.flags = vk::FenceCreateFlagBits::eSignaled});
   pool_ = vk::raii::CommandPool(vkDevice, vk::CommandPoolCreateInfo{
                                               .flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
@@ -80,14 +81,22 @@ Swapchain::Swapchain(const Device& device, const Window& window, vk::raii::Surfa
                                                                .level = vk::CommandBufferLevel::ePrimary,
                                                                .commandBufferCount = 1})
                             .front());
-  rebuild();
 }
 
-void Swapchain::rebuild() {
+Swapchain::~Swapchain() {
+  // The queue may still present an image or wait on one of our semaphores; never throw here.
+  const auto& vkDevice = device_->device();
+  static_cast<void>(vkDevice.getDispatcher()->vkDeviceWaitIdle(*vkDevice));
+}
+
+Result<void> Swapchain::rebuild() {
   device_->device().waitIdle();
   const auto& physical = device_->physicalDevice();
   const auto capabilities = physical.getSurfaceCapabilitiesKHR(*surface_);
   const auto formats = physical.getSurfaceFormatsKHR(*surface_);
+  if (formats.empty()) return fail("the window's surface offers no image formats");
+  if (!(capabilities.supportedUsageFlags & vk::ImageUsageFlagBits::eTransferDst))
+    return fail("the window's swapchain images cannot be copied into (no TRANSFER_DST usage)");
   // An sRGB swapchain keeps the blit from our sRGB output image a plain copy of colours.
   format_ = formats.front().format;
   for (const auto& candidate : formats)
@@ -112,6 +121,12 @@ void Swapchain::rebuild() {
                                  .presentMode = vk::PresentModeKHR::eFifo,
                                  .clipped = VK_TRUE});
   images_ = swapchain_.getImages();
+  if (!(physical.getFormatProperties(format_).optimalTilingFeatures & vk::FormatFeatureFlagBits::eBlitDst))
+    return fail("the window's image format " + vk::to_string(format_) + " cannot be a blit destination");
+  copyFinished_.clear();
+  for (std::size_t i = 0; i < images_.size(); ++i)
+    copyFinished_.emplace_back(device_->device(), vk::SemaphoreCreateInfo{});
+  return {};
 }
 
 Result<bool> Swapchain::present(const Image& image) {
@@ -119,31 +134,20 @@ Result<bool> Swapchain::present(const Image& image) {
     const vk::Extent2D current = window_->framebufferExtent();
     if (current.width == 0 || current.height == 0) return false;  // minimised
     if (current != extent_) {
-      rebuild();
+      if (auto rebuilt = rebuild(); !rebuilt) return std::unexpected(rebuilt.error());
       return false;
     }
     const auto& vkDevice = device_->device();
     (void)vkDevice.waitForFences(*frameDone_, VK_TRUE, UINT64_MAX);
+    // A suboptimal image is still usable this frame; the swapchain is rebuilt after presenting.
     const auto [acquired, index] = swapchain_.acquireNextImage(UINT64_MAX, *imageAvailable_);
-    if (acquired == vk::Result::eSuboptimalKHR) {
-      // Still usable this frame; rebuild after presenting.
-    }
     vkDevice.resetFences(*frameDone_);
 
     const vk::Image target = images_[index];
     auto barrier = [&](vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 srcStage,
                        vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
-      const vk::ImageMemoryBarrier2 imageBarrier{.srcStageMask = srcStage,
-                                                 .srcAccessMask = srcAccess,
-                                                 .dstStageMask = dstStage,
-                                                 .dstAccessMask = dstAccess,
-                                                 .oldLayout = from,
-                                                 .newLayout = to,
-                                                 .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                                 .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                                 .image = target,
-                                                 .subresourceRange = {vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1}};
-      commands_.pipelineBarrier2(vk::DependencyInfo{.imageMemoryBarrierCount = 1, .pImageMemoryBarriers = &imageBarrier});
+      imageBarrier(commands_, target, {vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1}, from, to, srcStage, srcAccess,
+                   dstStage, dstAccess);
     };
     commands_.reset();
     commands_.begin(vk::CommandBufferBeginInfo{.flags = vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
@@ -162,7 +166,8 @@ Result<bool> Swapchain::present(const Image& image) {
     commands_.end();
 
     const vk::SemaphoreSubmitInfo wait{.semaphore = *imageAvailable_, .stageMask = vk::PipelineStageFlagBits2::eTransfer};
-    const vk::SemaphoreSubmitInfo signal{.semaphore = *renderFinished_, .stageMask = vk::PipelineStageFlagBits2::eTransfer};
+    const vk::SemaphoreSubmitInfo signal{.semaphore = *copyFinished_[index],
+                                         .stageMask = vk::PipelineStageFlagBits2::eTransfer};
     const vk::CommandBufferSubmitInfo commandInfo{.commandBuffer = *commands_};
     device_->queue().submit2(vk::SubmitInfo2{.waitSemaphoreInfoCount = 1,
                                              .pWaitSemaphoreInfos = &wait,
@@ -172,16 +177,17 @@ Result<bool> Swapchain::present(const Image& image) {
                                              .pSignalSemaphoreInfos = &signal},
                              *frameDone_);
     const vk::SwapchainKHR swapchain = *swapchain_;
-    const vk::Semaphore finished = *renderFinished_;
+    const vk::Semaphore finished = *copyFinished_[index];
     const vk::Result presented = device_->queue().presentKHR(vk::PresentInfoKHR{
         .waitSemaphoreCount = 1, .pWaitSemaphores = &finished, .swapchainCount = 1, .pSwapchains = &swapchain,
         .pImageIndices = &index});
-    if (acquired == vk::Result::eSuboptimalKHR || presented == vk::Result::eSuboptimalKHR) rebuild();
+    if (acquired == vk::Result::eSuboptimalKHR || presented == vk::Result::eSuboptimalKHR)
+      if (auto rebuilt = rebuild(); !rebuilt) return std::unexpected(rebuilt.error());
     return true;
   } catch (const vk::OutOfDateKHRError&) {
-    rebuild();
+    if (auto rebuilt = rebuild(); !rebuilt) return std::unexpected(rebuilt.error());
     return false;
-  } catch (const vk::SystemError& error) {
+  } catch (const std::exception& error) {
     return fail(std::string("presenting failed: ") + error.what());
   }
 }

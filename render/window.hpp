@@ -43,9 +43,16 @@ public:
   /// Returns false when the swapchain had to be rebuilt (window resized); the frame is dropped.
   Result<bool> present(const Image& image);
 
+  /// Waits until the last present no longer uses this swapchain's objects.
+  ~Swapchain();
+  Swapchain(const Swapchain&) = delete;
+  Swapchain& operator=(const Swapchain&) = delete;
+
 private:
   Swapchain(const Device& device, const Window& window, vk::raii::SurfaceKHR surface);
-  void rebuild();
+  /// Recreates the swapchain for the window's current size; an error names what the surface
+  /// cannot do.
+  Result<void> rebuild();
 
   const Device* device_;
   const Window* window_;
@@ -55,7 +62,9 @@ private:
   vk::Extent2D extent_{};
   std::vector<vk::Image> images_;
   vk::raii::Semaphore imageAvailable_{nullptr};
-  vk::raii::Semaphore renderFinished_{nullptr};
+  /// One per swapchain image: the present engine may still wait on an image's semaphore after
+  /// our fence signalled, so it is reused only when that image comes back.
+  std::vector<vk::raii::Semaphore> copyFinished_;
   vk::raii::Fence frameDone_{nullptr};
   vk::raii::CommandPool pool_{nullptr};
   vk::raii::CommandBuffer commands_{nullptr};

@@ -124,7 +124,6 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 0, {*frameSet_}, {});
   for (const MeshInstance& instance : frame.instances) {
-    if (instance.mesh >= meshes_.size() || instance.material >= materials_.size()) continue;
     const GpuMesh& mesh = meshes_[instance.mesh];
     const GpuMaterial& material = materials_[instance.material];
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 1, {*material.descriptors}, {});

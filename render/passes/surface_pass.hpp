@@ -22,7 +22,12 @@ public:
   /// Writes the frame's camera and lights; call before recording the frame.
   void update(const FrameInput& frame, float aspect);
 
-  /// Draws every instance; call inside a dynamic rendering scope with matching formats.
+  /// Whether `instance` names a mesh and a material of the current scene.
+  bool canDraw(const MeshInstance& instance) const {
+    return instance.mesh < meshes_.size() && instance.material < materials_.size();
+  }
+
+  /// Draws every instance (Renderer::render has checked them with canDraw); call inside a dynamic rendering scope with matching formats.
   void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
 
 private:

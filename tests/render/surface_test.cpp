@@ -79,8 +79,8 @@ TEST_F(Surface, LambertOnAFlatQuadMatchesTheClosedForm) {
 
 TEST_F(Surface, BackgroundOutsideTheQuad) {
   const Shot shot = render({.baseColor = glm::vec3(1)}, {.direction = {0, 0, 1}}, glm::vec3(0));
-  const double expected = 255.0 * srgbEncode(0.02);  // FrameInput's default background red
-  EXPECT_NEAR(shot.rgba[0], expected, 1.0);
+  const glm::vec3 background = FrameInput{}.background;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(shot.rgba[c], 255.0 * srgbEncode(background[c]), 1.0) << "channel " << c;
 }
 
 // A constant normal map tilted by the texel; the light comes along the tilt axis.
@@ -105,6 +105,63 @@ TEST_F(Surface, NormalMapTiltTowardsPlusXLightsFromPlusX) {
 
 TEST_F(Surface, NormalMapTiltTowardsPlusYLightsFromPlusY) {
   expectTiltedNormal(*this, {128, 204, 229, 255}, {0, 1, 0}, 1);
+}
+
+// A 4x4 albedo texture whose quarters are 2x2 blocks of one sRGB colour each, on the quad under
+// a light along the normal: each quarter of the quad shows its colour, decoded from sRGB to
+// linear by the sampler, lit with E = 1 and encoded back, so the output equals the texel. This
+// pins the uv orientation (v = 0 at the top row) and the sRGB round trip.
+TEST_F(Surface, AlbedoTexelsLandInTheirQuartersAndSurviveTheSrgbRoundTrip) {
+  const std::array<std::array<std::uint8_t, 4>, 4> colours{{{200, 30, 30, 255},     // top left: red
+                                                            {30, 200, 30, 255},     // top right: green
+                                                            {30, 30, 200, 255},     // bottom left: blue
+                                                            {200, 200, 30, 255}}};  // bottom right: yellow
+  std::vector<std::uint8_t> texels;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const auto& colour = colours[(y / 2) * 2 + x / 2];
+      texels.insert(texels.end(), colour.begin(), colour.end());
+    }
+  const MaterialData material{.baseColor = glm::vec3(1.0f),
+                              .albedo = TextureData{.width = 4, .height = 4, .rgba = texels}};
+  const Shot shot = render(material, {.direction = {0, 0, 1}, .intensity = 1.0f}, glm::vec3(0));
+  // The quad spans ±1 at distance 2 with the default 0.7 rad field of view. Sample at the middle
+  // of each quarter (x, y = ±0.5): bilinear filtering there only mixes texels of one colour.
+  const float halfHeight = 2.0f * std::tan(0.35f);
+  auto pixelOf = [&](float x, float y) {
+    const float aspect = float(kExtent.width) / float(kExtent.height);
+    const int px = int(std::floor((x / (halfHeight * aspect) * 0.5f + 0.5f) * kExtent.width));
+    const int py = int(std::floor((0.5f - y / halfHeight * 0.5f) * kExtent.height));
+    const std::size_t i = (std::size_t(py) * kExtent.width + px) * 4;
+    return std::array<int, 3>{shot.rgba[i], shot.rgba[i + 1], shot.rgba[i + 2]};
+  };
+  const std::array<glm::vec2, 4> quarters{glm::vec2(-0.5f, 0.5f), glm::vec2(0.5f, 0.5f), glm::vec2(-0.5f, -0.5f),
+                                          glm::vec2(0.5f, -0.5f)};
+  for (std::size_t q = 0; q < 4; ++q) {
+    const auto pixel = pixelOf(quarters[q].x, quarters[q].y);
+    // ±1: the sRGB decode and encode may each round either way.
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(pixel[c], colours[q][c], 1) << "quarter " << q << " channel " << c;
+  }
+}
+
+TEST_F(Surface, RejectsMalformedSceneData) {
+  auto renderer = Renderer::create(device(), {.extent = {8, 8}});
+  ASSERT_TRUE(renderer.has_value());
+  const std::array<std::uint32_t, 3> badIndices{0, 1, 7};
+  const auto badMesh = (*renderer)->setScene({.meshes = {MeshData{kPositions, kNormals, kUvs, badIndices}}});
+  ASSERT_FALSE(badMesh.has_value());
+  EXPECT_NE(badMesh.error().message.find("index 2 is 7"), std::string::npos) << badMesh.error().message;
+
+  const std::array<std::uint8_t, 8> shortTexels{};
+  const auto badTexture = (*renderer)->setScene(
+      {.materials = {MaterialData{.albedo = TextureData{.width = 2, .height = 2, .rgba = shortTexels}}}});
+  ASSERT_FALSE(badTexture.has_value());
+  EXPECT_NE(badTexture.error().message.find("material 0 albedo"), std::string::npos) << badTexture.error().message;
+
+  ASSERT_TRUE((*renderer)->setScene({.meshes = {MeshData{kPositions, kNormals, kUvs, kIndices}}}).has_value());
+  const auto noMaterial = (*renderer)->render({.instances = {{.mesh = 0, .material = 0}}});
+  ASSERT_FALSE(noMaterial.has_value());
+  EXPECT_NE(noMaterial.error().message.find("instance 0"), std::string::npos);
 }
 
 TEST_F(Surface, RejectsUnsupportedSettings) {
