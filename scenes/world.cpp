@@ -131,6 +131,8 @@ render::StaticScene World::staticScene() const {
     if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
     result.materials.push_back(material);
   }
+  // Last: the material of meshes that name none (a plain Material's defaults).
+  result.materials.push_back(render::MaterialData{.baseColor = Material{}.baseColour});
   return result;
 }
 
@@ -148,7 +150,9 @@ render::FrameInput World::frameInput() const {
     frame.lights.push_back({.direction = -light.direction, .color = light.colour, .intensity = light.intensity});
   for (std::size_t i = 0; i < scene_.meshes.size(); ++i) {
     const MeshInstance& mesh = scene_.meshes[i];
-    std::size_t material = 0;
+    // loadScene has checked that a named material exists; no name means the default one,
+    // which staticScene() puts after the scene's own.
+    std::size_t material = scene_.materials.size();
     for (std::size_t m = 0; m < scene_.materials.size(); ++m)
       if (scene_.materials[m].name == mesh.material) material = m;
     frame.instances.push_back(

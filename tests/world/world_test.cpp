@@ -43,7 +43,8 @@ TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   ASSERT_EQ(statics.meshes.size(), 1u);
   EXPECT_EQ(statics.meshes[0].positions.size(), 9279u);  // LeePerrySmith, ../shared/assets/README.md
   EXPECT_EQ(statics.meshes[0].indices.size(), 3u * 17684u);
-  ASSERT_EQ(statics.materials.size(), 1u);
+  ASSERT_EQ(statics.materials.size(), 2u);  // the scene's skin, then the default material
+  EXPECT_EQ(frame.instances[0].material, 0u);
   ASSERT_TRUE(statics.materials[0].albedo.has_value());
   EXPECT_EQ(statics.materials[0].albedo->width, 1024u);
   ASSERT_TRUE(statics.materials[0].normalMap.has_value());
@@ -63,7 +64,27 @@ TEST(World, AdvancingMovesTheHeadAndTheHair) {
   EXPECT_FALSE(world->advance(-1.0, 1).has_value());
 }
 
-class WorldWithoutAssets : public testing::VulkanTest {};
+class WorldRender : public testing::VulkanTest {};
+
+TEST_F(WorldRender, AMeshWithoutMaterialGetsTheDefaultOne) {
+  auto scene = parseScene(R"({"name": "bare", "camera": {"position": [0, 0, 5], "target": [0, 0, 0]},
+      "lights": [{"kind": "directional", "direction": [0, 0, -1]}],
+      "meshes": [{"name": "ball", "source": "procedural:sphere"}]})",
+                          "bare.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto world = World::create(std::move(*scene), resolverWithoutAssets());
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  auto renderer = render::Renderer::create(device(), {.extent = {64, 64}});
+  ASSERT_TRUE(renderer.has_value());
+  ASSERT_TRUE((*renderer)->setScene(world->staticScene()).has_value());
+  ASSERT_TRUE((*renderer)->render(world->frameInput()).has_value());
+  auto pixels = (*renderer)->readOutput();
+  ASSERT_TRUE(pixels.has_value());
+  const std::size_t centre = (32 * 64 + 32) * 4;
+  EXPECT_GT((*pixels)[centre], (*pixels)[0] + 40) << "the sphere is drawn and lit, not skipped";
+}
+
+using WorldWithoutAssets = WorldRender;
 
 TEST_F(WorldWithoutAssets, FallsBackToProceduralContentAndSaysSo) {
   auto scene = loadScene(kNalu);
