@@ -105,6 +105,9 @@ void run(const RenderOptions& options) {
     std::cout << "\nwrote " << options.frames << " frames to "
               << std::filesystem::absolute(outDir).lexically_normal().string() << "/" << stem << "_NNNN.png\n";
   printTimingTable(timings);
+  if (options.frames == 1)
+    std::cout << "(one frame: its times include first-use shader compilation; --frames N gives steady-state "
+                 "medians)\n";
   if (checkValidation(**device)) succeed();
 }
 
