@@ -19,7 +19,8 @@ struct Image {
 };
 
 /// Decodes a PNG or JPEG (anything stb_image reads) to RGBA8. Errors name the file and give
-/// stb_image's reason (for example "bad png sig" or "unknown image type").
+/// stb_image's reason (for example "bad png sig" or "unknown image type"). Images larger than
+/// 16384 pixels on a side or 8192 x 8192 pixels in all are refused before decoding.
 [[nodiscard]] Result<Image> loadImage(const std::filesystem::path& file);
 
 }  // namespace mane::scenes

@@ -374,7 +374,8 @@ Result<Scene> parseScene(std::string_view text, const std::filesystem::path& fil
   Json json;
   try {
     json = Json::parse(text.begin(), text.end());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // parse_error for bad syntax, out_of_range for a number too large for a double (1e400).
     return fail(name + ": invalid JSON: " + e.what());
   }
   try {

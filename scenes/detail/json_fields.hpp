@@ -43,7 +43,10 @@ template <>
 inline float read<float>(const nlohmann::json& json, const std::string& path) {
   if (!json.is_number()) throw FieldError{path, "expected a number" + got(json)};
   const double value = json.get<double>();
-  if (!std::isfinite(value)) throw FieldError{path, "expected a finite number"};
+  // 1e39 is a finite double but overflows float to infinity.
+  if (!std::isfinite(value) || !std::isfinite(static_cast<float>(value))) {
+    throw FieldError{path, "expected a finite number within float range (|x| < 3.4e38)"};
+  }
   return static_cast<float>(value);
 }
 

@@ -176,6 +176,21 @@ TEST(Scene, ReferencesMustResolve) {
             "(known: procedural:sphere)");
 }
 
+// Found by tests/fuzz/fuzz_scene: nlohmann reports a number beyond double range as
+// out_of_range, not parse_error, and that exception escaped parseScene.
+TEST(Scene, NumberBeyondDoubleRangeIsInvalidJsonNotACrash) {
+  const std::string message = errorOf(R"({"name": "x", "camera": {"position": [1e400, 0, 1],
+                                          "target": [0, 0, 0]}})");
+  EXPECT_NE(message.find("dir/bad.json: invalid JSON"), std::string::npos) << message;
+  EXPECT_NE(message.find("1e400"), std::string::npos) << message;
+}
+
+TEST(Scene, NumberBeyondFloatRangeIsRejectedNotMadeInfinite) {
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 1e39, 1], "target": [0, 0, 0]}})"),
+            "dir/bad.json: camera.position[1]: expected a finite number within float range "
+            "(|x| < 3.4e38)");
+}
+
 TEST(Scene, NonExistentFile) {
   auto scene = loadScene("/nonexistent/mane/scene.json");
   ASSERT_FALSE(scene.has_value());
