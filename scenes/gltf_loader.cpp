@@ -19,8 +19,10 @@
 namespace mane::scenes {
 namespace {
 
-// Nodes nest at most this deep; deeper means a cycle (glTF forbids them) or a hostile file.
+// Nodes nest at most this deep; deeper means a hostile file (the recursion needs a bound).
 constexpr int kMaxNodeDepth = 256;
+// The most bytes one accessor may decode to: far beyond any asset we use, well below memory.
+constexpr std::size_t kMaxAccessorBytes = std::size_t(1) << 30;
 
 /// Everything a failure message needs: the file and the parsed model.
 struct Context {
@@ -69,9 +71,16 @@ Result<void> copyFromView(const Context& ctx, int viewIndex, std::size_t offset,
   const std::vector<unsigned char>& data =
       ctx.model.buffers[static_cast<std::size_t>(view.buffer)].data;
   if (count == 0) return {};
-  const std::size_t end = offset + (count - 1) * stride + elementSize;
-  if (end > view.byteLength || view.byteOffset + view.byteLength > data.size()) {
-    return ctx.error(what + " reads bytes up to " + std::to_string(end) + " of buffer view " +
+  // offset + (count − 1)·stride + elementSize ≤ byteLength, written so that no product or sum
+  // can wrap around for hostile counts, strides or offsets.
+  const bool viewFits =
+      view.byteOffset <= data.size() && view.byteLength <= data.size() - view.byteOffset;
+  const bool elementsFit = offset <= view.byteLength && elementSize <= view.byteLength - offset &&
+                           count - 1 <= (view.byteLength - offset - elementSize) / stride;
+  if (!viewFits || !elementsFit) {
+    return ctx.error(what + " reads " + std::to_string(count) + " elements of " +
+                     std::to_string(elementSize) + " bytes every " + std::to_string(stride) +
+                     " bytes from offset " + std::to_string(offset) + " of buffer view " +
                      std::to_string(viewIndex) + ", which holds " +
                      std::to_string(view.byteLength) + " bytes (buffer " +
                      std::to_string(view.buffer) + " has " + std::to_string(data.size()) +
@@ -118,6 +127,13 @@ Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::str
   dense.components = components;
   dense.normalized = accessor.normalized;
   const std::size_t elementSize = static_cast<std::size_t>(componentSize * components);
+  // Checked before allocating: a count no buffer could back must not become a huge (or, once
+  // multiplied, wrapped-around) allocation.
+  if (dense.count > kMaxAccessorBytes / elementSize) {
+    return ctx.error(what + " declares " + std::to_string(dense.count) + " elements of " +
+                     std::to_string(elementSize) + " bytes, more than the " +
+                     std::to_string(kMaxAccessorBytes >> 20) + " MiB an accessor may hold");
+  }
   dense.bytes.assign(dense.count * elementSize, 0);
 
   if (accessor.bufferView >= 0) {
@@ -150,6 +166,10 @@ Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::str
         indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
       return ctx.error(what + " has sparse indices of component type " +
                        std::to_string(indexType) + "; expected 5121, 5123 or 5125");
+    }
+    if (sparseCount > dense.count) {
+      return ctx.error(what + " has " + std::to_string(sparseCount) +
+                       " sparse values but only " + std::to_string(dense.count) + " elements");
     }
     std::vector<unsigned char> indexBytes(sparseCount * static_cast<std::size_t>(indexSize));
     std::vector<unsigned char> valueBytes(sparseCount * elementSize);
@@ -402,16 +422,25 @@ Result<void> appendPrimitive(const Context& ctx, const tinygltf::Primitive& prim
   return {};
 }
 
+/// Appends the meshes of `nodeIndex` and its descendants. `visited` marks nodes seen so far:
+/// glTF nodes form disjoint trees (glTF 2.0 §3.5.1), so a second visit means a node with two
+/// parents or a cycle, which would otherwise multiply the work exponentially or never end.
 Result<void> visitNode(const Context& ctx, int nodeIndex, const glm::mat4& parent, int depth,
-                       Mesh& out, std::vector<bool>& hasUv) {
+                       std::vector<bool>& visited, Mesh& out, std::vector<bool>& hasUv) {
   const auto& nodes = ctx.model.nodes;
   if (nodeIndex < 0 || static_cast<std::size_t>(nodeIndex) >= nodes.size()) {
     return ctx.error("the scene refers to node " + std::to_string(nodeIndex) +
                      ", but the file has " + std::to_string(nodes.size()) + " nodes");
   }
+  if (visited[static_cast<std::size_t>(nodeIndex)]) {
+    return ctx.error("node " + std::to_string(nodeIndex) +
+                     " is reached twice: glTF nodes must form trees (a node with two parents, "
+                     "a cycle, or a scene listing a child node as a root)");
+  }
+  visited[static_cast<std::size_t>(nodeIndex)] = true;
   if (depth > kMaxNodeDepth) {
     return ctx.error("node " + std::to_string(nodeIndex) + " is nested more than " +
-                     std::to_string(kMaxNodeDepth) + " levels deep (a cycle in the node tree?)");
+                     std::to_string(kMaxNodeDepth) + " levels deep");
   }
   const tinygltf::Node& node = nodes[static_cast<std::size_t>(nodeIndex)];
   const glm::mat4 world = parent * localMatrix(node);
@@ -430,7 +459,7 @@ Result<void> visitNode(const Context& ctx, int nodeIndex, const glm::mat4& paren
     }
   }
   for (int child : node.children) {
-    if (auto ok = visitNode(ctx, child, world, depth + 1, out, hasUv); !ok) return ok;
+    if (auto ok = visitNode(ctx, child, world, depth + 1, visited, out, hasUv); !ok) return ok;
   }
   return {};
 }
@@ -517,8 +546,9 @@ Result<Mesh> loadGltf(const std::filesystem::path& file) {
       if (!isChild[i]) roots.push_back(static_cast<int>(i));
     }
   }
+  std::vector<bool> visited(model.nodes.size(), false);
   for (int root : roots) {
-    if (auto ok = visitNode(ctx, root, glm::mat4(1.0f), 0, mesh, hasUv); !ok) {
+    if (auto ok = visitNode(ctx, root, glm::mat4(1.0f), 0, visited, mesh, hasUv); !ok) {
       return std::unexpected(ok.error());
     }
   }

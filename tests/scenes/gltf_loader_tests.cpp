@@ -205,6 +205,34 @@ TEST(GltfLoader, AccessorPastTheEndOfItsViewIsAnError) {
       << mesh.error().message;
 }
 
+// A count whose byte size wraps around 2^64 (2^62 × 12 bytes = 0 mod 2^64) or merely exceeds
+// memory must be refused before anything is allocated or copied.
+TEST(GltfLoader, HostileAccessorCountsAreRefusedBeforeAllocating) {
+  std::vector<unsigned char> buffer;
+  for (float f : kTriangle) put<float>(buffer, {f});
+  for (const std::uint64_t count : {std::uint64_t(1) << 62, std::uint64_t(1) << 40, std::uint64_t(1) << 26}) {
+    const auto gltf = document(
+        buffer, {{{"buffer", 0}, {"byteLength", 36}}},
+        {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"},
+          {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}},
+        {{"attributes", {{"POSITION", 0}}}});
+    ScratchDir dir;
+    auto mesh = loadGltf(dir.write("huge.gltf", gltf.dump()));
+    ASSERT_FALSE(mesh.has_value()) << count;
+    EXPECT_NE(mesh.error().message.find("huge.gltf"), std::string::npos);
+    EXPECT_NE(mesh.error().message.find(std::to_string(count)), std::string::npos) << mesh.error().message;
+  }
+}
+
+// Node 0 and node 1 both list node 2 as a child: a DAG, which glTF forbids. Chained, such
+// sharing would multiply the work exponentially; it is reported instead.
+TEST(GltfLoader, NodeWithTwoParentsIsAnError) {
+  ScratchDir dir;
+  auto mesh = loadTriangleUnder(dir, {{{"children", {1, 2}}}, {{"children", {2}}}, {{"mesh", 0}}});
+  ASSERT_FALSE(mesh.has_value());
+  EXPECT_NE(mesh.error().message.find("node 2 is reached twice"), std::string::npos) << mesh.error().message;
+}
+
 TEST(GltfLoader, TruncatedGlbSaysTruncated) {
   MANE_RESOLVE_OR_SKIP(head, "head/LeePerrySmith/LeePerrySmith.glb");
   const std::string bytes = testing::readFile(head);
