@@ -146,13 +146,10 @@ MeshInstance parseMesh(const Json& json, const std::string& path) {
 HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   HairSimulation sim;
-  sim.stepSeconds = fields.optional<float>("step", sim.stepSeconds);
   sim.iterations = fields.optional<int>("iterations", sim.iterations);
   sim.damping = fields.optional<float>("damping", sim.damping);
   sim.gravity = fields.optional<glm::vec3>("gravity", sim.gravity);
   fields.finish();
-  require(sim.stepSeconds > 0.0f && sim.stepSeconds <= 0.1f, fields.child("step"),
-          "expected a time step in (0, 0.1] seconds");
   require(sim.iterations >= 1 && sim.iterations <= 1000, fields.child("iterations"),
           "expected 1..1000 iterations");
   require(sim.damping >= 0.0f && sim.damping < 1.0f, fields.child("damping"),
@@ -170,9 +167,10 @@ Groom parseGroom(const Json& json, const std::string& path) {
   groom.attachedMesh = fields.required<std::string>("attached_mesh");
   groom.strandCount = fields.optional<int>("strands", 0);
   groom.strandLengthMetres = fields.optional<float>("length", 0.0f);
-  require(groom.strandCount >= 0, fields.child("strands"), "expected a strand count >= 0");
-  require(groom.strandLengthMetres >= 0.0f, fields.child("length"),
-          "expected a length >= 0 metres");
+  require(groom.strandCount >= 0 && groom.strandCount <= kMaxGuideStrands, fields.child("strands"),
+          "expected a strand count in 0.." + std::to_string(kMaxGuideStrands));
+  require(groom.strandLengthMetres >= 0.0f && groom.strandLengthMetres <= 10.0f, fields.child("length"),
+          "expected a length in [0, 10] metres");
   if (const Json* sim = fields.take("simulation")) {
     groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));
   }
@@ -234,7 +232,8 @@ SimulationSettings parseSimulation(const Json& json, const std::string& path) {
   fields.finish();
   require(sim.stepSeconds > 0.0f && sim.stepSeconds <= 0.1f, fields.child("step"),
           "expected a time step in (0, 0.1] seconds");
-  require(sim.maxStepsPerFrame >= 1, fields.child("max_steps_per_frame"), "expected >= 1");
+  require(sim.maxStepsPerFrame >= 1 && sim.maxStepsPerFrame <= 1000, fields.child("max_steps_per_frame"),
+          "expected 1..1000");
   return sim;
 }
 

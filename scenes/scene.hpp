@@ -79,13 +79,16 @@ struct MeshInstance {
   [[nodiscard]] std::string proceduralKind() const;
 };
 
-/// Parameters of the Verlet hair solver for one groom.
+/// Parameters of the Verlet hair solver for one groom; the fixed step is the scene's
+/// (`SimulationSettings::stepSeconds`), shared by everything simulated.
 struct HairSimulation {
-  float stepSeconds = 1.0f / 120.0f;  ///< fixed time step, s, > 0
   int iterations = 8;                 ///< constraint relaxation passes per step, ≥ 1
   float damping = 0.02f;              ///< velocity fraction lost per step, in [0, 1)
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
 };
+
+/// Most guide strands a procedural groom may ask for (memory stays in the hundreds of MB).
+inline constexpr int kMaxGuideStrands = 1'000'000;
 
 /// Hair or fur on a mesh.
 struct Groom {

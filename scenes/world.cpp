@@ -15,7 +15,7 @@ render::TextureData textureOf(const Image& image) {
 
 physics::SolverSettings solverSettings(const HairSimulation& simulation, const SimulationSettings& world) {
   physics::SolverSettings settings;
-  settings.fixedStep = simulation.stepSeconds;
+  settings.fixedStep = world.stepSeconds;
   settings.gravity = simulation.gravity;
   settings.damping = simulation.damping;
   settings.constraintIterations = simulation.iterations;

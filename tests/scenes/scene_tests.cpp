@@ -161,6 +161,12 @@ TEST(Scene, ValuesOutOfRangeAreRejected) {
                         "lights": [{"kind": "spot", "direction": [0, -1, 0]}]})"),
             "dir/bad.json: lights[0].kind: expected \"directional\" (the only light kind so "
             "far), got \"spot\"");
+  // A count that would exhaust memory in the groom generator is refused where it is written.
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                        "meshes": [{"name": "head", "source": "procedural:sphere"}],
+                        "grooms": [{"name": "g", "source": "procedural", "attached_mesh": "head",
+                                    "strands": 2000000000}]})"),
+            "dir/bad.json: grooms[0].strands: expected a strand count in 0..1000000");
 }
 
 TEST(Scene, ReferencesMustResolve) {
