@@ -3,10 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <string_view>
 
 #include "scenes/assets.hpp"
 
@@ -56,13 +58,28 @@ inline AssetResolver sharedResolver() {
   return *resolver;
 }
 
+/// Whether a missing shared asset must fail the test rather than skip it: set
+/// MANE_REQUIRE_ASSETS=1 (scripts/test.sh does under CI) so that a run without
+/// ../shared/assets cannot pass with the real-data tests silently skipped.
+inline bool assetsRequired() {
+  const char* value = std::getenv("MANE_REQUIRE_ASSETS");
+  return value && std::string_view(value) != "0";
+}
+
+/// Skips the test with `reason`, or fails it when assets are required.
+#define MANE_SKIP_FOR_MISSING_ASSET(reason)                                  \
+  do {                                                                       \
+    if (::mane::scenes::testing::assetsRequired()) FAIL() << (reason);       \
+    GTEST_SKIP() << (reason);                                                \
+  } while (false)
+
 /// Resolves a shared asset, or skips the test when the assets are not on this machine.
 #define MANE_RESOLVE_OR_SKIP(var, name)                                      \
   std::filesystem::path var;                                                 \
   {                                                                          \
     auto found_ = ::mane::scenes::testing::sharedResolver().lookup(name);    \
     ASSERT_TRUE(found_.has_value()) << found_.error().message;               \
-    if (!found_->path) GTEST_SKIP() << found_->missingReason;                \
+    if (!found_->path) MANE_SKIP_FOR_MISSING_ASSET(found_->missingReason);   \
     var = *found_->path;                                                     \
   }
 
