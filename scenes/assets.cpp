@@ -166,6 +166,19 @@ Result<void> AssetResolver::verify(const AssetEntry& entry,
   return {};
 }
 
+Result<AssetLookup> AssetResolver::lookupForScene(std::string_view name,
+                                                  const std::filesystem::path& sceneDirectory) const {
+  if (find(name)) return lookup(name);
+  const std::filesystem::path file = sceneDirectory / std::filesystem::path(name);
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(file, ec)) return AssetLookup{file, {}};
+  std::string message = "'";  // built in steps: g++ 12 gives a false -Wrestrict on one long "+" chain
+  message.append(name);
+  message += "' is neither an asset of " + settings_.manifest.string() + " nor a file (";
+  message += std::filesystem::absolute(file, ec).lexically_normal().string() + " does not exist)";
+  return fail(std::move(message));
+}
+
 Result<AssetLookup> AssetResolver::lookup(std::string_view name) const {
   const AssetEntry* entry = find(name);
   if (!entry) {

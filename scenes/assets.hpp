@@ -85,6 +85,12 @@ class AssetResolver {
   /// `path` is empty and `missingReason` says where it looked.
   [[nodiscard]] Result<AssetLookup> lookup(std::string_view name) const;
 
+  /// For names written in scene files: a name the manifest lists is looked up as by `lookup`;
+  /// any other name is the user's own file, absolute or relative to `sceneDirectory`, used as
+  /// it is (no checksum). A user file that does not exist is an error naming both readings.
+  [[nodiscard]] Result<AssetLookup> lookupForScene(std::string_view name,
+                                                   const std::filesystem::path& sceneDirectory) const;
+
   /// `lookup`, with a missing file turned into an error too.
   [[nodiscard]] Result<std::filesystem::path> resolve(std::string_view name) const;
 

@@ -12,7 +12,8 @@ constexpr int kSphereSegments = 64;
 
 }  // namespace
 
-Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver) {
+Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver,
+                                 const std::filesystem::path& sceneDirectory) {
   LoadedMesh loaded;
   if (instance.isProcedural()) {
     if (instance.proceduralKind() != "sphere") {
@@ -24,7 +25,7 @@ Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolv
     loaded.procedural = true;
     return loaded;
   }
-  auto found = resolver.lookup(instance.source);
+  auto found = resolver.lookupForScene(instance.source, sceneDirectory);
   if (!found) return fail("mesh '" + instance.name + "': " + found.error().message);
   if (!found->path) {
     loaded.mesh = makeSphere(kSphereRings, kSphereSegments,

@@ -28,7 +28,10 @@ struct LoadedMesh {
 /// missing everywhere (not shipped, offline) becomes a procedural sphere of
 /// `kFallbackSphereRadius` with a note. Errors are kept for what must not pass silently: a
 /// name the manifest does not list, a checksum mismatch, a file that does not parse.
+/// `sceneDirectory` anchors sources that are file paths rather than manifest names (see
+/// `AssetResolver::lookupForScene`).
 [[nodiscard]] Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance,
-                                               const AssetResolver& resolver);
+                                               const AssetResolver& resolver,
+                                               const std::filesystem::path& sceneDirectory = {});
 
 }  // namespace mane::scenes

@@ -40,7 +40,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
 
 Result<void> World::loadMeshes(const AssetResolver& resolver) {
   for (const MeshInstance& instance : scene_.meshes) {
-    auto loaded = loadSceneMesh(instance, resolver);
+    auto loaded = loadSceneMesh(instance, resolver, scene_.file.parent_path());
     if (!loaded) return std::unexpected(loaded.error());
     if (!loaded->note.empty()) notes_.push_back(loaded->note);
     meshes_.push_back(std::move(*loaded));
@@ -52,7 +52,7 @@ Result<void> World::loadMaterials(const AssetResolver& resolver) {
   auto loadTexture = [&](const std::string& asset, const std::string& material,
                          const char* role) -> Result<std::optional<Image>> {
     if (asset.empty()) return std::optional<Image>();
-    auto lookup = resolver.lookup(asset);
+    auto lookup = resolver.lookupForScene(asset, scene_.file.parent_path());
     if (!lookup) return std::unexpected(lookup.error());
     if (!lookup->path) {
       notes_.push_back("material " + material + ": " + role + " " + asset + " missing (" + lookup->missingReason +

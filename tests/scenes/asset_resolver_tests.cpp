@@ -231,6 +231,23 @@ TEST(SceneMeshes, ChecksumMismatchIsNotHiddenByTheFallback) {
   EXPECT_NE(loaded.error().message.find("sha256 mismatch"), std::string::npos);
 }
 
+TEST(SceneMeshes, ASourceOutsideTheManifestIsAFileBesideTheScene) {
+  ScratchDir dir;
+  const auto manifest = writeManifest(dir, {{"m/tri.obj", "", kHelloSha}});
+  dir.write("scenes/my/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  const AssetResolver resolver = makeResolver(manifest, {dir.path() / "empty"}, {}, false);
+  auto loaded = loadSceneMesh(MeshInstance{"tri", "my/tri.obj", "", {}}, resolver, dir.path() / "scenes");
+  ASSERT_TRUE(loaded.has_value()) << loaded.error().message;
+  EXPECT_FALSE(loaded->procedural);
+  EXPECT_EQ(loaded->mesh.triangleCount(), 1u);
+
+  auto typo = loadSceneMesh(MeshInstance{"tri", "my/tir.obj", "", {}}, resolver, dir.path() / "scenes");
+  ASSERT_FALSE(typo.has_value());
+  EXPECT_NE(typo.error().message.find("'my/tir.obj' is neither an asset of"), std::string::npos)
+      << typo.error().message;
+  EXPECT_NE(typo.error().message.find("tir.obj does not exist"), std::string::npos) << typo.error().message;
+}
+
 TEST(SceneMeshes, LoadsAnAssetThroughTheResolver) {
   auto loaded = loadSceneMesh(MeshInstance{"teapot", "meshes/teapot.obj", "", {}},
                               testing::sharedResolver());
