@@ -6,6 +6,10 @@ namespace mane::render {
 
 GpuTimer::GpuTimer(const Device& device, std::uint32_t maxPasses)
     : device_(&device), capacity_(maxPasses), supported_(device.limits().timestampComputeAndGraphics == VK_TRUE) {
+  const std::uint32_t validBits =
+      device.physicalDevice().getQueueFamilyProperties()[device.queueFamily()].timestampValidBits;
+  supported_ = supported_ && validBits > 0;
+  if (validBits > 0 && validBits < 64) validMask_ = (std::uint64_t(1) << validBits) - 1;
   if (supported_)
     pool_ = vk::raii::QueryPool(device.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp,
                                                                          .queryCount = 2 * maxPasses});
@@ -39,8 +43,11 @@ std::vector<PassTiming> GpuTimer::results() const {
       vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
   if (result != vk::Result::eSuccess) return timings;
   const double nanosecondsPerTick = device_->limits().timestampPeriod;
-  for (std::size_t i = 0; i < passes_.size(); ++i)
-    timings.push_back({passes_[i], double(ticks[2 * i + 1] - ticks[2 * i]) * nanosecondsPerTick * 1e-6});
+  for (std::size_t i = 0; i < passes_.size(); ++i) {
+    // Counters narrower than 64 bits wrap; the masked difference is still the elapsed ticks.
+    const std::uint64_t elapsed = (ticks[2 * i + 1] - ticks[2 * i]) & validMask_;
+    timings.push_back({passes_[i], double(elapsed) * nanosecondsPerTick * 1e-6});
+  }
   return timings;
 }
 

@@ -28,6 +28,7 @@ private:
   std::uint32_t capacity_;
   std::vector<std::string> passes_;
   bool supported_;
+  std::uint64_t validMask_ = ~std::uint64_t(0);  ///< the bits of a timestamp the queue writes
 };
 
 }  // namespace mane::render

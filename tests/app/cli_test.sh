@@ -31,6 +31,8 @@ case $case in
     "$mane" render --out "$scratch/out" --size 160x90 --msaa 1 >"$scratch/log" 2>&1 || fail "render failed: $(cat "$scratch/log")"
     png=$(ls "$scratch"/out/*.png) || fail "no PNG written"
     [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || fail "$png is not a PNG"
+    # IHDR (bytes 16..23): width and height, big-endian, as asked with --size.
+    [ "$(od -An -tx1 -j16 -N8 "$png" | tr -d ' \n')" = "000000a00000005a" ] || fail "$png is not 160x90"
     grep -q "wrote .*\.png" "$scratch/log" || fail "no 'wrote' line"
     grep -q "^surfaces " "$scratch/log" || fail "no per-pass time for surfaces"
     ;;
