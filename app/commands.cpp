@@ -9,7 +9,9 @@ namespace {
 int gExitCode = 0;
 }
 
-void succeed() { gExitCode = 0; }
+void succeed() {
+  gExitCode = 0;
+}
 
 void failWith(const std::string& reason) {
   std::string line = reason;
@@ -19,7 +21,9 @@ void failWith(const std::string& reason) {
   gExitCode = 1;
 }
 
-int exitCode() { return gExitCode; }
+int exitCode() {
+  return gExitCode;
+}
 
 bool checkValidation(const render::Device& device) {
   const auto messages = device.validationMessages();

@@ -74,12 +74,11 @@ void run(const RenderOptions& options) {
   std::cout << "device: " << (*device)->info().name << '\n';
   auto renderer = render::Renderer::create(**device, {.extent = {width, height}, .msaaSamples = options.msaa});
   if (!renderer) return failWith(renderer.error().message);
-  if (auto uploaded = (*renderer)->setScene(world->staticScene()); !uploaded)
-    return failWith(uploaded.error().message);
+  if (auto uploaded = (*renderer)->setScene(world->staticScene()); !uploaded) return failWith(uploaded.error().message);
 
   const std::filesystem::path outDir = options.out;
-  const std::string stem = world->scene().name.empty() ? std::filesystem::path(options.scene).stem().string()
-                                                       : world->scene().name;
+  const std::string stem =
+      world->scene().name.empty() ? std::filesystem::path(options.scene).stem().string() : world->scene().name;
   std::vector<std::vector<render::PassTiming>> timings;
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < options.frames; ++frame) {
@@ -92,7 +91,8 @@ void run(const RenderOptions& options) {
     auto pixels = (*renderer)->readOutput();
     if (!pixels) return failWith(pixels.error().message);
     const auto path = outDir / frameFileName(stem, frame);
-    if (auto written = render::writePng(path, width, height, *pixels); !written) return failWith(written.error().message);
+    if (auto written = render::writePng(path, width, height, *pixels); !written)
+      return failWith(written.error().message);
     if (options.frames == 1) {
       std::cout << "wrote " << std::filesystem::absolute(path).lexically_normal().string() << " (" << width << "x"
                 << height << ")\n";
@@ -119,10 +119,18 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("scene", options->scene, "Scene file (JSON)")->capture_default_str();
   command->add_option("--out", options->out, "Folder for the PNG files")->capture_default_str();
   command->add_option("--size", options->size, "Image size WIDTHxHEIGHT (default: the scene's)");
-  command->add_option("--frames", options->frames, "Number of frames to render")->check(CLI::Range(1, 100000))->capture_default_str();
-  command->add_option("--fps", options->fps, "Frames per second of the animation")->check(CLI::Range(1.0, 1000.0))->capture_default_str();
-  command->add_option("--msaa", options->msaa, "Samples per pixel (1 or 4)")->check(CLI::IsMember({1u, 4u}))->capture_default_str();
-  command->add_option("--threads", options->threads, "Simulation threads (results do not depend on it)")->check(CLI::Range(1u, 64u))->capture_default_str();
+  command->add_option("--frames", options->frames, "Number of frames to render")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  command->add_option("--fps", options->fps, "Frames per second of the animation")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  command->add_option("--msaa", options->msaa, "Samples per pixel (1 or 4)")
+      ->check(CLI::IsMember({1u, 4u}))
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "Simulation threads (results do not depend on it)")
+      ->check(CLI::Range(1u, 64u))
+      ->capture_default_str();
   command->callback([options] { run(*options); });
 }
 

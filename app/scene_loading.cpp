@@ -5,7 +5,9 @@
 
 namespace mane::app {
 
-std::filesystem::path defaultScenePath() { return std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json"; }
+std::filesystem::path defaultScenePath() {
+  return std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json";
+}
 
 Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings) {
   auto scene = scenes::loadScene(scenePath);

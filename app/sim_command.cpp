@@ -38,8 +38,12 @@ void addSimCommand(CLI::App& app) {
   auto options = std::make_shared<SimOptions>();
   auto* command = app.add_subcommand("sim", "Simulate a scene's physics (no GPU) and print the state hash");
   command->add_option("scene", options->scene, "Scene file (JSON)")->capture_default_str();
-  command->add_option("--steps", options->steps, "Fixed steps to simulate")->check(CLI::Range(0, 100000000))->capture_default_str();
-  command->add_option("--threads", options->threads, "Worker threads (the hash does not depend on it)")->check(CLI::Range(1u, 256u))->capture_default_str();
+  command->add_option("--steps", options->steps, "Fixed steps to simulate")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "Worker threads (the hash does not depend on it)")
+      ->check(CLI::Range(1u, 256u))
+      ->capture_default_str();
   command->callback([options] { run(*options); });
 }
 

@@ -49,7 +49,8 @@ struct OrbitCamera {
     return orbit;
   }
   glm::vec3 position() const {
-    return target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
+    return target +
+           distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw));
   }
 };
 
@@ -151,12 +152,18 @@ void run(const ViewOptions& options) {
 
 void addViewCommand(CLI::App& app) {
   auto options = std::make_shared<ViewOptions>();
-  auto* command = app.add_subcommand("view", "Open the scene in a window: drag to orbit, wheel to zoom, Space to pause");
+  auto* command =
+      app.add_subcommand("view", "Open the scene in a window: drag to orbit, wheel to zoom, Space to pause");
   command->add_option("scene", options->scene, "Scene file (JSON)")->capture_default_str();
-  command->add_option("--frames", options->frames, "Close after this many frames (0: when the window closes)")->check(CLI::Range(0, 10000000));
+  command->add_option("--frames", options->frames, "Close after this many frames (0: when the window closes)")
+      ->check(CLI::Range(0, 10000000));
   command->add_option("--screenshot", options->screenshot, "Write the last frame to this PNG file before closing");
-  command->add_option("--msaa", options->msaa, "Samples per pixel (1 or 4)")->check(CLI::IsMember({1u, 4u}))->capture_default_str();
-  command->add_option("--threads", options->threads, "Simulation threads")->check(CLI::Range(1u, 64u))->capture_default_str();
+  command->add_option("--msaa", options->msaa, "Samples per pixel (1 or 4)")
+      ->check(CLI::IsMember({1u, 4u}))
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "Simulation threads")
+      ->check(CLI::Range(1u, 64u))
+      ->capture_default_str();
   command->callback([options] { run(*options); });
 }
 

@@ -28,11 +28,10 @@ void BM_DistanceProjections(benchmark::State& state) {
   SplitMix64 rng(1);
   for (std::size_t i = 0; i < count; ++i) {
     // A jittered line, so every projection does real work.
-    particles.add({0.01f * static_cast<float>(i) + rng.nextFloat(-0.002f, 0.002f),
-                   rng.nextFloat(-0.002f, 0.002f), rng.nextFloat(-0.002f, 0.002f)},
+    particles.add({0.01f * static_cast<float>(i) + rng.nextFloat(-0.002f, 0.002f), rng.nextFloat(-0.002f, 0.002f),
+                   rng.nextFloat(-0.002f, 0.002f)},
                   i == 0 ? 0.0f : 1.0f);
-    if (i > 0)
-      constraints.push_back({static_cast<ParticleIndex>(i - 1), static_cast<ParticleIndex>(i), 0.01f});
+    if (i > 0) constraints.push_back({static_cast<ParticleIndex>(i - 1), static_cast<ParticleIndex>(i), 0.01f});
   }
   for (auto _ : state) {
     solveDistanceConstraints(particles, constraints);

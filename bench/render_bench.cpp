@@ -50,8 +50,8 @@ Fixture& fixture() {
 // state.range(0): 1 draws the scene, 0 draws nothing (the baseline). range(1): MSAA samples.
 void BM_NaluFrame(benchmark::State& state) {
   Fixture& f = fixture();
-  auto renderer = render::Renderer::create(*f.device, {.extent = {1280, 720},
-                                                       .msaaSamples = static_cast<std::uint32_t>(state.range(1))});
+  auto renderer = render::Renderer::create(
+      *f.device, {.extent = {1280, 720}, .msaaSamples = static_cast<std::uint32_t>(state.range(1))});
   if (!renderer || !(*renderer)->setScene(f.world->staticScene())) return state.SkipWithError("renderer setup failed");
   render::FrameInput frame = f.world->frameInput();
   if (state.range(0) == 0) frame.instances.clear();

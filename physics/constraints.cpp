@@ -10,8 +10,7 @@ void solveDistanceConstraints(Particles& particles, std::span<const DistanceCons
   const float* inverseMasses = particles.inverseMasses.data();
   for (const DistanceConstraint& c : constraints) {
     assert(c.a < particles.size() && c.b < particles.size());
-    projectDistance(positions[c.a], positions[c.b], inverseMasses[c.a], inverseMasses[c.b],
-                    c.restLength);
+    projectDistance(positions[c.a], positions[c.b], inverseMasses[c.a], inverseMasses[c.b], c.restLength);
   }
 }
 

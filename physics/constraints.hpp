@@ -18,27 +18,27 @@ namespace mane::physics {
 
 /// Keeps two particles at a fixed distance (a stick in Jakobsen's terms, a hair segment).
 struct DistanceConstraint {
-  ParticleIndex a = 0;     ///< first particle
-  ParticleIndex b = 0;     ///< second particle
-  float restLength = 0.0f; ///< target distance, metres (> 0)
+  ParticleIndex a = 0;      ///< first particle
+  ParticleIndex b = 0;      ///< second particle
+  float restLength = 0.0f;  ///< target distance, metres (> 0)
 };
 
 /// Long-range attachment (Kim, Chentanez & Müller 2012, "Long Range Attachments — A Method to
-/// Simulate Inextensible Clothing in Computer Games", SCA): a one-sided constraint that keeps `particle` within `maxDistance` of a kinematic `anchor` (the strand's
-/// root). `maxDistance` is the rest length measured along the strand, so a strand can bend
-/// freely but can never stretch beyond its rest length, whatever the iteration count: the
+/// Simulate Inextensible Clothing in Computer Games", SCA): a one-sided constraint that keeps `particle` within
+/// `maxDistance` of a kinematic `anchor` (the strand's root). `maxDistance` is the rest length measured along the
+/// strand, so a strand can bend freely but can never stretch beyond its rest length, whatever the iteration count: the
 /// anti-stretch guarantee behind fast head motion.
 struct Tether {
-  ParticleIndex particle = 0; ///< the constrained particle (moved)
-  ParticleIndex anchor = 0;   ///< the attachment point; treated as infinitely heavy (never moved)
-  float maxDistance = 0.0f;   ///< largest allowed distance, metres
+  ParticleIndex particle = 0;  ///< the constrained particle (moved)
+  ParticleIndex anchor = 0;    ///< the attachment point; treated as infinitely heavy (never moved)
+  float maxDistance = 0.0f;    ///< largest allowed distance, metres
 };
 
 /// Places a particle exactly at a target position (a kinematic attachment: cloth corners,
 /// chain ends). Pinned particles should have inverse mass 0 so other constraints leave them be.
 struct Pin {
-  ParticleIndex particle = 0; ///< the pinned particle
-  glm::vec3 target{0.0f};     ///< where it is held, metres
+  ParticleIndex particle = 0;  ///< the pinned particle
+  glm::vec3 target{0.0f};      ///< where it is held, metres
 };
 
 /// Relaxes one distance constraint between positions `pa` and `pb` with inverse masses `wa` and
@@ -82,7 +82,6 @@ void applyPins(Particles& particles, std::span<const Pin> pins);
 
 /// Largest relative length error |(|pb − pa| − L)| / L over `constraints`; 0 when empty.
 /// A diagnostic for tests and tuning, not used in the step.
-[[nodiscard]] float maxRelativeStretch(const Particles& particles,
-                                       std::span<const DistanceConstraint> constraints);
+[[nodiscard]] float maxRelativeStretch(const Particles& particles, std::span<const DistanceConstraint> constraints);
 
 }  // namespace mane::physics

@@ -19,8 +19,7 @@ glm::vec3 normalized(const glm::vec3& v) {
 // the ball, then projected), which needs no trigonometry.
 glm::vec3 randomCapDirection(SplitMix64& rng, float minY) {
   for (;;) {
-    const glm::vec3 p{rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f),
-                      rng.nextFloat(-1.0f, 1.0f)};
+    const glm::vec3 p{rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f)};
     const float r2 = p.x * p.x + p.y * p.y + p.z * p.z;
     if (r2 > 1.0f || r2 < 0.01f) continue;
     const glm::vec3 n = p / std::sqrt(r2);
@@ -45,8 +44,7 @@ Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& s
   if (settings.particlesPerStrand < 2) return bad("particlesPerStrand", "at least 2");
   if (!(settings.strandLength > 0.0f && std::isfinite(settings.strandLength)))
     return bad("strandLength", "a positive number of metres");
-  if (!(settings.lengthJitter >= 0.0f && settings.lengthJitter < 1.0f))
-    return bad("lengthJitter", "in [0, 1)");
+  if (!(settings.lengthJitter >= 0.0f && settings.lengthJitter < 1.0f)) return bad("lengthJitter", "in [0, 1)");
   if (!(settings.scalpRadius > 0.0f && std::isfinite(settings.scalpRadius)))
     return bad("scalpRadius", "a positive number of metres");
   if (!(std::isfinite(settings.scalpCentre.x) && std::isfinite(settings.scalpCentre.y) &&
@@ -71,8 +69,7 @@ Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& s
   for (std::vector<glm::vec3>& strand : strands) {
     const glm::vec3 normal = randomCapDirection(rng, settings.capMinNormalY);
     const glm::vec3 root = settings.scalpCentre + normal * settings.scalpRadius;
-    const float length =
-        settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
+    const float length = settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
     const float spacing = length / static_cast<float>(settings.particlesPerStrand - 1);
 
     // A frame (u, v) around the growth axis, and a random starting phase on the circle.

@@ -21,7 +21,7 @@ namespace mane::physics {
 /// splitmix64: a 64-bit state advanced by a Weyl increment and scrambled by two xor-shift-
 /// multiply rounds. Tiny, fast, passes BigCrush, and fully specified by its constants.
 class SplitMix64 {
- public:
+public:
   explicit SplitMix64(std::uint64_t seed) noexcept : state_(seed) {}
 
   /// Next 64 random bits.
@@ -33,30 +33,28 @@ class SplitMix64 {
   }
 
   /// Uniform float in [0, 1): the top 24 bits of `next()` times 2⁻²⁴ (exact in a float).
-  float nextFloat() noexcept {
-    return static_cast<float>(next() >> 40) * 0x1.0p-24f;
-  }
+  float nextFloat() noexcept { return static_cast<float>(next() >> 40) * 0x1.0p-24f; }
 
   /// Uniform float in [lo, hi).
   float nextFloat(float lo, float hi) noexcept { return lo + (hi - lo) * nextFloat(); }
 
- private:
+private:
   std::uint64_t state_;
 };
 
 /// Parameters of a procedural groom. Lengths in metres, angles in radians.
 struct GroomSettings {
-  std::uint64_t seed = 1;             ///< PRNG seed; equal seeds give bit-identical grooms
-  std::size_t strandCount = 64;       ///< number of guide strands (≥ 1)
-  std::size_t particlesPerStrand = 16;///< points per strand, root included (≥ 2)
-  float strandLength = 0.25f;         ///< mean length along the growth direction, m (> 0)
-  float lengthJitter = 0.1f;          ///< relative random variation of the length, in [0, 1)
-  glm::vec3 scalpCentre{0.0f};        ///< centre of the spherical scalp, head-local, m
-  float scalpRadius = 0.1f;           ///< scalp radius, m (> 0)
+  std::uint64_t seed = 1;               ///< PRNG seed; equal seeds give bit-identical grooms
+  std::size_t strandCount = 64;         ///< number of guide strands (≥ 1)
+  std::size_t particlesPerStrand = 16;  ///< points per strand, root included (≥ 2)
+  float strandLength = 0.25f;           ///< mean length along the growth direction, m (> 0)
+  float lengthJitter = 0.1f;            ///< relative random variation of the length, in [0, 1)
+  glm::vec3 scalpCentre{0.0f};          ///< centre of the spherical scalp, head-local, m
+  float scalpRadius = 0.1f;             ///< scalp radius, m (> 0)
   /// Roots cover the cap of the sphere whose outward normal has a Y component of at least this
   /// (1 = only the crown, 0 = the upper hemisphere, −1 = the whole sphere).
   float capMinNormalY = 0.2f;
-  float curlRadius = 0.0f;            ///< helix radius, m; 0 gives straight strands
+  float curlRadius = 0.0f;  ///< helix radius, m; 0 gives straight strands
   /// Helix turn per segment, radians (|angle| ≤ π/2); used when curlRadius > 0.
   float curlAnglePerSegment = 0.5f;
 };
@@ -64,7 +62,6 @@ struct GroomSettings {
 /// Generates guide strands (head-local points, root first, on the scalp) for `settings`.
 /// Each strand grows along the scalp normal at its root; curls wind around that axis and
 /// start at the root. Fails with a message naming the field when a setting is out of range.
-[[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroom(
-    const GroomSettings& settings);
+[[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings);
 
 }  // namespace mane::physics

@@ -30,8 +30,8 @@ glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) {
 
 std::string describe(const glm::vec3& v) {
   char text[96];
-  std::snprintf(text, sizeof text, "(%g, %g, %g)", static_cast<double>(v.x),
-                static_cast<double>(v.y), static_cast<double>(v.z));
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", static_cast<double>(v.x), static_cast<double>(v.y),
+                static_cast<double>(v.z));
   return text;
 }
 
@@ -61,10 +61,10 @@ Result<void> validateStrand(std::size_t s, std::span<const glm::vec3> points) {
                   ": the segment from particle " + std::to_string(i - 1) +
                   " is too long to represent in single precision.");
     if (length < kMinSegmentLength)
-      return fail("Hair strand " + std::to_string(s) + ", particle " + std::to_string(i) +
-                  " is " + std::to_string(length) + " m from particle " + std::to_string(i - 1) +
-                  " (zero-length segment); consecutive points must be at least " +
-                  std::to_string(kMinSegmentLength) + " m apart.");
+      return fail("Hair strand " + std::to_string(s) + ", particle " + std::to_string(i) + " is " +
+                  std::to_string(length) + " m from particle " + std::to_string(i - 1) +
+                  " (zero-length segment); consecutive points must be at least " + std::to_string(kMinSegmentLength) +
+                  " m apart.");
   }
   return {};
 }
@@ -74,8 +74,7 @@ Result<void> validateStrand(std::size_t s, std::span<const glm::vec3> points) {
 HairSystem::HairSystem(const SolverSettings& settings)
     : settings_(settings), accumulator_(settings.fixedStep, settings.maxSubstepsPerFrame) {}
 
-Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> strands,
-                                      const SolverSettings& settings,
+Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> strands, const SolverSettings& settings,
                                       const glm::mat4& headTransform) {
   if (auto valid = validateSettings(settings); !valid)
     return std::unexpected(Error{"Hair system: " + valid.error().message});
@@ -150,8 +149,7 @@ Result<void> HairSystem::teleport(const glm::mat4& headTransform) {
 
 std::span<const glm::vec3> HairSystem::strandPositions(std::size_t strand) const {
   assert(strand < strands_.size());
-  return {particles_.positions.data() + strands_[strand].firstParticle,
-          strands_[strand].particleCount};
+  return {particles_.positions.data() + strands_[strand].firstParticle, strands_[strand].particleCount};
 }
 
 std::span<const float> HairSystem::strandRestDistances(std::size_t strand) const {
@@ -166,34 +164,29 @@ double HairSystem::simulatedTime() const noexcept {
 Error HairSystem::faultError() const {
   assert(fault_);
   const double time = static_cast<double>(fault_->step) * settings_.fixedStep;
-  return Error{"Hair strand " + std::to_string(fault_->strand) + ", particle " +
-               std::to_string(fault_->particle) +
-               " became non-finite (NaN or infinite) at fixed step " +
-               std::to_string(fault_->step) + " (t = " + std::to_string(time) +
-               " s); the hair system has stopped advancing until teleport() resets it."};
+  return Error{"Hair strand " + std::to_string(fault_->strand) + ", particle " + std::to_string(fault_->particle) +
+               " became non-finite (NaN or infinite) at fixed step " + std::to_string(fault_->step) + " (t = " +
+               std::to_string(time) + " s); the hair system has stopped advancing until teleport() resets it."};
 }
 
 Result<void> HairSystem::advance(double frameDt, unsigned threads) {
   if (fault_) return std::unexpected(faultError());
   if (!(std::isfinite(frameDt) && frameDt >= 0.0))
-    return fail("Hair system: frame duration must be a finite number of seconds ≥ 0, got " +
-                std::to_string(frameDt) + ".");
+    return fail("Hair system: frame duration must be a finite number of seconds ≥ 0, got " + std::to_string(frameDt) +
+                ".");
 
   const StepPlan plan = accumulator_.plan(frameDt);
   if (plan.substeps > 0) {
     // A fixed partition into contiguous ranges of whole strands. Each strand's arithmetic is the
     // same whichever worker runs it, so the partition affects speed only, never the result.
-    const std::size_t workers =
-        std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
+    const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
     const auto rangeBegin = [&](std::size_t w) { return strands_.size() * w / workers; };
     std::vector<std::jthread> pool;
     pool.reserve(workers - 1);
     std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
     for (std::size_t w = 1; w < workers; ++w) {
       try {
-        pool.emplace_back([this, &plan, b = rangeBegin(w), e = rangeBegin(w + 1)] {
-          simulateStrands(b, e, plan);
-        });
+        pool.emplace_back([this, &plan, b = rangeBegin(w), e = rangeBegin(w + 1)] { simulateStrands(b, e, plan); });
       } catch (const std::system_error&) {
         inlineFrom = w;  // no more threads available: run the remaining ranges here
         break;
@@ -215,8 +208,7 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
   return {};
 }
 
-void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand,
-                                 const StepPlan& plan) {
+void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan) {
   for (std::size_t s = firstStrand; s < endStrand; s += kStrandLanes)
     simulateStrandBlock(s, std::min(kStrandLanes, endStrand - s), plan);
 }
@@ -226,8 +218,7 @@ void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand,
 // kStrandLanes independent strands are therefore advanced side by side, their loops
 // interleaved. Each strand still sees exactly the same operations in the same order as if it
 // were simulated alone, so the grouping changes speed only, never a bit of the result.
-void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
-                                     const StepPlan& plan) {
+void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan) {
   struct Lane {
     glm::vec3* x;
     glm::vec3* previous;
@@ -259,8 +250,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
   const float step = static_cast<float>(plan.fixedStep);
   const float keep = 1.0f - settings_.damping;
   const glm::vec3 kick = settings_.gravity * (step * step);
-  const std::uint64_t stepsBefore =
-      accumulator_.stepsTaken() - static_cast<std::uint64_t>(plan.substeps);
+  const std::uint64_t stepsBefore = accumulator_.stepsTaken() - static_cast<std::uint64_t>(plan.substeps);
 
   for (int k = 1; k <= plan.substeps; ++k) {
     const float fraction = plan.fractionAt(k);
@@ -285,8 +275,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
       for (std::size_t i = 1; i < longest; ++i)
         for (std::size_t b = 0; b < lanes; ++b) {
           const Lane& l = lane[b];
-          if (l.active && i < l.count)
-            projectDistance(l.x[i - 1], l.x[i], l.w[i - 1], l.w[i], l.segment[i]);
+          if (l.active && i < l.count) projectDistance(l.x[i - 1], l.x[i], l.w[i - 1], l.w[i], l.segment[i]);
         }
       // Long-range attachments last, so every sweep ends with no particle farther from the
       // root than its rest distance along the strand (Kim, Chentanez & Müller 2012).
@@ -306,8 +295,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
       // coordinate of the strand went bad; find which one only when it did. A bad strand stops
       // where it is; the others carry on.
       float probe = 0.0f;
-      for (std::size_t i = 0; i < count; ++i)
-        probe += 0.0f * x[i].x + 0.0f * x[i].y + 0.0f * x[i].z;
+      for (std::size_t i = 0; i < count; ++i) probe += 0.0f * x[i].x + 0.0f * x[i].y + 0.0f * x[i].z;
       if (probe != 0.0f) {
         std::size_t bad = 0;
         while (bad < count && isFinite(x[bad])) ++bad;

@@ -29,17 +29,17 @@ inline constexpr float kMinSegmentLength = 1e-6f;
 
 /// One simulated guide strand: a contiguous run of particles, root first.
 struct GuideStrand {
-  std::uint32_t firstParticle = 0; ///< index of the root particle in `HairSystem::particles()`
-  std::uint32_t particleCount = 0; ///< root included; at least 2
-  glm::vec3 rootLocal{0.0f};       ///< root position in head-local space, metres
+  std::uint32_t firstParticle = 0;  ///< index of the root particle in `HairSystem::particles()`
+  std::uint32_t particleCount = 0;  ///< root included; at least 2
+  glm::vec3 rootLocal{0.0f};        ///< root position in head-local space, metres
 };
 
 /// Where and when the simulation broke: the first (lowest-index) strand with a non-finite
 /// (NaN or infinite) particle position.
 struct SimulationFault {
-  std::size_t strand = 0;   ///< strand index, as in the input
-  std::size_t particle = 0; ///< particle index within the strand (0 = root)
-  std::uint64_t step = 0;   ///< fixed step (counted from creation, 1-based) that produced it
+  std::size_t strand = 0;    ///< strand index, as in the input
+  std::size_t particle = 0;  ///< particle index within the strand (0 = root)
+  std::uint64_t step = 0;    ///< fixed step (counted from creation, 1-based) that produced it
 };
 
 /// A set of guide strands attached to a rigid head.
@@ -50,7 +50,7 @@ struct SimulationFault {
 /// Within one fixed step each strand runs, in order: root placement, Verlet integration, then
 /// `constraintIterations` sweeps of distance constraints root → tip followed by tethers.
 class HairSystem {
- public:
+public:
   /// Builds the system from guide strands given as points in head-local space (metres), root
   /// first, placed in the world by `headTransform` (head-local → world) at rest.
   /// Fails, naming the strand and particle, when the groom is empty, a strand has fewer than 2
@@ -101,7 +101,7 @@ class HairSystem {
   /// Simulated time since creation, seconds (step count × fixed step).
   [[nodiscard]] double simulatedTime() const noexcept;
 
- private:
+private:
   explicit HairSystem(const SolverSettings& settings);
 
   void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan);
@@ -115,13 +115,13 @@ class HairSystem {
   FixedStepAccumulator accumulator_;
   Particles particles_;
   std::vector<GuideStrand> strands_;
-  std::vector<glm::vec3> restLocal_;      // rest positions in head-local space, per particle
-  std::vector<float> segmentLengths_;     // rest distance to the previous particle (0 at roots)
-  std::vector<float> restDistances_;      // rest distance to the root along the strand
+  std::vector<glm::vec3> restLocal_;          // rest positions in head-local space, per particle
+  std::vector<float> segmentLengths_;         // rest distance to the previous particle (0 at roots)
+  std::vector<float> restDistances_;          // rest distance to the root along the strand
   std::vector<std::uint32_t> faultParticle_;  // per strand: first bad particle, or kNoFault
   std::vector<std::uint64_t> faultStep_;      // per strand: step that made it bad
-  glm::mat4 previousHead_{1.0f};  // head transform at the end of the last advance
-  glm::mat4 head_{1.0f};          // head transform at the end of the next advance
+  glm::mat4 previousHead_{1.0f};              // head transform at the end of the last advance
+  glm::mat4 head_{1.0f};                      // head transform at the end of the next advance
   std::optional<SimulationFault> fault_;
 };
 

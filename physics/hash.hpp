@@ -23,12 +23,11 @@ inline constexpr std::uint64_t kFnvOffsetBasis = 14695981039346656037ull;
 inline constexpr std::uint64_t kFnvPrime = 1099511628211ull;
 
 /// Continues an FNV-1a 64-bit hash `hash` over `bytes`.
-[[nodiscard]] std::uint64_t fnv1a(std::span<const std::byte> bytes,
-                                  std::uint64_t hash = kFnvOffsetBasis) noexcept;
+[[nodiscard]] std::uint64_t fnv1a(std::span<const std::byte> bytes, std::uint64_t hash = kFnvOffsetBasis) noexcept;
 
 /// Accumulates the raw bytes of several arrays into one FNV-1a 64-bit hash.
 class StateHasher {
- public:
+public:
   /// Adds the object representation of every element of `values` (trivially copyable types).
   template <class T>
   void add(std::span<const T> values) noexcept {
@@ -45,7 +44,7 @@ class StateHasher {
   /// The hash of everything added so far.
   [[nodiscard]] std::uint64_t value() const noexcept { return hash_; }
 
- private:
+private:
   std::uint64_t hash_ = kFnvOffsetBasis;
 };
 

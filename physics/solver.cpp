@@ -25,11 +25,9 @@ Result<void> validateSettings(const SolverSettings& settings) {
   if (!(std::isfinite(settings.fixedStep) && settings.fixedStep > 0.0))
     return fail("Solver settings: fixedStep must be a positive number of seconds, got " +
                 std::to_string(settings.fixedStep) + ".");
-  if (!isFinite(settings.gravity))
-    return fail("Solver settings: gravity must be finite (m/s²).");
+  if (!isFinite(settings.gravity)) return fail("Solver settings: gravity must be finite (m/s²).");
   if (!(settings.damping >= 0.0f && settings.damping < 1.0f))
-    return fail("Solver settings: damping must lie in [0, 1), got " +
-                std::to_string(settings.damping) + ".");
+    return fail("Solver settings: damping must lie in [0, 1), got " + std::to_string(settings.damping) + ".");
   if (settings.constraintIterations < 1)
     return fail("Solver settings: constraintIterations must be at least 1, got " +
                 std::to_string(settings.constraintIterations) + ".");
@@ -41,8 +39,7 @@ Result<void> validateSettings(const SolverSettings& settings) {
 
 float StepPlan::fractionAt(int k) const {
   assert(k >= 1 && k <= substeps);
-  if (clamped || !(frameDt > 0.0))
-    return static_cast<float>(static_cast<double>(k) / static_cast<double>(substeps));
+  if (clamped || !(frameDt > 0.0)) return static_cast<float>(static_cast<double>(k) / static_cast<double>(substeps));
   const double fraction = (static_cast<double>(k) * fixedStep - backlog) / frameDt;
   return static_cast<float>(std::clamp(fraction, 0.0, 1.0));
 }
@@ -73,8 +70,8 @@ StepPlan FixedStepAccumulator::plan(double frameDt) {
   return plan;
 }
 
-void integrateVerlet(Particles& particles, std::size_t first, std::size_t count,
-                     const glm::vec3& acceleration, float damping, float step) {
+void integrateVerlet(Particles& particles, std::size_t first, std::size_t count, const glm::vec3& acceleration,
+                     float damping, float step) {
   assert(first + count <= particles.size());
   glm::vec3* x = particles.positions.data() + first;
   glm::vec3* previous = particles.previousPositions.data() + first;

@@ -45,11 +45,11 @@ struct SolverSettings {
 /// What one frame turns into: a whole number of fixed steps, and where each of them falls
 /// inside the frame (for interpolating kinematic targets such as hair roots).
 struct StepPlan {
-  int substeps = 0;         ///< fixed steps to run this frame
-  double fixedStep = 0.0;   ///< seconds per step
-  double frameDt = 0.0;     ///< the frame's duration, seconds
-  double backlog = 0.0;     ///< seconds the simulation lagged the frame's start by
-  bool clamped = false;     ///< true when time was dropped to respect the substep limit
+  int substeps = 0;        ///< fixed steps to run this frame
+  double fixedStep = 0.0;  ///< seconds per step
+  double frameDt = 0.0;    ///< the frame's duration, seconds
+  double backlog = 0.0;    ///< seconds the simulation lagged the frame's start by
+  bool clamped = false;    ///< true when time was dropped to respect the substep limit
 
   /// Where fixed step `k` (1-based, 1..substeps) ends inside the frame, as a fraction in (0, 1]
   /// of the frame: 0 is the previous frame's end, 1 this frame's end. Step k ends at
@@ -62,7 +62,7 @@ struct StepPlan {
 /// The leftover (less than one step) carries over to the next frame, so the simulated time
 /// tracks the sum of frame durations exactly except where the substep limit drops time.
 class FixedStepAccumulator {
- public:
+public:
   /// `fixedStep` in seconds (> 0); `maxSubsteps` ≥ 1.
   FixedStepAccumulator(double fixedStep, int maxSubsteps);
 
@@ -75,7 +75,7 @@ class FixedStepAccumulator {
   /// Total fixed steps handed out so far.
   [[nodiscard]] std::uint64_t stepsTaken() const noexcept { return stepsTaken_; }
 
- private:
+private:
   double fixedStep_;
   int maxSubsteps_;
   double backlog_ = 0.0;
@@ -93,8 +93,8 @@ inline glm::vec3 verletPosition(const glm::vec3& current, const glm::vec3& previ
 /// Position Verlet with damping for particles [first, first + count) (Jakobsen 2001, eq. 1 with
 /// drag): x' = x + (1 − d)(x − x_prev) + a·h², x_prev' = x. Kinematic particles (inverse mass
 /// 0) are left untouched. `step` h in seconds, `acceleration` a in m/s², `damping` d per step.
-void integrateVerlet(Particles& particles, std::size_t first, std::size_t count,
-                     const glm::vec3& acceleration, float damping, float step);
+void integrateVerlet(Particles& particles, std::size_t first, std::size_t count, const glm::vec3& acceleration,
+                     float damping, float step);
 
 /// A general particle system: particles joined by distance constraints, tethers and pins, all
 /// relaxed in one fixed order. Used for chains, pendulums and (later) cloth; hair uses
@@ -103,7 +103,7 @@ void integrateVerlet(Particles& particles, std::size_t first, std::size_t count,
 /// Step order (Jakobsen 2001): Verlet integration, then `constraintIterations` sweeps of
 /// pins → distance constraints → tethers (tethers last so each sweep ends stretch-free).
 class Solver {
- public:
+public:
   /// Creates an empty system; fails when `settings` do not pass `validateSettings`.
   [[nodiscard]] static Result<Solver> create(const SolverSettings& settings);
 
@@ -117,12 +117,12 @@ class Solver {
   /// The settings this system was created with.
   [[nodiscard]] const SolverSettings& settings() const noexcept { return settings_; }
 
-  Particles particles;                         ///< the simulated state
-  std::vector<DistanceConstraint> distances;   ///< relaxed in order every sweep
-  std::vector<Tether> tethers;                 ///< enforced after the distances every sweep
-  std::vector<Pin> pins;                       ///< applied first every sweep
+  Particles particles;                        ///< the simulated state
+  std::vector<DistanceConstraint> distances;  ///< relaxed in order every sweep
+  std::vector<Tether> tethers;                ///< enforced after the distances every sweep
+  std::vector<Pin> pins;                      ///< applied first every sweep
 
- private:
+private:
   explicit Solver(const SolverSettings& settings);
 
   SolverSettings settings_;

@@ -28,9 +28,9 @@ vk::raii::DescriptorPool makeDescriptorPool(const Device& device, std::uint32_t 
 
 vk::raii::DescriptorSet allocateSet(const Device& device, const vk::raii::DescriptorPool& pool,
                                     const vk::raii::DescriptorSetLayout& layout) {
-  vk::raii::DescriptorSets sets(device.device(), vk::DescriptorSetAllocateInfo{.descriptorPool = *pool,
-                                                                               .descriptorSetCount = 1,
-                                                                               .pSetLayouts = &*layout});
+  vk::raii::DescriptorSets sets(
+      device.device(),
+      vk::DescriptorSetAllocateInfo{.descriptorPool = *pool, .descriptorSetCount = 1, .pSetLayouts = &*layout});
   return std::move(sets.front());
 }
 
@@ -47,9 +47,8 @@ void writeUniformBuffer(const Device& device, const vk::raii::DescriptorSet& set
 
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler) {
-  const vk::DescriptorImageInfo info{.sampler = *sampler,
-                                     .imageView = *image.view(),
-                                     .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+  const vk::DescriptorImageInfo info{
+      .sampler = *sampler, .imageView = *image.view(), .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
   device.device().updateDescriptorSets(
       vk::WriteDescriptorSet{.dstSet = *set,
                              .dstBinding = binding,

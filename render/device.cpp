@@ -20,8 +20,8 @@ namespace {
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 std::string versionString(std::uint32_t version) {
-  return std::to_string(VK_API_VERSION_MAJOR(version)) + "." + std::to_string(VK_API_VERSION_MINOR(version)) +
-         "." + std::to_string(VK_API_VERSION_PATCH(version));
+  return std::to_string(VK_API_VERSION_MAJOR(version)) + "." + std::to_string(VK_API_VERSION_MINOR(version)) + "." +
+         std::to_string(VK_API_VERSION_PATCH(version));
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
@@ -113,8 +113,11 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
       extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
 
-    const vk::ApplicationInfo appInfo{.pApplicationName = "mane", .applicationVersion = 1, .pEngineName = "mane",
-                                      .engineVersion = 1, .apiVersion = VK_API_VERSION_1_3};
+    const vk::ApplicationInfo appInfo{.pApplicationName = "mane",
+                                      .applicationVersion = 1,
+                                      .pEngineName = "mane",
+                                      .engineVersion = 1,
+                                      .apiVersion = VK_API_VERSION_1_3};
     self->instance_ = vk::raii::Instance(
         self->context_, vk::InstanceCreateInfo{.pApplicationInfo = &appInfo,
                                                .enabledLayerCount = static_cast<std::uint32_t>(layers.size()),
@@ -123,13 +126,13 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
                                                .ppEnabledExtensionNames = extensions.data()});
     if (settings.validation) {
       self->messenger_ = vk::raii::DebugUtilsMessengerEXT(
-          self->instance_, vk::DebugUtilsMessengerCreateInfoEXT{
-                               .messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
-                                                  vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
-                               .messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
-                                              vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation,
-                               .pfnUserCallback = &onValidationMessage,
-                               .pUserData = self->log_.get()});
+          self->instance_,
+          vk::DebugUtilsMessengerCreateInfoEXT{.messageSeverity = vk::DebugUtilsMessageSeverityFlagBitsEXT::eWarning |
+                                                                  vk::DebugUtilsMessageSeverityFlagBitsEXT::eError,
+                                               .messageType = vk::DebugUtilsMessageTypeFlagBitsEXT::eGeneral |
+                                                              vk::DebugUtilsMessageTypeFlagBitsEXT::eValidation,
+                                               .pfnUserCallback = &onValidationMessage,
+                                               .pUserData = self->log_.get()});
     }
 
     // Choose the best-ranked device that has Vulkan 1.3, a graphics+compute queue and, when a
@@ -141,9 +144,12 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
       const auto properties = candidate.getProperties();
       const int candidateRank = rank(properties, settings.preference);
       std::string why;
-      if (candidateRank < 0) why = "not the kind asked for";
-      else if (properties.apiVersion < VK_API_VERSION_1_3) why = "Vulkan " + versionString(properties.apiVersion);
-      else if (!graphicsComputeFamily(candidate)) why = "no graphics+compute queue";
+      if (candidateRank < 0)
+        why = "not the kind asked for";
+      else if (properties.apiVersion < VK_API_VERSION_1_3)
+        why = "Vulkan " + versionString(properties.apiVersion);
+      else if (!graphicsComputeFamily(candidate))
+        why = "no graphics+compute queue";
       else if (settings.presentation &&
                !hasExtension(candidate.enumerateDeviceExtensionProperties(), VK_KHR_SWAPCHAIN_EXTENSION_NAME))
         why = "no swapchain";
@@ -157,7 +163,8 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
       }
     }
     if (bestRank < 0)
-      return fail("no usable Vulkan device" + (rejected.empty() ? std::string(" (none found)") : " (" + rejected + ")") +
+      return fail("no usable Vulkan device" +
+                  (rejected.empty() ? std::string(" (none found)") : " (" + rejected + ")") +
                   "; install mesa-vulkan-drivers for lavapipe");
 
     const vk::raii::PhysicalDevice& physical = self->physicalDevice_;
@@ -166,7 +173,7 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
     self->queueFamily_ = *graphicsComputeFamily(physical);
 
     const auto supported = physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features,
-                                                  vk::PhysicalDeviceVulkan13Features>();
+                                                 vk::PhysicalDeviceVulkan13Features>();
     const auto& core = supported.get<vk::PhysicalDeviceFeatures2>().features;
     const auto& v12 = supported.get<vk::PhysicalDeviceVulkan12Features>();
     const auto& v13 = supported.get<vk::PhysicalDeviceVulkan13Features>();
@@ -207,33 +214,31 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
         self->device_, vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
                                                  .queueFamilyIndex = self->queueFamily_});
 
-    const auto driver =
-        physical.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>()
-            .get<vk::PhysicalDeviceDriverProperties>();
-    const bool hdrBlend = static_cast<bool>(physical.getFormatProperties(vk::Format::eR16G16B16A16Sfloat)
-                                                    .optimalTilingFeatures &
-                                                vk::FormatFeatureFlagBits::eColorAttachmentBlend);
+    const auto driver = physical.getProperties2<vk::PhysicalDeviceProperties2, vk::PhysicalDeviceDriverProperties>()
+                            .get<vk::PhysicalDeviceDriverProperties>();
+    const bool hdrBlend =
+        static_cast<bool>(physical.getFormatProperties(vk::Format::eR16G16B16A16Sfloat).optimalTilingFeatures &
+                          vk::FormatFeatureFlagBits::eColorAttachmentBlend);
     const bool msaa4 = static_cast<bool>(properties.limits.framebufferColorSampleCounts & vk::SampleCountFlagBits::e4);
-    self->info_ = DeviceInfo{
-        .name = properties.deviceName.data(),
-        .driverName = driver.driverName.data(),
-        .driverInfo = driver.driverInfo.data(),
-        .apiVersion = versionString(properties.apiVersion),
-        .software = properties.deviceType == vk::PhysicalDeviceType::eCpu,
-        .features = {
-            {"dynamic rendering (1.3)", true},
-            {"synchronization2 (1.3)", true},
-            {"timestamp queries", properties.limits.timestampComputeAndGraphics == VK_TRUE},
-            {"RGBA16F colour attachment with blending", hdrBlend},
-            {"4x MSAA", msaa4},
-            {"sampler anisotropy", core.samplerAnisotropy == VK_TRUE},
-            {"independent blend (opacity shadow map targets)", core.independentBlend == VK_TRUE},
-            {"geometry shaders", core.geometryShader == VK_TRUE},
-            {"sample rate shading", core.sampleRateShading == VK_TRUE},
-            {"shader float16", v12.shaderFloat16 == VK_TRUE},
-            {"host query reset", v12.hostQueryReset == VK_TRUE},
-            {"validation layers", settings.validation},
-        }};
+    self->info_ = DeviceInfo{.name = properties.deviceName.data(),
+                             .driverName = driver.driverName.data(),
+                             .driverInfo = driver.driverInfo.data(),
+                             .apiVersion = versionString(properties.apiVersion),
+                             .software = properties.deviceType == vk::PhysicalDeviceType::eCpu,
+                             .features = {
+                                 {"dynamic rendering (1.3)", true},
+                                 {"synchronization2 (1.3)", true},
+                                 {"timestamp queries", properties.limits.timestampComputeAndGraphics == VK_TRUE},
+                                 {"RGBA16F colour attachment with blending", hdrBlend},
+                                 {"4x MSAA", msaa4},
+                                 {"sampler anisotropy", core.samplerAnisotropy == VK_TRUE},
+                                 {"independent blend (opacity shadow map targets)", core.independentBlend == VK_TRUE},
+                                 {"geometry shaders", core.geometryShader == VK_TRUE},
+                                 {"sample rate shading", core.sampleRateShading == VK_TRUE},
+                                 {"shader float16", v12.shaderFloat16 == VK_TRUE},
+                                 {"host query reset", v12.hostQueryReset == VK_TRUE},
+                                 {"validation layers", settings.validation},
+                             }};
   } catch (const std::exception& error) {
     return fail(std::string("Vulkan device creation failed: ") + error.what());
   }

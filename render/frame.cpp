@@ -4,7 +4,9 @@
 
 namespace mane::render {
 
-glm::mat4 Camera::view() const { return glm::lookAtRH(position, target, up); }
+glm::mat4 Camera::view() const {
+  return glm::lookAtRH(position, target, up);
+}
 
 glm::mat4 Camera::projection(float aspect) const {
   glm::mat4 result = glm::perspectiveRH_ZO(verticalFovRadians, aspect, nearPlane, farPlane);

@@ -62,8 +62,8 @@ struct Camera {
 
 struct DirectionalLight {
   glm::vec3 direction{0.0f, 0.0f, 1.0f};  ///< unit vector from the surface towards the light
-  glm::vec3 color{1.0f};                   ///< linear RGB
-  float intensity = 1.0f;                  ///< irradiance scale at normal incidence
+  glm::vec3 color{1.0f};                  ///< linear RGB
+  float intensity = 1.0f;                 ///< irradiance scale at normal incidence
 };
 
 /// What changes every frame.

@@ -11,8 +11,8 @@ GpuTimer::GpuTimer(const Device& device, std::uint32_t maxPasses)
   supported_ = supported_ && validBits > 0;
   if (validBits > 0 && validBits < 64) validMask_ = (std::uint64_t(1) << validBits) - 1;
   if (supported_)
-    pool_ = vk::raii::QueryPool(device.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp,
-                                                                         .queryCount = 2 * maxPasses});
+    pool_ = vk::raii::QueryPool(
+        device.device(), vk::QueryPoolCreateInfo{.queryType = vk::QueryType::eTimestamp, .queryCount = 2 * maxPasses});
 }
 
 void GpuTimer::reset(const vk::raii::CommandBuffer& commands) {
@@ -38,9 +38,9 @@ std::vector<PassTiming> GpuTimer::results() const {
   std::vector<PassTiming> timings;
   if (!supported_ || passes_.empty()) return timings;
   const auto count = static_cast<std::uint32_t>(2 * passes_.size());
-  const auto [result, ticks] = pool_.getResults<std::uint64_t>(
-      0, count, count * sizeof(std::uint64_t), sizeof(std::uint64_t),
-      vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+  const auto [result, ticks] =
+      pool_.getResults<std::uint64_t>(0, count, count * sizeof(std::uint64_t), sizeof(std::uint64_t),
+                                      vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
   if (result != vk::Result::eSuccess) return timings;
   const double nanosecondsPerTick = device_->limits().timestampPeriod;
   for (std::size_t i = 0; i < passes_.size(); ++i) {

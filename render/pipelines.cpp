@@ -89,9 +89,9 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
 }
 
 void setViewportAndScissor(const vk::raii::CommandBuffer& commands, vk::Extent2D extent) {
-  commands.setViewport(0, vk::Viewport{.width = static_cast<float>(extent.width),
-                                       .height = static_cast<float>(extent.height),
-                                       .maxDepth = 1.0f});
+  commands.setViewport(
+      0, vk::Viewport{
+             .width = static_cast<float>(extent.width), .height = static_cast<float>(extent.height), .maxDepth = 1.0f});
   commands.setScissor(0, vk::Rect2D{.extent = extent});
 }
 

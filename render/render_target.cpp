@@ -17,9 +17,9 @@ RenderTarget::RenderTarget(const Device& device, const RenderTargetSettings& set
                           .usage = Usage::eDepthStencilAttachment,
                           .samples = settings.samples,
                           .aspect = vk::ImageAspectFlagBits::eDepth});
-  output_ = Image(device, {.extent = settings.extent,
-                           .format = kOutputFormat,
-                           .usage = Usage::eColorAttachment | Usage::eTransferSrc});
+  output_ = Image(
+      device,
+      {.extent = settings.extent, .format = kOutputFormat, .usage = Usage::eColorAttachment | Usage::eTransferSrc});
 }
 
 }  // namespace mane::render

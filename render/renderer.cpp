@@ -50,15 +50,15 @@ Result<void> validateScene(const StaticScene& scene, const vk::PhysicalDeviceLim
     if (mesh.indices.size() % 3 != 0) return fail(name + ": the index count is not a multiple of 3");
     for (std::size_t i = 0; i < mesh.indices.size(); ++i)
       if (mesh.indices[i] >= mesh.positions.size())
-        return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) + " but there are " +
-                    std::to_string(mesh.positions.size()) + " positions");
+        return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
+                    " but there are " + std::to_string(mesh.positions.size()) + " positions");
   }
   auto checkTexture = [&](const std::optional<TextureData>& texture, const std::string& name) -> Result<void> {
     if (!texture) return {};
     if (texture->width == 0 || texture->height == 0 ||
         texture->rgba.size() != std::size_t(texture->width) * texture->height * 4)
-      return fail(name + ": " + std::to_string(texture->rgba.size()) + " bytes for a " + std::to_string(texture->width) +
-                  "x" + std::to_string(texture->height) + " RGBA texture");
+      return fail(name + ": " + std::to_string(texture->rgba.size()) + " bytes for a " +
+                  std::to_string(texture->width) + "x" + std::to_string(texture->height) + " RGBA texture");
     if (texture->width > limits.maxImageDimension2D || texture->height > limits.maxImageDimension2D)
       return fail(name + ": " + std::to_string(texture->width) + "x" + std::to_string(texture->height) +
                   " exceeds the device's limit of " + std::to_string(limits.maxImageDimension2D));
@@ -107,7 +107,8 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
       .imageLayout = Layout::eColorAttachmentOptimal,
       .loadOp = vk::AttachmentLoadOp::eClear,
       .storeOp = vk::AttachmentStoreOp::eStore,
-      .clearValue = {.color = {.float32 = std::array{frame.background.r, frame.background.g, frame.background.b, 1.0f}}}};
+      .clearValue = {
+          .color = {.float32 = std::array{frame.background.r, frame.background.g, frame.background.b, 1.0f}}}};
   if (target_.multisampled()) {
     color.resolveMode = vk::ResolveModeFlagBits::eAverage;
     color.resolveImageView = *target_.hdr().view();
@@ -138,8 +139,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   output_.record(commands, target_, frame.exposure);
   timer_.end(commands);
   transition(commands, target_.output(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
-             Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer,
-             Access::eTransferRead);
+             Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
 }
 
 Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {

@@ -10,15 +10,16 @@ namespace mane::render {
 Allocation::Allocation(const Device& device, const vk::MemoryRequirements& requirements,
                        vk::MemoryPropertyFlags properties)
     : device_(&device),
-      memory_(device.device(),
-              vk::MemoryAllocateInfo{.allocationSize = requirements.size,
-                                     .memoryTypeIndex = device.findMemoryType(requirements.memoryTypeBits, properties)}),
+      memory_(device.device(), vk::MemoryAllocateInfo{.allocationSize = requirements.size,
+                                                      .memoryTypeIndex = device.findMemoryType(
+                                                          requirements.memoryTypeBits, properties)}),
       size_(requirements.size) {
   device.trackAllocation(static_cast<std::int64_t>(size_));
 }
 
 Allocation::Allocation(Allocation&& other) noexcept
-    : device_(std::exchange(other.device_, nullptr)), memory_(std::move(other.memory_)),
+    : device_(std::exchange(other.device_, nullptr)),
+      memory_(std::move(other.memory_)),
       size_(std::exchange(other.size_, 0)) {}
 
 Allocation& Allocation::operator=(Allocation&& other) noexcept {
@@ -70,16 +71,15 @@ Image::Image(const Device& device, const ImageSettings& settings)
   allocation_ = Allocation(device, image_.getMemoryRequirements(), vk::MemoryPropertyFlagBits::eDeviceLocal);
   image_.bindMemory(*allocation_.memory(), 0);
   view_ = vk::raii::ImageView(
-      device.device(),
-      vk::ImageViewCreateInfo{.image = *image_,
-                              .viewType = vk::ImageViewType::e2D,
-                              .format = settings.format,
-                              .subresourceRange = {settings.aspect, 0, settings.mipLevels, 0, 1}});
+      device.device(), vk::ImageViewCreateInfo{.image = *image_,
+                                               .viewType = vk::ImageViewType::e2D,
+                                               .format = settings.format,
+                                               .subresourceRange = {settings.aspect, 0, settings.mipLevels, 0, 1}});
 }
 
 void imageBarrier(const vk::raii::CommandBuffer& commands, vk::Image image, const vk::ImageSubresourceRange& range,
-                  vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess,
-                  vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
+                  vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 srcStage,
+                  vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess) {
   const vk::ImageMemoryBarrier2 barrier{.srcStageMask = srcStage,
                                         .srcAccessMask = srcAccess,
                                         .dstStageMask = dstStage,
@@ -174,16 +174,15 @@ std::vector<std::byte> readBack(const Device& device, const Image& image, std::u
 
 vk::raii::Sampler makeLinearSampler(const Device& device, vk::SamplerAddressMode address, float maxAnisotropy) {
   const bool anisotropic = maxAnisotropy > 1.0f;
-  return vk::raii::Sampler(device.device(),
-                           vk::SamplerCreateInfo{.magFilter = vk::Filter::eLinear,
-                                                 .minFilter = vk::Filter::eLinear,
-                                                 .mipmapMode = vk::SamplerMipmapMode::eLinear,
-                                                 .addressModeU = address,
-                                                 .addressModeV = address,
-                                                 .addressModeW = address,
-                                                 .anisotropyEnable = anisotropic,
-                                                 .maxAnisotropy = anisotropic ? maxAnisotropy : 1.0f,
-                                                 .maxLod = VK_LOD_CLAMP_NONE});
+  return vk::raii::Sampler(device.device(), vk::SamplerCreateInfo{.magFilter = vk::Filter::eLinear,
+                                                                  .minFilter = vk::Filter::eLinear,
+                                                                  .mipmapMode = vk::SamplerMipmapMode::eLinear,
+                                                                  .addressModeU = address,
+                                                                  .addressModeV = address,
+                                                                  .addressModeW = address,
+                                                                  .anisotropyEnable = anisotropic,
+                                                                  .maxAnisotropy = anisotropic ? maxAnisotropy : 1.0f,
+                                                                  .maxLod = VK_LOD_CLAMP_NONE});
 }
 
 }  // namespace mane::render

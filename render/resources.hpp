@@ -82,8 +82,8 @@ private:
 
 /// One image memory barrier with a layout transition (synchronization2), for `range` of `image`.
 void imageBarrier(const vk::raii::CommandBuffer& commands, vk::Image image, const vk::ImageSubresourceRange& range,
-                  vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess,
-                  vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess);
+                  vk::ImageLayout from, vk::ImageLayout to, vk::PipelineStageFlags2 srcStage,
+                  vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage, vk::AccessFlags2 dstAccess);
 
 /// `imageBarrier` over the whole image, all mips.
 void transition(const vk::raii::CommandBuffer& commands, const Image& image, vk::ImageLayout from, vk::ImageLayout to,

@@ -10,8 +10,9 @@ namespace mane::render {
 
 Result<std::unique_ptr<Window>> Window::open(const std::string& title, std::uint32_t width, std::uint32_t height) {
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY"))
-    return fail("no display ($DISPLAY and $WAYLAND_DISPLAY are unset); use `mane render` for headless output "
-                "or run under Xvfb (xvfb-run mane view ...)");
+    return fail(
+        "no display ($DISPLAY and $WAYLAND_DISPLAY are unset); use `mane render` for headless output "
+        "or run under Xvfb (xvfb-run mane view ...)");
   if (!glfwInit()) {
     const char* reason = nullptr;
     glfwGetError(&reason);
@@ -44,7 +45,9 @@ std::vector<std::string> Window::requiredInstanceExtensions() const {
   return {names, names + count};
 }
 
-bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
+bool Window::shouldClose() const {
+  return glfwWindowShouldClose(window_);
+}
 
 vk::Extent2D Window::framebufferExtent() const {
   int width = 0, height = 0;
@@ -73,14 +76,14 @@ Swapchain::Swapchain(const Device& device, const Window& window, vk::raii::Surfa
   const auto& vkDevice = device.device();
   imageAvailable_ = vk::raii::Semaphore(vkDevice, vk::SemaphoreCreateInfo{});
   frameDone_ = vk::raii::Fence(vkDevice, vk::FenceCreateInfo{.flags = vk::FenceCreateFlagBits::eSignaled});
-  pool_ = vk::raii::CommandPool(vkDevice, vk::CommandPoolCreateInfo{
-                                              .flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
-                                              .queueFamilyIndex = device.queueFamily()});
-  commands_ = std::move(vk::raii::CommandBuffers(vkDevice, vk::CommandBufferAllocateInfo{
-                                                               .commandPool = *pool_,
-                                                               .level = vk::CommandBufferLevel::ePrimary,
-                                                               .commandBufferCount = 1})
-                            .front());
+  pool_ = vk::raii::CommandPool(vkDevice,
+                                vk::CommandPoolCreateInfo{.flags = vk::CommandPoolCreateFlagBits::eResetCommandBuffer,
+                                                          .queueFamilyIndex = device.queueFamily()});
+  commands_ = std::move(
+      vk::raii::CommandBuffers(vkDevice, vk::CommandBufferAllocateInfo{.commandPool = *pool_,
+                                                                       .level = vk::CommandBufferLevel::ePrimary,
+                                                                       .commandBufferCount = 1})
+          .front());
 }
 
 Swapchain::~Swapchain() {
@@ -108,18 +111,17 @@ Result<void> Swapchain::rebuild() {
                                        : std::min(capabilities.minImageCount + 1, capabilities.maxImageCount);
   swapchain_ = nullptr;
   swapchain_ = vk::raii::SwapchainKHR(
-      device_->device(),
-      vk::SwapchainCreateInfoKHR{.surface = *surface_,
-                                 .minImageCount = imageCount,
-                                 .imageFormat = format_,
-                                 .imageColorSpace = vk::ColorSpaceKHR::eSrgbNonlinear,
-                                 .imageExtent = extent_,
-                                 .imageArrayLayers = 1,
-                                 .imageUsage = vk::ImageUsageFlagBits::eTransferDst,
-                                 .preTransform = capabilities.currentTransform,
-                                 .compositeAlpha = vk::CompositeAlphaFlagBitsKHR::eOpaque,
-                                 .presentMode = vk::PresentModeKHR::eFifo,
-                                 .clipped = VK_TRUE});
+      device_->device(), vk::SwapchainCreateInfoKHR{.surface = *surface_,
+                                                    .minImageCount = imageCount,
+                                                    .imageFormat = format_,
+                                                    .imageColorSpace = vk::ColorSpaceKHR::eSrgbNonlinear,
+                                                    .imageExtent = extent_,
+                                                    .imageArrayLayers = 1,
+                                                    .imageUsage = vk::ImageUsageFlagBits::eTransferDst,
+                                                    .preTransform = capabilities.currentTransform,
+                                                    .compositeAlpha = vk::CompositeAlphaFlagBitsKHR::eOpaque,
+                                                    .presentMode = vk::PresentModeKHR::eFifo,
+                                                    .clipped = VK_TRUE});
   images_ = swapchain_.getImages();
   if (!(physical.getFormatProperties(format_).optimalTilingFeatures & vk::FormatFeatureFlagBits::eBlitDst))
     return fail("the window's image format " + vk::to_string(format_) + " cannot be a blit destination");
@@ -156,16 +158,20 @@ Result<bool> Swapchain::present(const Image& image) {
     const auto source = image.extent();
     const vk::ImageBlit blit{
         .srcSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
-        .srcOffsets = std::array{vk::Offset3D{0, 0, 0}, vk::Offset3D{std::int32_t(source.width), std::int32_t(source.height), 1}},
+        .srcOffsets =
+            std::array{vk::Offset3D{0, 0, 0}, vk::Offset3D{std::int32_t(source.width), std::int32_t(source.height), 1}},
         .dstSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
-        .dstOffsets = std::array{vk::Offset3D{0, 0, 0}, vk::Offset3D{std::int32_t(extent_.width), std::int32_t(extent_.height), 1}}};
+        .dstOffsets = std::array{vk::Offset3D{0, 0, 0},
+                                 vk::Offset3D{std::int32_t(extent_.width), std::int32_t(extent_.height), 1}}};
     commands_.blitImage(*image.image(), vk::ImageLayout::eTransferSrcOptimal, target,
                         vk::ImageLayout::eTransferDstOptimal, blit, vk::Filter::eLinear);
-    barrier(vk::ImageLayout::eTransferDstOptimal, vk::ImageLayout::ePresentSrcKHR, vk::PipelineStageFlagBits2::eTransfer,
-            vk::AccessFlagBits2::eTransferWrite, vk::PipelineStageFlagBits2::eNone, vk::AccessFlagBits2::eNone);
+    barrier(vk::ImageLayout::eTransferDstOptimal, vk::ImageLayout::ePresentSrcKHR,
+            vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferWrite,
+            vk::PipelineStageFlagBits2::eNone, vk::AccessFlagBits2::eNone);
     commands_.end();
 
-    const vk::SemaphoreSubmitInfo wait{.semaphore = *imageAvailable_, .stageMask = vk::PipelineStageFlagBits2::eTransfer};
+    const vk::SemaphoreSubmitInfo wait{.semaphore = *imageAvailable_,
+                                       .stageMask = vk::PipelineStageFlagBits2::eTransfer};
     const vk::SemaphoreSubmitInfo signal{.semaphore = *copyFinished_[index],
                                          .stageMask = vk::PipelineStageFlagBits2::eTransfer};
     const vk::CommandBufferSubmitInfo commandInfo{.commandBuffer = *commands_};
@@ -178,9 +184,11 @@ Result<bool> Swapchain::present(const Image& image) {
                              *frameDone_);
     const vk::SwapchainKHR swapchain = *swapchain_;
     const vk::Semaphore finished = *copyFinished_[index];
-    const vk::Result presented = device_->queue().presentKHR(vk::PresentInfoKHR{
-        .waitSemaphoreCount = 1, .pWaitSemaphores = &finished, .swapchainCount = 1, .pSwapchains = &swapchain,
-        .pImageIndices = &index});
+    const vk::Result presented = device_->queue().presentKHR(vk::PresentInfoKHR{.waitSemaphoreCount = 1,
+                                                                                .pWaitSemaphores = &finished,
+                                                                                .swapchainCount = 1,
+                                                                                .pSwapchains = &swapchain,
+                                                                                .pImageIndices = &index});
     if (acquired == vk::Result::eSuboptimalKHR || presented == vk::Result::eSuboptimalKHR)
       if (auto rebuilt = rebuild(); !rebuilt) return std::unexpected(rebuilt.error());
     return true;

@@ -25,9 +25,8 @@ std::string environment(const char* variable) {
 }
 
 bool isHexSha256(const std::string& text) {
-  return text.size() == 64 && std::all_of(text.begin(), text.end(), [](char c) {
-           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-         });
+  return text.size() == 64 &&
+         std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 /// Names are relative paths that stay inside a root: no absolute paths, no "..".
@@ -82,8 +81,7 @@ Result<std::vector<AssetEntry>> readManifest(const std::filesystem::path& manife
     entry.sha256 = *sha;
     entry.licence = *licence;
     if (!isSafeName(entry.name)) {
-      return fail(where + ".name: '" + entry.name +
-                  "' must be a relative path without '.' or '..' parts");
+      return fail(where + ".name: '" + entry.name + "' must be a relative path without '.' or '..' parts");
     }
     if (!isHexSha256(entry.sha256)) {
       return fail(where + ".sha256: expected 64 lower-case hex digits for '" + entry.name + "'");
@@ -103,8 +101,7 @@ Result<std::vector<AssetEntry>> readManifest(const std::filesystem::path& manife
   for (const AssetEntry& entry : entries) {
     for (const std::string& companion : entry.companions) {
       if (!seen.contains(companion)) {
-        return fail(file + ": companion '" + companion + "' of '" + entry.name +
-                    "' is not in the manifest");
+        return fail(file + ": companion '" + companion + "' of '" + entry.name + "' is not in the manifest");
       }
     }
   }
@@ -149,19 +146,17 @@ Result<AssetResolver> AssetResolver::createDefault() {
 }
 
 const AssetEntry* AssetResolver::find(std::string_view name) const {
-  const auto it = std::find_if(entries_.begin(), entries_.end(),
-                               [&](const AssetEntry& entry) { return entry.name == name; });
+  const auto it =
+      std::find_if(entries_.begin(), entries_.end(), [&](const AssetEntry& entry) { return entry.name == name; });
   return it == entries_.end() ? nullptr : &*it;
 }
 
-Result<void> AssetResolver::verify(const AssetEntry& entry,
-                                   const std::filesystem::path& file) const {
+Result<void> AssetResolver::verify(const AssetEntry& entry, const std::filesystem::path& file) const {
   auto actual = detail::sha256OfFile(file);
   if (!actual) return std::unexpected(actual.error());
   if (*actual != entry.sha256) {
-    return fail(file.string() + ": sha256 mismatch for asset '" + entry.name + "': expected " +
-                entry.sha256 + ", actual " + *actual +
-                " (a damaged or different file; delete it or fix the manifest)");
+    return fail(file.string() + ": sha256 mismatch for asset '" + entry.name + "': expected " + entry.sha256 +
+                ", actual " + *actual + " (a damaged or different file; delete it or fix the manifest)");
   }
   return {};
 }
@@ -182,8 +177,7 @@ Result<AssetLookup> AssetResolver::lookupForScene(std::string_view name,
 Result<AssetLookup> AssetResolver::lookup(std::string_view name) const {
   const AssetEntry* entry = find(name);
   if (!entry) {
-    return fail("asset '" + std::string(name) + "' is not in the manifest " +
-                settings_.manifest.string());
+    return fail("asset '" + std::string(name) + "' is not in the manifest " + settings_.manifest.string());
   }
   std::vector<std::filesystem::path> places = settings_.searchRoots;
   if (!settings_.cacheDirectory.empty()) places.push_back(settings_.cacheDirectory);
@@ -202,8 +196,7 @@ Result<AssetLookup> AssetResolver::lookup(std::string_view name) const {
   std::string reason = "asset '" + entry->name + "' not found (looked in " +
                        (looked.empty() ? std::string("no directories") : looked) + ")";
   if (entry->upstream.empty()) {
-    return AssetLookup{std::nullopt,
-                       reason + "; it is derived data with no upstream copy to download"};
+    return AssetLookup{std::nullopt, reason + "; it is derived data with no upstream copy to download"};
   }
   if (!settings_.allowDownload || settings_.cacheDirectory.empty()) {
     return AssetLookup{std::nullopt, reason + "; downloading is disabled"};
@@ -219,14 +212,12 @@ Result<AssetLookup> AssetResolver::download(const AssetEntry& entry) const {
   std::error_code ec;
   std::filesystem::create_directories(target.parent_path(), ec);
   if (ec) {
-    return AssetLookup{std::nullopt, "cannot create the cache directory " +
-                                         target.parent_path().string() + ": " + ec.message()};
+    return AssetLookup{std::nullopt,
+                       "cannot create the cache directory " + target.parent_path().string() + ": " + ec.message()};
   }
   // Download beside the target and rename, so a partial file never looks complete.
-  const std::filesystem::path partial =
-      target.string() + ".part-" + std::to_string(static_cast<long>(::getpid()));
-  const detail::DownloadLimits limits{settings_.connectTimeoutSeconds, 10,
-                                      settings_.totalTimeoutSeconds};
+  const std::filesystem::path partial = target.string() + ".part-" + std::to_string(static_cast<long>(::getpid()));
+  const detail::DownloadLimits limits{settings_.connectTimeoutSeconds, 10, settings_.totalTimeoutSeconds};
   if (auto ok = detail::downloadFile(entry.upstream, partial, limits); !ok) {
     return AssetLookup{std::nullopt, ok.error().message};
   }
@@ -237,8 +228,8 @@ Result<AssetLookup> AssetResolver::download(const AssetEntry& entry) const {
   }
   if (*actual != entry.sha256) {
     std::filesystem::remove(partial, ec);
-    return fail(entry.upstream + ": sha256 mismatch for downloaded asset '" + entry.name +
-                "': expected " + entry.sha256 + ", actual " + *actual +
+    return fail(entry.upstream + ": sha256 mismatch for downloaded asset '" + entry.name + "': expected " +
+                entry.sha256 + ", actual " + *actual +
                 " (upstream changed or the manifest is wrong); nothing was cached");
   }
   std::filesystem::rename(partial, target, ec);
@@ -252,13 +243,11 @@ Result<AssetLookup> AssetResolver::download(const AssetEntry& entry) const {
     const AssetEntry& companion = *find(name);  // readManifest checked it is listed
     const std::filesystem::path cached = settings_.cacheDirectory / companion.name;
     if (std::filesystem::is_regular_file(cached, ec) && verify(companion, cached)) continue;
-    auto found = companion.upstream.empty()
-                     ? Result<AssetLookup>(AssetLookup{std::nullopt, "it has no upstream copy"})
-                     : download(companion);
+    auto found = companion.upstream.empty() ? Result<AssetLookup>(AssetLookup{std::nullopt, "it has no upstream copy"})
+                                            : download(companion);
     if (!found) return std::unexpected(found.error());
     if (!found->path) {
-      return AssetLookup{std::nullopt, "companion of '" + entry.name +
-                                           "' missing: " + found->missingReason};
+      return AssetLookup{std::nullopt, "companion of '" + entry.name + "' missing: " + found->missingReason};
     }
   }
   return AssetLookup{target, {}};

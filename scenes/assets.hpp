@@ -67,7 +67,7 @@ struct AssetLookup {
 /// Resolves manifest names to verified files. Cheap to copy; thread-compatible (concurrent
 /// resolves of the same missing name may download it twice, harmlessly).
 class AssetResolver {
- public:
+public:
   /// Reads and validates the manifest. Errors name the manifest and the bad entry.
   [[nodiscard]] static Result<AssetResolver> create(AssetResolverSettings settings);
   /// `create(defaultAssetResolverSettings())`.
@@ -94,7 +94,7 @@ class AssetResolver {
   /// `lookup`, with a missing file turned into an error too.
   [[nodiscard]] Result<std::filesystem::path> resolve(std::string_view name) const;
 
- private:
+private:
   AssetResolver() = default;
   Result<void> verify(const AssetEntry& entry, const std::filesystem::path& file) const;
   Result<AssetLookup> download(const AssetEntry& entry) const;

@@ -29,15 +29,12 @@ struct Context {
   const tinygltf::Model& model;
   std::string file;
 
-  [[nodiscard]] std::unexpected<Error> error(const std::string& what) const {
-    return fail(file + ": " + what);
-  }
+  [[nodiscard]] std::unexpected<Error> error(const std::string& what) const { return fail(file + ": " + what); }
 };
 
 // Images are not needed for geometry; skipping them keeps loading fast and means a missing
 // or corrupt texture cannot fail a mesh load.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
 }
 
@@ -55,36 +52,31 @@ std::string modeName(int mode) {
 
 /// Copies `length` bytes at `offset` inside buffer view `viewIndex` to `out`, checking
 /// every index and range on the way.
-Result<void> copyFromView(const Context& ctx, int viewIndex, std::size_t offset,
-                          std::size_t stride, std::size_t elementSize, std::size_t count,
-                          unsigned char* out, const std::string& what) {
+Result<void> copyFromView(const Context& ctx, int viewIndex, std::size_t offset, std::size_t stride,
+                          std::size_t elementSize, std::size_t count, unsigned char* out, const std::string& what) {
   const auto& views = ctx.model.bufferViews;
   if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= views.size()) {
-    return ctx.error(what + " refers to buffer view " + std::to_string(viewIndex) +
-                     ", but the file has " + std::to_string(views.size()) + " buffer views");
+    return ctx.error(what + " refers to buffer view " + std::to_string(viewIndex) + ", but the file has " +
+                     std::to_string(views.size()) + " buffer views");
   }
   const tinygltf::BufferView& view = views[static_cast<std::size_t>(viewIndex)];
   if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= ctx.model.buffers.size()) {
     return ctx.error("buffer view " + std::to_string(viewIndex) + " refers to missing buffer " +
                      std::to_string(view.buffer));
   }
-  const std::vector<unsigned char>& data =
-      ctx.model.buffers[static_cast<std::size_t>(view.buffer)].data;
+  const std::vector<unsigned char>& data = ctx.model.buffers[static_cast<std::size_t>(view.buffer)].data;
   if (count == 0) return {};
   // offset + (count − 1)·stride + elementSize ≤ byteLength, written so that no product or sum
   // can wrap around for hostile counts, strides or offsets.
-  const bool viewFits =
-      view.byteOffset <= data.size() && view.byteLength <= data.size() - view.byteOffset;
+  const bool viewFits = view.byteOffset <= data.size() && view.byteLength <= data.size() - view.byteOffset;
   const bool elementsFit = offset <= view.byteLength && elementSize <= view.byteLength - offset &&
                            count - 1 <= (view.byteLength - offset - elementSize) / stride;
   if (!viewFits || !elementsFit) {
-    return ctx.error(what + " reads " + std::to_string(count) + " elements of " +
-                     std::to_string(elementSize) + " bytes every " + std::to_string(stride) +
-                     " bytes from offset " + std::to_string(offset) + " of buffer view " +
-                     std::to_string(viewIndex) + ", which holds " +
-                     std::to_string(view.byteLength) + " bytes (buffer " +
-                     std::to_string(view.buffer) + " has " + std::to_string(data.size()) +
-                     "): the file is truncated or the accessor is wrong");
+    return ctx.error(what + " reads " + std::to_string(count) + " elements of " + std::to_string(elementSize) +
+                     " bytes every " + std::to_string(stride) + " bytes from offset " + std::to_string(offset) +
+                     " of buffer view " + std::to_string(viewIndex) + ", which holds " +
+                     std::to_string(view.byteLength) + " bytes (buffer " + std::to_string(view.buffer) + " has " +
+                     std::to_string(data.size()) + "): the file is truncated or the accessor is wrong");
   }
   const unsigned char* base = data.data() + view.byteOffset + offset;
   for (std::size_t i = 0; i < count; ++i) {
@@ -107,18 +99,15 @@ struct DenseAccessor {
 Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::string& role) {
   const auto& accessors = ctx.model.accessors;
   if (index < 0 || static_cast<std::size_t>(index) >= accessors.size()) {
-    return ctx.error(role + " refers to accessor " + std::to_string(index) +
-                     ", but the file has " + std::to_string(accessors.size()) + " accessors");
+    return ctx.error(role + " refers to accessor " + std::to_string(index) + ", but the file has " +
+                     std::to_string(accessors.size()) + " accessors");
   }
   const tinygltf::Accessor& accessor = accessors[static_cast<std::size_t>(index)];
   const std::string what = role + " (accessor " + std::to_string(index) + ")";
-  const int componentSize = tinygltf::GetComponentSizeInBytes(
-      static_cast<std::uint32_t>(accessor.componentType));
-  const int components =
-      tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
+  const int componentSize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
+  const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(accessor.type));
   if (componentSize <= 0 || components <= 0) {
-    return ctx.error(what + " has an invalid component type " +
-                     std::to_string(accessor.componentType) + " or type " +
+    return ctx.error(what + " has an invalid component type " + std::to_string(accessor.componentType) + " or type " +
                      std::to_string(accessor.type));
   }
   DenseAccessor dense;
@@ -130,27 +119,22 @@ Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::str
   // Checked before allocating: a count no buffer could back must not become a huge (or, once
   // multiplied, wrapped-around) allocation.
   if (dense.count > kMaxAccessorBytes / elementSize) {
-    return ctx.error(what + " declares " + std::to_string(dense.count) + " elements of " +
-                     std::to_string(elementSize) + " bytes, more than the " +
-                     std::to_string(kMaxAccessorBytes >> 20) + " MiB an accessor may hold");
+    return ctx.error(what + " declares " + std::to_string(dense.count) + " elements of " + std::to_string(elementSize) +
+                     " bytes, more than the " + std::to_string(kMaxAccessorBytes >> 20) + " MiB an accessor may hold");
   }
   dense.bytes.assign(dense.count * elementSize, 0);
 
   if (accessor.bufferView >= 0) {
     if (static_cast<std::size_t>(accessor.bufferView) >= ctx.model.bufferViews.size()) {
-      return ctx.error(what + " refers to missing buffer view " +
-                       std::to_string(accessor.bufferView));
+      return ctx.error(what + " refers to missing buffer view " + std::to_string(accessor.bufferView));
     }
     // ByteStride() is -1 when byteStride is not a multiple of the component size.
-    const int stride =
-        accessor.ByteStride(ctx.model.bufferViews[static_cast<std::size_t>(accessor.bufferView)]);
+    const int stride = accessor.ByteStride(ctx.model.bufferViews[static_cast<std::size_t>(accessor.bufferView)]);
     if (stride <= 0) {
-      return ctx.error(what + " has an invalid byte stride in buffer view " +
-                       std::to_string(accessor.bufferView));
+      return ctx.error(what + " has an invalid byte stride in buffer view " + std::to_string(accessor.bufferView));
     }
-    if (auto copied = copyFromView(ctx, accessor.bufferView, accessor.byteOffset,
-                                   static_cast<std::size_t>(stride), elementSize, dense.count,
-                                   dense.bytes.data(), what);
+    if (auto copied = copyFromView(ctx, accessor.bufferView, accessor.byteOffset, static_cast<std::size_t>(stride),
+                                   elementSize, dense.count, dense.bytes.data(), what);
         !copied) {
       return std::unexpected(copied.error());
     }
@@ -161,30 +145,25 @@ Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::str
     const std::size_t sparseCount = static_cast<std::size_t>(std::max(sparse.count, 0));
     const int indexType = sparse.indices.componentType;
     const int indexSize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(indexType));
-    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      return ctx.error(what + " has sparse indices of component type " +
-                       std::to_string(indexType) + "; expected 5121, 5123 or 5125");
+      return ctx.error(what + " has sparse indices of component type " + std::to_string(indexType) +
+                       "; expected 5121, 5123 or 5125");
     }
     if (sparseCount > dense.count) {
-      return ctx.error(what + " has " + std::to_string(sparseCount) +
-                       " sparse values but only " + std::to_string(dense.count) + " elements");
+      return ctx.error(what + " has " + std::to_string(sparseCount) + " sparse values but only " +
+                       std::to_string(dense.count) + " elements");
     }
     std::vector<unsigned char> indexBytes(sparseCount * static_cast<std::size_t>(indexSize));
     std::vector<unsigned char> valueBytes(sparseCount * elementSize);
-    if (auto ok = copyFromView(ctx, sparse.indices.bufferView,
-                               static_cast<std::size_t>(sparse.indices.byteOffset),
-                               static_cast<std::size_t>(indexSize),
-                               static_cast<std::size_t>(indexSize), sparseCount,
+    if (auto ok = copyFromView(ctx, sparse.indices.bufferView, static_cast<std::size_t>(sparse.indices.byteOffset),
+                               static_cast<std::size_t>(indexSize), static_cast<std::size_t>(indexSize), sparseCount,
                                indexBytes.data(), what + " sparse indices");
         !ok) {
       return std::unexpected(ok.error());
     }
-    if (auto ok = copyFromView(ctx, sparse.values.bufferView,
-                               static_cast<std::size_t>(sparse.values.byteOffset), elementSize,
-                               elementSize, sparseCount, valueBytes.data(),
-                               what + " sparse values");
+    if (auto ok = copyFromView(ctx, sparse.values.bufferView, static_cast<std::size_t>(sparse.values.byteOffset),
+                               elementSize, elementSize, sparseCount, valueBytes.data(), what + " sparse values");
         !ok) {
       return std::unexpected(ok.error());
     }
@@ -201,11 +180,10 @@ Result<DenseAccessor> readAccessor(const Context& ctx, int index, const std::str
         std::memcpy(&target, p, 4);
       }
       if (target >= dense.count) {
-        return ctx.error(what + " sparse index " + std::to_string(target) +
-                         " is past the accessor's count " + std::to_string(dense.count));
+        return ctx.error(what + " sparse index " + std::to_string(target) + " is past the accessor's count " +
+                         std::to_string(dense.count));
       }
-      std::memcpy(dense.bytes.data() + target * elementSize, valueBytes.data() + i * elementSize,
-                  elementSize);
+      std::memcpy(dense.bytes.data() + target * elementSize, valueBytes.data() + i * elementSize, elementSize);
     }
   }
   return dense;
@@ -220,8 +198,7 @@ float decodeComponent(const unsigned char* p, int type, bool normalized) {
       std::memcpy(&v, p, 1);
       return normalized ? std::max(static_cast<float>(v) / 127.0f, -1.0f) : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return normalized ? static_cast<float>(*p) / 255.0f : *p;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? static_cast<float>(*p) / 255.0f : *p;
     case TINYGLTF_COMPONENT_TYPE_SHORT: {
       std::int16_t v;
       std::memcpy(&v, p, 2);
@@ -256,37 +233,32 @@ float decodeComponent(const unsigned char* p, int type, bool normalized) {
 }
 
 /// A vertex attribute as floats, `components` per element (VEC2 → 2, VEC3 → 3).
-Result<std::vector<float>> readFloats(const Context& ctx, int index, int components,
-                                      const std::string& role) {
+Result<std::vector<float>> readFloats(const Context& ctx, int index, int components, const std::string& role) {
   auto dense = readAccessor(ctx, index, role);
   if (!dense) return std::unexpected(dense.error());
   if (dense->components != components) {
-    return ctx.error(role + " (accessor " + std::to_string(index) + ") has " +
-                     std::to_string(dense->components) + " components per element; expected " +
-                     std::to_string(components));
+    return ctx.error(role + " (accessor " + std::to_string(index) + ") has " + std::to_string(dense->components) +
+                     " components per element; expected " + std::to_string(components));
   }
-  const std::size_t size = static_cast<std::size_t>(
-      tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(dense->componentType)));
+  const std::size_t size =
+      static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(dense->componentType)));
   std::vector<float> out(dense->count * static_cast<std::size_t>(components));
   for (std::size_t i = 0; i < out.size(); ++i) {
-    out[i] = decodeComponent(dense->bytes.data() + i * size, dense->componentType,
-                             dense->normalized);
+    out[i] = decodeComponent(dense->bytes.data() + i * size, dense->componentType, dense->normalized);
   }
   return out;
 }
 
-Result<std::vector<std::uint32_t>> readIndices(const Context& ctx, int index,
-                                               const std::string& role) {
+Result<std::vector<std::uint32_t>> readIndices(const Context& ctx, int index, const std::string& role) {
   auto dense = readAccessor(ctx, index, role);
   if (!dense) return std::unexpected(dense.error());
   const int type = dense->componentType;
-  if (dense->components != 1 || (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                                 type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                                 type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+  if (dense->components != 1 ||
+      (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+       type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
     return ctx.error(role + " (accessor " + std::to_string(index) +
-                     ") must be SCALAR unsigned byte, short or int; it has component type " +
-                     std::to_string(type) + " and " + std::to_string(dense->components) +
-                     " components");
+                     ") must be SCALAR unsigned byte, short or int; it has component type " + std::to_string(type) +
+                     " and " + std::to_string(dense->components) + " components");
   }
   const std::size_t size =
       static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(type)));
@@ -331,13 +303,11 @@ glm::mat4 localMatrix(const tinygltf::Node& node) {
 }
 
 /// Appends one primitive, transformed to world space, to `out`.
-Result<void> appendPrimitive(const Context& ctx, const tinygltf::Primitive& primitive,
-                             const std::string& where, const glm::mat4& world, Mesh& out,
-                             std::vector<bool>& hasUv) {
+Result<void> appendPrimitive(const Context& ctx, const tinygltf::Primitive& primitive, const std::string& where,
+                             const glm::mat4& world, Mesh& out, std::vector<bool>& hasUv) {
   const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES) {
-    return ctx.error(where + " uses primitive mode " + modeName(mode) +
-                     "; only TRIANGLES (4) is supported");
+    return ctx.error(where + " uses primitive mode " + modeName(mode) + "; only TRIANGLES (4) is supported");
   }
   const auto positionIt = primitive.attributes.find("POSITION");
   if (positionIt == primitive.attributes.end()) {
@@ -359,10 +329,9 @@ Result<void> appendPrimitive(const Context& ctx, const tinygltf::Primitive& prim
     if (!read) return std::unexpected(read.error());
     uvs = std::move(*read);
   }
-  if ((!normals.empty() && normals.size() / 3 != vertexCount) ||
-      (!uvs.empty() && uvs.size() / 2 != vertexCount)) {
-    return ctx.error(where + " has attributes of different lengths (POSITION has " +
-                     std::to_string(vertexCount) + " elements)");
+  if ((!normals.empty() && normals.size() / 3 != vertexCount) || (!uvs.empty() && uvs.size() / 2 != vertexCount)) {
+    return ctx.error(where + " has attributes of different lengths (POSITION has " + std::to_string(vertexCount) +
+                     " elements)");
   }
 
   std::vector<std::uint32_t> indices;
@@ -375,14 +344,12 @@ Result<void> appendPrimitive(const Context& ctx, const tinygltf::Primitive& prim
     for (std::size_t i = 0; i < vertexCount; ++i) indices[i] = static_cast<std::uint32_t>(i);
   }
   if (indices.size() % 3 != 0) {
-    return ctx.error(where + " has " + std::to_string(indices.size()) +
-                     " indices, which is not a multiple of 3");
+    return ctx.error(where + " has " + std::to_string(indices.size()) + " indices, which is not a multiple of 3");
   }
   for (std::size_t i = 0; i < indices.size(); ++i) {
     if (indices[i] >= vertexCount) {
-      return ctx.error(where + " index " + std::to_string(i) + " is " +
-                       std::to_string(indices[i]) + " but the primitive has only " +
-                       std::to_string(vertexCount) + " vertices");
+      return ctx.error(where + " index " + std::to_string(i) + " is " + std::to_string(indices[i]) +
+                       " but the primitive has only " + std::to_string(vertexCount) + " vertices");
     }
   }
 
@@ -429,8 +396,8 @@ Result<void> visitNode(const Context& ctx, int nodeIndex, const glm::mat4& paren
                        std::vector<bool>& visited, Mesh& out, std::vector<bool>& hasUv) {
   const auto& nodes = ctx.model.nodes;
   if (nodeIndex < 0 || static_cast<std::size_t>(nodeIndex) >= nodes.size()) {
-    return ctx.error("the scene refers to node " + std::to_string(nodeIndex) +
-                     ", but the file has " + std::to_string(nodes.size()) + " nodes");
+    return ctx.error("the scene refers to node " + std::to_string(nodeIndex) + ", but the file has " +
+                     std::to_string(nodes.size()) + " nodes");
   }
   if (visited[static_cast<std::size_t>(nodeIndex)]) {
     return ctx.error("node " + std::to_string(nodeIndex) +
@@ -439,20 +406,19 @@ Result<void> visitNode(const Context& ctx, int nodeIndex, const glm::mat4& paren
   }
   visited[static_cast<std::size_t>(nodeIndex)] = true;
   if (depth > kMaxNodeDepth) {
-    return ctx.error("node " + std::to_string(nodeIndex) + " is nested more than " +
-                     std::to_string(kMaxNodeDepth) + " levels deep");
+    return ctx.error("node " + std::to_string(nodeIndex) + " is nested more than " + std::to_string(kMaxNodeDepth) +
+                     " levels deep");
   }
   const tinygltf::Node& node = nodes[static_cast<std::size_t>(nodeIndex)];
   const glm::mat4 world = parent * localMatrix(node);
   if (node.mesh >= 0) {
     if (static_cast<std::size_t>(node.mesh) >= ctx.model.meshes.size()) {
-      return ctx.error("node " + std::to_string(nodeIndex) + " refers to missing mesh " +
-                       std::to_string(node.mesh));
+      return ctx.error("node " + std::to_string(nodeIndex) + " refers to missing mesh " + std::to_string(node.mesh));
     }
     const tinygltf::Mesh& mesh = ctx.model.meshes[static_cast<std::size_t>(node.mesh)];
     for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const std::string where = "mesh " + std::to_string(node.mesh) + " ('" + mesh.name +
-                                "') primitive " + std::to_string(p);
+      const std::string where =
+          "mesh " + std::to_string(node.mesh) + " ('" + mesh.name + "') primitive " + std::to_string(p);
       if (auto ok = appendPrimitive(ctx, mesh.primitives[p], where, world, out, hasUv); !ok) {
         return ok;
       }
@@ -474,9 +440,8 @@ Result<void> checkGlbHeader(const std::string& file, const std::vector<unsigned 
   std::uint32_t declared = 0;
   std::memcpy(&declared, bytes.data() + 8, 4);
   if (declared > bytes.size()) {
-    return fail(file + ": truncated glTF binary: the header declares " +
-                std::to_string(declared) + " bytes but the file has " +
-                std::to_string(bytes.size()));
+    return fail(file + ": truncated glTF binary: the header declares " + std::to_string(declared) +
+                " bytes but the file has " + std::to_string(bytes.size()));
   }
   return {};
 }
@@ -490,8 +455,7 @@ Result<Mesh> loadGltf(const std::filesystem::path& file) {
     return fail(name + ": file not found");
   }
   std::ifstream stream(file, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(stream)),
-                                   std::istreambuf_iterator<char>());
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
   if (!stream.good() && !stream.eof()) return fail(name + ": could not read the file");
   if (bytes.size() > 0xFFFFFFFFu) return fail(name + ": file is larger than 4 GiB");
 
@@ -506,11 +470,10 @@ Result<Mesh> loadGltf(const std::filesystem::path& file) {
     const std::string baseDir = file.parent_path().string();
     if (binary) {
       if (auto ok = checkGlbHeader(name, bytes); !ok) return std::unexpected(ok.error());
-      loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                           static_cast<unsigned int>(bytes.size()), baseDir);
+      loaded = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
+                                           baseDir);
     } else {
-      loaded = loader.LoadASCIIFromString(&model, &err, &warn,
-                                          reinterpret_cast<const char*>(bytes.data()),
+      loaded = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                           static_cast<unsigned int>(bytes.size()), baseDir);
     }
   } catch (const std::exception& e) {

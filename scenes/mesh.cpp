@@ -7,8 +7,7 @@
 namespace mane::scenes {
 
 Bounds Mesh::bounds() const {
-  Bounds box{glm::vec3(std::numeric_limits<float>::max()),
-             glm::vec3(std::numeric_limits<float>::lowest())};
+  Bounds box{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
   for (const glm::vec3& p : positions) {
     box.min = glm::min(box.min, p);
     box.max = glm::max(box.max, p);
@@ -23,8 +22,7 @@ void computeSmoothNormals(Mesh& mesh) {
     const std::uint32_t b = mesh.indices[t + 1];
     const std::uint32_t c = mesh.indices[t + 2];
     // The cross product's length is twice the triangle's area: that is the weighting.
-    const glm::vec3 n =
-        glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+    const glm::vec3 n = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
     sums[a] += n;
     sums[b] += n;
     sums[c] += n;
@@ -41,8 +39,8 @@ std::string validate(const Mesh& mesh) {
     return "index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3";
   }
   if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
-    return "has " + std::to_string(mesh.normals.size()) + " normals for " +
-           std::to_string(mesh.positions.size()) + " positions";
+    return "has " + std::to_string(mesh.normals.size()) + " normals for " + std::to_string(mesh.positions.size()) +
+           " positions";
   }
   if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
     return "has " + std::to_string(mesh.uvs.size()) + " texture coordinates for " +
@@ -50,8 +48,8 @@ std::string validate(const Mesh& mesh) {
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= mesh.positions.size()) {
-      return "index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
-             " but there are only " + std::to_string(mesh.positions.size()) + " positions";
+      return "index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) + " but there are only " +
+             std::to_string(mesh.positions.size()) + " positions";
     }
   }
   return {};

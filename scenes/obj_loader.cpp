@@ -14,16 +14,15 @@ namespace mane::scenes {
 namespace {
 
 /// Checks one index against its list; `kind` names the list for the message.
-Result<void> checkIndex(const std::string& file, int index, std::size_t size, const char* kind,
-                        std::size_t face, bool optional) {
+Result<void> checkIndex(const std::string& file, int index, std::size_t size, const char* kind, std::size_t face,
+                        bool optional) {
   if (optional && index == -1) return {};
   if (index < 0 || static_cast<std::size_t>(index) >= size) {
     // tinyobj has already turned the file's 1-based (or negative, relative) index into a
     // 0-based one; report it the way the file counts.
     return fail(file + ": face " + std::to_string(face + 1) + " refers to " + kind + " " +
-                std::to_string(static_cast<long long>(index) + 1) + ", but the file defines " +
-                std::to_string(size) + " " + kind + (size == 1 ? "" : "s") +
-                " (index out of range)");
+                std::to_string(static_cast<long long>(index) + 1) + ", but the file defines " + std::to_string(size) +
+                " " + kind + (size == 1 ? "" : "s") + " (index out of range)");
   }
   return {};
 }
@@ -74,8 +73,7 @@ Result<Mesh> loadObj(const std::filesystem::path& file) {
   if (positionsOnly) {
     mesh.positions.reserve(positionCount);
     for (std::size_t v = 0; v < positionCount; ++v) {
-      mesh.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
-                                  attrib.vertices[3 * v + 2]);
+      mesh.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
     }
   }
 
@@ -94,37 +92,27 @@ Result<Mesh> loadObj(const std::filesystem::path& file) {
       corners.clear();
       for (std::size_t c = 0; c < arity; ++c) {
         const tinyobj::index_t& index = shape.mesh.indices[offset + c];
-        if (auto ok = checkIndex(name, index.vertex_index, positionCount, "vertex", faceNumber,
-                                 false);
-            !ok) {
+        if (auto ok = checkIndex(name, index.vertex_index, positionCount, "vertex", faceNumber, false); !ok) {
           return std::unexpected(ok.error());
         }
-        if (auto ok = checkIndex(name, index.normal_index, normalCount, "normal", faceNumber,
-                                 true);
-            !ok) {
+        if (auto ok = checkIndex(name, index.normal_index, normalCount, "normal", faceNumber, true); !ok) {
           return std::unexpected(ok.error());
         }
-        if (auto ok = checkIndex(name, index.texcoord_index, uvCount, "texture coordinate",
-                                 faceNumber, true);
-            !ok) {
+        if (auto ok = checkIndex(name, index.texcoord_index, uvCount, "texture coordinate", faceNumber, true); !ok) {
           return std::unexpected(ok.error());
         }
         if (positionsOnly) {
           corners.push_back(static_cast<std::uint32_t>(index.vertex_index));
           continue;
         }
-        const auto key = std::make_tuple(index.vertex_index, index.texcoord_index,
-                                         index.normal_index);
-        auto [it, inserted] =
-            vertexOf.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
+        const auto key = std::make_tuple(index.vertex_index, index.texcoord_index, index.normal_index);
+        auto [it, inserted] = vertexOf.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
         if (inserted) {
           const auto v = static_cast<std::size_t>(index.vertex_index);
-          mesh.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
-                                      attrib.vertices[3 * v + 2]);
+          mesh.positions.emplace_back(attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]);
           if (index.normal_index >= 0) {
             const auto n = static_cast<std::size_t>(index.normal_index);
-            normals.emplace_back(attrib.normals[3 * n], attrib.normals[3 * n + 1],
-                                 attrib.normals[3 * n + 2]);
+            normals.emplace_back(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]);
             anyNormal = true;
           } else {
             normals.emplace_back(0.0f);
@@ -157,8 +145,8 @@ Result<Mesh> loadObj(const std::filesystem::path& file) {
     return mesh;
   }
   if (anyUv) mesh.uvs = std::move(uvs);
-  const bool allNormals = std::all_of(vertexOf.begin(), vertexOf.end(),
-                                      [](const auto& entry) { return std::get<2>(entry.first) >= 0; });
+  const bool allNormals =
+      std::all_of(vertexOf.begin(), vertexOf.end(), [](const auto& entry) { return std::get<2>(entry.first) >= 0; });
   if (anyNormal && allNormals) {
     mesh.normals = std::move(normals);
   } else {
@@ -173,8 +161,7 @@ Result<Mesh> loadMesh(const std::filesystem::path& file) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".gltf" || extension == ".glb") return loadGltf(file);
   if (extension == ".obj") return loadObj(file);
-  return fail(file.string() + ": unsupported mesh format '" + extension +
-              "'; expected .gltf, .glb or .obj");
+  return fail(file.string() + ": unsupported mesh format '" + extension + "'; expected .gltf, .glb or .obj");
 }
 
 }  // namespace mane::scenes

@@ -18,8 +18,7 @@ Mesh makeSphere(int rings, int segments, float radius) {
     for (int s = 0; s <= segments; ++s) {
       const float u = static_cast<float>(s) / static_cast<float>(segments);
       const float azimuth = u * 2.0f * std::numbers::pi_v<float>;
-      const glm::vec3 n(std::sin(polar) * std::sin(azimuth), std::cos(polar),
-                        std::sin(polar) * std::cos(azimuth));
+      const glm::vec3 n(std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth));
       mesh.positions.push_back(n * radius);
       mesh.normals.push_back(n);
       mesh.uvs.emplace_back(u, v);

@@ -48,10 +48,8 @@ OutputSettings parseOutput(const Json& json, const std::string& path) {
   OutputSettings output;
   output.width = fields.optional<int>("width", output.width);
   output.height = fields.optional<int>("height", output.height);
-  require(output.width > 0 && output.width <= 16384, fields.child("width"),
-          "expected a width in 1..16384 pixels");
-  require(output.height > 0 && output.height <= 16384, fields.child("height"),
-          "expected a height in 1..16384 pixels");
+  require(output.width > 0 && output.width <= 16384, fields.child("width"), "expected a width in 1..16384 pixels");
+  require(output.height > 0 && output.height <= 16384, fields.child("height"), "expected a height in 1..16384 pixels");
   fields.finish();
   return output;
 }
@@ -66,16 +64,14 @@ Camera parseCamera(const Json& json, const std::string& path) {
   camera.nearPlane = fields.optional<float>("near", camera.nearPlane);
   camera.farPlane = fields.optional<float>("far", camera.farPlane);
   fields.finish();
-  require(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f,
-          fields.child("fov_degrees"), "expected a vertical field of view in (0, 180) degrees");
+  require(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f, fields.child("fov_degrees"),
+          "expected a vertical field of view in (0, 180) degrees");
   require(camera.nearPlane > 0.0f, fields.child("near"), "expected a near plane > 0 metres");
-  require(camera.farPlane > camera.nearPlane, fields.child("far"),
-          "expected a far plane beyond the near plane");
+  require(camera.farPlane > camera.nearPlane, fields.child("far"), "expected a far plane beyond the near plane");
   const glm::vec3 view = camera.target - camera.position;
-  require(glm::length(view) > 1e-6f, fields.child("target"),
-          "expected a target different from the position");
-  require(glm::length(glm::cross(view, camera.up)) > 1e-6f * glm::length(view),
-          fields.child("up"), "expected an up vector not parallel to the view direction");
+  require(glm::length(view) > 1e-6f, fields.child("target"), "expected a target different from the position");
+  require(glm::length(glm::cross(view, camera.up)) > 1e-6f * glm::length(view), fields.child("up"),
+          "expected an up vector not parallel to the view direction");
   return camera;
 }
 
@@ -89,8 +85,8 @@ Light parseLight(const Json& json, const std::string& path) {
   light.colour = fields.optional<glm::vec3>("colour", light.colour);
   light.intensity = fields.optional<float>("intensity", light.intensity);
   fields.finish();
-  require(light.colour.r >= 0 && light.colour.g >= 0 && light.colour.b >= 0,
-          fields.child("colour"), "expected non-negative linear RGB");
+  require(light.colour.r >= 0 && light.colour.g >= 0 && light.colour.b >= 0, fields.child("colour"),
+          "expected non-negative linear RGB");
   require(light.intensity >= 0.0f, fields.child("intensity"), "expected an intensity >= 0");
   return light;
 }
@@ -115,8 +111,7 @@ Transform parseTransform(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Transform transform;
   transform.translation = fields.optional<glm::vec3>("translation", transform.translation);
-  transform.rotationDegrees =
-      fields.optional<glm::vec3>("rotation_degrees", transform.rotationDegrees);
+  transform.rotationDegrees = fields.optional<glm::vec3>("rotation_degrees", transform.rotationDegrees);
   transform.scale = fields.optional<float>("scale", transform.scale);
   require(transform.scale > 0.0f, fields.child("scale"), "expected a uniform scale > 0");
   fields.finish();
@@ -129,8 +124,7 @@ MeshInstance parseMesh(const Json& json, const std::string& path) {
   mesh.name = fields.required<std::string>("name");
   require(!mesh.name.empty(), fields.child("name"), "expected a non-empty name");
   mesh.source = fields.required<std::string>("source");
-  require(!mesh.source.empty(), fields.child("source"),
-          "expected an asset name or \"procedural:<kind>\"");
+  require(!mesh.source.empty(), fields.child("source"), "expected an asset name or \"procedural:<kind>\"");
   if (mesh.isProcedural()) {
     require(kProceduralMeshKinds.contains(mesh.proceduralKind()), fields.child("source"),
             "unknown procedural mesh \"" + mesh.source + "\" (known: procedural:sphere)");
@@ -150,10 +144,8 @@ HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
   sim.damping = fields.optional<float>("damping", sim.damping);
   sim.gravity = fields.optional<glm::vec3>("gravity", sim.gravity);
   fields.finish();
-  require(sim.iterations >= 1 && sim.iterations <= 1000, fields.child("iterations"),
-          "expected 1..1000 iterations");
-  require(sim.damping >= 0.0f && sim.damping < 1.0f, fields.child("damping"),
-          "expected a damping in [0, 1)");
+  require(sim.iterations >= 1 && sim.iterations <= 1000, fields.child("iterations"), "expected 1..1000 iterations");
+  require(sim.damping >= 0.0f && sim.damping < 1.0f, fields.child("damping"), "expected a damping in [0, 1)");
   return sim;
 }
 
@@ -162,8 +154,7 @@ Groom parseGroom(const Json& json, const std::string& path) {
   Groom groom;
   groom.name = fields.required<std::string>("name");
   groom.source = fields.required<std::string>("source");
-  require(!groom.source.empty(), fields.child("source"),
-          "expected a .tfx/.hair asset name or \"procedural\"");
+  require(!groom.source.empty(), fields.child("source"), "expected a .tfx/.hair asset name or \"procedural\"");
   groom.attachedMesh = fields.required<std::string>("attached_mesh");
   groom.strandCount = fields.optional<int>("strands", 0);
   groom.strandLengthMetres = fields.optional<float>("length", 0.0f);
@@ -194,16 +185,17 @@ HeadMotion parseHeadMotion(const Json& json, const std::string& path) {
   } else if (kind == "keyframes") {
     motion.kind = HeadMotionKind::keyframes;
   } else {
-    throw FieldError{fields.child("motion"), "expected one of \"none\", \"turn\", \"nod\", "
-                                             "\"shake\", \"keyframes\", got \"" + kind + "\""};
+    throw FieldError{fields.child("motion"),
+                     "expected one of \"none\", \"turn\", \"nod\", "
+                     "\"shake\", \"keyframes\", got \"" +
+                         kind + "\""};
   }
-  const bool periodic = motion.kind == HeadMotionKind::turn ||
-                        motion.kind == HeadMotionKind::nod || motion.kind == HeadMotionKind::shake;
+  const bool periodic =
+      motion.kind == HeadMotionKind::turn || motion.kind == HeadMotionKind::nod || motion.kind == HeadMotionKind::shake;
   if (periodic) {
     motion.amplitudeDegrees = fields.required<float>("amplitude_degrees");
     motion.frequencyHz = fields.required<float>("frequency_hz");
-    require(motion.frequencyHz >= 0.0f, fields.child("frequency_hz"),
-            "expected a frequency >= 0 Hz");
+    require(motion.frequencyHz >= 0.0f, fields.child("frequency_hz"), "expected a frequency >= 0 Hz");
   }
   if (motion.kind == HeadMotionKind::keyframes) {
     const Json& keys = fields.array("keyframes", true);
@@ -215,8 +207,8 @@ HeadMotion parseHeadMotion(const Json& json, const std::string& path) {
       frame.rotationDegrees = key.optional<glm::vec3>("rotation_degrees", frame.rotationDegrees);
       frame.translation = key.optional<glm::vec3>("translation", frame.translation);
       key.finish();
-      require(motion.keyframes.empty() || frame.timeSeconds > motion.keyframes.back().timeSeconds,
-              key.child("time"), "expected times in strictly increasing order");
+      require(motion.keyframes.empty() || frame.timeSeconds > motion.keyframes.back().timeSeconds, key.child("time"),
+              "expected times in strictly increasing order");
       motion.keyframes.push_back(frame);
     }
   }
@@ -251,23 +243,20 @@ std::vector<T> parseList(ObjectFields& fields, const std::string& key, Parse par
 void checkReferences(const Scene& scene) {
   std::set<std::string> names;
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    require(names.insert(scene.materials[i].name).second,
-            "materials[" + std::to_string(i) + "].name",
+    require(names.insert(scene.materials[i].name).second, "materials[" + std::to_string(i) + "].name",
             "duplicate material name \"" + scene.materials[i].name + "\"");
   }
   names.clear();
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshInstance& mesh = scene.meshes[i];
     const std::string path = "meshes[" + std::to_string(i) + "]";
-    require(names.insert(mesh.name).second, path + ".name",
-            "duplicate mesh name \"" + mesh.name + "\"");
+    require(names.insert(mesh.name).second, path + ".name", "duplicate mesh name \"" + mesh.name + "\"");
     require(mesh.material.empty() || scene.findMaterial(mesh.material), path + ".material",
             "no material named \"" + mesh.material + "\" in materials");
   }
   for (std::size_t i = 0; i < scene.grooms.size(); ++i) {
     const Groom& groom = scene.grooms[i];
-    require(scene.findMesh(groom.attachedMesh) != nullptr,
-            "grooms[" + std::to_string(i) + "].attached_mesh",
+    require(scene.findMesh(groom.attachedMesh) != nullptr, "grooms[" + std::to_string(i) + "].attached_mesh",
             "no mesh named \"" + groom.attachedMesh + "\" in meshes");
   }
   if (scene.headMotion.kind != HeadMotionKind::none) {
@@ -328,9 +317,8 @@ Keyframe HeadMotion::poseAt(float timeSeconds) const {
       if (keyframes.empty()) break;
       if (timeSeconds <= keyframes.front().timeSeconds) return keyframes.front();
       if (timeSeconds >= keyframes.back().timeSeconds) return keyframes.back();
-      const auto next = std::upper_bound(
-          keyframes.begin(), keyframes.end(), timeSeconds,
-          [](float t, const Keyframe& k) { return t < k.timeSeconds; });
+      const auto next = std::upper_bound(keyframes.begin(), keyframes.end(), timeSeconds,
+                                         [](float t, const Keyframe& k) { return t < k.timeSeconds; });
       const Keyframe& a = *(next - 1);
       const Keyframe& b = *next;
       const float s = (timeSeconds - a.timeSeconds) / (b.timeSeconds - a.timeSeconds);
@@ -363,9 +351,8 @@ glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh, float tim
   const Keyframe pose = scene.headMotion.poseAt(timeSeconds);
   const Transform& t = mesh.transform;
   // The head turns about its own placed origin: motion rotation after the mesh's rotation.
-  return glm::translate(glm::mat4(1.0f), t.translation + pose.translation) *
-         rotationMatrix(pose.rotationDegrees) * rotationMatrix(t.rotationDegrees) *
-         glm::scale(glm::mat4(1.0f), glm::vec3(t.scale));
+  return glm::translate(glm::mat4(1.0f), t.translation + pose.translation) * rotationMatrix(pose.rotationDegrees) *
+         rotationMatrix(t.rotationDegrees) * glm::scale(glm::mat4(1.0f), glm::vec3(t.scale));
 }
 
 Result<Scene> parseScene(std::string_view text, const std::filesystem::path& file) {

@@ -48,7 +48,7 @@ struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::lambert;
   std::string albedoTexture;
-  std::string normalMap;    ///< tangent-space normal map
+  std::string normalMap;  ///< tangent-space normal map
   std::string specularMap;
   glm::vec3 baseColour{0.8f};  ///< linear RGB multiplier of the albedo texture, or the albedo
 };
@@ -82,8 +82,8 @@ struct MeshInstance {
 /// Parameters of the Verlet hair solver for one groom; the fixed step is the scene's
 /// (`SimulationSettings::stepSeconds`), shared by everything simulated.
 struct HairSimulation {
-  int iterations = 8;                 ///< constraint relaxation passes per step, ≥ 1
-  float damping = 0.02f;              ///< velocity fraction lost per step, in [0, 1)
+  int iterations = 8;                     ///< constraint relaxation passes per step, ≥ 1
+  float damping = 0.02f;                  ///< velocity fraction lost per step, in [0, 1)
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
 };
 
@@ -93,9 +93,9 @@ inline constexpr int kMaxGuideStrands = 1'000'000;
 /// Hair or fur on a mesh.
 struct Groom {
   std::string name;
-  std::string source;        ///< asset name of a .tfx/.hair file, or "procedural"
-  std::string attachedMesh;  ///< name of a `MeshInstance`; roots follow it
-  int strandCount = 0;       ///< procedural only: guide strands to grow (0: generator default)
+  std::string source;               ///< asset name of a .tfx/.hair file, or "procedural"
+  std::string attachedMesh;         ///< name of a `MeshInstance`; roots follow it
+  int strandCount = 0;              ///< procedural only: guide strands to grow (0: generator default)
   float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
   HairSimulation simulation;
 
@@ -154,8 +154,7 @@ struct Scene {
 };
 
 /// The mesh's model matrix at `timeSeconds`, including the head motion when it targets it.
-[[nodiscard]] glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh,
-                                       float timeSeconds);
+[[nodiscard]] glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh, float timeSeconds);
 
 /// Reads and validates a scene file. Errors name the file, the JSON field path (e.g.
 /// `lights[1].direction`) and what was expected; unknown fields are errors, so typos are

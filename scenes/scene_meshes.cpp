@@ -17,8 +17,7 @@ Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolv
   LoadedMesh loaded;
   if (instance.isProcedural()) {
     if (instance.proceduralKind() != "sphere") {
-      return fail("mesh '" + instance.name + "': unknown procedural mesh '" + instance.source +
-                  "'");
+      return fail("mesh '" + instance.name + "': unknown procedural mesh '" + instance.source + "'");
     }
     // Unit radius: the instance's transform scale sets the size.
     loaded.mesh = makeSphere(kSphereRings, kSphereSegments, 1.0f);
@@ -28,11 +27,9 @@ Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolv
   auto found = resolver.lookupForScene(instance.source, sceneDirectory);
   if (!found) return fail("mesh '" + instance.name + "': " + found.error().message);
   if (!found->path) {
-    loaded.mesh = makeSphere(kSphereRings, kSphereSegments,
-                             kFallbackSphereRadius / instance.transform.scale);
+    loaded.mesh = makeSphere(kSphereRings, kSphereSegments, kFallbackSphereRadius / instance.transform.scale);
     loaded.procedural = true;
-    loaded.note = "asset " + instance.source + " missing: using a procedural sphere (" +
-                  found->missingReason + ")";
+    loaded.note = "asset " + instance.source + " missing: using a procedural sphere (" + found->missingReason + ")";
     return loaded;
   }
   auto mesh = loadMesh(*found->path);

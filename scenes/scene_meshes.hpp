@@ -30,8 +30,7 @@ struct LoadedMesh {
 /// name the manifest does not list, a checksum mismatch, a file that does not parse.
 /// `sceneDirectory` anchors sources that are file paths rather than manifest names (see
 /// `AssetResolver::lookupForScene`).
-[[nodiscard]] Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance,
-                                               const AssetResolver& resolver,
+[[nodiscard]] Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver,
                                                const std::filesystem::path& sceneDirectory = {});
 
 }  // namespace mane::scenes

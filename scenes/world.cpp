@@ -123,8 +123,8 @@ Result<void> World::advance(double frameDt, unsigned threads) {
 render::StaticScene World::staticScene() const {
   render::StaticScene result;
   for (const LoadedMesh& loaded : meshes_)
-    result.meshes.push_back(render::MeshData{loaded.mesh.positions, loaded.mesh.normals, loaded.mesh.uvs,
-                                             loaded.mesh.indices});
+    result.meshes.push_back(
+        render::MeshData{loaded.mesh.positions, loaded.mesh.normals, loaded.mesh.uvs, loaded.mesh.indices});
   for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
     render::MaterialData material{.baseColor = scene_.materials[i].baseColour};
     if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);

@@ -20,9 +20,9 @@ struct Crease {
 };
 
 struct Cage {
-  std::vector<glm::vec3> positions;          ///< metres
-  std::vector<std::uint32_t> faceSizes;      ///< vertices per face, ≥ 3
-  std::vector<std::uint32_t> faceVertices;   ///< all faces' vertex indices, counter-clockwise
+  std::vector<glm::vec3> positions;         ///< metres
+  std::vector<std::uint32_t> faceSizes;     ///< vertices per face, ≥ 3
+  std::vector<std::uint32_t> faceVertices;  ///< all faces' vertex indices, counter-clockwise
   std::vector<Crease> creases;
 };
 

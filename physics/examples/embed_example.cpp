@@ -37,8 +37,8 @@ int main() {
   constexpr int kFrames = 60;
   constexpr double kFrameDt = 1.0 / 60.0;
   for (int frame = 1; frame <= kFrames; ++frame) {
-    const float phase = static_cast<float>(frame) / kFrames;               // 0..1
-    const float offset = 0.1f * (phase < 0.5f ? phase : 1.0f - phase);      // metres
+    const float phase = static_cast<float>(frame) / kFrames;            // 0..1
+    const float offset = 0.1f * (phase < 0.5f ? phase : 1.0f - phase);  // metres
     const glm::mat4 head = glm::translate(glm::mat4(1.0f), glm::vec3(offset, 0.0f, 0.0f));
     if (auto ok = hair->setHeadTransform(head); !ok) {
       std::fprintf(stderr, "head: %s\n", ok.error().message.c_str());
@@ -54,8 +54,8 @@ int main() {
               static_cast<unsigned long long>(hair->stepCount()));
   for (std::size_t s = 0; s < hair->strandCount(); ++s) {
     const glm::vec3 tip = hair->strandPositions(s).back();
-    std::printf("strand %zu tip: (%+.6f, %+.6f, %+.6f) m\n", s, static_cast<double>(tip.x),
-                static_cast<double>(tip.y), static_cast<double>(tip.z));
+    std::printf("strand %zu tip: (%+.6f, %+.6f, %+.6f) m\n", s, static_cast<double>(tip.x), static_cast<double>(tip.y),
+                static_cast<double>(tip.z));
   }
   std::printf("state hash: %016llx\n", static_cast<unsigned long long>(hair->stateHash()));
   return EXIT_SUCCESS;

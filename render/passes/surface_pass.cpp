@@ -30,8 +30,8 @@ struct DrawConstants {
   glm::ivec4 flags;
 };
 
-Image textureOrDefault(const Device& device, const std::optional<TextureData>& texture, const std::uint8_t (&fallback)[4],
-                       vk::Format format) {
+Image textureOrDefault(const Device& device, const std::optional<TextureData>& texture,
+                       const std::uint8_t (&fallback)[4], vk::Format format) {
   if (texture && texture->width > 0 && texture->height > 0)
     return Image::texture(device, texture->width, texture->height, texture->rgba, format);
   return Image::texture(device, 1, 1, fallback, format);
@@ -83,7 +83,8 @@ void SurfacePass::setScene(const StaticScene& scene) {
       vertices[i] = Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
                            mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i]};
     meshes_.push_back(GpuMesh{
-        .vertices = Buffer::withData(*device_, std::as_bytes(std::span(vertices)), vk::BufferUsageFlagBits::eVertexBuffer),
+        .vertices =
+            Buffer::withData(*device_, std::as_bytes(std::span(vertices)), vk::BufferUsageFlagBits::eVertexBuffer),
         .indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
         .indexCount = static_cast<std::uint32_t>(mesh.indices.size())});
   }
@@ -129,9 +130,8 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 1, {*material.descriptors}, {});
     const DrawConstants constants{instance.model, glm::vec4(material.baseColor, 1.0f),
                                   glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0)};
-    commands.pushConstants<DrawConstants>(*pipeline_.layout,
-                                          vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0,
-                                          constants);
+    commands.pushConstants<DrawConstants>(
+        *pipeline_.layout, vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0, constants);
     commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
     commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
     commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);

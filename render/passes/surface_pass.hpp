@@ -27,7 +27,8 @@ public:
     return instance.mesh < meshes_.size() && instance.material < materials_.size();
   }
 
-  /// Draws every instance (Renderer::render has checked them with canDraw); call inside a dynamic rendering scope with matching formats.
+  /// Draws every instance (Renderer::render has checked them with canDraw); call inside a dynamic rendering scope with
+  /// matching formats.
   void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
 
 private:

@@ -23,8 +23,7 @@ Result<void> downloadFile(const std::string& url, const std::filesystem::path& d
 
   std::unique_ptr<CURL, void (*)(CURL*)> curl(curl_easy_init(), &curl_easy_cleanup);
   if (!curl) return fail("cannot download " + url + ": curl_easy_init failed");
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(destination.c_str(), "wb"),
-                                                      &std::fclose);
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(destination.c_str(), "wb"), &std::fclose);
   if (!out) return fail("cannot download " + url + ": cannot write " + destination.string());
 
   char errorBuffer[CURL_ERROR_SIZE] = {};

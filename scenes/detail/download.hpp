@@ -19,8 +19,7 @@ struct DownloadLimits {
 
 /// Downloads `url` to `destination` (overwritten). On failure the destination is removed
 /// and the error names the URL and curl's reason (or the HTTP status).
-[[nodiscard]] Result<void> downloadFile(const std::string& url,
-                                        const std::filesystem::path& destination,
+[[nodiscard]] Result<void> downloadFile(const std::string& url, const std::filesystem::path& destination,
                                         const DownloadLimits& limits);
 
 }  // namespace mane::scenes::detail

@@ -80,14 +80,11 @@ template <>
 inline glm::vec3 read<glm::vec3>(const nlohmann::json& json, const std::string& path) {
   if (!json.is_array() || json.size() != 3) {
     throw FieldError{path, "expected an array of 3 numbers" +
-                               (json.is_array() ? ", got " + std::to_string(json.size()) +
-                                                      " elements"
-                                                : got(json))};
+                               (json.is_array() ? ", got " + std::to_string(json.size()) + " elements" : got(json))};
   }
   glm::vec3 value;
   for (int i = 0; i < 3; ++i) {
-    value[i] = read<float>(json[static_cast<std::size_t>(i)],
-                           indexPath(path, static_cast<std::size_t>(i)));
+    value[i] = read<float>(json[static_cast<std::size_t>(i)], indexPath(path, static_cast<std::size_t>(i)));
   }
   return value;
 }
@@ -95,9 +92,8 @@ inline glm::vec3 read<glm::vec3>(const nlohmann::json& json, const std::string& 
 /// The fields of one JSON object. Every field the parser asks for is "known"; `finish`
 /// rejects any other field, listing the known ones, so a typo cannot pass silently.
 class ObjectFields {
- public:
-  ObjectFields(const nlohmann::json& json, std::string path)
-      : json_(json), path_(std::move(path)) {
+public:
+  ObjectFields(const nlohmann::json& json, std::string path) : json_(json), path_(std::move(path)) {
     if (!json_.is_object()) {
       throw FieldError{path_.empty() ? "(top level)" : path_, "expected an object" + got(json_)};
     }
@@ -148,7 +144,7 @@ class ObjectFields {
     }
   }
 
- private:
+private:
   const nlohmann::json& json_;
   std::string path_;
   std::set<std::string> known_;

@@ -13,8 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Both names: .glb for binary containers, .gltf for JSON (buffers resolve beside it).
   static const mane::fuzz::InputFile glb("input.glb");
   static const mane::fuzz::InputFile gltf("input.gltf");
-  const bool binary = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' &&
-                      data[3] == 'F';
+  const bool binary = size >= 4 && data[0] == 'g' && data[1] == 'l' && data[2] == 'T' && data[3] == 'F';
   auto mesh = mane::scenes::loadGltf((binary ? glb : gltf).write(data, size));
   if (mesh && !mane::scenes::validate(*mesh).empty()) std::abort();
   return 0;

@@ -12,9 +12,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const mane::fuzz::InputFile file("input.png");
   auto image = mane::scenes::loadImage(file.write(data, size));
-  if (image && (image->width <= 0 || image->height <= 0 ||
-                image->rgba.size() != static_cast<std::size_t>(image->width) *
-                                          static_cast<std::size_t>(image->height) * 4)) {
+  if (image &&
+      (image->width <= 0 || image->height <= 0 ||
+       image->rgba.size() != static_cast<std::size_t>(image->width) * static_cast<std::size_t>(image->height) * 4)) {
     std::abort();
   }
   return 0;

@@ -14,10 +14,9 @@
 namespace mane::fuzz {
 
 class InputFile {
- public:
+public:
   explicit InputFile(const std::string& fileName) {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "mane-fuzz-XXXXXX").string();
+    std::string pattern = (std::filesystem::temp_directory_path() / "mane-fuzz-XXXXXX").string();
     if (::mkdtemp(pattern.data()) == nullptr) std::abort();
     directory_ = pattern;
     path_ = directory_ / fileName;
@@ -37,7 +36,7 @@ class InputFile {
     return path_;
   }
 
- private:
+private:
   std::filesystem::path directory_;
   std::filesystem::path path_;
 };

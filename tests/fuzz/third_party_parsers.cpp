@@ -8,7 +8,7 @@
 #include "stb_image_write.h"
 
 #define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_INCLUDE_STB_IMAGE        // both included above, with their implementations
+#define TINYGLTF_NO_INCLUDE_STB_IMAGE  // both included above, with their implementations
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
 #include <tiny_gltf.h>
 

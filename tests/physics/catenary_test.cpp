@@ -19,7 +19,10 @@ double catenaryParameter(double span, double length) {
   double hi = 1e3 * span;
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if (2.0 * mid * std::sinh(span / (2.0 * mid)) > length) lo = mid; else hi = mid;
+    if (2.0 * mid * std::sinh(span / (2.0 * mid)) > length)
+      lo = mid;
+    else
+      hi = mid;
   }
   return 0.5 * (lo + hi);
 }

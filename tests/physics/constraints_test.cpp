@@ -68,13 +68,10 @@ float stretchAfterOneStep(int iterations) {
   SplitMix64 rng(42);
   constexpr int kParticles = 24;
   for (int i = 0; i < kParticles; ++i) {
-    const glm::vec3 velocity{rng.nextFloat(-3.0f, 3.0f), rng.nextFloat(-3.0f, 3.0f),
-                             rng.nextFloat(-3.0f, 3.0f)};
+    const glm::vec3 velocity{rng.nextFloat(-3.0f, 3.0f), rng.nextFloat(-3.0f, 3.0f), rng.nextFloat(-3.0f, 3.0f)};
     solver->particles.addMoving({0.02f * static_cast<float>(i), 0.0f, 0.0f}, velocity,
-                                static_cast<float>(settings.fixedStep), settings.gravity,
-                                i == 0 ? 0.0f : 1.0f);
-    if (i > 0)
-      solver->distances.push_back({static_cast<ParticleIndex>(i - 1), static_cast<ParticleIndex>(i), 0.02f});
+                                static_cast<float>(settings.fixedStep), settings.gravity, i == 0 ? 0.0f : 1.0f);
+    if (i > 0) solver->distances.push_back({static_cast<ParticleIndex>(i - 1), static_cast<ParticleIndex>(i), 0.02f});
   }
   solver->step();
   return maxRelativeStretch(solver->particles, solver->distances);

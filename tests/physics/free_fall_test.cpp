@@ -39,8 +39,7 @@ TEST(FreeFall, DyadicInputsMatchTheParabolaBitForBit) {
     const double t = n * h;
     for (int axis = 0; axis < 3; ++axis) {
       const double exact = x0[axis] + v0[axis] * t + 0.5 * g[axis] * t * t;
-      ASSERT_EQ(static_cast<double>(solver->particles.positions[0][axis]), exact)
-          << "step " << n << ", axis " << axis;
+      ASSERT_EQ(static_cast<double>(solver->particles.positions[0][axis]), exact) << "step " << n << ", axis " << axis;
     }
   }
 }
@@ -69,8 +68,7 @@ TEST(FreeFall, RealisticStepMatchesTheParabolaToRounding) {
     for (int axis = 0; axis < 3; ++axis) {
       const double exact = static_cast<double>(x0[axis]) + static_cast<double>(v0[axis]) * t +
                            0.5 * static_cast<double>(g[axis]) * t * t;
-      ASSERT_NEAR(solver->particles.positions[0][axis], exact, tolerance)
-          << "step " << n << ", axis " << axis;
+      ASSERT_NEAR(solver->particles.positions[0][axis], exact, tolerance) << "step " << n << ", axis " << axis;
     }
   }
 }
@@ -97,8 +95,7 @@ TEST(FreeFall, DampingScalesTheImpliedVelocityEveryStep) {
   solver->particles.addMoving({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 0.01f, {0, 0, 0}, 1.0f);
   for (int n = 1; n <= 50; ++n) {
     solver->step();
-    const float displacement =
-        solver->particles.positions[0].x - solver->particles.previousPositions[0].x;
+    const float displacement = solver->particles.positions[0].x - solver->particles.previousPositions[0].x;
     const double expected = 0.01 * std::pow(1.0 - static_cast<double>(d), n);
     ASSERT_NEAR(displacement, expected, 5e-8) << "step " << n;
   }

@@ -23,8 +23,7 @@ Strands threeStraightStrands() {
   Strands strands;
   for (int s = 0; s < 3; ++s) {
     std::vector<glm::vec3> strand;
-    for (int i = 0; i < 6; ++i)
-      strand.push_back({0.05f * static_cast<float>(s), -0.05f * static_cast<float>(i), 0.0f});
+    for (int i = 0; i < 6; ++i) strand.push_back({0.05f * static_cast<float>(s), -0.05f * static_cast<float>(i), 0.0f});
     strands.push_back(strand);
   }
   return strands;
@@ -95,8 +94,8 @@ TEST(HairSystem, RootsFollowTheHeadTransform) {
   // rounding of the interpolation (1e-6 m).
   auto hair = HairSystem::create(threeStraightStrands(), SolverSettings{});
   ASSERT_TRUE(hair);
-  const glm::mat4 head = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 0.2f, 0.3f)),
-                                     0.3f, glm::vec3(0.0f, 0.0f, 1.0f));
+  const glm::mat4 head =
+      glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, 0.2f, 0.3f)), 0.3f, glm::vec3(0.0f, 0.0f, 1.0f));
   ASSERT_TRUE(hair->setHeadTransform(head));
   ASSERT_TRUE(hair->advance(1.0 / 60.0, 1));
   for (std::size_t s = 0; s < hair->strandCount(); ++s) {

@@ -26,9 +26,9 @@
 namespace mane::physics {
 namespace {
 
-constexpr double kLength = 1.0;   // m
-constexpr double kGravity = 9.81; // m/s²
-constexpr double kStep = 1.0 / 2000.0; // s: see the note above
+constexpr double kLength = 1.0;         // m
+constexpr double kGravity = 9.81;       // m/s²
+constexpr double kStep = 1.0 / 2000.0;  // s: see the note above
 
 double agm(double a, double b) {
   for (int i = 0; i < 64 && std::abs(a - b) > 1e-15 * a; ++i) {
@@ -39,7 +39,9 @@ double agm(double a, double b) {
   return a;
 }
 
-double exactPeriodRatio(double amplitude) { return 1.0 / agm(1.0, std::cos(0.5 * amplitude)); }
+double exactPeriodRatio(double amplitude) {
+  return 1.0 / agm(1.0, std::cos(0.5 * amplitude));
+}
 
 // Releases the pendulum from rest at `amplitude` radians from the downward vertical and returns
 // the period in seconds measured over the first full swing: from the first to the third zero
@@ -56,8 +58,7 @@ double measurePeriod(double amplitude) {
   EXPECT_TRUE(solver);
   const ParticleIndex root = solver->particles.add({0.0f, 0.0f, 0.0f}, 0.0f);
   const ParticleIndex bob = solver->particles.add(
-      {static_cast<float>(kLength * std::sin(amplitude)),
-       static_cast<float>(-kLength * std::cos(amplitude)), 0.0f},
+      {static_cast<float>(kLength * std::sin(amplitude)), static_cast<float>(-kLength * std::cos(amplitude)), 0.0f},
       1.0f);
   solver->distances.push_back({root, bob, static_cast<float>(kLength)});
 
@@ -94,7 +95,10 @@ TEST(Pendulum, LargeAmplitudePeriodsFollowTheEllipticIntegral) {
   // 1.1803 at 90°. First check those constants against the AGM formula (to 1e-4), then the
   // simulation against them to 1 %.
   const double t0 = 2.0 * std::numbers::pi * std::sqrt(kLength / kGravity);
-  struct Case { double degrees; double published; };
+  struct Case {
+    double degrees;
+    double published;
+  };
   for (const Case c : {Case{60.0, 1.0732}, Case{90.0, 1.1803}}) {
     const double amplitude = c.degrees * std::numbers::pi / 180.0;
     EXPECT_NEAR(exactPeriodRatio(amplitude), c.published, 1e-4) << c.degrees << "°";

@@ -38,9 +38,7 @@ TEST(Device, ValidationCallbackRecordsMisuse) {
   ASSERT_TRUE(device.has_value()) << device.error().message;
   // A buffer with no usage flags breaks VUID-VkBufferCreateInfo-usage-requiredbitmask; the
   // driver itself tolerates it, so only the layer notices.
-  {
-    const vk::raii::Buffer buffer((*device)->device(), vk::BufferCreateInfo{.size = 64, .usage = {}});
-  }
+  { const vk::raii::Buffer buffer((*device)->device(), vk::BufferCreateInfo{.size = 64, .usage = {}}); }
   const auto messages = (*device)->validationMessages();
   ASSERT_FALSE(messages.empty());
   EXPECT_NE(messages.front().find("usage"), std::string::npos) << messages.front();

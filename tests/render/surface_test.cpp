@@ -18,8 +18,7 @@ namespace {
 constexpr vk::Extent2D kExtent{96, 64};
 const std::array<glm::vec3, 4> kPositions{glm::vec3(-1, -1, 0), glm::vec3(1, -1, 0), glm::vec3(1, 1, 0),
                                           glm::vec3(-1, 1, 0)};
-const std::array<glm::vec3, 4> kNormals{glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1),
-                                        glm::vec3(0, 0, 1)};
+const std::array<glm::vec3, 4> kNormals{glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1)};
 // v = 0 is the top row of the image, as in glTF.
 const std::array<glm::vec2, 4> kUvs{glm::vec2(0, 1), glm::vec2(1, 1), glm::vec2(1, 0), glm::vec2(0, 0)};
 const std::array<std::uint32_t, 6> kIndices{0, 1, 2, 0, 2, 3};
@@ -29,7 +28,9 @@ double srgbEncode(double linear) {
   return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
 }
 
-double unorm(std::uint8_t value) { return value / 255.0; }
+double unorm(std::uint8_t value) {
+  return value / 255.0;
+}
 
 struct Shot {
   std::vector<std::uint8_t> rgba;
@@ -62,8 +63,8 @@ public:
 TEST_F(Surface, LambertOnAFlatQuadMatchesTheClosedForm) {
   const glm::vec3 base(0.8f, 0.6f, 0.4f);
   const glm::vec3 ambient(0.05f);
-  const DirectionalLight light{.direction = glm::normalize(glm::vec3(0, 0.6f, 0.8f)), .color = {1, 1, 1},
-                               .intensity = 0.9f};
+  const DirectionalLight light{
+      .direction = glm::normalize(glm::vec3(0, 0.6f, 0.8f)), .color = {1, 1, 1}, .intensity = 0.9f};
   const Shot shot = render({.baseColor = base}, light, ambient);
   const auto centre = shot.centre();
   for (int c = 0; c < 3; ++c) {
@@ -91,8 +92,8 @@ void expectTiltedNormal(Surface& test, std::array<std::uint8_t, 4> texel, glm::v
   const MaterialData material{.baseColor = glm::vec3(1.0f),
                               .normalMap = TextureData{.width = 2, .height = 2, .rgba = pixels}};
   const Shot shot = test.render(material, {.direction = lightDirection}, glm::vec3(0));
-  const glm::dvec3 mapped = glm::normalize(
-      glm::dvec3(unorm(texel[0]) * 2 - 1, unorm(texel[1]) * 2 - 1, unorm(texel[2]) * 2 - 1));
+  const glm::dvec3 mapped =
+      glm::normalize(glm::dvec3(unorm(texel[0]) * 2 - 1, unorm(texel[1]) * 2 - 1, unorm(texel[2]) * 2 - 1));
   // Tangent frame of the quad: +u is world +X, map +Y (up in the image) is world +Y.
   const double cosine = std::max(mapped[tiltAxis], 0.0);
   const double expected = 255.0 * srgbEncode(cosine);

@@ -39,7 +39,9 @@ glm::vec2 toPixels(glm::vec2 clip) {
 
 bool inside(glm::vec2 point) {
   const glm::vec2 a = toPixels(kTriangle[0]), b = toPixels(kTriangle[1]), c = toPixels(kTriangle[2]);
-  auto edge = [](glm::vec2 p, glm::vec2 q, glm::vec2 r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+  auto edge = [](glm::vec2 p, glm::vec2 q, glm::vec2 r) {
+    return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+  };
   const double e0 = edge(a, b, point), e1 = edge(b, c, point), e2 = edge(c, a, point);
   return (e0 > 0 && e1 > 0 && e2 > 0) || (e0 < 0 && e1 < 0 && e2 < 0);
 }
@@ -48,16 +50,15 @@ bool inside(glm::vec2 point) {
 std::vector<glm::vec4> renderTriangle(const Device& device, vk::SampleCountFlagBits samples) {
   const RenderTarget target(device, {.extent = kExtent, .samples = samples});
   const Pipeline pipeline = makeGraphicsPipeline(
-      device, GraphicsPipelineSettings{
-                  .vertexShader = "flat_color.vert",
-                  .fragmentShader = "flat_color.frag",
-                  .vertexBindings = {{.binding = 0, .stride = sizeof(glm::vec2)}},
-                  .vertexAttributes = {{0, 0, vk::Format::eR32G32Sfloat, 0}},
-                  .colorFormats = {RenderTarget::kHdrFormat},
-                  .samples = samples,
-                  .pushConstants = {{vk::ShaderStageFlagBits::eFragment, 0, sizeof(glm::vec4)}}});
-  const Buffer vertices = Buffer::withData(device, std::as_bytes(std::span(kTriangle)),
-                                           vk::BufferUsageFlagBits::eVertexBuffer);
+      device, GraphicsPipelineSettings{.vertexShader = "flat_color.vert",
+                                       .fragmentShader = "flat_color.frag",
+                                       .vertexBindings = {{.binding = 0, .stride = sizeof(glm::vec2)}},
+                                       .vertexAttributes = {{0, 0, vk::Format::eR32G32Sfloat, 0}},
+                                       .colorFormats = {RenderTarget::kHdrFormat},
+                                       .samples = samples,
+                                       .pushConstants = {{vk::ShaderStageFlagBits::eFragment, 0, sizeof(glm::vec4)}}});
+  const Buffer vertices =
+      Buffer::withData(device, std::as_bytes(std::span(kTriangle)), vk::BufferUsageFlagBits::eVertexBuffer);
   using Layout = vk::ImageLayout;
   using Stage = vk::PipelineStageFlagBits2;
   using Access = vk::AccessFlagBits2;
@@ -77,10 +78,8 @@ std::vector<glm::vec4> renderTriangle(const Device& device, vk::SampleCountFlagB
       color.resolveImageView = *target.hdr().view();
       color.resolveImageLayout = Layout::eColorAttachmentOptimal;
     }
-    commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = kExtent},
-                                              .layerCount = 1,
-                                              .colorAttachmentCount = 1,
-                                              .pColorAttachments = &color});
+    commands.beginRendering(vk::RenderingInfo{
+        .renderArea = {.extent = kExtent}, .layerCount = 1, .colorAttachmentCount = 1, .pColorAttachments = &color});
     setViewportAndScissor(commands, kExtent);
     commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
     commands.pushConstants<glm::vec4>(*pipeline.layout, vk::ShaderStageFlagBits::eFragment, 0, kColor);

@@ -24,8 +24,7 @@ constexpr const char* kWrongSha = "000000000000000000000000000000000000000000000
 
 /// A manifest with one entry per (name, upstream, sha) in `dir/manifest.json`.
 std::filesystem::path writeManifest(const ScratchDir& dir,
-                                    std::vector<std::tuple<std::string, std::string, std::string>>
-                                        entries) {
+                                    std::vector<std::tuple<std::string, std::string, std::string>> entries) {
   nlohmann::json assets = nlohmann::json::array();
   for (const auto& [name, upstream, sha] : entries) {
     assets.push_back({{"name", name},
@@ -36,8 +35,7 @@ std::filesystem::path writeManifest(const ScratchDir& dir,
   return dir.write("manifest.json", nlohmann::json{{"assets", assets}}.dump(2));
 }
 
-AssetResolver makeResolver(const std::filesystem::path& manifest,
-                           std::vector<std::filesystem::path> roots,
+AssetResolver makeResolver(const std::filesystem::path& manifest, std::vector<std::filesystem::path> roots,
                            const std::filesystem::path& cache, bool download) {
   AssetResolverSettings settings;
   settings.manifest = manifest;
@@ -79,8 +77,8 @@ TEST(AssetManifest, EverySharedFileVerifies) {
 
 TEST(AssetManifest, MalformedManifestNamesTheEntry) {
   ScratchDir dir;
-  const auto manifest = dir.write(
-      "manifest.json", R"({"assets": [{"name": "../escape.txt", "sha256": "x", "licence": "CC0"}]})");
+  const auto manifest =
+      dir.write("manifest.json", R"({"assets": [{"name": "../escape.txt", "sha256": "x", "licence": "CC0"}]})");
   AssetResolverSettings settings;
   settings.manifest = manifest;
   auto resolver = AssetResolver::create(settings);
@@ -117,8 +115,7 @@ TEST(AssetResolver, FirstRootHoldingTheFileWins) {
   ScratchDir dir;
   const auto manifest = writeManifest(dir, {{"a/hello.txt", "", kHelloSha}});
   dir.write("second/a/hello.txt", "hello\n");
-  const AssetResolver resolver =
-      makeResolver(manifest, {dir.path() / "first", dir.path() / "second"}, {}, false);
+  const AssetResolver resolver = makeResolver(manifest, {dir.path() / "first", dir.path() / "second"}, {}, false);
   EXPECT_EQ(*resolver.resolve("a/hello.txt"), dir.path() / "second/a/hello.txt");
   dir.write("first/a/hello.txt", "hello\n");
   EXPECT_EQ(*resolver.resolve("a/hello.txt"), dir.path() / "first/a/hello.txt");
@@ -128,8 +125,7 @@ TEST(AssetResolver, UsesTheCacheAfterTheRoots) {
   ScratchDir dir;
   const auto manifest = writeManifest(dir, {{"a/hello.txt", "", kHelloSha}});
   dir.write("cache/a/hello.txt", "hello\n");
-  const AssetResolver resolver =
-      makeResolver(manifest, {dir.path() / "empty"}, dir.path() / "cache", false);
+  const AssetResolver resolver = makeResolver(manifest, {dir.path() / "empty"}, dir.path() / "cache", false);
   EXPECT_EQ(*resolver.resolve("a/hello.txt"), dir.path() / "cache/a/hello.txt");
 }
 
@@ -150,8 +146,7 @@ TEST(AssetResolver, DownloadsIntoTheCacheAndVerifies) {
   ScratchDir dir;
   const auto upstream = dir.write("upstream/hello.txt", "hello\n");
   const auto manifest = writeManifest(dir, {{"a/hello.txt", "file://" + upstream.string(), kHelloSha}});
-  const AssetResolver resolver =
-      makeResolver(manifest, {dir.path() / "empty"}, dir.path() / "cache", true);
+  const AssetResolver resolver = makeResolver(manifest, {dir.path() / "empty"}, dir.path() / "cache", true);
   auto path = resolver.resolve("a/hello.txt");
   ASSERT_TRUE(path.has_value()) << path.error().message;
   EXPECT_EQ(*path, dir.path() / "cache/a/hello.txt");
@@ -179,12 +174,10 @@ TEST(AssetResolver, UnreachableUpstreamFailsFastAsMissing) {
   const AssetResolver resolver = makeResolver(manifest, {}, dir.path() / "cache", true);
   const auto start = std::chrono::steady_clock::now();
   auto found = resolver.lookup("a/hello.txt");
-  const auto seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_TRUE(found.has_value()) << found.error().message;
   EXPECT_FALSE(found->path.has_value());
-  EXPECT_NE(found->missingReason.find("cannot download http://127.0.0.1:9/hello.txt"),
-            std::string::npos)
+  EXPECT_NE(found->missingReason.find("cannot download http://127.0.0.1:9/hello.txt"), std::string::npos)
       << found->missingReason;
   EXPECT_LT(seconds, 5.0);
 }
@@ -195,14 +188,11 @@ TEST(AssetResolver, MissingAssetIsAnErrorNotACrash) {
   const AssetResolver resolver = makeResolver(manifest, {dir.path() / "empty"}, {}, true);
   auto path = resolver.resolve("a/hello.txt");
   ASSERT_FALSE(path.has_value());
-  EXPECT_NE(path.error().message.find("asset 'a/hello.txt' not found"), std::string::npos)
-      << path.error().message;
-  EXPECT_NE(path.error().message.find((dir.path() / "empty/a/hello.txt").string()),
-            std::string::npos);
+  EXPECT_NE(path.error().message.find("asset 'a/hello.txt' not found"), std::string::npos) << path.error().message;
+  EXPECT_NE(path.error().message.find((dir.path() / "empty/a/hello.txt").string()), std::string::npos);
   auto unknown = resolver.resolve("b/nothing.txt");
   ASSERT_FALSE(unknown.has_value());
-  EXPECT_NE(unknown.error().message.find("'b/nothing.txt' is not in the manifest"),
-            std::string::npos)
+  EXPECT_NE(unknown.error().message.find("'b/nothing.txt' is not in the manifest"), std::string::npos)
       << unknown.error().message;
 }
 
@@ -215,8 +205,7 @@ TEST(SceneMeshes, MissingAssetFallsBackToASphereWithANote) {
   auto loaded = loadSceneMesh(instance, resolver);
   ASSERT_TRUE(loaded.has_value()) << loaded.error().message;
   EXPECT_TRUE(loaded->procedural);
-  EXPECT_TRUE(loaded->note.starts_with("asset head/head.glb missing: using a procedural sphere"))
-      << loaded->note;
+  EXPECT_TRUE(loaded->note.starts_with("asset head/head.glb missing: using a procedural sphere")) << loaded->note;
   // Placed with the instance's scale, the stand-in has the documented world radius.
   EXPECT_NEAR(loaded->mesh.bounds().max.y * instance.transform.scale, kFallbackSphereRadius, 1e-6f);
 }
@@ -249,8 +238,7 @@ TEST(SceneMeshes, ASourceOutsideTheManifestIsAFileBesideTheScene) {
 }
 
 TEST(SceneMeshes, LoadsAnAssetThroughTheResolver) {
-  auto loaded = loadSceneMesh(MeshInstance{"teapot", "meshes/teapot.obj", "", {}},
-                              testing::sharedResolver());
+  auto loaded = loadSceneMesh(MeshInstance{"teapot", "meshes/teapot.obj", "", {}}, testing::sharedResolver());
   ASSERT_TRUE(loaded.has_value()) << loaded.error().message;
   if (loaded->procedural) MANE_SKIP_FOR_MISSING_ASSET(loaded->note);
   EXPECT_EQ(loaded->mesh.triangleCount(), 6320u);

@@ -18,8 +18,7 @@ namespace {
 using testing::ScratchDir;
 
 std::string base64(const std::vector<unsigned char>& bytes) {
-  static constexpr char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   for (std::size_t i = 0; i < bytes.size(); i += 3) {
     const std::uint32_t a = bytes[i];
@@ -45,18 +44,15 @@ void put(std::vector<unsigned char>& bytes, std::initializer_list<T> values) {
 }
 
 /// A one-triangle glTF around `buffer`, with the given accessors, views and primitive.
-nlohmann::json document(const std::vector<unsigned char>& buffer, nlohmann::json views,
-                        nlohmann::json accessors, nlohmann::json primitive,
-                        nlohmann::json nodes = nlohmann::json::array({{{"mesh", 0}}})) {
+nlohmann::json document(const std::vector<unsigned char>& buffer, nlohmann::json views, nlohmann::json accessors,
+                        nlohmann::json primitive, nlohmann::json nodes = nlohmann::json::array({{{"mesh", 0}}})) {
   return {
       {"asset", {{"version", "2.0"}}},
       {"scene", 0},
       {"scenes", {{{"nodes", {0}}}}},
       {"nodes", nodes},
       {"meshes", {{{"primitives", {primitive}}}}},
-      {"buffers",
-       {{{"byteLength", buffer.size()},
-         {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
+      {"buffers", {{{"byteLength", buffer.size()}, {"uri", "data:application/octet-stream;base64," + base64(buffer)}}}},
       {"bufferViews", views},
       {"accessors", accessors},
   };
@@ -72,16 +68,19 @@ TEST(GltfLoader, ReadsInterleavedAttributesWithUnsignedByteIndices) {
     put<float>(buffer, {0, 0, 1});
   }
   put<std::uint8_t>(buffer, {0, 1, 2, 0});  // padded to 4
-  const auto gltf = document(
-      buffer,
-      {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 72}, {"byteStride", 24}},
-       {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 3}}},
-      {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
-        {"min", {0, 0, 0}}, {"max", {1, 1, 0}}},
-       {{"bufferView", 0}, {"byteOffset", 12}, {"componentType", 5126}, {"count", 3},
-        {"type", "VEC3"}},
-       {{"bufferView", 1}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}}},
-      {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}});
+  const auto gltf =
+      document(buffer,
+               {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 72}, {"byteStride", 24}},
+                {{"buffer", 0}, {"byteOffset", 72}, {"byteLength", 3}}},
+               {{{"bufferView", 0},
+                 {"componentType", 5126},
+                 {"count", 3},
+                 {"type", "VEC3"},
+                 {"min", {0, 0, 0}},
+                 {"max", {1, 1, 0}}},
+                {{"bufferView", 0}, {"byteOffset", 12}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+                {{"bufferView", 1}, {"componentType", 5121}, {"count", 3}, {"type", "SCALAR"}}},
+               {{"attributes", {{"POSITION", 0}, {"NORMAL", 1}}}, {"indices", 2}});
   ScratchDir dir;
   auto mesh = loadGltf(dir.write("interleaved.gltf", gltf.dump()));
   ASSERT_TRUE(mesh.has_value()) << mesh.error().message;
@@ -95,20 +94,21 @@ TEST(GltfLoader, AppliesSparseValuesOverAnAccessorWithoutBufferView) {
   // POSITION has no buffer view (all zeros) and sparse entries for vertices 1 and 2;
   // unsigned-int indices; no normals, so they are computed: +Z for this winding.
   std::vector<unsigned char> buffer;
-  put<std::uint32_t>(buffer, {0, 1, 2});        // indices, 12 bytes
-  put<std::uint16_t>(buffer, {1, 2});           // sparse indices, 4 bytes
-  put<float>(buffer, {1, 0, 0, 0, 1, 0});       // sparse values, 24 bytes
+  put<std::uint32_t>(buffer, {0, 1, 2});   // indices, 12 bytes
+  put<std::uint16_t>(buffer, {1, 2});      // sparse indices, 4 bytes
+  put<float>(buffer, {1, 0, 0, 0, 1, 0});  // sparse values, 24 bytes
   const auto gltf = document(
       buffer,
       {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 12}},
        {{"buffer", 0}, {"byteOffset", 12}, {"byteLength", 4}},
        {{"buffer", 0}, {"byteOffset", 16}, {"byteLength", 24}}},
-      {{{"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"min", {0, 0, 0}},
+      {{{"componentType", 5126},
+        {"count", 3},
+        {"type", "VEC3"},
+        {"min", {0, 0, 0}},
         {"max", {1, 1, 0}},
         {"sparse",
-         {{"count", 2},
-          {"indices", {{"bufferView", 1}, {"componentType", 5123}}},
-          {"values", {{"bufferView", 2}}}}}},
+         {{"count", 2}, {"indices", {{"bufferView", 1}, {"componentType", 5123}}}, {"values", {{"bufferView", 2}}}}}},
        {{"bufferView", 0}, {"componentType", 5125}, {"count", 3}, {"type", "SCALAR"}}},
       {{"attributes", {{"POSITION", 0}}}, {"indices", 1}});
   ScratchDir dir;
@@ -127,19 +127,22 @@ Result<Mesh> loadTriangleUnder(const ScratchDir& dir, nlohmann::json nodes, int 
   for (float f : kTriangle) put<float>(buffer, {f});
   auto primitive = nlohmann::json{{"attributes", {{"POSITION", 0}}}};
   if (mode != 4) primitive["mode"] = mode;
-  const auto gltf = document(
-      buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-      {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
-        {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}},
-      primitive, nodes);
+  const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
+                             {{{"bufferView", 0},
+                               {"componentType", 5126},
+                               {"count", 3},
+                               {"type", "VEC3"},
+                               {"min", {0, 0, 0}},
+                               {"max", {1, 1, 0}}}},
+                             primitive, nodes);
   return loadGltf(dir.write("triangle.gltf", gltf.dump()));
 }
 
 TEST(GltfLoader, ComposesNodeTransformsParentFirst) {
   // Parent translates by (10, 0, 0); child scales by 2: (1,0,0) → (12, 0, 0).
   ScratchDir dir;
-  auto mesh = loadTriangleUnder(dir, {{{"translation", {10, 0, 0}}, {"children", {1}}},
-                                      {{"mesh", 0}, {"scale", {2, 2, 2}}}});
+  auto mesh =
+      loadTriangleUnder(dir, {{{"translation", {10, 0, 0}}, {"children", {1}}}, {{"mesh", 0}, {"scale", {2, 2, 2}}}});
   ASSERT_TRUE(mesh.has_value()) << mesh.error().message;
   EXPECT_EQ(mesh->positions[1], glm::vec3(12, 0, 0));
   EXPECT_EQ(mesh->positions[2], glm::vec3(10, 2, 0));
@@ -175,11 +178,14 @@ TEST(GltfLoader, RejectsTriangleStripsToo) {
 TEST(GltfLoader, MissingAccessorIsNamed) {
   std::vector<unsigned char> buffer;
   for (float f : kTriangle) put<float>(buffer, {f});
-  const auto gltf = document(
-      buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-      {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"},
-        {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}},
-      {{"attributes", {{"POSITION", 0}, {"NORMAL", 7}}}});
+  const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
+                             {{{"bufferView", 0},
+                               {"componentType", 5126},
+                               {"count", 3},
+                               {"type", "VEC3"},
+                               {"min", {0, 0, 0}},
+                               {"max", {1, 1, 0}}}},
+                             {{"attributes", {{"POSITION", 0}, {"NORMAL", 7}}}});
   ScratchDir dir;
   auto mesh = loadGltf(dir.write("missing.gltf", gltf.dump()));
   ASSERT_FALSE(mesh.has_value());
@@ -192,17 +198,19 @@ TEST(GltfLoader, MissingAccessorIsNamed) {
 TEST(GltfLoader, AccessorPastTheEndOfItsViewIsAnError) {
   std::vector<unsigned char> buffer;
   for (float f : kTriangle) put<float>(buffer, {f});
-  const auto gltf = document(
-      buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-      {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
-        {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}},
-      {{"attributes", {{"POSITION", 0}}}});
+  const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
+                             {{{"bufferView", 0},
+                               {"componentType", 5126},
+                               {"count", 4},
+                               {"type", "VEC3"},
+                               {"min", {0, 0, 0}},
+                               {"max", {1, 1, 0}}}},
+                             {{"attributes", {{"POSITION", 0}}}});
   ScratchDir dir;
   auto mesh = loadGltf(dir.write("short.gltf", gltf.dump()));
   ASSERT_FALSE(mesh.has_value());
   EXPECT_NE(mesh.error().message.find("short.gltf"), std::string::npos);
-  EXPECT_NE(mesh.error().message.find("buffer view 0"), std::string::npos)
-      << mesh.error().message;
+  EXPECT_NE(mesh.error().message.find("buffer view 0"), std::string::npos) << mesh.error().message;
 }
 
 // A count whose byte size wraps around 2^64 (2^62 × 12 bytes = 0 mod 2^64) or merely exceeds
@@ -211,11 +219,14 @@ TEST(GltfLoader, HostileAccessorCountsAreRefusedBeforeAllocating) {
   std::vector<unsigned char> buffer;
   for (float f : kTriangle) put<float>(buffer, {f});
   for (const std::uint64_t count : {std::uint64_t(1) << 62, std::uint64_t(1) << 40, std::uint64_t(1) << 26}) {
-    const auto gltf = document(
-        buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-        {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"},
-          {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}},
-        {{"attributes", {{"POSITION", 0}}}});
+    const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
+                               {{{"bufferView", 0},
+                                 {"componentType", 5126},
+                                 {"count", count},
+                                 {"type", "VEC3"},
+                                 {"min", {0, 0, 0}},
+                                 {"max", {1, 1, 0}}}},
+                               {{"attributes", {{"POSITION", 0}}}});
     ScratchDir dir;
     auto mesh = loadGltf(dir.write("huge.gltf", gltf.dump()));
     ASSERT_FALSE(mesh.has_value()) << count;
@@ -251,8 +262,7 @@ TEST(GltfLoader, BadJsonNamesTheFile) {
   auto mesh = loadGltf(dir.write("bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [ }"));
   ASSERT_FALSE(mesh.has_value());
   EXPECT_NE(mesh.error().message.find("bad.gltf"), std::string::npos);
-  EXPECT_NE(mesh.error().message.find("not a valid glTF"), std::string::npos)
-      << mesh.error().message;
+  EXPECT_NE(mesh.error().message.find("not a valid glTF"), std::string::npos) << mesh.error().message;
 }
 
 TEST(GltfLoader, MissingExternalBufferIsAnError) {

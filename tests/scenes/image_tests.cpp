@@ -15,12 +15,10 @@ TEST(Image, LoadsPngAndJpegAssetsAtTheirReadmeSizes) {
     int width;
     int height;
   };
-  for (const Case& c : {Case{"fur/chelsea_cat_CC0.png", 451, 300},
-                        Case{"fur/grass_CC0.png", 512, 512},
-                        Case{"fur/chelsea_forehead_fur_crop_110x80.png", 110, 80},
-                        Case{"head/LeePerrySmith/Map-COL.jpg", 1024, 1024},
-                        Case{"head/LeePerrySmith/Infinite-Level_02_Tangent_SmoothUV.jpg", 1024,
-                             1024}}) {
+  for (const Case& c :
+       {Case{"fur/chelsea_cat_CC0.png", 451, 300}, Case{"fur/grass_CC0.png", 512, 512},
+        Case{"fur/chelsea_forehead_fur_crop_110x80.png", 110, 80}, Case{"head/LeePerrySmith/Map-COL.jpg", 1024, 1024},
+        Case{"head/LeePerrySmith/Infinite-Level_02_Tangent_SmoothUV.jpg", 1024, 1024}}) {
     SCOPED_TRACE(c.name);
     MANE_RESOLVE_OR_SKIP(file, c.name);
     auto image = loadImage(file);
@@ -49,8 +47,7 @@ TEST(Image, CorruptFileGivesStbReasonAndFileName) {
   EXPECT_NE(image.error().message.find("fake.png"), std::string::npos);
   EXPECT_NE(image.error().message.find("cannot decode image: "), std::string::npos);
   // stb's reason follows the colon; whatever its wording, it is not empty.
-  EXPECT_GT(image.error().message.size(),
-            image.error().message.find("cannot decode image: ") + 21);
+  EXPECT_GT(image.error().message.size(), image.error().message.find("cannot decode image: ") + 21);
 }
 
 // Found by tests/fuzz/fuzz_image: stb_image decodes this PNM header as 2 x 0 pixels and
@@ -60,8 +57,7 @@ TEST(Image, HeaderWithAZeroDimensionIsAnError) {
   const std::string bytes("P6\n2\x9d\x03\x03\x04\x0b\x06\x07\x08\x09\x0a\x0b", 15);
   auto image = loadImage(dir.write("zero.ppm", bytes));
   ASSERT_FALSE(image.has_value());
-  EXPECT_NE(image.error().message.find("zero.ppm: cannot decode image: it has no pixels"),
-            std::string::npos)
+  EXPECT_NE(image.error().message.find("zero.ppm: cannot decode image: it has no pixels"), std::string::npos)
       << image.error().message;
 }
 
@@ -93,10 +89,9 @@ TEST(Image, HugeDeclaredSizeIsRefusedBeforeDecoding) {
   gif += std::string(",\x00\x00\x00\x00\x02\x00\x02\x00\x00\x02\x02\x4c\x01\x00;", 16);
   auto image = loadImage(dir.write("huge.gif", gif));
   ASSERT_FALSE(image.has_value());
-  EXPECT_EQ(image.error().message,
-            (dir.path() / "huge.gif").string() +
-                ": image too large: 20050 x 18261 pixels (at most 16384 on a side and "
-                "67108864 in all)");
+  EXPECT_EQ(image.error().message, (dir.path() / "huge.gif").string() +
+                                       ": image too large: 20050 x 18261 pixels (at most 16384 on a side and "
+                                       "67108864 in all)");
 }
 
 TEST(Image, NonExistentFile) {

@@ -62,25 +62,21 @@ glm::mat4 nodeMatrix(const nlohmann::json& node) {
   return t;
 }
 
-void expectNode(const nlohmann::json& gltf, int index, const glm::mat4& parent,
-                GltfExpectation& out) {
+void expectNode(const nlohmann::json& gltf, int index, const glm::mat4& parent, GltfExpectation& out) {
   const auto& node = gltf["nodes"][static_cast<std::size_t>(index)];
   const glm::mat4 world = parent * nodeMatrix(node);
   if (node.contains("mesh")) {
     for (const auto& primitive : gltf["meshes"][node["mesh"].get<std::size_t>()]["primitives"]) {
-      const auto& position =
-          gltf["accessors"][primitive["attributes"]["POSITION"].get<std::size_t>()];
+      const auto& position = gltf["accessors"][primitive["attributes"]["POSITION"].get<std::size_t>()];
       const std::size_t count = position["count"].get<std::size_t>();
       out.vertices += count;
       out.triangles += primitive.contains("indices")
-                           ? gltf["accessors"][primitive["indices"].get<std::size_t>()]["count"]
-                                     .get<std::size_t>() / 3
+                           ? gltf["accessors"][primitive["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3
                            : count / 3;
       const auto lo = position["min"].get<std::vector<float>>();
       const auto hi = position["max"].get<std::vector<float>>();
       for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1],
-                          (corner & 4) ? hi[2] : lo[2]);
+        const glm::vec3 p((corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 4) ? hi[2] : lo[2]);
         const glm::vec3 w = glm::vec3(world * glm::vec4(p, 1.0f));
         out.bounds.min = glm::min(out.bounds.min, w);
         out.bounds.max = glm::max(out.bounds.max, w);
@@ -123,8 +119,7 @@ TEST(GltfAssets, ManifestListsEveryGltfFileInTheSharedFolder) {
     const std::string ext = item.path().extension().string();
     if (ext != ".gltf" && ext != ".glb") continue;
     ++seen;
-    EXPECT_TRUE(listed.contains(item.path().lexically_relative(root).generic_string()))
-        << item.path();
+    EXPECT_TRUE(listed.contains(item.path().lexically_relative(root).generic_string())) << item.path();
   }
   EXPECT_EQ(seen, listed.size());
   EXPECT_GE(seen, 8u);  // 6 samples under gltf/, LeePerrySmith, the converted ponytail head
@@ -234,8 +229,7 @@ TEST(ObjAssets, BunnyAndTeapotMatchTheReadme) {
     std::size_t vertices;
     std::size_t triangles;
   };
-  for (const Case& c : {Case{"meshes/stanford-bunny.obj", 35947, 69451},
-                        Case{"meshes/teapot.obj", 3644, 6320}}) {
+  for (const Case& c : {Case{"meshes/stanford-bunny.obj", 35947, 69451}, Case{"meshes/teapot.obj", 3644, 6320}}) {
     SCOPED_TRACE(c.name);
     MANE_RESOLVE_OR_SKIP(file, c.name);
     auto mesh = loadMesh(file);

@@ -36,8 +36,7 @@ TEST(ObjLoader, SplitsVerticesOnlyWhereTheUvDiffers) {
 
 TEST(ObjLoader, KeepsFileNormalsWhenEveryCornerHasOne) {
   ScratchDir dir;
-  auto mesh = loadObj(dir.write("normals.obj",
-                                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -1\nf 1//1 2//1 3//1\n"));
+  auto mesh = loadObj(dir.write("normals.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -1\nf 1//1 2//1 3//1\n"));
   ASSERT_TRUE(mesh.has_value()) << mesh.error().message;
   EXPECT_EQ(mesh->normals[0], glm::vec3(0, 0, -1));  // the file's, not the computed +Z
 }

@@ -61,8 +61,7 @@ TEST(Scene, NaluLoadsWithTheLeePerrySmithHeadAndItsMaps) {
   EXPECT_EQ(scene->grooms[0].attachedMesh, "head");
   // Every asset the scene names is in the manifest.
   const AssetResolver resolver = testing::sharedResolver();
-  for (const std::string& name : {head->source, skin->albedoTexture, skin->normalMap,
-                                  skin->specularMap}) {
+  for (const std::string& name : {head->source, skin->albedoTexture, skin->normalMap, skin->specularMap}) {
     EXPECT_NE(resolver.find(name), nullptr) << name;
   }
 }
@@ -76,9 +75,8 @@ TEST(Scene, NaluCameraFramesTheWholeHead) {
   if (loaded->procedural) MANE_SKIP_FOR_MISSING_ASSET(loaded->note);
   const Camera& c = scene->camera;
   const glm::mat4 viewProjection =
-      glm::perspective(glm::radians(c.verticalFovDegrees),
-                       float(scene->output.width) / float(scene->output.height), c.nearPlane,
-                       c.farPlane) *
+      glm::perspective(glm::radians(c.verticalFovDegrees), float(scene->output.width) / float(scene->output.height),
+                       c.nearPlane, c.farPlane) *
       glm::lookAt(c.position, c.target, c.up);
   const glm::mat4 model = head.transform.matrix();
   glm::vec2 lo(1e9f);
@@ -130,8 +128,7 @@ TEST(Scene, WrongTypeNamesTheFieldPathAndTheExpectation) {
     "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
     "lights": [{"kind": "directional", "direction": [0, -1, 0]},
                {"kind": "directional", "direction": "down"}]})");
-  EXPECT_EQ(message,
-            "dir/bad.json: lights[1].direction: expected an array of 3 numbers, got a string");
+  EXPECT_EQ(message, "dir/bad.json: lights[1].direction: expected an array of 3 numbers, got a string");
   EXPECT_EQ(errorOf(R"({"name": "x", "output": {"width": 12.5},
                         "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}})"),
             "dir/bad.json: output.width: expected an integer, got a fraction");
@@ -200,8 +197,7 @@ TEST(Scene, NumberBeyondFloatRangeIsRejectedNotMadeInfinite) {
 TEST(Scene, NonExistentFile) {
   auto scene = loadScene("/nonexistent/mane/scene.json");
   ASSERT_FALSE(scene.has_value());
-  EXPECT_NE(scene.error().message.find("/nonexistent/mane/scene.json: cannot open"),
-            std::string::npos);
+  EXPECT_NE(scene.error().message.find("/nonexistent/mane/scene.json: cannot open"), std::string::npos);
 }
 
 TEST(Transform, AppliesScaleThenRotationXyzThenTranslation) {
@@ -239,8 +235,7 @@ TEST(HeadMotion, KeyframesInterpolateLinearlyAndHoldAtTheEnds) {
   EXPECT_EQ(motion.poseAt(0.0f).rotationDegrees.y, 0.0f);
   EXPECT_EQ(motion.poseAt(9.0f).rotationDegrees.y, 40.0f);
   // The animated matrix of the head includes the pose; other meshes are unaffected.
-  const glm::vec3 moved = glm::vec3(animatedMatrix(*scene, scene->meshes[0], 9.0f) *
-                                    glm::vec4(0, 0, 0, 1));
+  const glm::vec3 moved = glm::vec3(animatedMatrix(*scene, scene->meshes[0], 9.0f) * glm::vec4(0, 0, 0, 1));
   EXPECT_NEAR(moved.y, 0.2f, 1e-6f);
   EXPECT_NE(errorOf(R"({"name": "k", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
       "meshes": [{"name": "head", "source": "procedural:sphere"}],

@@ -16,11 +16,11 @@ namespace mane::scenes::testing {
 
 /// A fresh directory under the system temp folder, removed when the object dies.
 class ScratchDir {
- public:
+public:
   ScratchDir() {
     std::random_device seed;
-    path_ = std::filesystem::temp_directory_path() /
-            ("mane-scene-test-" + std::to_string(seed()) + std::to_string(seed()));
+    path_ =
+        std::filesystem::temp_directory_path() / ("mane-scene-test-" + std::to_string(seed()) + std::to_string(seed()));
     std::filesystem::create_directories(path_);
   }
   ~ScratchDir() {
@@ -40,7 +40,7 @@ class ScratchDir {
     return file;
   }
 
- private:
+private:
   std::filesystem::path path_;
 };
 
@@ -67,20 +67,20 @@ inline bool assetsRequired() {
 }
 
 /// Skips the test with `reason`, or fails it when assets are required.
-#define MANE_SKIP_FOR_MISSING_ASSET(reason)                                  \
-  do {                                                                       \
-    if (::mane::scenes::testing::assetsRequired()) FAIL() << (reason);       \
-    GTEST_SKIP() << (reason);                                                \
+#define MANE_SKIP_FOR_MISSING_ASSET(reason)                            \
+  do {                                                                 \
+    if (::mane::scenes::testing::assetsRequired()) FAIL() << (reason); \
+    GTEST_SKIP() << (reason);                                          \
   } while (false)
 
 /// Resolves a shared asset, or skips the test when the assets are not on this machine.
-#define MANE_RESOLVE_OR_SKIP(var, name)                                      \
-  std::filesystem::path var;                                                 \
-  {                                                                          \
-    auto found_ = ::mane::scenes::testing::sharedResolver().lookup(name);    \
-    ASSERT_TRUE(found_.has_value()) << found_.error().message;               \
-    if (!found_->path) MANE_SKIP_FOR_MISSING_ASSET(found_->missingReason);   \
-    var = *found_->path;                                                     \
+#define MANE_RESOLVE_OR_SKIP(var, name)                                    \
+  std::filesystem::path var;                                               \
+  {                                                                        \
+    auto found_ = ::mane::scenes::testing::sharedResolver().lookup(name);  \
+    ASSERT_TRUE(found_.has_value()) << found_.error().message;             \
+    if (!found_->path) MANE_SKIP_FOR_MISSING_ASSET(found_->missingReason); \
+    var = *found_->path;                                                   \
   }
 
 }  // namespace mane::scenes::testing

@@ -22,7 +22,8 @@ Comparison compareImages(const ImageView& actual, const ImageView& expected, con
   for (std::size_t pixel = 0; pixel < result.totalPixels; ++pixel) {
     int largest = 0;
     for (int channel = 0; channel < 4; ++channel)
-      largest = std::max(largest, std::abs(int(actual.rgba[pixel * 4 + channel]) - int(expected.rgba[pixel * 4 + channel])));
+      largest =
+          std::max(largest, std::abs(int(actual.rgba[pixel * 4 + channel]) - int(expected.rgba[pixel * 4 + channel])));
     result.largestDifference = std::max(result.largestDifference, largest);
     const bool fails = largest > tolerance.maxChannelDifference;
     result.failingPixels += fails;
@@ -36,8 +37,8 @@ Comparison compareImages(const ImageView& actual, const ImageView& expected, con
   result.passed = fraction <= tolerance.maxFailingFraction;
   if (!result.passed) {
     result.message = std::to_string(result.failingPixels) + " of " + std::to_string(result.totalPixels) +
-                     " pixels differ by more than " + std::to_string(tolerance.maxChannelDifference) +
-                     " (largest " + std::to_string(result.largestDifference) + ")";
+                     " pixels differ by more than " + std::to_string(tolerance.maxChannelDifference) + " (largest " +
+                     std::to_string(result.largestDifference) + ")";
     if (render::writePng(diffPath, actual.width, actual.height, diff)) result.message += "; diff: " + diffPath.string();
   }
   return result;

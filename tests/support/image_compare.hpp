@@ -20,7 +20,7 @@ struct ImageView {
 };
 
 struct Tolerance {
-  int maxChannelDifference = 8;     ///< in 8-bit steps
+  int maxChannelDifference = 8;      ///< in 8-bit steps
   double maxFailingFraction = 0.01;  ///< of all pixels
 };
 

@@ -53,8 +53,8 @@ TEST_F(NaluHead, RendersTheLitTexturedHead) {
   EXPECT_LT(coverage, 0.90) << "the background should still show";
   EXPECT_GT(double(skinLike) / double(head), 0.5) << "lit skin is red > green > blue";
 
-  const auto comparison = testing::compareWithGolden(
-      "nalu_head", {kWidth, kHeight, *pixels}, {.maxChannelDifference = 6, .maxFailingFraction = 0.005});
+  const auto comparison = testing::compareWithGolden("nalu_head", {kWidth, kHeight, *pixels},
+                                                     {.maxChannelDifference = 6, .maxFailingFraction = 0.005});
   EXPECT_TRUE(comparison.passed) << comparison.message;
 }
 
