@@ -69,6 +69,76 @@ Result<void> validateStrand(std::size_t s, std::span<const glm::vec3> points) {
   return {};
 }
 
+// Quaternions as (x, y, z, w). Only + − × ÷ and sqrt: no libm trigonometry in the step.
+float dot4(const glm::vec4& a, const glm::vec4& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z + a.w * b.w;
+}
+
+glm::vec4 normalized(const glm::vec4& q) {
+  const float n = std::sqrt(dot4(q, q));
+  return n > 0.0f ? q / n : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+}
+
+// Rotation of a rigid transform as a unit quaternion (Shoemake 1985, "Animating Rotation with
+// Quaternion Curves", the largest-diagonal branch for accuracy). Columns are normalised first so
+// that a uniform scale does not leak in.
+glm::vec4 rotationOf(const glm::mat4& transform) {
+  glm::vec3 c[3];
+  for (int i = 0; i < 3; ++i) {
+    c[i] = glm::vec3(transform[i]);
+    const float n = std::sqrt(c[i].x * c[i].x + c[i].y * c[i].y + c[i].z * c[i].z);
+    if (n > 0.0f) c[i] /= n;
+  }
+  // mRC: row R, column C.
+  const float m00 = c[0].x, m10 = c[0].y, m20 = c[0].z, m01 = c[1].x, m11 = c[1].y, m21 = c[1].z;
+  const float m02 = c[2].x, m12 = c[2].y, m22 = c[2].z;
+  const float trace = m00 + m11 + m22;
+  glm::vec4 q;
+  if (trace > 0.0f) {
+    const float s = std::sqrt(trace + 1.0f) * 2.0f;
+    q = {(m21 - m12) / s, (m02 - m20) / s, (m10 - m01) / s, 0.25f * s};
+  } else if (m00 > m11 && m00 > m22) {
+    const float s = std::sqrt(1.0f + m00 - m11 - m22) * 2.0f;
+    q = {0.25f * s, (m01 + m10) / s, (m02 + m20) / s, (m21 - m12) / s};
+  } else if (m11 > m22) {
+    const float s = std::sqrt(1.0f + m11 - m00 - m22) * 2.0f;
+    q = {(m01 + m10) / s, 0.25f * s, (m12 + m21) / s, (m02 - m20) / s};
+  } else {
+    const float s = std::sqrt(1.0f + m22 - m00 - m11) * 2.0f;
+    q = {(m02 + m20) / s, (m12 + m21) / s, 0.25f * s, (m10 - m01) / s};
+  }
+  return normalized(q);
+}
+
+// Hamilton product a ⊗ b (apply b, then a).
+glm::vec4 multiply(const glm::vec4& a, const glm::vec4& b) {
+  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
+
+glm::vec3 cross(const glm::vec3& a, const glm::vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// v rotated by unit quaternion q: v + w·t + u × t with t = 2·(u × v).
+glm::vec3 rotate(const glm::vec4& q, const glm::vec3& v) {
+  const glm::vec3 u(q.x, q.y, q.z);
+  const glm::vec3 t = cross(u, v) * 2.0f;
+  return v + t * q.w + cross(u, t);
+}
+
+// The shortest-arc rotation taking direction a onto direction b, as a unit quaternion
+// (|a||b| + a·b, a × b) normalised; identity when a and b are opposite or zero (no unique arc).
+glm::vec4 shortestArc(const glm::vec3& a, const glm::vec3& b) {
+  const float aa = a.x * a.x + a.y * a.y + a.z * a.z, bb = b.x * b.x + b.y * b.y + b.z * b.z;
+  const glm::vec3 axis = cross(a, b);
+  const float w = std::sqrt(aa * bb) + (a.x * b.x + a.y * b.y + a.z * b.z);
+  const float n2 = w * w + axis.x * axis.x + axis.y * axis.y + axis.z * axis.z;
+  if (!(n2 > 1e-12f * aa * bb)) return {0.0f, 0.0f, 0.0f, 1.0f};
+  const float inverse = 1.0f / std::sqrt(n2);
+  return {axis.x * inverse, axis.y * inverse, axis.z * inverse, w * inverse};
+}
+
 }  // namespace
 
 HairSystem::HairSystem(const SolverSettings& settings)
@@ -139,6 +209,31 @@ Result<void> HairSystem::setHeadTransform(const glm::mat4& headTransform) {
   return {};
 }
 
+Result<void> HairSystem::setColliders(ColliderSet colliders) {
+  if (auto valid = validateColliders(colliders); !valid)
+    return std::unexpected(Error{"Hair system: " + valid.error().message});
+  colliderBounds_ = boundingSphere(colliders);
+  colliders_ = std::move(colliders);
+  return {};
+}
+
+void HairSystem::planPoses(const StepPlan& plan) {
+  const glm::vec4 from = rotationOf(previousHead_);
+  glm::vec4 to = rotationOf(head_);
+  if (dot4(from, to) < 0.0f) to = -to;  // the shorter way round
+  const glm::vec3 start(previousHead_[3]), travel = glm::vec3(head_[3]) - start;
+  poses_.resize(static_cast<std::size_t>(plan.substeps) + 1);
+  for (int k = 0; k <= plan.substeps; ++k) {
+    const float f = k == 0 ? 0.0f : plan.fractionAt(k);
+    HeadPose& pose = poses_[static_cast<std::size_t>(k)];
+    pose.rotation = normalized(from * (1.0f - f) + to * f);
+    pose.axes[0] = rotate(pose.rotation, {1.0f, 0.0f, 0.0f});
+    pose.axes[1] = rotate(pose.rotation, {0.0f, 1.0f, 0.0f});
+    pose.axes[2] = rotate(pose.rotation, {0.0f, 0.0f, 1.0f});
+    pose.translation = start + travel * f;  // as the roots move
+  }
+}
+
 Result<void> HairSystem::teleport(const glm::mat4& headTransform) {
   if (auto valid = checkTransform(headTransform, "the teleport transform"); !valid) return valid;
   placeAtRest(headTransform);
@@ -177,6 +272,7 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
 
   const StepPlan plan = accumulator_.plan(frameDt);
   if (plan.substeps > 0) {
+    if (!colliders_.empty() || settings_.shapeStiffness > 0.0f) planPoses(plan);
     // A fixed partition into contiguous ranges of whole strands. Each strand's arithmetic is the
     // same whichever worker runs it, so the partition affects speed only, never the result.
     const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
@@ -225,6 +321,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
     const float* w;
     const float* segment;
     const float* reach;
+    const glm::vec3* rest;  // head-local rest positions
     std::size_t count;
     glm::vec3 rootFrom;
     glm::vec3 rootTravel;
@@ -241,6 +338,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
                    particles_.inverseMasses.data() + first,
                    segmentLengths_.data() + first,
                    restDistances_.data() + first,
+                   restLocal_.data() + first,
                    strand.particleCount,
                    rootFrom,
                    transformPoint(head_, strand.rootLocal) - rootFrom,
@@ -251,6 +349,40 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
   const float keep = 1.0f - settings_.damping;
   const glm::vec3 kick = settings_.gravity * (step * step);
   const std::uint64_t stepsBefore = accumulator_.stepsTaken() - static_cast<std::uint64_t>(plan.substeps);
+  const float stiffness = settings_.shapeStiffness;
+  const bool collide = !colliders_.empty();
+  const bool clampSpeed = settings_.maxSpeed < std::numeric_limits<float>::infinity();
+  const float maxDisplacement = settings_.maxSpeed * step;
+
+  // Collisions in head-local space, where the colliders are fixed: x_local = Rᵀ(x − t) with
+  // step k's pose, the previous position with step k − 1's, so friction acts on the motion
+  // relative to the head (colliders.hpp).
+  const auto collideLanes = [&](int k, float friction) {
+    const HeadPose& pose = poses_[static_cast<std::size_t>(k)];
+    const HeadPose& before = poses_[static_cast<std::size_t>(k - 1)];
+    const glm::vec3 centre = pose.axes[0] * colliderBounds_.centre.x + pose.axes[1] * colliderBounds_.centre.y +
+                             pose.axes[2] * colliderBounds_.centre.z + pose.translation;
+    const float reachSquared = colliderBounds_.radius * colliderBounds_.radius;
+    const auto toLocal = [](const HeadPose& p, const glm::vec3& world) {
+      const glm::vec3 d = world - p.translation;
+      return glm::vec3(p.axes[0].x * d.x + p.axes[0].y * d.y + p.axes[0].z * d.z,
+                       p.axes[1].x * d.x + p.axes[1].y * d.y + p.axes[1].z * d.z,
+                       p.axes[2].x * d.x + p.axes[2].y * d.y + p.axes[2].z * d.z);
+    };
+    for (std::size_t b = 0; b < lanes; ++b) {
+      const Lane& l = lane[b];
+      if (!l.active) continue;
+      for (std::size_t i = 1; i < l.count; ++i) {
+        if (l.w[i] <= 0.0f) continue;
+        const glm::vec3 offset = l.x[i] - centre;
+        if (offset.x * offset.x + offset.y * offset.y + offset.z * offset.z > reachSquared) continue;
+        glm::vec3 local = toLocal(pose, l.x[i]);
+        const glm::vec3 previousLocal = friction > 0.0f ? toLocal(before, l.previous[i]) : local;
+        if (collideParticle(colliders_, local, previousLocal, friction))
+          l.x[i] = pose.axes[0] * local.x + pose.axes[1] * local.y + pose.axes[2] * local.z + pose.translation;
+      }
+    }
+  };
 
   for (int k = 1; k <= plan.substeps; ++k) {
     const float fraction = plan.fractionAt(k);
@@ -270,7 +402,35 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
       }
     }
 
+    // Contacts of the predicted positions, with friction (Macklin et al. 2014, §6.1), before the
+    // constraints so that the strand's constraints see the contact.
+    if (collide) collideLanes(k, colliders_.friction);
+
     for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
+      // Local shape constraints (Han & Harada 2012, "Real-time Hair Simulation with Efficient
+      // Hair Style Preservation", VRIPHYS, §4.2; TressFX's LocalShapeConstraints): a frame is
+      // carried from the root (the head's orientation) to the tip; particle i is pulled towards
+      // x[i−1] + F·(rest[i] − rest[i−1]), F the frame of its parent segment, by `stiffness` of
+      // the gap. Only the child moves, as in follow-the-leader (Müller, Kim & Chentanez 2012,
+      // "Fast Simulation of Inextensible Hair and Fur", §4): the parent is already placed by this
+      // sweep, so stiffness 1 holds the strand rigid in the head's frame and the error cannot
+      // flow back towards the root. F then turns by the shortest arc from the rest segment it
+      // predicted onto the segment as it now is, so the frames follow the strand without twist.
+      // The frames follow the deformation (a follower load), so the constraint is not
+      // conservative: measured on curly grooms, stiffness ≥ 0.4 settles to the rest shape, while
+      // 0.05–0.2 can flutter away from it even with strong damping (SolverSettings notes this).
+      if (stiffness > 0.0f) {
+        glm::vec4 frame[kStrandLanes];
+        for (std::size_t b = 0; b < lanes; ++b) frame[b] = poses_[static_cast<std::size_t>(k)].rotation;
+        for (std::size_t i = 1; i < longest; ++i)
+          for (std::size_t b = 0; b < lanes; ++b) {
+            const Lane& l = lane[b];
+            if (!l.active || i >= l.count) continue;
+            const glm::vec3 restSegment = rotate(frame[b], l.rest[i] - l.rest[i - 1]);
+            if (l.w[i] > 0.0f) l.x[i] += (l.x[i - 1] + restSegment - l.x[i]) * stiffness;
+            frame[b] = multiply(shortestArc(restSegment, l.x[i] - l.x[i - 1]), frame[b]);
+          }
+      }
       // Root to tip: the root's position reaches the tip within one sweep (Jakobsen 2001, §3).
       for (std::size_t i = 1; i < longest; ++i)
         for (std::size_t b = 0; b < lanes; ++b) {
@@ -286,6 +446,17 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
             if (l.active && i < l.count) projectTether(l.x[i], l.x[0], l.reach[i]);
           }
     }
+
+    // Final collision pass, frictionless: whatever the constraints pushed into a collider
+    // comes out, so no particle ends the step inside one.
+    if (collide) collideLanes(k, 0.0f);
+
+    if (clampSpeed)
+      for (std::size_t b = 0; b < lanes; ++b) {
+        if (!lane[b].active) continue;
+        for (std::size_t i = 1; i < lane[b].count; ++i)
+          if (lane[b].w[i] > 0.0f) clampDisplacement(lane[b].x[i], lane[b].previous[i], maxDisplacement);
+      }
 
     for (std::size_t b = 0; b < lanes; ++b) {
       if (!lane[b].active) continue;

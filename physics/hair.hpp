@@ -16,8 +16,10 @@
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "common/error.hpp"
+#include "physics/colliders.hpp"
 #include "physics/particles.hpp"
 #include "physics/solver.hpp"
 
@@ -47,8 +49,21 @@ struct SimulationFault {
 /// Per frame: `setHeadTransform` (where the head is at the end of the frame), then `advance`.
 /// Each fixed step inside the frame places the roots on the straight line between their
 /// positions under the previous and the new head transform, at the step's time in the frame.
-/// Within one fixed step each strand runs, in order: root placement, Verlet integration, then
-/// `constraintIterations` sweeps of distance constraints root → tip followed by tethers.
+/// Within one fixed step each strand runs, in order:
+/// 1. root placement and Verlet integration;
+/// 2. collisions of the predicted positions against the colliders (`setColliders`), with
+///    friction (the contact response sees the step's inertial motion);
+/// 3. `constraintIterations` sweeps, each: local shape constraints root → tip (when
+///    `SolverSettings::shapeStiffness` > 0), distance constraints root → tip, then tethers;
+/// 4. collisions again, frictionless, last, so that no particle ends a step inside a collider.
+///    This push may leave a particle beyond its tether by at most what the constraints moved
+///    into the collider in this step (collisions win over the anti-stretch bound);
+/// 5. the velocity clamp (`SolverSettings::maxSpeed`), which only moves previous positions.
+///
+/// The head's pose at each fixed step, used by colliders and shape constraints, is a rigid
+/// interpolation between the frame's start and end transforms (rotation by normalised linear
+/// quaternion interpolation, translation linearly); at the end of the frame it is the new head
+/// transform. Roots themselves move on straight lines, as before.
 class HairSystem {
 public:
   /// Builds the system from guide strands given as points in head-local space (metres), root
@@ -64,6 +79,13 @@ public:
   /// transform is expected; roots are interpolated linearly between frames). Fails, changing
   /// nothing, when an entry is NaN or infinite.
   [[nodiscard]] Result<void> setHeadTransform(const glm::mat4& headTransform);
+
+  /// Sets the shapes every non-root particle collides with, in head-local space (metres): they
+  /// follow the head transform each step. An empty set (the default) disables collisions. Fails,
+  /// changing nothing, when `validateColliders` rejects the set.
+  [[nodiscard]] Result<void> setColliders(ColliderSet colliders);
+  /// The colliders in use (head-local space).
+  [[nodiscard]] const ColliderSet& colliders() const noexcept { return colliders_; }
 
   /// Places every strand in its rest shape under `headTransform`, at rest (zero velocity), and
   /// clears a recorded fault. For cuts and resets; fails when an entry is NaN or infinite.
@@ -107,6 +129,14 @@ private:
   void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
 
+  // The head's rigid pose at one fixed step: world = rotation · local + translation.
+  struct HeadPose {
+    glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // unit quaternion (x, y, z, w)
+    glm::vec3 axes[3];                           // the rotation's matrix columns
+    glm::vec3 translation{0.0f};
+  };
+  void planPoses(const StepPlan& plan);
+
   static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side
   void placeAtRest(const glm::mat4& headTransform);
   [[nodiscard]] Error faultError() const;
@@ -123,6 +153,9 @@ private:
   glm::mat4 previousHead_{1.0f};              // head transform at the end of the last advance
   glm::mat4 head_{1.0f};                      // head transform at the end of the next advance
   std::optional<SimulationFault> fault_;
+  ColliderSet colliders_;          // head-local
+  ColliderBounds colliderBounds_;  // head-local bounding ball of colliders_
+  std::vector<HeadPose> poses_;    // per advance: pose at the end of fixed step k (0: frame start)
 };
 
 }  // namespace mane::physics

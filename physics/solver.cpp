@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace mane::physics {
@@ -34,6 +35,12 @@ Result<void> validateSettings(const SolverSettings& settings) {
   if (settings.maxSubstepsPerFrame < 1)
     return fail("Solver settings: maxSubstepsPerFrame must be at least 1, got " +
                 std::to_string(settings.maxSubstepsPerFrame) + ".");
+  if (!(settings.shapeStiffness >= 0.0f && settings.shapeStiffness <= 1.0f))
+    return fail("Solver settings: shapeStiffness must lie in [0, 1], got " + std::to_string(settings.shapeStiffness) +
+                ".");
+  if (!(settings.maxSpeed > 0.0f))
+    return fail("Solver settings: maxSpeed must be a positive speed in m/s (or +infinity for no clamp), got " +
+                std::to_string(settings.maxSpeed) + ".");
   return {};
 }
 
@@ -97,10 +104,24 @@ Result<Solver> Solver::create(const SolverSettings& settings) {
 void Solver::step() {
   integrateVerlet(particles, 0, particles.size(), settings_.gravity, settings_.damping,
                   static_cast<float>(settings_.fixedStep));
+  if (!colliders.empty())  // contacts of the predicted positions, with friction
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      if (particles.inverseMasses[i] > 0.0f)
+        collideParticle(colliders, particles.positions[i], particles.previousPositions[i]);
   for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
     applyPins(particles, pins);
     solveDistanceConstraints(particles, distances);
     if (settings_.tethers) solveTethers(particles, tethers);
+  }
+  if (!colliders.empty())  // frictionless: what the constraints pushed in comes out
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      if (particles.inverseMasses[i] > 0.0f)
+        collideParticle(colliders, particles.positions[i], particles.previousPositions[i], 0.0f);
+  if (settings_.maxSpeed < std::numeric_limits<float>::infinity()) {
+    const float reach = settings_.maxSpeed * static_cast<float>(settings_.fixedStep);
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      if (particles.inverseMasses[i] > 0.0f)
+        clampDisplacement(particles.positions[i], particles.previousPositions[i], reach);
   }
 }
 

@@ -7,12 +7,15 @@
 // Determinism: results depend only on the settings, the initial state and the sequence of frame
 // durations handed to `advance`, never on wall-clock time or thread count (DESIGN.md).
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "physics/colliders.hpp"
 #include "physics/constraints.hpp"
 #include "physics/particles.hpp"
 
@@ -36,10 +39,22 @@ struct SolverSettings {
   /// Whether systems that define long-range attachments (hair: every particle to its root)
   /// enforce them. They guarantee no stretch beyond rest length at any iteration count.
   bool tethers = true;
+  /// Local shape (bending) stiffness in [0, 1], dimensionless: the fraction of the gap between a
+  /// strand particle and its rest position in its parent segment's frame that each constraint
+  /// iteration closes (Han & Harada 2012, local shape constraints; see HairSystem). 0 disables
+  /// it. Per iteration, so the same value is stiffer with more iterations (Müller et al. 2007, §3.3).
+  /// 1 holds strands rigid in the head's frame. Use 0 or ≥ 0.4: the frames follow the strand, so
+  /// the constraint is not conservative, and low values (measured 0.05–0.2) let curls flutter.
+  float shapeStiffness = 0.0f;
+  /// Largest speed a particle keeps into the next step, m/s (> 0; +∞, the default, disables the
+  /// clamp). Applied at the end of each step to the implied velocity (x − x_prev)/h by moving
+  /// x_prev, so positions, constraints and collisions are untouched.
+  float maxSpeed = std::numeric_limits<float>::infinity();
 };
 
 /// Checks that `settings` are usable: a positive finite fixed step, finite gravity, damping in
-/// [0, 1), at least one constraint iteration and at least one substep per frame.
+/// [0, 1), at least one constraint iteration and at least one substep per frame, shape stiffness
+/// in [0, 1] and a positive (possibly infinite) maximum speed.
 [[nodiscard]] Result<void> validateSettings(const SolverSettings& settings);
 
 /// What one frame turns into: a whole number of fixed steps, and where each of them falls
@@ -90,6 +105,16 @@ inline glm::vec3 verletPosition(const glm::vec3& current, const glm::vec3& previ
   return current + (current - previous) * keep + kick;
 }
 
+/// Velocity clamp: when the displacement over the last step, x − x_prev, is longer than
+/// `maxDisplacement` (metres; max speed × step), moves `previous` so that it is exactly that long,
+/// keeping its direction. Positions are not moved.
+inline void clampDisplacement(const glm::vec3& position, glm::vec3& previous, float maxDisplacement) {
+  const glm::vec3 d = position - previous;
+  const float lengthSquared = d.x * d.x + d.y * d.y + d.z * d.z;
+  if (!(lengthSquared > maxDisplacement * maxDisplacement)) return;
+  previous = position - d * (maxDisplacement / std::sqrt(lengthSquared));
+}
+
 /// Position Verlet with damping for particles [first, first + count) (Jakobsen 2001, eq. 1 with
 /// drag): x' = x + (1 − d)(x − x_prev) + a·h², x_prev' = x. Kinematic particles (inverse mass
 /// 0) are left untouched. `step` h in seconds, `acceleration` a in m/s², `damping` d per step.
@@ -100,8 +125,11 @@ void integrateVerlet(Particles& particles, std::size_t first, std::size_t count,
 /// relaxed in one fixed order. Used for chains, pendulums and (later) cloth; hair uses
 /// `HairSystem`, which is parallel over strands.
 ///
-/// Step order (Jakobsen 2001): Verlet integration, then `constraintIterations` sweeps of
-/// pins → distance constraints → tethers (tethers last so each sweep ends stretch-free).
+/// Step order (Jakobsen 2001): Verlet integration, collisions against `colliders` (world space,
+/// static) with friction, then `constraintIterations` sweeps of pins → distance constraints →
+/// tethers (tethers last so each sweep ends stretch-free), then collisions again without
+/// friction (so that no particle ends a step inside a collider), then the velocity clamp
+/// (`SolverSettings::maxSpeed`). The shape stiffness applies to hair only.
 class Solver {
 public:
   /// Creates an empty system; fails when `settings` do not pass `validateSettings`.
@@ -121,6 +149,7 @@ public:
   std::vector<DistanceConstraint> distances;  ///< relaxed in order every sweep
   std::vector<Tether> tethers;                ///< enforced after the distances every sweep
   std::vector<Pin> pins;                      ///< applied first every sweep
+  ColliderSet colliders;                      ///< world space; resolved after the sweeps
 
 private:
   explicit Solver(const SolverSettings& settings);

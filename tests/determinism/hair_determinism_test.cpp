@@ -5,13 +5,16 @@
 
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "physics/colliders.hpp"
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
+#include "physics/sdf.hpp"
 
 namespace mane::physics {
 namespace {
@@ -23,7 +26,7 @@ struct RunResult {
 
 // A curly 301-strand groom (301 = 7·43: 2, 3 and 4 workers all get uneven ranges) on a
 // moving head, for 90 frames of irregular length.
-RunResult simulate(unsigned threads) {
+RunResult simulate(unsigned threads, bool collisions = false) {
   GroomSettings groom;
   groom.seed = 2024;
   groom.strandCount = 301;
@@ -35,8 +38,26 @@ RunResult simulate(unsigned threads) {
   EXPECT_TRUE(strands);
   SolverSettings settings;
   settings.constraintIterations = 3;
+  if (collisions) {
+    settings.shapeStiffness = 0.6f;
+    settings.maxSpeed = 4.0f;
+  }
   auto hair = HairSystem::create(*strands, settings);
   EXPECT_TRUE(hair);
+  if (collisions) {
+    // A sphere, a neck capsule and the SDF of an ellipsoidal head, with friction.
+    static const auto sdf = [] {
+      TriangleMesh mesh = makeIcosphere(1.0f, 3);
+      for (glm::vec3& p : mesh.positions) p *= glm::vec3(0.085f, 0.097f, 0.095f);
+      return std::make_shared<const SignedDistanceField>(*SignedDistanceField::build(mesh.positions, mesh.indices));
+    }();
+    ColliderSet head;
+    head.spheres = {{{0.0f, 0.0f, 0.0f}, 0.09f}};
+    head.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
+    head.sdf = sdf;
+    head.friction = 0.3f;
+    EXPECT_TRUE(hair->setColliders(head));
+  }
   // Frame durations cycle through 60, 75, 50 and 144 Hz so that remainders carry over.
   const double frameDts[] = {1.0 / 60.0, 1.0 / 75.0, 1.0 / 50.0, 1.0 / 144.0};
   double t = 0.0;
@@ -72,6 +93,20 @@ TEST(HairDeterminism, SameHashForOneTwoThreeAndFourThreads) {
     EXPECT_EQ(run.hash, reference.hash) << threads << " threads";
     EXPECT_TRUE(sameBytes(run.positions, reference.positions)) << threads << " threads";
   }
+}
+
+TEST(HairDeterminism, WithCollisionsShapeAndClampSameHashForOneToFourThreads) {
+  // The same scenario with sphere + capsule + SDF colliders, friction, shape constraints and the
+  // velocity clamp: still bit-identical run after run and for 1, 2, 3 and 4 threads, and
+  // different from the collision-free run (the colliders do act).
+  const RunResult reference = simulate(1, true);
+  EXPECT_EQ(simulate(1, true).hash, reference.hash);
+  for (unsigned threads : {2u, 3u, 4u}) {
+    const RunResult run = simulate(threads, true);
+    EXPECT_EQ(run.hash, reference.hash) << threads << " threads";
+    EXPECT_TRUE(sameBytes(run.positions, reference.positions)) << threads << " threads";
+  }
+  EXPECT_NE(reference.hash, simulate(1).hash);
 }
 
 TEST(HairDeterminism, HashChangesWhenTheStateChanges) {

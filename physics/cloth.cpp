@@ -1,0 +1,215 @@
+#include "physics/cloth.hpp"
+
+#include <algorithm>
+#include <barrier>
+#include <cmath>
+#include <map>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "physics/hash.hpp"
+
+namespace mane::physics {
+namespace {
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) {
+  return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+// Greedy colouring in constraint order: each constraint takes the lowest colour in which
+// neither of its particles is used yet. Returns the colour of every constraint.
+std::vector<std::uint32_t> colourConstraints(std::span<const SoftDistanceConstraint> constraints,
+                                             std::size_t particleCount) {
+  std::vector<std::vector<bool>> used;  // used[colour][particle]
+  std::vector<std::uint32_t> colours(constraints.size());
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const auto a = constraints[i].constraint.a, b = constraints[i].constraint.b;
+    std::uint32_t colour = 0;
+    while (colour < used.size() && (used[colour][a] || used[colour][b])) ++colour;
+    if (colour == used.size()) used.emplace_back(particleCount, false);
+    used[colour][a] = used[colour][b] = true;
+    colours[i] = colour;
+  }
+  return colours;
+}
+
+}  // namespace
+
+Cloth::Cloth(const ClothSettings& settings)
+    : settings_(settings), accumulator_(settings.solver.fixedStep, settings.solver.maxSubstepsPerFrame) {}
+
+Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<const std::uint32_t> triangles,
+                            std::span<const std::uint32_t> pinnedVertices, const ClothSettings& settings,
+                            const glm::mat4& bodyTransform) {
+  if (auto valid = validateSettings(settings.solver); !valid) return std::unexpected(valid.error());
+  if (!(settings.bendingStiffness >= 0.0f && settings.bendingStiffness <= 1.0f))
+    return fail("cloth bendingStiffness must be in [0, 1]");
+  if (!finite(bodyTransform)) return fail("cloth body transform has a NaN or infinite entry");
+  if (positions.empty() || triangles.empty()) return fail("cloth mesh is empty");
+  if (triangles.size() % 3 != 0) return fail("cloth triangle index count is not a multiple of 3");
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    if (!finite(positions[v])) return fail("cloth vertex " + std::to_string(v) + " is NaN or infinite");
+
+  // Edge (low, high) → the vertices opposite it in the triangles that share it.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edges;
+  for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
+    const std::uint32_t* corner = &triangles[3 * t];
+    const std::string name = "cloth triangle " + std::to_string(t);
+    for (int i = 0; i < 3; ++i)
+      if (corner[i] >= positions.size())
+        return fail(name + " uses vertex " + std::to_string(corner[i]) + " but the mesh has " +
+                    std::to_string(positions.size()));
+    if (corner[0] == corner[1] || corner[1] == corner[2] || corner[0] == corner[2])
+      return fail(name + " repeats a vertex");
+    const glm::vec3 normal =
+        glm::cross(positions[corner[1]] - positions[corner[0]], positions[corner[2]] - positions[corner[0]]);
+    if (!(glm::dot(normal, normal) > 0.0f)) return fail(name + " has zero area");
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t a = corner[i], b = corner[(i + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(corner[(i + 2) % 3]);
+    }
+  }
+
+  Cloth cloth(settings);
+  cloth.body_ = cloth.previousBody_ = bodyTransform;
+  std::vector<bool> isPinned(positions.size(), false);
+  for (std::uint32_t v : pinnedVertices) {
+    if (v >= positions.size())
+      return fail("pinned cloth vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                  std::to_string(positions.size()) + ")");
+    if (!isPinned[v]) {
+      isPinned[v] = true;
+      cloth.pinned_.push_back(v);
+      cloth.pinnedLocal_.push_back(positions[v]);
+    }
+  }
+  cloth.particles_.reserve(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    cloth.particles_.add(transformPoint(bodyTransform, positions[v]), isPinned[v] ? 0.0f : 1.0f);
+
+  auto addConstraint = [&](std::uint32_t a, std::uint32_t b, float stiffness) {
+    if (isPinned[a] && isPinned[b]) return;  // nothing can move
+    const float rest = glm::distance(cloth.particles_.positions[a], cloth.particles_.positions[b]);
+    if (rest > 0.0f) cloth.constraints_.push_back({{a, b, rest}, stiffness});
+  };
+  for (const auto& [edge, opposite] : edges) addConstraint(edge.first, edge.second, 1.0f);
+  for (const auto& edge : cloth.constraints_) cloth.edges_.push_back(edge.constraint);
+  if (settings.bendingStiffness > 0.0f)
+    for (const auto& [edge, opposite] : edges)
+      if (opposite.size() == 2 && opposite[0] != opposite[1])
+        addConstraint(std::min(opposite[0], opposite[1]), std::max(opposite[0], opposite[1]),
+                      settings.bendingStiffness);
+
+  // Sort by colour (stable: within a colour the build order stays, though it cannot matter).
+  const auto colours = colourConstraints(cloth.constraints_, positions.size());
+  std::vector<std::uint32_t> order(cloth.constraints_.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](auto x, auto y) { return colours[x] < colours[y]; });
+  std::vector<SoftDistanceConstraint> sorted;
+  sorted.reserve(order.size());
+  for (std::uint32_t i : order) sorted.push_back(cloth.constraints_[i]);
+  cloth.constraints_ = std::move(sorted);
+  const std::uint32_t colourCount = colours.empty() ? 0 : *std::max_element(colours.begin(), colours.end()) + 1;
+  cloth.colourStarts_.assign(colourCount + 1, 0);
+  for (std::uint32_t c : colours) ++cloth.colourStarts_[c + 1];
+  for (std::uint32_t c = 0; c < colourCount; ++c) cloth.colourStarts_[c + 1] += cloth.colourStarts_[c];
+  return cloth;
+}
+
+Result<void> Cloth::setBodyTransform(const glm::mat4& bodyTransform) {
+  if (!finite(bodyTransform)) return fail("cloth body transform has a NaN or infinite entry");
+  body_ = bodyTransform;
+  return {};
+}
+
+void Cloth::relaxColour(std::size_t colour, std::size_t first, std::size_t end) {
+  auto& positions = particles_.positions;
+  const auto& weights = particles_.inverseMasses;
+  const std::size_t base = colourStarts_[colour];
+  for (std::size_t i = base + first; i < base + end; ++i) {
+    const auto& [c, stiffness] = constraints_[i];
+    glm::vec3 pa = positions[c.a], pb = positions[c.b];
+    projectDistance(pa, pb, weights[c.a], weights[c.b], c.restLength);
+    if (stiffness == 1.0f) {
+      positions[c.a] = pa;
+      positions[c.b] = pb;
+    } else {
+      positions[c.a] += (pa - positions[c.a]) * stiffness;
+      positions[c.b] += (pb - positions[c.b]) * stiffness;
+    }
+  }
+}
+
+Result<void> Cloth::advance(double frameDt, unsigned threads) {
+  if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("cloth frame time must be finite and ≥ 0");
+  const StepPlan plan = accumulator_.plan(frameDt);
+  const unsigned workers = std::max(1u, threads);
+  const auto step = static_cast<float>(settings_.solver.fixedStep);
+  const std::size_t colourCount = colourStarts_.empty() ? 0 : colourStarts_.size() - 1;
+
+  // Each worker owns a fixed slice of the particles (integration) and of every colour
+  // (relaxation); the barrier separates phases, so nothing is read while another writes it.
+  std::barrier sync(static_cast<std::ptrdiff_t>(workers));
+  auto slice = [&](std::size_t count, unsigned w) { return std::pair{count * w / workers, count * (w + 1) / workers}; };
+  auto work = [&](unsigned w) {
+    for (int k = 1; k <= plan.substeps; ++k) {
+      if (w == 0) {
+        const float t = plan.fractionAt(k);
+        for (std::size_t p = 0; p < pinned_.size(); ++p) {
+          const glm::vec3 from = transformPoint(previousBody_, pinnedLocal_[p]);
+          const glm::vec3 to = transformPoint(body_, pinnedLocal_[p]);
+          particles_.positions[pinned_[p]] = from + (to - from) * t;
+          particles_.previousPositions[pinned_[p]] = particles_.positions[pinned_[p]];
+        }
+      }
+      const auto [first, end] = slice(particles_.size(), w);
+      integrateVerlet(particles_, first, end - first, settings_.solver.gravity, settings_.solver.damping, step);
+      if (workers > 1) sync.arrive_and_wait();
+      for (int iteration = 0; iteration < settings_.solver.constraintIterations; ++iteration)
+        for (std::size_t colour = 0; colour < colourCount; ++colour) {
+          const auto [from, to] = slice(colourStarts_[colour + 1] - colourStarts_[colour], w);
+          relaxColour(colour, from, to);
+          if (workers > 1) sync.arrive_and_wait();
+        }
+    }
+  };
+  if (workers == 1) {
+    work(0);
+  } else {
+    std::vector<std::jthread> pool;
+    for (unsigned w = 1; w < workers; ++w) pool.emplace_back(work, w);
+    work(0);
+  }
+  previousBody_ = body_;
+
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    if (!finite(particles_.positions[i]))
+      return fail("cloth particle " + std::to_string(i) + " became NaN or infinite by fixed step " +
+                  std::to_string(accumulator_.stepsTaken()));
+  return {};
+}
+
+std::uint64_t Cloth::stateHash() const noexcept {
+  StateHasher hasher;
+  hasher.add(std::span<const glm::vec3>(particles_.positions));
+  hasher.add(std::span<const glm::vec3>(particles_.previousPositions));
+  hasher.addValue(accumulator_.backlog());
+  hasher.addValue(accumulator_.stepsTaken());
+  return hasher.value();
+}
+
+}  // namespace mane::physics

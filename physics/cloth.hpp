@@ -1,0 +1,90 @@
+#pragma once
+// Cloth from any triangle mesh (the Nalu demo's "fins": a mesh turned into cloth by
+// constraining its edges). Same Verlet solver and constraints as the hair:
+// - a distance constraint on every edge (Jakobsen 2001, §3);
+// - a bending constraint across every edge shared by two triangles: a distance constraint
+//   between the two vertices opposite the edge, relaxed with a stiffness in [0, 1] (the
+//   "bend spring" of Provot 1995 in position-based form; 0 folds freely, 1 keeps the rest
+//   dihedral as well as the iteration count allows);
+// - pinned vertices with infinite mass that follow the body transform.
+//
+// Parallel and deterministic: constraints are greedily graph-coloured so that no two in a
+// colour share a particle; colours are relaxed one after another, the constraints of a colour
+// in any split across threads. Since no particle is written twice within a colour, the result
+// is bit-identical for every thread count (DESIGN.md, Determinism).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "common/error.hpp"
+#include "physics/constraints.hpp"
+#include "physics/particles.hpp"
+#include "physics/solver.hpp"
+
+namespace mane::physics {
+
+struct ClothSettings {
+  SolverSettings solver;          ///< step, gravity, damping, iterations (tethers unused)
+  float bendingStiffness = 0.5f;  ///< fraction of the bending error corrected per sweep, [0, 1]
+};
+
+/// A distance constraint relaxed with a stiffness (1 = fully, as DistanceConstraint).
+struct SoftDistanceConstraint {
+  DistanceConstraint constraint;
+  float stiffness = 1.0f;
+};
+
+class Cloth {
+public:
+  /// Builds cloth from a triangle mesh in body-local space (metres): `positions`, `triangles`
+  /// (3 indices each), and the vertices pinned to the body. Fails, naming the triangle or
+  /// vertex, on an index out of range, a degenerate triangle (repeated vertex or zero area), a
+  /// non-finite position, an empty mesh, or invalid settings.
+  [[nodiscard]] static Result<Cloth> create(std::span<const glm::vec3> positions,
+                                            std::span<const std::uint32_t> triangles,
+                                            std::span<const std::uint32_t> pinnedVertices,
+                                            const ClothSettings& settings,
+                                            const glm::mat4& bodyTransform = glm::mat4(1.0f));
+
+  /// Body-local → world transform at the end of the next `advance`; pins move along the straight
+  /// line between the previous and this placement over the frame's steps. NaN/Inf: error.
+  [[nodiscard]] Result<void> setBodyTransform(const glm::mat4& bodyTransform);
+
+  /// Advances by `frameDt` seconds in whole fixed steps (the remainder carries over), with
+  /// `threads` workers (0 counts as 1); the result does not depend on `threads`. Fails when
+  /// `frameDt` is negative or not finite, or when a particle becomes non-finite (naming it).
+  [[nodiscard]] Result<void> advance(double frameDt, unsigned threads = 1);
+
+  /// FNV-1a over positions, previous positions, the accumulator's backlog and step count.
+  [[nodiscard]] std::uint64_t stateHash() const noexcept;
+
+  [[nodiscard]] const Particles& particles() const noexcept { return particles_; }
+  [[nodiscard]] std::span<const SoftDistanceConstraint> constraints() const noexcept { return constraints_; }
+  /// Constraints [colourStarts[c], colourStarts[c + 1]) form colour c.
+  [[nodiscard]] std::span<const std::uint32_t> colourStarts() const noexcept { return colourStarts_; }
+  /// The mesh-edge constraints alone (no bending), in edge order: for measuring stretch.
+  [[nodiscard]] std::span<const DistanceConstraint> edges() const noexcept { return edges_; }
+  [[nodiscard]] std::size_t edgeCount() const noexcept { return edges_.size(); }
+  [[nodiscard]] std::size_t bendingCount() const noexcept { return constraints_.size() - edges_.size(); }
+
+private:
+  Cloth(const ClothSettings& settings);
+  void relaxColour(std::size_t colour, std::size_t first, std::size_t end);
+
+  ClothSettings settings_;
+  FixedStepAccumulator accumulator_;
+  Particles particles_;
+  std::vector<SoftDistanceConstraint> constraints_;  // sorted by colour
+  std::vector<std::uint32_t> colourStarts_;
+  std::vector<DistanceConstraint> edges_;
+  std::vector<std::uint32_t> pinned_;
+  std::vector<glm::vec3> pinnedLocal_;
+  glm::mat4 previousBody_{1.0f};
+  glm::mat4 body_{1.0f};
+};
+
+}  // namespace mane::physics

@@ -1,0 +1,462 @@
+#include "physics/interpolation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <system_error>
+#include <thread>
+
+#include "physics/groom_generator.hpp"
+
+namespace mane::physics {
+
+namespace {
+
+constexpr std::size_t kMaxNeighbours = 8;   // nearest guide roots kept per guide
+constexpr std::size_t kMaxVertices = 4096;  // per guide and per dense strand
+// Closest distance between two guide roots that may span a frame or a triangle, metres.
+constexpr double kMinPartnerDistance = 1e-6;
+// A frame's partners must subtend at least this sine at the guide root (about 11.5°), so that
+// the frame's normal is well conditioned.
+constexpr double kMinFrameSine = 0.2;
+// A barycentric triangle's corner at the home guide must be at least this sine (about 5.7°).
+constexpr double kMinTriangleSine = 0.1;
+constexpr int kTriangleAttempts = 8;
+constexpr float kWeightTolerance = 1e-5f;
+
+bool isFinite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The exact operations the header's formula names, written out so the compiler cannot
+// reassociate them differently from the documented order.
+float dot(const glm::vec3& a, const glm::vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+glm::vec3 cross(const glm::vec3& a, const glm::vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+glm::vec3 normalize(const glm::vec3& a) {
+  const float length = std::sqrt(dot(a, a));
+  return {a.x / length, a.y / length, a.z / length};
+}
+
+struct Frame {
+  glm::vec3 e1{1.0f, 0.0f, 0.0f};
+  glm::vec3 e2{0.0f, 1.0f, 0.0f};
+  glm::vec3 n{0.0f, 0.0f, 1.0f};
+};
+
+// Step 1 of the header's formula: the frame of guide `p` from its root and its partners' roots.
+Frame frameOf(const glm::vec3& root, const glm::vec3& rootA, const glm::vec3& rootB) {
+  Frame f;
+  f.e1 = normalize(rootA - root);
+  f.n = normalize(cross(f.e1, rootB - root));
+  f.e2 = cross(f.n, f.e1);
+  return f;
+}
+
+double distanceSquared(const glm::vec3& a, const glm::vec3& b) {
+  const double x = static_cast<double>(a.x) - b.x;
+  const double y = static_cast<double>(a.y) - b.y;
+  const double z = static_cast<double>(a.z) - b.z;
+  return x * x + y * y + z * z;
+}
+
+// Sine of the angle at `o` between the directions to `a` and `b` (0 when degenerate).
+double sineAt(const glm::vec3& o, const glm::vec3& a, const glm::vec3& b) {
+  const double ax = static_cast<double>(a.x) - o.x, ay = static_cast<double>(a.y) - o.y,
+               az = static_cast<double>(a.z) - o.z;
+  const double bx = static_cast<double>(b.x) - o.x, by = static_cast<double>(b.y) - o.y,
+               bz = static_cast<double>(b.z) - o.z;
+  const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+  const double la = std::sqrt(ax * ax + ay * ay + az * az);
+  const double lb = std::sqrt(bx * bx + by * by + bz * bz);
+  if (!(la > kMinPartnerDistance && lb > kMinPartnerDistance)) return 0.0;
+  return std::sqrt(cx * cx + cy * cy + cz * cz) / (la * lb);
+}
+
+// The nearest other guide roots of every guide, nearest first (ties by index), at most
+// kMaxNeighbours each. A sweep over the roots sorted by x: each guide scans outwards until the
+// x distance alone exceeds its current worst neighbour. Deterministic: the k smallest entries
+// under the total order (distance², index) do not depend on the scan order.
+struct Neighbours {
+  std::vector<std::array<std::uint32_t, kMaxNeighbours>> index;
+  std::vector<std::uint32_t> count;
+};
+
+Neighbours nearestRoots(std::span<const glm::vec3> roots) {
+  const std::size_t n = roots.size();
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return roots[a].x < roots[b].x || (roots[a].x == roots[b].x && a < b);
+  });
+
+  Neighbours result;
+  result.index.resize(n);
+  result.count.assign(n, 0);
+  for (std::size_t pos = 0; pos < n; ++pos) {
+    const std::uint32_t self = order[pos];
+    std::array<std::pair<double, std::uint32_t>, kMaxNeighbours> best;
+    std::size_t have = 0;
+    const auto consider = [&](std::uint32_t other) {
+      const std::pair<double, std::uint32_t> entry{distanceSquared(roots[self], roots[other]), other};
+      if (have == kMaxNeighbours && !(entry < best[have - 1])) return;
+      std::size_t at = have < kMaxNeighbours ? have++ : have - 1;
+      while (at > 0 && entry < best[at - 1]) {
+        best[at] = best[at - 1];
+        --at;
+      }
+      best[at] = entry;
+    };
+    const auto beyond = [&](std::uint32_t other) {
+      const double dx = static_cast<double>(roots[other].x) - roots[self].x;
+      return have == kMaxNeighbours && dx * dx > best[have - 1].first;
+    };
+    for (std::size_t q = pos + 1; q < n && !beyond(order[q]); ++q) consider(order[q]);
+    for (std::size_t q = pos; q-- > 0 && !beyond(order[q]);) consider(order[q]);
+    for (std::size_t k = 0; k < have; ++k) result.index[self][k] = best[k].second;
+    result.count[self] = static_cast<std::uint32_t>(have);
+  }
+  return result;
+}
+
+// A uniform random index in [0, n) (Lemire's multiply-shift; the bias for n ≤ 8 is < 2⁻²⁹).
+std::uint32_t randomIndex(SplitMix64& rng, std::uint32_t n) {
+  return static_cast<std::uint32_t>(((rng.next() >> 32) * n) >> 32);
+}
+
+// A uniform random point in the unit disc (z = 0) or ball, by rejection (no trigonometry).
+glm::vec3 randomInDisc(SplitMix64& rng) {
+  for (;;) {
+    const glm::vec3 p{rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f), 0.0f};
+    if (p.x * p.x + p.y * p.y <= 1.0f) return p;
+  }
+}
+
+glm::vec3 randomInBall(SplitMix64& rng) {
+  for (;;) {
+    const glm::vec3 p{rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f)};
+    if (p.x * p.x + p.y * p.y + p.z * p.z <= 1.0f) return p;
+  }
+}
+
+std::string where(std::size_t strand) {
+  return "Dense groom: strand " + std::to_string(strand);
+}
+
+}  // namespace
+
+Result<DenseGroomLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
+                                               const DenseGroomSettings& settings) {
+  const auto bad = [](const char* field, const char* expected) {
+    return fail(std::string("Dense groom settings: ") + field + " must be " + expected + ".");
+  };
+  if (settings.strandCount < 1 || settings.strandCount > std::numeric_limits<std::uint32_t>::max())
+    return bad("strandCount", "at least 1 and below 2^32");
+  if (settings.verticesPerStrand == 1 || settings.verticesPerStrand > kMaxVertices)
+    return bad("verticesPerStrand", "0 (as the guides) or in [2, 4096]");
+  if (!(settings.rootSpread >= 0.0f && settings.rootSpread <= 4.0f)) return bad("rootSpread", "in [0, 4]");
+  if (!(settings.lengthVariation >= 0.0f && settings.lengthVariation < 1.0f))
+    return bad("lengthVariation", "in [0, 1)");
+  if (!(settings.clump >= 0.0f && settings.clump <= 1.0f)) return bad("clump", "in [0, 1]");
+  if (!(settings.clumpVariation >= 0.0f && settings.clumpVariation <= 1.0f)) return bad("clumpVariation", "in [0, 1]");
+  if (!(settings.tipJitter >= 0.0f && std::isfinite(settings.tipJitter)))
+    return bad("tipJitter", "a non-negative number of metres");
+  if (settings.neighbourCandidates < 2 || settings.neighbourCandidates > kMaxNeighbours)
+    return bad("neighbourCandidates", "in [2, 8]");
+  if (settings.blend != GuideBlend::kSingle && settings.blend != GuideBlend::kBarycentric)
+    return bad("blend", "kSingle or kBarycentric");
+
+  if (restGuides.empty()) return fail("Dense groom: the guide groom is empty; at least one guide strand is needed.");
+  if (restGuides.size() > std::numeric_limits<std::uint32_t>::max() - 1)
+    return fail("Dense groom: too many guides (" + std::to_string(restGuides.size()) + ").");
+  const std::size_t guideVertices = restGuides[0].size();
+  for (std::size_t g = 0; g < restGuides.size(); ++g) {
+    if (restGuides[g].size() < 2)
+      return fail("Dense groom: guide " + std::to_string(g) + " has " + std::to_string(restGuides[g].size()) +
+                  " point(s); a guide needs at least 2.");
+    if (restGuides[g].size() != guideVertices)
+      return fail("Dense groom: guide " + std::to_string(g) + " has " + std::to_string(restGuides[g].size()) +
+                  " points but guide 0 has " + std::to_string(guideVertices) +
+                  "; resample the guides to one point count first.");
+    for (std::size_t v = 0; v < guideVertices; ++v)
+      if (!isFinite(restGuides[g][v]))
+        return fail("Dense groom: guide " + std::to_string(g) + ", vertex " + std::to_string(v) +
+                    " is not finite (NaN or infinite).");
+  }
+  if (guideVertices > kMaxVertices) return fail("Dense groom: guides have more than 4096 points.");
+
+  const std::size_t guideCount = restGuides.size();
+  DenseGroomLayout layout;
+  layout.guideCount = static_cast<std::uint32_t>(guideCount);
+  layout.guideVertexCount = static_cast<std::uint32_t>(guideVertices);
+  layout.vertexCount =
+      static_cast<std::uint32_t>(settings.verticesPerStrand == 0 ? guideVertices : settings.verticesPerStrand);
+
+  std::vector<glm::vec3> roots(guideCount);
+  for (std::size_t g = 0; g < guideCount; ++g) roots[g] = restGuides[g][0];
+  const Neighbours neighbours = nearestRoots(roots);
+
+  // Frame partners: A = the nearest root at a usable distance, B = the next nearest that spans a
+  // well-conditioned plane with it; ordered so that n points along the guide's first segment
+  // (out of the scalp). Spread radius: the distance to the nearest usable neighbour.
+  layout.guideFrames.resize(guideCount);
+  std::vector<float> spreadRadius(guideCount, 0.0f);
+  for (std::size_t g = 0; g < guideCount; ++g) {
+    const auto self = static_cast<std::uint32_t>(g);
+    layout.guideFrames[g] = {self, self};
+    std::size_t a = kMaxNeighbours;
+    for (std::size_t k = 0; k < neighbours.count[g]; ++k) {
+      const std::uint32_t other = neighbours.index[g][k];
+      if (a == kMaxNeighbours) {
+        if (distanceSquared(roots[g], roots[other]) > kMinPartnerDistance * kMinPartnerDistance) {
+          a = k;
+          spreadRadius[g] = static_cast<float>(std::sqrt(distanceSquared(roots[g], roots[other])));
+        }
+        continue;
+      }
+      const std::uint32_t partnerA = neighbours.index[g][a];
+      if (sineAt(roots[g], roots[partnerA], roots[other]) < kMinFrameSine) continue;
+      const Frame f = frameOf(roots[g], roots[partnerA], roots[other]);
+      if (dot(f.n, restGuides[g][1] - restGuides[g][0]) >= 0.0f)
+        layout.guideFrames[g] = {partnerA, other};
+      else
+        layout.guideFrames[g] = {other, partnerA};
+      break;
+    }
+  }
+
+  const std::size_t denseVertices = layout.vertexCount;
+  const float guideSpan = static_cast<float>(guideVertices - 1);
+  const float denseSpan = static_cast<float>(denseVertices - 1);
+  layout.strands.resize(settings.strandCount);
+  for (std::size_t s = 0; s < settings.strandCount; ++s) {
+    // One independent stream per strand: strand s's layout does not depend on strandCount.
+    SplitMix64 rng(SplitMix64(settings.seed + 0xD1B54A32D192ED03ull * static_cast<std::uint64_t>(s)).next());
+    DenseStrand& strand = layout.strands[s];
+    // Consecutive strands share a home guide: interpolation reuses the guide's frame and cache lines.
+    const auto home = static_cast<std::uint32_t>(static_cast<std::uint64_t>(s) * guideCount / settings.strandCount);
+    strand.guides[0] = home;
+
+    strand.lengthScale = 1.0f - settings.lengthVariation * rng.nextFloat();
+    float scale = strand.lengthScale * guideSpan / denseSpan;
+    // Rounding must not push the last dense vertex past the guide's tip.
+    while (denseSpan * scale > guideSpan) scale = std::nextafter(scale, 0.0f);
+    strand.vertexScale = scale;
+    strand.clump = std::clamp(settings.clump + settings.clumpVariation * rng.nextFloat(-1.0f, 1.0f), 0.0f, 1.0f);
+    strand.tipJitter = settings.tipJitter * randomInBall(rng);
+
+    bool barycentric = false;
+    if (settings.blend == GuideBlend::kBarycentric) {
+      const auto candidates =
+          std::min<std::uint32_t>(neighbours.count[home], static_cast<std::uint32_t>(settings.neighbourCandidates));
+      for (int attempt = 0; candidates >= 2 && attempt < kTriangleAttempts && !barycentric; ++attempt) {
+        const std::uint32_t i = randomIndex(rng, candidates);
+        std::uint32_t j = randomIndex(rng, candidates - 1);
+        if (j >= i) ++j;
+        const std::uint32_t a = neighbours.index[home][i];
+        const std::uint32_t b = neighbours.index[home][j];
+        if (sineAt(roots[home], roots[a], roots[b]) < kMinTriangleSine) continue;
+        // A uniform point of the triangle (fold the unit square's upper half back). The
+        // coordinates are multiples of 2⁻²⁴, so 1 − u − v is exact and the weights sum to 1.
+        float u = rng.nextFloat();
+        float v = rng.nextFloat();
+        if (u + v > 1.0f) {
+          u = 1.0f - u;
+          v = 1.0f - v;
+        }
+        strand.guides[1] = a;
+        strand.guides[2] = b;
+        strand.weights[0] = (1.0f - u) - v;
+        strand.weights[1] = u;
+        strand.weights[2] = v;
+        strand.guideCount = 3;
+        barycentric = true;
+      }
+    }
+    if (!barycentric) {
+      strand.guideCount = 1;
+      strand.guides[1] = strand.guides[2] = 0;
+      strand.weights[0] = 1.0f;
+      strand.weights[1] = strand.weights[2] = 0.0f;
+      strand.rootOffset = (settings.rootSpread * spreadRadius[home]) * randomInDisc(rng);
+    }
+  }
+  return layout;
+}
+
+Result<void> validateDenseGroomLayout(const DenseGroomLayout& layout) {
+  if (layout.guideCount == 0 || layout.strands.empty())
+    return fail("Dense groom: the layout is empty (" + std::to_string(layout.guideCount) + " guides, " +
+                std::to_string(layout.strands.size()) + " dense strands).");
+  if (layout.guideVertexCount < 2 || layout.vertexCount < 2 || layout.guideVertexCount > kMaxVertices ||
+      layout.vertexCount > kMaxVertices)
+    return fail("Dense groom: guides and dense strands need 2 to 4096 vertices each (layout has " +
+                std::to_string(layout.guideVertexCount) + " and " + std::to_string(layout.vertexCount) + ").");
+  if (layout.guideFrames.size() != layout.guideCount)
+    return fail("Dense groom: the layout has " + std::to_string(layout.guideFrames.size()) + " guide frames for " +
+                std::to_string(layout.guideCount) + " guides.");
+  for (std::size_t g = 0; g < layout.guideFrames.size(); ++g)
+    if (layout.guideFrames[g].partnerA >= layout.guideCount || layout.guideFrames[g].partnerB >= layout.guideCount)
+      return fail("Dense groom: guide " + std::to_string(g) + "'s frame partners are out of range (" +
+                  std::to_string(layout.guideCount) + " guides).");
+
+  const float guideSpan = static_cast<float>(layout.guideVertexCount - 1);
+  const float denseSpan = static_cast<float>(layout.vertexCount - 1);
+  for (std::size_t s = 0; s < layout.strands.size(); ++s) {
+    const DenseStrand& strand = layout.strands[s];
+    if (strand.guideCount < 1 || strand.guideCount > 3)
+      return fail(where(s) + " has " + std::to_string(strand.guideCount) + " guides; 1 to 3 are allowed.");
+    float sum = 0.0f;
+    for (std::uint32_t k = 0; k < strand.guideCount; ++k) {
+      if (strand.guides[k] >= layout.guideCount)
+        return fail(where(s) + ": guide index " + std::to_string(strand.guides[k]) + " is out of range (" +
+                    std::to_string(layout.guideCount) + " guides).");
+      if (!std::isfinite(strand.weights[k]))
+        return fail(where(s) + ": weight " + std::to_string(k) + " is not finite.");
+      sum += strand.weights[k];
+    }
+    if (!(std::abs(sum - 1.0f) <= kWeightTolerance))
+      return fail(where(s) + ": weights sum to " + std::to_string(sum) + ", not 1 (tolerance 1e-5).");
+    if (!isFinite(strand.rootOffset) || !isFinite(strand.tipJitter))
+      return fail(where(s) + ": root offset or tip jitter is not finite.");
+    if (!(strand.clump >= 0.0f && strand.clump <= 1.0f))
+      return fail(where(s) + ": clump " + std::to_string(strand.clump) + " is outside [0, 1].");
+    if (!(strand.vertexScale >= 0.0f && denseSpan * strand.vertexScale <= guideSpan))
+      return fail(where(s) + ": vertexScale " + std::to_string(strand.vertexScale) +
+                  " is negative, not finite, or reaches past the guides' tips.");
+  }
+  return {};
+}
+
+namespace {
+
+// Step 2 of the header's formula for one strand with K guides. K is a template parameter only so
+// that the compiler unrolls the guide loop; the operations are those of the formula, in order.
+template <std::uint32_t K>
+void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std::uint32_t lastSegment, const float* t,
+                       std::size_t nd, const glm::vec3& offset, const glm::vec3& jitter, glm::vec3* p) {
+  for (std::size_t i = 0; i < nd; ++i) {
+    const float u = static_cast<float>(i) * strand.vertexScale;
+    const std::uint32_t v = std::min(static_cast<std::uint32_t>(u), lastSegment);
+    const float f = u - static_cast<float>(v);
+    const float rf = 1.0f - f;
+    const glm::vec3 l0 = rf * g[0][v] + f * g[0][v + 1];
+    glm::vec3 b = strand.weights[0] * l0;
+    for (std::uint32_t k = 1; k < K; ++k) b = b + strand.weights[k] * (rf * g[k][v] + f * g[k][v + 1]);
+    const float h = strand.clump * t[i];
+    const float q = 1.0f - h;
+    p[i] = (b + h * (l0 - b)) + q * (offset + t[i] * jitter);
+  }
+}
+
+// Steps 1–3 of the header's formula for dense strands [first, end).
+void interpolateRange(std::span<const glm::vec3> guides, const DenseGroomLayout& layout, std::span<glm::vec3> out,
+                      std::span<glm::vec3> tangents, std::size_t first, std::size_t end) {
+  const std::size_t ng = layout.guideVertexCount;
+  const std::size_t nd = layout.vertexCount;
+  const auto lastSegment = static_cast<std::uint32_t>(ng - 2);
+  // t depends on the vertex only: computed once, with the formula's division.
+  float t[kMaxVertices];
+  for (std::size_t i = 0; i < nd; ++i) t[i] = static_cast<float>(i) / static_cast<float>(nd - 1);
+
+  Frame frame;
+  std::uint32_t framePrimary = std::numeric_limits<std::uint32_t>::max();  // guide `frame` belongs to
+  for (std::size_t s = first; s < end; ++s) {
+    const DenseStrand& strand = layout.strands[s];
+    const std::uint32_t primary = strand.guides[0];
+    const GuideFrameRef ref = layout.guideFrames[primary];
+    if (primary != framePrimary) {  // the same operations for every strand: reuse is exact
+      frame = Frame{};
+      if (ref.partnerA != primary || ref.partnerB != primary)
+        frame = frameOf(guides[primary * ng], guides[ref.partnerA * ng], guides[ref.partnerB * ng]);
+      framePrimary = primary;
+    }
+    const glm::vec3 o = strand.rootOffset;
+    const glm::vec3 j = strand.tipJitter;
+    const glm::vec3 offset = (o.x * frame.e1 + o.y * frame.e2) + o.z * frame.n;
+    const glm::vec3 jitter = (j.x * frame.e1 + j.y * frame.e2) + j.z * frame.n;
+
+    const glm::vec3* g[3] = {nullptr, nullptr, nullptr};
+    for (std::uint32_t k = 0; k < strand.guideCount; ++k) g[k] = guides.data() + strand.guides[k] * ng;
+    glm::vec3* p = out.data() + s * nd;
+    switch (strand.guideCount) {
+      case 1: interpolateStrand<1>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
+      case 2: interpolateStrand<2>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
+      default: interpolateStrand<3>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
+    }
+
+    if (tangents.empty()) continue;
+    glm::vec3* tangent = tangents.data() + s * nd;
+    for (std::size_t i = 0; i < nd; ++i) {
+      const glm::vec3 delta = p[i + 1 < nd ? i + 1 : i] - p[i > 0 ? i - 1 : i];
+      tangent[i] = dot(delta, delta) > 0.0f ? normalize(delta) : glm::vec3(0.0f);
+    }
+  }
+}
+
+}  // namespace
+
+Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions, const DenseGroomLayout& layout,
+                                     std::span<glm::vec3> positions, std::span<glm::vec3> tangents, unsigned threads) {
+  if (auto valid = validateDenseGroomLayout(layout); !valid) return valid;
+  const std::size_t ng = layout.guideVertexCount;
+  const std::size_t expectedGuides = static_cast<std::size_t>(layout.guideCount) * ng;
+  if (guidePositions.size() != expectedGuides)
+    return fail("Dense groom: expected " + std::to_string(layout.guideCount) + " guides × " + std::to_string(ng) +
+                " vertices = " + std::to_string(expectedGuides) + " guide positions, got " +
+                std::to_string(guidePositions.size()) + " (mismatched guide or particle count).");
+  if (positions.size() != layout.vertexTotal())
+    return fail("Dense groom: the output holds " + std::to_string(positions.size()) + " positions; the layout needs " +
+                std::to_string(layout.vertexTotal()) + ".");
+  if (!tangents.empty() && tangents.size() != layout.vertexTotal())
+    return fail("Dense groom: the tangent output holds " + std::to_string(tangents.size()) +
+                " vectors; the layout needs " + std::to_string(layout.vertexTotal()) + " (or none).");
+  for (std::size_t i = 0; i < guidePositions.size(); ++i)
+    if (!isFinite(guidePositions[i]))
+      return fail("Dense groom: guide " + std::to_string(i / ng) + ", vertex " + std::to_string(i % ng) +
+                  " is not finite (NaN or infinite).");
+  for (std::size_t g = 0; g < layout.guideCount; ++g) {
+    const GuideFrameRef ref = layout.guideFrames[g];
+    if (ref.partnerA == g && ref.partnerB == g) continue;
+    const glm::vec3 root = guidePositions[g * ng];
+    const glm::vec3 toA = guidePositions[ref.partnerA * ng] - root;
+    const glm::vec3 toB = guidePositions[ref.partnerB * ng] - root;
+    const glm::vec3 normal = cross(toA, toB);
+    if (!(dot(toA, toA) > 0.0f && dot(normal, normal) > 0.0f))
+      return fail("Dense groom: guide " + std::to_string(g) + "'s root is collinear with its frame partners " +
+                  std::to_string(ref.partnerA) + " and " + std::to_string(ref.partnerB) + " (collapsed scalp).");
+  }
+
+  // A fixed partition into contiguous ranges of whole dense strands; every strand's arithmetic is
+  // independent of the partition, so the output does not depend on `threads`.
+  const std::size_t count = layout.strands.size();
+  const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, count);
+  const auto rangeBegin = [&](std::size_t w) { return count * w / workers; };
+  std::vector<std::jthread> pool;
+  pool.reserve(workers - 1);
+  std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
+  for (std::size_t w = 1; w < workers; ++w) {
+    try {
+      pool.emplace_back([&, b = rangeBegin(w), e = rangeBegin(w + 1)] {
+        interpolateRange(guidePositions, layout, positions, tangents, b, e);
+      });
+    } catch (const std::system_error&) {
+      inlineFrom = w;  // no more threads available: run the remaining ranges here
+      break;
+    }
+  }
+  interpolateRange(guidePositions, layout, positions, tangents, rangeBegin(0), rangeBegin(1));
+  if (inlineFrom < workers)
+    interpolateRange(guidePositions, layout, positions, tangents, rangeBegin(inlineFrom), count);
+  pool.clear();  // joins
+  return {};
+}
+
+}  // namespace mane::physics

@@ -1,0 +1,167 @@
+#pragma once
+// Dense (rendered) strands interpolated from simulated guide strands.
+//
+// Two schemes, chosen per groom:
+// - Single guide (Nalu, NVIDIA 2005: 762 simulated control hairs drive 4,095 rendered ones;
+//   AMD TressFX `UpdateFollowHairVertices`): every dense strand copies one guide and adds a
+//   per-strand root offset. TressFX grows the offset towards the tip (tip separation); here the
+//   offset shrinks towards the tip instead when the strand is clumped.
+// - Multi guide (Unreal Engine groom, `HairStrandsInterpolation`: up to 3 guides with
+//   barycentric weights from a triangle of guide roots on the scalp): every dense strand is the
+//   weighted sum of three guides whose roots surround its root.
+// Both add per-strand random variation (length scale, tip jitter) and clumping (the tip pulled
+// towards the strand's primary guide).
+//
+// The layout (which guides, weights, offsets) is built once from the guides' rest shape and a
+// seed, deterministically (splitmix64, exact IEEE operations only). Interpolation then runs every
+// frame on the current guide positions. It is the CPU reference of the GPU interpolation pass:
+// the exact formula is below, and a shader must reproduce it within 1e-5 relative.
+//
+// ## The formula (evaluated in float, left to right, no fused multiply-add)
+//
+// Inputs: guide positions `G[g][v]` (guide g, vertex v, `Ng` vertices per guide, metres, any
+// frame — the result is in the same frame), and for dense strand s its `DenseStrand` entry:
+// K guides `g[k]` with weights `w[k]`, `vertexScale`, `clump` c, `rootOffset` o, `tipJitter` j.
+// `Nd` = vertices per dense strand. `dot(a, b)` = a.x*b.x + a.y*b.y + a.z*b.z;
+// `cross(a, b)` = (a.y*b.z − a.z*b.y, a.z*b.x − a.x*b.z, a.x*b.y − a.y*b.x);
+// `normalize(a)` = a / sqrt(dot(a, a)) (one division per component).
+//
+// 1. Per strand: the frame of the primary guide p = g[0] (its partners a, b from
+//    `guideFrames[p]`), built from guide roots only. Roots are rigidly attached to the head, so
+//    the frame turns with the head and the offsets follow head rotation:
+//        e1 = normalize(G[a][0] − G[p][0])
+//        n  = normalize(cross(e1, G[b][0] − G[p][0]))     (points to the hair side of the scalp)
+//        e2 = cross(n, e1)
+//    A guide whose partners equal itself (no usable neighbours) uses the fixed axes
+//    e1 = (1,0,0), e2 = (0,1,0), n = (0,0,1): its offsets do not turn with the head.
+//    The root offset and tip jitter in that frame:
+//        O = (o.x * e1 + o.y * e2) + o.z * n;   J = (j.x * e1 + j.y * e2) + j.z * n
+// 2. For each dense vertex i in [0, Nd):
+//        u  = float(i) * vertexScale                 guide-vertex coordinate, u ≤ Ng − 1
+//        v  = min(uint(u), Ng − 2);  f = u − float(v)
+//        L_k = (1 − f) * G[g[k]][v] + f * G[g[k]][v + 1]          (k < K)
+//        B  = w[0] * L_0;  B = B + w[1] * L_1;  B = B + w[2] * L_2  (only terms with k < K)
+//        t  = float(i) / float(Nd − 1)               0 at the root, 1 at the tip
+//        h  = c * t;  q = 1 − h
+//        C  = B + h * (L_0 − B)                       clumping towards the primary guide
+//        P[s][i] = C + q * (O + t * J)
+//    With K = 1 and w[0] = 1, B = L_0 exactly, so a single-guide strand is its guide plus the
+//    offset O + t·J scaled by (1 − c·t); with c = 1 the tip lies exactly on the guide at u.
+// 3. Tangents (optional), unit vectors root → tip, from the dense positions P:
+//        T[i] = normalize(P[i + 1] − P[i − 1]), with P[−1] := P[0] and P[Nd] := P[Nd − 1];
+//    T[i] = (0, 0, 0) where those two points coincide.
+//
+// Output is flat, strand-major: vertex i of dense strand s is element s·Nd + i.
+// Units: metres; angles none; all positions in the frame of the guide positions given.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "common/error.hpp"
+
+namespace mane::physics {
+
+/// How dense strands follow their guides.
+enum class GuideBlend : std::uint32_t {
+  kSingle = 0,       ///< one guide plus a root offset (Nalu / TressFX follow hairs)
+  kBarycentric = 1,  ///< three guides whose roots form a triangle around the root (Unreal groom)
+};
+
+/// Parameters of a dense groom layout. Lengths in metres.
+struct DenseGroomSettings {
+  std::uint64_t seed = 1;          ///< PRNG seed; equal seeds give bit-identical layouts
+  std::size_t strandCount = 4095;  ///< dense strands to generate (≥ 1); Nalu: 4,095
+  /// Vertices per dense strand (≥ 2), or 0 for the guides' vertex count.
+  std::size_t verticesPerStrand = 0;
+  GuideBlend blend = GuideBlend::kSingle;
+  /// Single guide: root offsets lie in a disc in the guide root's tangent plane (e1, e2) whose
+  /// radius is this fraction of the distance from the guide root to its nearest other guide
+  /// root; in [0, 4]. Barycentric strands get no root offset (their root is already spread).
+  float rootSpread = 0.5f;
+  /// Each strand is shortened by a random factor in [1 − lengthVariation, 1]; in [0, 1).
+  float lengthVariation = 0.1f;
+  float clump = 0.3f;           ///< mean clump factor c in [0, 1]: 1 puts the tip on the guide
+  float clumpVariation = 0.1f;  ///< c varies uniformly by ± this, clamped to [0, 1]; ≥ 0
+  /// Largest tip jitter, metres (≥ 0): a per-strand random vector in the ball of this radius,
+  /// added in proportion to t (0 at the root, full at the tip) before clumping.
+  float tipJitter = 0.002f;
+  /// Barycentric: the triangle's two other corners are picked among this many nearest guide
+  /// roots of the strand's home guide; in [2, 8].
+  std::size_t neighbourCandidates = 4;
+};
+
+/// Per guide: the two neighbouring guides whose roots define its local frame (see the formula
+/// in this header). Both equal the guide itself when no usable neighbours exist.
+struct GuideFrameRef {
+  std::uint32_t partnerA = 0;  ///< e1 points from this guide's root to partner A's root
+  std::uint32_t partnerB = 0;  ///< spans the tangent plane together with partner A
+};
+
+/// One dense strand: 64 bytes, laid out to match a std430 GPU buffer element.
+struct DenseStrand {
+  std::uint32_t guides[3] = {0, 0, 0};    ///< guide indices; entries k ≥ guideCount are unused
+  std::uint32_t guideCount = 1;           ///< K: 1 (single) to 3 (barycentric)
+  float weights[3] = {1.0f, 0.0f, 0.0f};  ///< w[k]; the first K sum to 1 (within 1e-5)
+  float vertexScale = 1.0f;               ///< guide vertices per dense vertex (length scale)
+  glm::vec3 rootOffset{0.0f};             ///< o, metres, in the primary guide's frame (e1, e2, n)
+  float clump = 0.0f;                     ///< c in [0, 1]
+  glm::vec3 tipJitter{0.0f};              ///< j, metres, in the primary guide's frame
+  float lengthScale = 1.0f;               ///< the strand's length relative to its guides (info)
+};
+static_assert(sizeof(DenseStrand) == 64, "DenseStrand mirrors a 64-byte std430 GPU element");
+
+/// Everything interpolation needs, built once from the guides' rest shape. Plain data: it may
+/// be stored, edited or uploaded; `interpolateDenseStrands` validates it on every call.
+struct DenseGroomLayout {
+  std::uint32_t guideCount = 0;            ///< guides the layout was built for
+  std::uint32_t guideVertexCount = 0;      ///< Ng, vertices per guide, in [2, 4096]
+  std::uint32_t vertexCount = 0;           ///< Nd, vertices per dense strand, in [2, 4096]
+  std::vector<GuideFrameRef> guideFrames;  ///< one per guide
+  std::vector<DenseStrand> strands;        ///< one per dense strand
+
+  /// Number of dense vertices the output holds: strands × Nd.
+  [[nodiscard]] std::size_t vertexTotal() const noexcept { return strands.size() * vertexCount; }
+};
+
+/// Builds a dense groom layout from guide strands at rest (points root first, metres, in any
+/// frame: the layout is invariant under rigid motions of the guides). All guides must have the
+/// same number of points (`resampleGroom` in strand_resample.hpp makes them so); guide roots
+/// should lie on the scalp.
+///
+/// Every dense strand s has a home guide ⌊s·guideCount / strandCount⌋: each guide is home to the
+/// same number of strands (±1), consecutive ones. Single guide: the strand follows its home
+/// guide. Barycentric: the home guide is the triangle's first corner, the two other
+/// corners are picked at random among its nearest guide roots, and the weights are a uniform
+/// random point of that triangle; strands whose home has no non-degenerate triangle fall back to
+/// the single guide. Fails, naming the guide or setting, on an empty groom, guides with fewer
+/// than 2 or unequal point counts, non-finite points, or settings out of range.
+[[nodiscard]] Result<DenseGroomLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
+                                                             const DenseGroomSettings& settings);
+
+/// Checks a layout: counts, guide indices and frame partners in range, weights finite and
+/// summing to 1 within 1e-5, offsets finite, clump in [0, 1], vertexScale keeping every dense
+/// vertex on its guides. Fails naming the first bad strand.
+[[nodiscard]] Result<void> validateDenseGroomLayout(const DenseGroomLayout& layout);
+
+/// Fills `positions` (metres, strand-major: layout.vertexTotal() elements) with the dense
+/// strands for the current guide positions, by the formula at the top of this header, and,
+/// when `tangents` is not empty (then also vertexTotal() elements), the unit tangents.
+///
+/// `guidePositions` holds guideCount × guideVertexCount points, guide after guide, root first
+/// (for a `HairSystem` whose strands all have that many particles this is exactly
+/// `particles().positions`). `threads` ≥ 1 workers (0 counts as 1) fill fixed contiguous ranges
+/// of dense strands; each strand is computed alone, so the output is bit-identical for any
+/// thread count. No allocation other than worker threads.
+///
+/// Fails, writing nothing, when the layout is invalid or empty, the guide or output sizes do not
+/// match it, a guide position is NaN or infinite (naming guide and vertex), or a guide's frame
+/// partners have collapsed onto its root.
+[[nodiscard]] Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions,
+                                                   const DenseGroomLayout& layout, std::span<glm::vec3> positions,
+                                                   std::span<glm::vec3> tangents = {}, unsigned threads = 1);
+
+}  // namespace mane::physics
