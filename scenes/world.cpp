@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/ext/matrix_transform.hpp>
+
 #include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
+#include "scenes/groom_loader.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -34,7 +37,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   } else {
     world.materials_.resize(world.scene_.materials.size());
   }
-  if (auto loaded = world.loadGrooms(); !loaded) return std::unexpected(loaded.error());
+  if (auto loaded = world.loadGrooms(resolver); !loaded) return std::unexpected(loaded.error());
   return world;
 }
 
@@ -76,33 +79,54 @@ Result<void> World::loadMaterials(const AssetResolver& resolver) {
   return {};
 }
 
-Result<void> World::loadGrooms() {
-  for (const Groom& groom : scene_.grooms) {
+Result<void> World::loadGrooms(const AssetResolver& resolver) {
+  for (std::size_t sceneGroom = 0; sceneGroom < scene_.grooms.size(); ++sceneGroom) {
+    const Groom& groom = scene_.grooms[sceneGroom];
     const auto meshIt = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
                                      [&](const MeshInstance& mesh) { return mesh.name == groom.attachedMesh; });
     const auto meshIndex = static_cast<std::size_t>(meshIt - scene_.meshes.begin());
-    if (!groom.isProcedural()) {
-      notes_.push_back("groom " + groom.name + ": loading " + groom.source +
-                       " is not supported yet (only procedural grooms): skipped");
-      continue;
+    // The solver takes its rest lengths in head space and wants a rigid head transform, so
+    // head space is the mesh's model space scaled to metres: the mesh's uniform scale goes into
+    // the guide points here and out of the transform (headToModel).
+    const float scale = meshIt->transform.scale;
+    std::vector<std::vector<glm::vec3>> guides;
+    if (groom.isProcedural()) {
+      // Guides on a spherical scalp fitted to the attached mesh's bounds: centred on the box,
+      // radius from its width and depth; lengths already in metres.
+      const Bounds bounds = meshes_[meshIndex].mesh.bounds();
+      physics::GroomSettings settings;
+      settings.seed = 1 + sceneGroom;
+      if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
+      if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
+      if (!bounds.isEmpty()) {
+        settings.scalpCentre = bounds.centre() * scale;
+        settings.scalpRadius = 0.5f * std::max(bounds.size().x, bounds.size().z) * scale;
+      }
+      auto generated = physics::generateGroom(settings);
+      if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
+      guides = std::move(*generated);
+    } else {
+      // Like meshes: a missing asset is a note and the groom is skipped; a file that does not
+      // parse is an error. Groom files hold strands in their head mesh's model space (the
+      // TressFX ponytail sits on its own head in the same units, shared/assets/README.md).
+      auto lookup = resolver.lookupForScene(groom.source, scene_.file.parent_path());
+      if (!lookup) return fail("groom " + groom.name + ": " + lookup.error().message);
+      if (!lookup->path) {
+        notes_.push_back("groom " + groom.name + ": " + groom.source + " missing (" + lookup->missingReason +
+                         "): skipped");
+        continue;
+      }
+      auto loaded = loadGroomFile(*lookup->path);
+      if (!loaded) return fail("groom " + groom.name + ": " + loaded.error().message);
+      guides = std::move(loaded->strands);
+      for (std::vector<glm::vec3>& strand : guides)
+        for (glm::vec3& point : strand) point *= scale;
     }
-    // Procedural guides on a spherical scalp fitted to the attached mesh's bounds (in the
-    // mesh's own space): centred on the box, radius from its width and depth.
-    const Bounds bounds = meshes_[meshIndex].mesh.bounds();
-    physics::GroomSettings settings;
-    settings.seed = 1 + grooms_.size();
-    if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
-    if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
-    if (!bounds.isEmpty()) {
-      settings.scalpCentre = bounds.centre();
-      settings.scalpRadius = 0.5f * std::max(bounds.size().x, bounds.size().z);
-    }
-    auto strands = physics::generateGroom(settings);
-    if (!strands) return fail("groom " + groom.name + ": " + strands.error().message);
-    auto hair = physics::HairSystem::create(*strands, solverSettings(groom.simulation, scene_.simulation),
-                                            animatedMatrix(scene_, *meshIt, 0.0f));
-    if (!hair) return fail("groom " + groom.name + ": " + hair.error().message);
-    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair)});
+    const glm::mat4 headToModel = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / scale));
+    auto hair = physics::HairSystem::create(guides, solverSettings(groom.simulation, scene_.simulation),
+                                            animatedMatrix(scene_, *meshIt, 0.0f) * headToModel);
+    if (!hair) return fail("groom " + groom.name + " (" + groom.source + "): " + hair.error().message);
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), headToModel, sceneGroom});
   }
   return {};
 }
@@ -112,10 +136,11 @@ Result<void> World::advance(double frameDt, unsigned threads) {
   time_ += frameDt;
   for (std::size_t i = 0; i < grooms_.size(); ++i) {
     SimulatedGroom& groom = grooms_[i];
-    const glm::mat4 head = animatedMatrix(scene_, scene_.meshes[groom.mesh], static_cast<float>(time_));
+    const glm::mat4 head =
+        animatedMatrix(scene_, scene_.meshes[groom.mesh], static_cast<float>(time_)) * groom.headToModel;
     if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
     if (auto advanced = groom.hair.advance(frameDt, threads); !advanced)
-      return fail("groom " + scene_.grooms[i].name + ": " + advanced.error().message);
+      return fail("groom " + scene_.grooms[groom.sceneGroom].name + ": " + advanced.error().message);
   }
   return {};
 }

@@ -46,6 +46,10 @@ public:
   /// Hash of every simulated state (all grooms, in scene order) and of the animation clock.
   std::uint64_t stateHash() const;
   std::size_t guideStrandCount() const;
+  /// The simulated grooms, in scene order (skipped grooms are absent): positions in metres,
+  /// world space.
+  std::size_t simulatedGroomCount() const { return grooms_.size(); }
+  const physics::HairSystem& simulatedGroom(std::size_t index) const { return grooms_.at(index).hair; }
   std::size_t particleCount() const;
 
 private:
@@ -56,12 +60,17 @@ private:
   struct SimulatedGroom {
     std::size_t mesh = 0;  ///< index into scene_.meshes the roots follow
     physics::HairSystem hair;
+    /// Maps the hair's head space (metres) into the mesh's model space: the hair system wants a
+    /// rigid head transform, so a mesh's uniform scale is applied to the guides once, at load,
+    /// and undone here.
+    glm::mat4 headToModel{1.0f};
+    std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
   };
 
   World() = default;
   Result<void> loadMeshes(const AssetResolver& resolver);
   Result<void> loadMaterials(const AssetResolver& resolver);
-  Result<void> loadGrooms();
+  Result<void> loadGrooms(const AssetResolver& resolver);
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;

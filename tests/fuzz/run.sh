@@ -3,6 +3,7 @@
 # turn, one process at a time.
 #
 #   tests/fuzz/run.sh [seconds] [harness...]     default: 60 s each, every harness
+#                                                (a harness by its name, fuzz_obj, or its format, obj)
 #
 # Seeds: tests/fuzz/seeds/<harness>/ plus small files from ../shared/assets (or $MANE_ASSETS),
 # linked into build/fuzz/seeds/ (never copied into the repository). The growing corpus lives
@@ -17,7 +18,8 @@ set -euo pipefail
 seconds="${1:-60}"
 shift || true
 harnesses=("$@")
-[[ ${#harnesses[@]} -eq 0 ]] && harnesses=(fuzz_scene fuzz_gltf fuzz_obj fuzz_image fuzz_manifest)
+[[ ${#harnesses[@]} -eq 0 ]] && harnesses=(fuzz_scene fuzz_gltf fuzz_obj fuzz_image fuzz_manifest fuzz_groom)
+harnesses=("${harnesses[@]/#fuzz_/}") && harnesses=("${harnesses[@]/#/fuzz_}")  # "obj" = "fuzz_obj"
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -37,7 +39,7 @@ cmake --build "$build" --target "${harnesses[@]}" -j "${FUZZ_BUILD_JOBS:-2}"
 
 # Largest input worth mutating per format, bytes: big enough for every seed's structure.
 declare -A maxLen=([fuzz_scene]=4096 [fuzz_gltf]=16384 [fuzz_obj]=8192 [fuzz_image]=16384
-                   [fuzz_manifest]=4096)
+                   [fuzz_manifest]=4096 [fuzz_groom]=4096)
 declare -A dict=([fuzz_scene]=json.dict [fuzz_gltf]=json.dict [fuzz_manifest]=json.dict
                  [fuzz_obj]=obj.dict)
 
@@ -49,6 +51,8 @@ sharedSeeds() {
     fuzz_obj) find "$assets/subdiv" "$assets/meshes" -type f -name '*.obj' -size -4k ;;
     fuzz_image) find "$assets" -type f \( -name '*.png' -o -name '*.jpg' \) -size -16k ;;
     fuzz_manifest) ls "$root/scenes/assets.json" ;;
+    # The shipped .tfx/.hair files are 90 KB and up, far over max_len: synthetic seeds only.
+    fuzz_groom) true ;;
   esac 2>/dev/null || true
 }
 

@@ -1,5 +1,6 @@
 // The World: what the renderer and the simulation receive from a scene file.
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "render/renderer.hpp"
@@ -60,6 +61,18 @@ TEST(World, AdvancingMovesTheHeadAndTheHair) {
   ASSERT_TRUE(world->advance(0.5, 1).has_value());
   EXPECT_NE(world->frameInput().instances[0].model, before) << "the nalu head turns";
   EXPECT_NE(world->stateHash(), hashBefore);
+  // The procedural guides are as long in the world as the scene says (0.35 m ± the generator's
+  // 10 % jitter), whatever the head mesh's scale (0.025 here), and tethers keep them from
+  // stretching: a world-space strand is never longer than its rest length.
+  ASSERT_EQ(world->simulatedGroomCount(), 1u);
+  const physics::HairSystem& hair = world->simulatedGroom(0);
+  for (std::size_t s = 0; s < hair.strandCount(); ++s) {
+    const float rest = hair.strandRestDistances(s).back();
+    EXPECT_GE(rest, 0.35f * 0.9f - 1e-4f) << "strand " << s;
+    EXPECT_LE(rest, 0.35f * 1.1f + 1e-4f) << "strand " << s;
+    const auto points = hair.strandPositions(s);
+    EXPECT_LE(glm::distance(points.front(), points.back()), rest * (1.0f + 1e-5f)) << "strand " << s;
+  }
   EXPECT_DOUBLE_EQ(world->time(), 0.5);
   EXPECT_FALSE(world->advance(-1.0, 1).has_value());
 }
