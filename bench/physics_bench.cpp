@@ -5,17 +5,23 @@
 //   BM_HairFrame/<threads>: one 1/60 s frame (two 1/120 s fixed steps) of a 10,000-guide ×
 //     32-particle groom with 4 constraint iterations and tethers, on a head that sways;
 //     items/s = particle updates (particles × fixed steps) per second.
+//   BM_HairFrameCollisions/<threads>: the same frame with a neck capsule and the SDF (64³ class)
+//     of a 20,480-triangle ellipsoidal head mesh as colliders, friction 0.3.
+//   BM_SdfBuild: building that SDF (20,480 triangles, about LeePerrySmith's 17,684) at 64³.
 //   BM_StateHash: FNV-1a over the same groom's state; bytes/s.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "physics/colliders.hpp"
 #include "physics/constraints.hpp"
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
+#include "physics/sdf.hpp"
 
 namespace {
 
@@ -79,6 +85,65 @@ void BM_HairFrame(benchmark::State& state) {
   state.counters["particles"] = static_cast<double>(hair->particles().size());
 }
 BENCHMARK(BM_HairFrame)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A head-sized closed mesh: an icosphere (5 subdivisions, 20,480 triangles) scaled into an
+// ellipsoid inside the groom's r = 0.1 m scalp.
+TriangleMesh benchHeadMesh() {
+  TriangleMesh mesh = makeIcosphere(1.0f, 5);
+  for (glm::vec3& p : mesh.positions) p *= glm::vec3(0.085f, 0.097f, 0.095f);
+  return mesh;
+}
+
+void BM_SdfBuild(benchmark::State& state) {
+  static const TriangleMesh mesh = benchHeadMesh();
+  for (auto _ : state) {
+    auto sdf = SignedDistanceField::build(mesh.positions, mesh.indices, {.resolution = 64});
+    if (!sdf) {
+      state.SkipWithError(sdf.error().message.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(sdf->values().data());
+  }
+  state.counters["triangles"] = static_cast<double>(mesh.indices.size() / 3);
+}
+BENCHMARK(BM_SdfBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_HairFrameCollisions(benchmark::State& state) {
+  const auto threads = static_cast<unsigned>(state.range(0));
+  static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
+  static const auto sdf = [] {
+    const TriangleMesh mesh = benchHeadMesh();
+    return std::make_shared<const SignedDistanceField>(*SignedDistanceField::build(mesh.positions, mesh.indices));
+  }();
+  SolverSettings settings;
+  settings.fixedStep = 1.0 / 120.0;
+  settings.constraintIterations = 4;
+  auto hair = HairSystem::create(strands, settings);
+  if (!hair) {
+    state.SkipWithError(hair.error().message.c_str());
+    return;
+  }
+  ColliderSet head;
+  head.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
+  head.sdf = sdf;
+  head.friction = 0.3f;
+  (void)hair->setColliders(head);
+  int frame = 0;
+  std::uint64_t particleSteps = 0;
+  for (auto _ : state) {
+    ++frame;
+    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
+    (void)hair->setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
+    const auto before = hair->stepCount();
+    if (!hair->advance(1.0 / 60.0, threads)) {
+      state.SkipWithError("advance failed");
+      return;
+    }
+    particleSteps += (hair->stepCount() - before) * hair->particles().size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
+}
+BENCHMARK(BM_HairFrameCollisions)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_StateHash(benchmark::State& state) {
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
