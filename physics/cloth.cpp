@@ -9,6 +9,7 @@
 #include <utility>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "physics/hash.hpp"
 
@@ -130,6 +131,12 @@ Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<cons
   return cloth;
 }
 
+Result<void> Cloth::setColliders(ColliderSet colliders) {
+  if (auto valid = validateColliders(colliders); !valid) return fail("cloth colliders: " + valid.error().message);
+  colliders_ = std::move(colliders);
+  return {};
+}
+
 Result<void> Cloth::setBodyTransform(const glm::mat4& bodyTransform) {
   if (!finite(bodyTransform)) return fail("cloth body transform has a NaN or infinite entry");
   body_ = bodyTransform;
@@ -165,6 +172,26 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
   // (relaxation); the barrier separates phases, so nothing is read while another writes it.
   std::barrier sync(static_cast<std::ptrdiff_t>(workers));
   auto slice = [&](std::size_t count, unsigned w) { return std::pair{count * w / workers, count * (w + 1) / workers}; };
+  // Colliders live in body space: particles are taken there with the step's body placement
+  // (the two frame-end placements blended; exact at the frame's end), collided, and brought back.
+  std::vector<glm::mat4> bodyAt, worldToBody;
+  if (!colliders_.empty())
+    for (int k = 0; k <= plan.substeps; ++k) {
+      const float t = k == 0 ? 0.0f : plan.fractionAt(k);
+      bodyAt.push_back(previousBody_ + (body_ - previousBody_) * t);
+      worldToBody.push_back(glm::inverse(bodyAt.back()));
+    }
+  auto collide = [&](int k, std::size_t first, std::size_t end, bool withFriction) {
+    const glm::mat4& toBody = worldToBody[static_cast<std::size_t>(k)];
+    const glm::mat4& toWorld = bodyAt[static_cast<std::size_t>(k)];
+    for (std::size_t i = first; i < end; ++i) {
+      if (particles_.inverseMasses[i] == 0.0f) continue;
+      glm::vec3 position = transformPoint(toBody, particles_.positions[i]);
+      const glm::vec3 previous = transformPoint(toBody, particles_.previousPositions[i]);
+      if (collideParticle(colliders_, position, previous, withFriction ? colliders_.friction : 0.0f))
+        particles_.positions[i] = transformPoint(toWorld, position);
+    }
+  };
   auto work = [&](unsigned w) {
     for (int k = 1; k <= plan.substeps; ++k) {
       if (w == 0) {
@@ -178,6 +205,7 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
       }
       const auto [first, end] = slice(particles_.size(), w);
       integrateVerlet(particles_, first, end - first, settings_.solver.gravity, settings_.solver.damping, step);
+      if (!colliders_.empty()) collide(k, first, end, true);
       if (workers > 1) sync.arrive_and_wait();
       for (int iteration = 0; iteration < settings_.solver.constraintIterations; ++iteration)
         for (std::size_t colour = 0; colour < colourCount; ++colour) {
@@ -185,6 +213,10 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
           relaxColour(colour, from, to);
           if (workers > 1) sync.arrive_and_wait();
         }
+      if (!colliders_.empty()) {
+        collide(k, first, end, false);
+        if (workers > 1) sync.arrive_and_wait();
+      }
     }
   };
   if (workers == 1) {

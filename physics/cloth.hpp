@@ -21,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "physics/colliders.hpp"
 #include "physics/constraints.hpp"
 #include "physics/particles.hpp"
 #include "physics/solver.hpp"
@@ -54,6 +55,11 @@ public:
   /// line between the previous and this placement over the frame's steps. NaN/Inf: error.
   [[nodiscard]] Result<void> setBodyTransform(const glm::mat4& bodyTransform);
 
+  /// What the cloth collides with, in body-local space (it moves with the body transform).
+  /// Step order: Verlet, collisions with friction, the coloured constraint sweeps, then a
+  /// frictionless collision pass so that no particle ends a step inside a collider.
+  [[nodiscard]] Result<void> setColliders(ColliderSet colliders);
+
   /// Advances by `frameDt` seconds in whole fixed steps (the remainder carries over), with
   /// `threads` workers (0 counts as 1); the result does not depend on `threads`. Fails when
   /// `frameDt` is negative or not finite, or when a particle becomes non-finite (naming it).
@@ -83,6 +89,7 @@ private:
   std::vector<DistanceConstraint> edges_;
   std::vector<std::uint32_t> pinned_;
   std::vector<glm::vec3> pinnedLocal_;
+  ColliderSet colliders_;
   glm::mat4 previousBody_{1.0f};
   glm::mat4 body_{1.0f};
 };

@@ -152,6 +152,37 @@ TEST(Cloth, StifferBendingDroopsLess) {
   EXPECT_GT(medium, stiff);
 }
 
+// A free sheet dropped onto a ball that moves with the body: after every step no particle is
+// inside the ball (signed distance ≥ −1e-4 m, the frictionless last pass puts them on the
+// surface), and the sheet ends up draped over it rather than falling through.
+TEST(Cloth, DrapesOverABallColliderAndNeverEntersIt) {
+  Grid grid = makeGrid(15, 0.8f);
+  for (auto& p : grid.positions) p = glm::vec3(p.x - 0.4f, 0.3f, p.y + 0.4f);  // horizontal, above
+  ClothSettings settings;
+  settings.solver.constraintIterations = 8;
+  auto cloth = Cloth::create(grid.positions, grid.triangles, {}, settings);
+  ASSERT_TRUE(cloth.has_value());
+  ColliderSet ball;
+  ball.spheres.push_back({.centre = {0, 0, 0}, .radius = 0.2f});
+  ball.friction = 0.6f;
+  ASSERT_TRUE(cloth->setColliders(ball).has_value());
+  const glm::vec3 offset(0.0f, -0.05f, 0.0f);  // the body (and its ball) moves down at the start
+  ASSERT_TRUE(cloth->setBodyTransform(glm::translate(glm::mat4(1.0f), offset)).has_value());
+  float deepest = 1.0f;
+  for (int frame = 0; frame < 120; ++frame) {
+    ASSERT_TRUE(cloth->advance(1.0 / 120.0).has_value());
+    for (const glm::vec3& p : cloth->particles().positions)
+      deepest = std::min(deepest, glm::distance(p, offset) - 0.2f);
+  }
+  EXPECT_GE(deepest, -1e-4f);
+  // The middle of the sheet rests on top of the moved ball (friction holds it there).
+  const glm::vec3 middle = cloth->particles().positions[7 * 15 + 7];
+  EXPECT_NEAR(middle.y, offset.y + 0.2f, 0.01f);
+  EXPECT_FALSE(Cloth::create(grid.positions, grid.triangles, {}, settings)
+                   ->setColliders({.spheres = {{.centre = {0, 0, 0}, .radius = -1.0f}}})
+                   .has_value());
+}
+
 TEST(Cloth, ThreadCountDoesNotChangeTheResult) {
   const Grid grid = makeGrid(16, 0.6f);
   std::uint64_t hashes[3];
