@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <barrier>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <queue>
 #include <string>
 #include <thread>
 #include <utility>
@@ -49,6 +51,43 @@ std::vector<std::uint32_t> colourConstraints(std::span<const SoftDistanceConstra
 }
 
 }  // namespace
+
+// Multi-source Dijkstra over the edge constraints from every pin: each free vertex's nearest pin
+// along the mesh and the length of that path at rest, which bounds its distance to the pin.
+std::vector<Tether> Cloth::attachToPins(const Cloth& cloth) {
+  const std::size_t count = cloth.particles_.size();
+  std::vector<std::vector<std::pair<std::uint32_t, float>>> neighbours(count);
+  for (const DistanceConstraint& edge : cloth.edges_) {
+    neighbours[edge.a].push_back({edge.b, edge.restLength});
+    neighbours[edge.b].push_back({edge.a, edge.restLength});
+  }
+  constexpr float kUnreached = std::numeric_limits<float>::infinity();
+  std::vector<float> distance(count, kUnreached);
+  std::vector<std::uint32_t> nearestPin(count, 0);
+  using Entry = std::pair<float, std::uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (std::uint32_t pin : cloth.pinned_) {
+    distance[pin] = 0.0f;
+    nearestPin[pin] = pin;
+    queue.push({0.0f, pin});
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > distance[v]) continue;
+    for (const auto& [next, length] : neighbours[v])
+      if (d + length < distance[next]) {
+        distance[next] = d + length;
+        nearestPin[next] = nearestPin[v];
+        queue.push({distance[next], next});
+      }
+  }
+  std::vector<Tether> tethers;
+  for (std::uint32_t v = 0; v < count; ++v)
+    if (cloth.particles_.inverseMasses[v] > 0.0f && distance[v] != kUnreached)
+      tethers.push_back({v, nearestPin[v], distance[v]});
+  return tethers;
+}
 
 Cloth::Cloth(const ClothSettings& settings)
     : settings_(settings), accumulator_(settings.solver.fixedStep, settings.solver.maxSubstepsPerFrame) {}
@@ -114,6 +153,8 @@ Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<cons
       if (opposite.size() == 2 && opposite[0] != opposite[1])
         addConstraint(std::min(opposite[0], opposite[1]), std::max(opposite[0], opposite[1]),
                       settings.bendingStiffness);
+
+  if (settings.solver.tethers && !cloth.pinned_.empty()) cloth.tethers_ = attachToPins(cloth);
 
   // Sort by colour (stable: within a colour the build order stays, though it cannot matter).
   const auto colours = colourConstraints(cloth.constraints_, positions.size());
@@ -213,6 +254,15 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
           relaxColour(colour, from, to);
           if (workers > 1) sync.arrive_and_wait();
         }
+      // Tethers last in the step (one particle each, sorted: a slice per worker), so no free
+      // vertex ends it beyond its path length from its pin.
+      if (!tethers_.empty()) {
+        const auto [from, to] = slice(tethers_.size(), w);
+        for (std::size_t t = from; t < to; ++t)
+          projectTether(particles_.positions[tethers_[t].particle], particles_.positions[tethers_[t].anchor],
+                        tethers_[t].maxDistance);
+        if (workers > 1) sync.arrive_and_wait();
+      }
       if (!colliders_.empty()) {
         collide(k, first, end, false);
         if (workers > 1) sync.arrive_and_wait();

@@ -6,7 +6,10 @@
 //   between the two vertices opposite the edge, relaxed with a stiffness in [0, 1] (the
 //   "bend spring" of Provot 1995 in position-based form; 0 folds freely, 1 keeps the rest
 //   dihedral as well as the iteration count allows);
-// - pinned vertices with infinite mass that follow the body transform.
+// - pinned vertices with infinite mass that follow the body transform;
+// - long-range attachments (Kim, Chentanez & Müller 2012): every free vertex may stray from its
+//   nearest pin no farther than the shortest path along the mesh's edges at rest, so the cloth
+//   cannot stretch visibly however few the iterations (on with `solver.tethers`).
 //
 // Parallel and deterministic: constraints are greedily graph-coloured so that no two in a
 // colour share a particle; colours are relaxed one after another, the constraints of a colour
@@ -76,10 +79,13 @@ public:
   [[nodiscard]] std::span<const DistanceConstraint> edges() const noexcept { return edges_; }
   [[nodiscard]] std::size_t edgeCount() const noexcept { return edges_.size(); }
   [[nodiscard]] std::size_t bendingCount() const noexcept { return constraints_.size() - edges_.size(); }
+  /// One per free vertex that a path of edges connects to a pin (when tethers are on).
+  [[nodiscard]] std::span<const Tether> tethers() const noexcept { return tethers_; }
 
 private:
   Cloth(const ClothSettings& settings);
   void relaxColour(std::size_t colour, std::size_t first, std::size_t end);
+  static std::vector<Tether> attachToPins(const Cloth& cloth);
 
   ClothSettings settings_;
   FixedStepAccumulator accumulator_;
@@ -87,6 +93,7 @@ private:
   std::vector<SoftDistanceConstraint> constraints_;  // sorted by colour
   std::vector<std::uint32_t> colourStarts_;
   std::vector<DistanceConstraint> edges_;
+  std::vector<Tether> tethers_;  // sorted by particle
   std::vector<std::uint32_t> pinned_;
   std::vector<glm::vec3> pinnedLocal_;
   ColliderSet colliders_;

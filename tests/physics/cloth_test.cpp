@@ -113,6 +113,7 @@ TEST(Cloth, HangingSheetStretchFallsWithIterations) {
     ClothSettings settings;
     settings.solver.constraintIterations = iterations;
     settings.solver.damping = 0.05f;
+    settings.solver.tethers = false;  // the relaxation alone
     auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 9}, settings);
     ASSERT_TRUE(cloth.has_value());
     for (int i = 0; i < 240; ++i) ASSERT_TRUE(cloth->advance(1.0 / 60.0).has_value());
@@ -128,6 +129,33 @@ TEST(Cloth, HangingSheetStretchFallsWithIterations) {
 }
 
 // A strip pinned along one short side is a cantilever: stiffer bending droops less.
+// Long-range attachments: with only 3 sweeps a shaken sheet would stretch by tens of percent;
+// with tethers no free vertex ends a step farther from its pin than its rest path along the
+// edges (Kim et al. 2012's guarantee; + 1e-5 m for rounding).
+TEST(Cloth, TethersBoundEveryVertexByItsPathToAPin) {
+  const Grid grid = makeGrid(12, 0.5f);
+  ClothSettings settings;
+  settings.solver.constraintIterations = 3;
+  auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 11}, settings);
+  ASSERT_TRUE(cloth.has_value());
+  EXPECT_EQ(cloth->tethers().size(), 144u - 2u);
+  for (int frame = 0; frame < 90; ++frame) {
+    const float swing = 0.3f * float(frame % 20 < 10 ? 1 : -1);
+    ASSERT_TRUE(cloth->setBodyTransform(glm::translate(glm::mat4(1.0f), {swing, 0.0f, 0.0f})).has_value());
+    ASSERT_TRUE(cloth->advance(1.0 / 60.0).has_value());
+    for (const Tether& tether : cloth->tethers())
+      ASSERT_LE(
+          glm::distance(cloth->particles().positions[tether.particle], cloth->particles().positions[tether.anchor]),
+          tether.maxDistance + 1e-5f)
+          << "frame " << frame << " vertex " << tether.particle;
+  }
+  // The bottom corner's bound is its path to the nearer top corner: 11 edges down, 0.5 m.
+  const auto corner =
+      std::find_if(cloth->tethers().begin(), cloth->tethers().end(), [](const Tether& t) { return t.particle == 132; });
+  ASSERT_NE(corner, cloth->tethers().end());
+  EXPECT_NEAR(corner->maxDistance, 0.5f, 1e-5f);
+}
+
 TEST(Cloth, StifferBendingDroopsLess) {
   auto tipDrop = [](float stiffness) {
     Grid grid;
