@@ -20,6 +20,12 @@ Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const sc
   return world;
 }
 
+Result<void> uploadDynamicMeshes(const scenes::World& world, render::Renderer& renderer) {
+  for (const auto& mesh : world.dynamicMeshes())
+    if (auto updated = renderer.updateMesh(mesh.mesh, mesh.positions, mesh.normals); !updated) return updated;
+  return {};
+}
+
 Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text) {
   const auto x = text.find('x');
   std::uint32_t width = 0, height = 0;

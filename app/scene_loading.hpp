@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "render/renderer.hpp"
 #include "scenes/world.hpp"
 
 namespace mane::app {
@@ -14,6 +15,9 @@ std::filesystem::path defaultScenePath();
 
 /// Loads `scenePath` into a World, printing each fallback note as "note: ..." on stdout.
 Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings);
+
+/// Hands the world's moving meshes (cloth) their current vertices; call after advancing.
+Result<void> uploadDynamicMeshes(const scenes::World& world, render::Renderer& renderer);
 
 /// Parses "WIDTHxHEIGHT" (e.g. 1280x720).
 Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text);

@@ -124,6 +124,7 @@ void run(const ViewOptions& options) {
       // Real time, capped so a slow frame (lavapipe) plays in slow motion rather than jumping.
       if (auto advanced = world->advance(std::min(dt, 1.0 / 30.0), options.threads); !advanced)
         return failWith(advanced.error().message);
+      if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
       input.stepOnce = false;
     }
     render::FrameInput frameInput = world->frameInput();

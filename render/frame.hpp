@@ -25,6 +25,9 @@ struct MeshData {
   std::span<const glm::vec3> normals;
   std::span<const glm::vec2> uvs;
   std::span<const std::uint32_t> indices;
+  /// Positions and normals change every frame (cloth): kept in host-visible memory and
+  /// replaced with Renderer::updateMesh; topology and uvs stay.
+  bool dynamic = false;
 };
 
 /// A Lambert surface: albedo (sRGB texture times base colour) with an optional tangent-space

@@ -142,6 +142,17 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
              Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
 }
 
+Result<void> Renderer::updateMesh(std::size_t mesh, std::span<const glm::vec3> positions,
+                                  std::span<const glm::vec3> normals) {
+  if (!surfaces_.isDynamic(mesh)) return fail("mesh " + std::to_string(mesh) + " is not a dynamic mesh of the scene");
+  const std::size_t count = surfaces_.vertexCount(mesh);
+  if (positions.size() != count || (!normals.empty() && normals.size() != count))
+    return fail("mesh " + std::to_string(mesh) + " has " + std::to_string(count) + " vertices; got " +
+                std::to_string(positions.size()) + " positions and " + std::to_string(normals.size()) + " normals");
+  surfaces_.updateVertices(mesh, positions, normals);
+  return {};
+}
+
 Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   for (std::size_t i = 0; i < frame.instances.size(); ++i)
     if (!surfaces_.canDraw(frame.instances[i]))

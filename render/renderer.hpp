@@ -28,6 +28,10 @@ public:
   /// Uploads meshes and textures that stay for many frames.
   Result<void> setScene(const StaticScene& scene);
 
+  /// New positions (and normals, or none to keep them) for dynamic mesh `mesh` of the scene,
+  /// one per vertex; takes effect from the next render.
+  Result<void> updateMesh(std::size_t mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
+
   /// Records every pass of `frame`; leaves target().output() in TRANSFER_SRC layout.
   void record(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
 

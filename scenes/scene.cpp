@@ -169,6 +169,40 @@ Groom parseGroom(const Json& json, const std::string& path) {
   return groom;
 }
 
+Cloth parseCloth(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Cloth cloth;
+  cloth.name = fields.required<std::string>("name");
+  require(!cloth.name.empty(), fields.child("name"), "expected a non-empty name");
+  cloth.source = fields.required<std::string>("source");
+  require(!cloth.source.empty() && (!cloth.source.starts_with(kProceduralPrefix) || cloth.source == "procedural:grid"),
+          fields.child("source"), "expected a mesh asset, a file path or \"procedural:grid\"");
+  cloth.attachedMesh = fields.required<std::string>("attached_mesh");
+  cloth.material = fields.optional<std::string>("material", "");
+  if (const Json* transform = fields.take("transform")) {
+    cloth.transform = parseTransform(*transform, fields.child("transform"));
+  }
+  const std::string pinned = fields.optional<std::string>("pinned", "top_edge");
+  require(pinned == "top_edge" || pinned == "none", fields.child("pinned"),
+          "expected \"top_edge\" or \"none\", got \"" + pinned + "\"");
+  cloth.pinTopEdge = pinned == "top_edge";
+  if (const Json* sim = fields.take("simulation")) {
+    ObjectFields simFields(*sim, fields.child("simulation"));
+    cloth.iterations = simFields.optional<int>("iterations", cloth.iterations);
+    cloth.damping = simFields.optional<float>("damping", cloth.damping);
+    cloth.bendingStiffness = simFields.optional<float>("bending", cloth.bendingStiffness);
+    cloth.gravity = simFields.optional<glm::vec3>("gravity", cloth.gravity);
+    simFields.finish();
+    require(cloth.iterations >= 1 && cloth.iterations <= 1000, simFields.child("iterations"),
+            "expected 1..1000 iterations");
+    require(cloth.damping >= 0.0f && cloth.damping < 1.0f, simFields.child("damping"), "expected a damping in [0, 1)");
+    require(cloth.bendingStiffness >= 0.0f && cloth.bendingStiffness <= 1.0f, simFields.child("bending"),
+            "expected a bending stiffness in [0, 1]");
+  }
+  fields.finish();
+  return cloth;
+}
+
 HeadMotion parseHeadMotion(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   HeadMotion motion;
@@ -259,6 +293,14 @@ void checkReferences(const Scene& scene) {
     require(scene.findMesh(groom.attachedMesh) != nullptr, "grooms[" + std::to_string(i) + "].attached_mesh",
             "no mesh named \"" + groom.attachedMesh + "\" in meshes");
   }
+  for (std::size_t i = 0; i < scene.cloths.size(); ++i) {
+    const Cloth& cloth = scene.cloths[i];
+    const std::string path = "cloths[" + std::to_string(i) + "]";
+    require(scene.findMesh(cloth.attachedMesh) != nullptr, path + ".attached_mesh",
+            "no mesh named \"" + cloth.attachedMesh + "\" in meshes");
+    require(cloth.material.empty() || scene.findMaterial(cloth.material), path + ".material",
+            "no material named \"" + cloth.material + "\" in materials");
+  }
   if (scene.headMotion.kind != HeadMotionKind::none) {
     require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
             "no mesh named \"" + scene.headMotion.mesh + "\" in meshes");
@@ -277,6 +319,7 @@ Scene parseRoot(const Json& json) {
   scene.materials = parseList<Material>(fields, "materials", parseMaterial);
   scene.meshes = parseList<MeshInstance>(fields, "meshes", parseMesh);
   scene.grooms = parseList<Groom>(fields, "grooms", parseGroom);
+  scene.cloths = parseList<Cloth>(fields, "cloths", parseCloth);
   if (const Json* animation = fields.take("animation")) {
     ObjectFields anim(*animation, "animation");
     if (const Json* head = anim.take("head")) scene.headMotion = parseHeadMotion(*head, "animation.head");

@@ -102,6 +102,22 @@ struct Groom {
   [[nodiscard]] bool isProcedural() const { return source == "procedural"; }
 };
 
+/// Cloth (a fin, a scarf, a cape): a triangle mesh whose edges become constraints, moving with
+/// a mesh (the body). Its `transform` places the cloth relative to the body's pivot in metres,
+/// following the body's motion but not its scale.
+struct Cloth {
+  std::string name;
+  std::string source;        ///< mesh asset, file path, or "procedural:grid" (1 m × 1 m, top edge at y = 0)
+  std::string attachedMesh;  ///< name of a `MeshInstance`; pins follow it
+  std::string material;      ///< name of a `Material` (empty: the default material)
+  Transform transform;
+  bool pinTopEdge = true;                 ///< pin the vertices at the highest local y (the grid's top edge)
+  int iterations = 8;                     ///< constraint sweeps per step, ≥ 1
+  float damping = 0.02f;                  ///< velocity fraction lost per step, in [0, 1)
+  float bendingStiffness = 0.5f;          ///< in [0, 1]
+  glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
+};
+
 /// A head pose at a time; the motion interpolates these linearly.
 struct Keyframe {
   float timeSeconds = 0.0f;
@@ -146,6 +162,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<MeshInstance> meshes;
   std::vector<Groom> grooms;
+  std::vector<Cloth> cloths;
   HeadMotion headMotion;
   SimulationSettings simulation;
 

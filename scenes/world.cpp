@@ -38,6 +38,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
     world.materials_.resize(world.scene_.materials.size());
   }
   if (auto loaded = world.loadGrooms(resolver); !loaded) return std::unexpected(loaded.error());
+  if (auto loaded = world.loadCloths(resolver); !loaded) return std::unexpected(loaded.error());
   return world;
 }
 
@@ -87,7 +88,7 @@ Result<void> World::loadGrooms(const AssetResolver& resolver) {
     const auto meshIndex = static_cast<std::size_t>(meshIt - scene_.meshes.begin());
     // The solver takes its rest lengths in head space and wants a rigid head transform, so
     // head space is the mesh's model space scaled to metres: the mesh's uniform scale goes into
-    // the guide points here and out of the transform (headToModel).
+    // the guide points here and out of the transform (bodyPlacement).
     const float scale = meshIt->transform.scale;
     std::vector<std::vector<glm::vec3>> guides;
     if (groom.isProcedural()) {
@@ -122,11 +123,29 @@ Result<void> World::loadGrooms(const AssetResolver& resolver) {
       for (std::vector<glm::vec3>& strand : guides)
         for (glm::vec3& point : strand) point *= scale;
     }
-    const glm::mat4 headToModel = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / scale));
     auto hair = physics::HairSystem::create(guides, solverSettings(groom.simulation, scene_.simulation),
-                                            animatedMatrix(scene_, *meshIt, 0.0f) * headToModel);
+                                            bodyPlacement(*meshIt, 0.0));
     if (!hair) return fail("groom " + groom.name + " (" + groom.source + "): " + hair.error().message);
-    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), headToModel, sceneGroom});
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom});
+  }
+  return {};
+}
+
+glm::mat4 World::bodyPlacement(const MeshInstance& mesh, double time) const {
+  return animatedMatrix(scene_, mesh, static_cast<float>(time)) *
+         glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / mesh.transform.scale));
+}
+
+Result<void> World::loadCloths(const AssetResolver& resolver) {
+  for (const Cloth& cloth : scene_.cloths) {
+    auto rest = loadClothMesh(cloth, resolver, scene_.file.parent_path());
+    if (!rest) return std::unexpected(rest.error());
+    const auto body = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
+                                   [&](const MeshInstance& mesh) { return mesh.name == cloth.attachedMesh; });
+    auto created = SceneCloth::create(cloth, std::move(*rest), scene_.simulation, bodyPlacement(*body, 0.0));
+    if (!created) return std::unexpected(created.error());
+    cloths_.push_back(std::move(*created));
+    clothBodies_.push_back(static_cast<std::size_t>(body - scene_.meshes.begin()));
   }
   return {};
 }
@@ -134,14 +153,16 @@ Result<void> World::loadGrooms(const AssetResolver& resolver) {
 Result<void> World::advance(double frameDt, unsigned threads) {
   if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("frame time must be finite and ≥ 0");
   time_ += frameDt;
-  for (std::size_t i = 0; i < grooms_.size(); ++i) {
-    SimulatedGroom& groom = grooms_[i];
-    const glm::mat4 head =
-        animatedMatrix(scene_, scene_.meshes[groom.mesh], static_cast<float>(time_)) * groom.headToModel;
+  for (SimulatedGroom& groom : grooms_) {
+    const glm::mat4 head = bodyPlacement(scene_.meshes[groom.mesh], time_);
     if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
     if (auto advanced = groom.hair.advance(frameDt, threads); !advanced)
       return fail("groom " + scene_.grooms[groom.sceneGroom].name + ": " + advanced.error().message);
   }
+  for (std::size_t i = 0; i < cloths_.size(); ++i)
+    if (auto advanced = cloths_[i].advance(bodyPlacement(scene_.meshes[clothBodies_[i]], time_), frameDt, threads);
+        !advanced)
+      return advanced;
   return {};
 }
 
@@ -158,6 +179,18 @@ render::StaticScene World::staticScene() const {
   }
   // Last: the material of meshes that name none (a plain Material's defaults).
   result.materials.push_back(render::MaterialData{.baseColor = Material{}.baseColour});
+  // Cloth surfaces come after the scene's meshes, in world space, rewritten every frame.
+  for (const SceneCloth& cloth : cloths_) {
+    const Mesh& surface = cloth.surface();
+    result.meshes.push_back(render::MeshData{surface.positions, surface.normals, surface.uvs, surface.indices, true});
+  }
+  return result;
+}
+
+std::vector<World::DynamicMesh> World::dynamicMeshes() const {
+  std::vector<DynamicMesh> result;
+  for (std::size_t i = 0; i < cloths_.size(); ++i)
+    result.push_back({meshes_.size() + i, cloths_[i].surface().positions, cloths_[i].surface().normals});
   return result;
 }
 
@@ -173,22 +206,29 @@ render::FrameInput World::frameInput() const {
   for (const Light& light : scene_.lights)
     // The scene says where light travels; the renderer wants the way back to the light.
     frame.lights.push_back({.direction = -light.direction, .color = light.colour, .intensity = light.intensity});
-  for (std::size_t i = 0; i < scene_.meshes.size(); ++i) {
-    const MeshInstance& mesh = scene_.meshes[i];
-    // loadScene has checked that a named material exists; no name means the default one,
-    // which staticScene() puts after the scene's own.
+  // loadScene has checked that a named material exists; no name means the default one, which
+  // staticScene() puts after the scene's own.
+  auto materialIndex = [&](const std::string& name) {
     std::size_t material = scene_.materials.size();
     for (std::size_t m = 0; m < scene_.materials.size(); ++m)
-      if (scene_.materials[m].name == mesh.material) material = m;
-    frame.instances.push_back(
-        {.mesh = i, .material = material, .model = animatedMatrix(scene_, mesh, static_cast<float>(time_))});
+      if (scene_.materials[m].name == name) material = m;
+    return material;
+  };
+  for (std::size_t i = 0; i < scene_.meshes.size(); ++i) {
+    const MeshInstance& mesh = scene_.meshes[i];
+    frame.instances.push_back({.mesh = i,
+                               .material = materialIndex(mesh.material),
+                               .model = animatedMatrix(scene_, mesh, static_cast<float>(time_))});
   }
+  for (std::size_t i = 0; i < cloths_.size(); ++i)  // already in world space
+    frame.instances.push_back({.mesh = meshes_.size() + i, .material = materialIndex(scene_.cloths[i].material)});
   return frame;
 }
 
 std::uint64_t World::stateHash() const {
   physics::StateHasher hasher;
   for (const SimulatedGroom& groom : grooms_) hasher.addValue(groom.hair.stateHash());
+  for (const SceneCloth& cloth : cloths_) hasher.addValue(cloth.cloth().stateHash());
   hasher.addValue(time_);
   return hasher.value();
 }
@@ -202,6 +242,7 @@ std::size_t World::guideStrandCount() const {
 std::size_t World::particleCount() const {
   std::size_t count = 0;
   for (const SimulatedGroom& groom : grooms_) count += groom.hair.particles().size();
+  for (const SceneCloth& cloth : cloths_) count += cloth.cloth().particles().size();
   return count;
 }
 

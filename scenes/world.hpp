@@ -12,6 +12,7 @@
 #include "render/frame.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/image.hpp"
+#include "scenes/scene_cloth.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_meshes.hpp"
 
@@ -43,7 +44,18 @@ public:
   /// Camera, lights and mesh placements at the current time.
   render::FrameInput frameInput() const;
 
-  /// Hash of every simulated state (all grooms, in scene order) and of the animation clock.
+  /// A mesh of staticScene() whose vertices move every frame (cloth), with its current
+  /// world-space positions and normals: hand them to Renderer::updateMesh before rendering.
+  struct DynamicMesh {
+    std::size_t mesh = 0;
+    std::span<const glm::vec3> positions;
+    std::span<const glm::vec3> normals;
+  };
+  std::vector<DynamicMesh> dynamicMeshes() const;
+
+  const std::vector<SceneCloth>& cloths() const { return cloths_; }
+
+  /// Hash of every simulated state (grooms, then cloths, in scene order) and of the clock.
   std::uint64_t stateHash() const;
   std::size_t guideStrandCount() const;
   /// The simulated grooms, in scene order (skipped grooms are absent): positions in metres,
@@ -60,10 +72,6 @@ private:
   struct SimulatedGroom {
     std::size_t mesh = 0;  ///< index into scene_.meshes the roots follow
     physics::HairSystem hair;
-    /// Maps the hair's head space (metres) into the mesh's model space: the hair system wants a
-    /// rigid head transform, so a mesh's uniform scale is applied to the guides once, at load,
-    /// and undone here.
-    glm::mat4 headToModel{1.0f};
     std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
   };
 
@@ -71,11 +79,17 @@ private:
   Result<void> loadMeshes(const AssetResolver& resolver);
   Result<void> loadMaterials(const AssetResolver& resolver);
   Result<void> loadGrooms(const AssetResolver& resolver);
+  Result<void> loadCloths(const AssetResolver& resolver);
+  /// The rigid part of the mesh's placement at `time` (its scale divided out): what hair
+  /// roots and cloth pins follow.
+  glm::mat4 bodyPlacement(const MeshInstance& mesh, double time) const;
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;
   std::vector<LoadedMaterial> materials_;
   std::vector<SimulatedGroom> grooms_;
+  std::vector<SceneCloth> cloths_;
+  std::vector<std::size_t> clothBodies_;  ///< per cloth: index into scene_.meshes
   std::vector<std::string> notes_;
   double time_ = 0.0;
 };

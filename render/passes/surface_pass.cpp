@@ -82,11 +82,21 @@ void SurfacePass::setScene(const StaticScene& scene) {
     for (std::size_t i = 0; i < vertices.size(); ++i)
       vertices[i] = Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
                            mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i]};
-    meshes_.push_back(GpuMesh{
-        .vertices =
-            Buffer::withData(*device_, std::as_bytes(std::span(vertices)), vk::BufferUsageFlagBits::eVertexBuffer),
+    const auto bytes = std::as_bytes(std::span(vertices));
+    GpuMesh gpu{
         .indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
-        .indexCount = static_cast<std::uint32_t>(mesh.indices.size())});
+        .indexCount = static_cast<std::uint32_t>(mesh.indices.size()),
+        .vertexCount = vertices.size(),
+        .dynamic = mesh.dynamic};
+    if (mesh.dynamic) {
+      // Rewritten by the CPU between frames: host-visible, mapped for its lifetime.
+      gpu.vertices = Buffer(*device_, std::max<vk::DeviceSize>(bytes.size(), 4), vk::BufferUsageFlagBits::eVertexBuffer,
+                            vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+      std::memcpy(gpu.vertices.mapped().data(), bytes.data(), bytes.size());
+    } else {
+      gpu.vertices = Buffer::withData(*device_, bytes, vk::BufferUsageFlagBits::eVertexBuffer);
+    }
+    meshes_.push_back(std::move(gpu));
   }
 
   if (scene.materials.empty()) return;
@@ -104,6 +114,15 @@ void SurfacePass::setScene(const StaticScene& scene) {
     writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
     writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
     materials_.push_back(std::move(gpu));
+  }
+}
+
+void SurfacePass::updateVertices(std::size_t mesh, std::span<const glm::vec3> positions,
+                                 std::span<const glm::vec3> normals) {
+  auto* vertices = reinterpret_cast<Vertex*>(meshes_.at(mesh).vertices.mapped().data());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    vertices[i].position = positions[i];
+    if (!normals.empty()) vertices[i].normal = normals[i];
   }
 }
 

@@ -19,6 +19,12 @@ public:
   /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError on failure.
   void setScene(const StaticScene& scene);
 
+  /// Replaces the positions and normals of dynamic mesh `mesh` (sizes checked by the caller);
+  /// only between frames (the renderer waits for each frame before returning).
+  void updateVertices(std::size_t mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
+  bool isDynamic(std::size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].dynamic; }
+  std::size_t vertexCount(std::size_t mesh) const { return meshes_.at(mesh).vertexCount; }
+
   /// Writes the frame's camera and lights; call before recording the frame.
   void update(const FrameInput& frame, float aspect);
 
@@ -36,6 +42,8 @@ private:
     Buffer vertices;
     Buffer indices;
     std::uint32_t indexCount = 0;
+    std::size_t vertexCount = 0;
+    bool dynamic = false;
   };
   struct GpuMaterial {
     Image albedo;

@@ -36,6 +36,13 @@ case $case in
     grep -q "wrote .*\.png" "$scratch/log" || fail "no 'wrote' line"
     grep -q "^surfaces " "$scratch/log" || fail "no per-pass time for surfaces"
     ;;
+  cape-sequence)
+    # A simulated sequence: cloth uploaded every frame, frames numbered, the timing table.
+    "$mane" render scenes/cape.json --frames 3 --size 160x90 --msaa 1 --out "$scratch/out" >"$scratch/log" 2>&1 ||
+      fail "render failed: $(cat "$scratch/log")"
+    [ "$(ls "$scratch"/out/cape_000[0-2].png | wc -l)" -eq 3 ] || fail "expected 3 frames: $(ls "$scratch/out")"
+    grep -q "^surfaces " "$scratch/log" || fail "no timing table"
+    ;;
   bad-scene-one-line-error)
     printf '{ "name": "broken", "camera": { "fov_degrees": "wide" } ' >"$scratch/broken.json"
     "$mane" render "$scratch/broken.json" --out "$scratch/out" 2>"$scratch/err" >/dev/null && fail "exit status 0"

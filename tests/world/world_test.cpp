@@ -1,6 +1,7 @@
 // The World: what the renderer and the simulation receive from a scene file.
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "render/renderer.hpp"
@@ -75,6 +76,36 @@ TEST(World, AdvancingMovesTheHeadAndTheHair) {
   }
   EXPECT_DOUBLE_EQ(world->time(), 0.5);
   EXPECT_FALSE(world->advance(-1.0, 1).has_value());
+}
+
+// scenes/cape.json: a procedural grid pinned along its top edge to the shaking head. The pins
+// must sit exactly where the head's rigid placement puts their rest positions, the cloth must
+// fall (gravity) without stretching much, and the renderer gets its surface as a dynamic mesh.
+TEST(World, CapePinsFollowTheHeadAndTheSurfaceIsDynamic) {
+  auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "cape.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const Scene copy = *scene;
+  auto world = World::create(std::move(*scene), *AssetResolver::createDefault(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  ASSERT_EQ(world->cloths().size(), 1u);
+  for (int frame = 0; frame < 30; ++frame) ASSERT_TRUE(world->advance(1.0 / 30.0, 2).has_value());
+
+  const MeshInstance& head = *copy.findMesh("head");
+  const glm::mat4 body = animatedMatrix(copy, head, static_cast<float>(world->time())) *
+                         glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / head.transform.scale));
+  const glm::mat4 placement = copy.cloths[0].transform.matrix();
+  const auto& positions = world->cloths()[0].cloth().particles().positions;
+  for (int i = 0; i < 16; ++i) {  // the grid's top row: local (i/15 − 0.5, 0, 0)
+    const glm::vec3 expected(body * placement * glm::vec4(float(i) / 15.0f - 0.5f, 0.0f, 0.0f, 1.0f));
+    EXPECT_LT(glm::distance(positions[i], expected), 1e-5f) << "pin " << i;
+  }
+  EXPECT_LT(physics::maxRelativeStretch(world->cloths()[0].cloth().particles(), world->cloths()[0].cloth().edges()),
+            0.05f);
+  const auto dynamic = world->dynamicMeshes();
+  ASSERT_EQ(dynamic.size(), 1u);
+  EXPECT_EQ(dynamic[0].mesh, world->staticScene().meshes.size() - 1);
+  EXPECT_TRUE(world->staticScene().meshes.back().dynamic);
+  EXPECT_EQ(dynamic[0].positions.data(), world->cloths()[0].surface().positions.data());
 }
 
 class WorldRender : public testing::VulkanTest {};
