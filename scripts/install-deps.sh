@@ -11,7 +11,7 @@ packages=(
   libglfw3-dev xvfb xauth
   libosd-dev
   libtinygltf-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev libcli11-dev libssl-dev libcurl4-openssl-dev
-  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  libgtest-dev libgmock-dev googletest libbenchmark-dev libbullet-dev
   curl
 )
 
