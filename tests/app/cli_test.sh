@@ -27,6 +27,13 @@ case $case in
     moved=$("$mane" sim --steps 121 | tail -n 1)
     [ "$moved" != "${hashes[0]}" ] || fail "one more step left the hash unchanged"
     ;;
+  sim-ponytail-independent-of-threads)
+    # Real data: the TressFX ponytail (4,933 guides × 16) on a shaking head.
+    one=$("$mane" sim scenes/ponytail.json --steps 60 --threads 1 | tail -n 1) || fail "sim failed"
+    four=$("$mane" sim scenes/ponytail.json --steps 60 --threads 4 | tail -n 1) || fail "sim failed"
+    [ "$one" = "$four" ] || fail "1 thread: $one, 4 threads: $four"
+    "$mane" sim scenes/ponytail.json --steps 1 | grep -q "4933 guide strands, 78928 particles" || fail "not the ponytail"
+    ;;
   render-writes-png)
     "$mane" render --out "$scratch/out" --size 160x90 --msaa 1 >"$scratch/log" 2>&1 || fail "render failed: $(cat "$scratch/log")"
     png=$(ls "$scratch"/out/*.png) || fail "no PNG written"
