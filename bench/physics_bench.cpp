@@ -2,11 +2,17 @@
 //
 //   BM_DistanceProjections/<particles>: one Gauss–Seidel sweep of distance constraints along a
 //     single long strand (Jakobsen 2001 relaxation); items/s = constraint projections per second.
-//   BM_HairFrame/<threads>: one 1/60 s frame (two 1/120 s fixed steps) of a 10,000-guide ×
-//     32-particle groom with 4 constraint iterations and tethers, on a head that sways;
+//   BM_StrandLaneProjections/<particles>/<avx2>: the hair step's distance sweep over a block of
+//     32 strands of <particles> each, lane by lane (physics/detail/strand_lanes.hpp), scalar
+//     (avx2 = 0) or AVX2 (1, bit-identical); items/s = constraint projections per second, one core.
+//   BM_HairFrame/<threads>/<vectorised>: one 1/60 s frame (two 1/120 s fixed steps) of a
+//     10,000-guide × 32-particle groom with 4 constraint iterations and tethers, on a head that
+//     sways, with the scalar (0) or the AVX2 (1) strand kernel (HairSystem::setVectorised);
 //     items/s = particle updates (particles × fixed steps) per second.
-//   BM_HairFrameCollisions/<threads>: the same frame with a neck capsule and the SDF (64³ class)
-//     of a 20,480-triangle ellipsoidal head mesh as colliders, friction 0.3.
+//   BM_HairFrameCollisions/<threads>/<vectorised>: the same frame with a neck capsule and the SDF
+//     (64³ class) of a 20,480-triangle ellipsoidal head mesh as colliders, friction 0.3.
+//   BM_NaluFrame/<collisions>: the Nalu case, 762 guides × 16 particles, one 1/60 s frame on one
+//     thread, without (0) or with (1) the capsule + SDF head colliders.
 //   BM_SdfBuild: building that SDF (20,480 triangles, about LeePerrySmith's 17,684) at 64³.
 //   BM_StateHash: FNV-1a over the same groom's state; bytes/s.
 
@@ -19,6 +25,7 @@
 
 #include "physics/colliders.hpp"
 #include "physics/constraints.hpp"
+#include "physics/detail/strand_lanes.hpp"
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
 #include "physics/sdf.hpp"
@@ -48,6 +55,45 @@ void BM_DistanceProjections(benchmark::State& state) {
 }
 BENCHMARK(BM_DistanceProjections)->Arg(256)->Arg(4096)->Arg(65536);
 
+void BM_StrandLaneProjections(benchmark::State& state) {
+  using namespace mane::physics::detail;
+  const auto count = static_cast<std::size_t>(state.range(0));
+  const bool avx2 = state.range(1) != 0;
+  if (avx2 && !cpuHasAvx2()) {
+    state.SkipWithError("no AVX2 on this CPU");
+    return;
+  }
+  const std::size_t n = count * kBlockLanes;
+  std::vector<float> data(6 * n), w(n), segment(n, 0.01f), reach(n);
+  std::vector<std::int32_t> counts(kBlockLanes, static_cast<std::int32_t>(count));
+  SplitMix64 rng(1);
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t b = 0; b < kBlockLanes; ++b) {
+      const std::size_t at = i * kBlockLanes + b;
+      // Jittered lines, as BM_DistanceProjections, so every projection does real work.
+      data[at] = 0.01f * static_cast<float>(i) + rng.nextFloat(-0.002f, 0.002f);
+      data[n + at] = rng.nextFloat(-0.002f, 0.002f) + 0.05f * static_cast<float>(b);
+      data[2 * n + at] = rng.nextFloat(-0.002f, 0.002f);
+      w[at] = i == 0 ? 0.0f : 1.0f;
+      reach[at] = 0.01f * static_cast<float>(i);
+    }
+  float* p = data.data();
+  const StrandLanes lanes{p, p + n, p + 2 * n, p + 3 * n, p + 4 * n, p + 5 * n, w.data(), segment.data(), reach.data(),
+                          counts.data(), count};
+  for (auto _ : state) {
+#if MANE_STRAND_LANES_AVX2
+    if (avx2)
+      relaxDistancesAvx2(lanes);
+    else
+#endif
+      relaxDistancesScalar(lanes);
+    benchmark::DoNotOptimize(data.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>((count - 1) * kBlockLanes));
+}
+BENCHMARK(BM_StrandLaneProjections)->Args({32, 0})->Args({32, 1})->Args({4096, 0})->Args({4096, 1});
+
 std::vector<std::vector<glm::vec3>> benchGroom() {
   GroomSettings groom;
   groom.seed = 11;
@@ -59,6 +105,7 @@ std::vector<std::vector<glm::vec3>> benchGroom() {
 
 void BM_HairFrame(benchmark::State& state) {
   const auto threads = static_cast<unsigned>(state.range(0));
+  const bool vectorised = state.range(1) != 0;
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
   SolverSettings settings;
   settings.fixedStep = 1.0 / 120.0;
@@ -68,6 +115,7 @@ void BM_HairFrame(benchmark::State& state) {
     state.SkipWithError(hair.error().message.c_str());
     return;
   }
+  hair->setVectorised(vectorised);
   int frame = 0;
   std::uint64_t particleSteps = 0;
   for (auto _ : state) {
@@ -84,7 +132,13 @@ void BM_HairFrame(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
   state.counters["particles"] = static_cast<double>(hair->particles().size());
 }
-BENCHMARK(BM_HairFrame)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HairFrame)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // A head-sized closed mesh: an icosphere (5 subdivisions, 20,480 triangles) scaled into an
 // ellipsoid inside the groom's r = 0.1 m scalp.
@@ -110,6 +164,7 @@ BENCHMARK(BM_SdfBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 void BM_HairFrameCollisions(benchmark::State& state) {
   const auto threads = static_cast<unsigned>(state.range(0));
+  const bool vectorised = state.range(1) != 0;
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
   static const auto sdf = [] {
     const TriangleMesh mesh = benchHeadMesh();
@@ -128,6 +183,7 @@ void BM_HairFrameCollisions(benchmark::State& state) {
   head.sdf = sdf;
   head.friction = 0.3f;
   (void)hair->setColliders(head);
+  hair->setVectorised(vectorised);
   int frame = 0;
   std::uint64_t particleSteps = 0;
   for (auto _ : state) {
@@ -143,7 +199,56 @@ void BM_HairFrameCollisions(benchmark::State& state) {
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
 }
-BENCHMARK(BM_HairFrameCollisions)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HairFrameCollisions)
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_NaluFrame(benchmark::State& state) {
+  const bool collisions = state.range(0) != 0;
+  static const std::vector<std::vector<glm::vec3>> strands = [] {
+    GroomSettings groom;
+    groom.seed = 762;
+    groom.strandCount = 762;
+    groom.particlesPerStrand = 16;
+    groom.strandLength = 0.3f;
+    return *generateGroom(groom);
+  }();
+  static const auto sdf = [] {
+    const TriangleMesh mesh = benchHeadMesh();
+    return std::make_shared<const SignedDistanceField>(*SignedDistanceField::build(mesh.positions, mesh.indices));
+  }();
+  SolverSettings settings;
+  settings.fixedStep = 1.0 / 120.0;
+  settings.constraintIterations = 4;
+  auto hair = HairSystem::create(strands, settings);
+  if (!hair) {
+    state.SkipWithError(hair.error().message.c_str());
+    return;
+  }
+  if (collisions) {
+    ColliderSet head;
+    head.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
+    head.sdf = sdf;
+    head.friction = 0.3f;
+    (void)hair->setColliders(head);
+  }
+  int frame = 0;
+  for (auto _ : state) {
+    ++frame;
+    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
+    (void)hair->setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
+    if (!hair->advance(1.0 / 60.0, 1)) {
+      state.SkipWithError("advance failed");
+      return;
+    }
+  }
+  state.counters["particles"] = static_cast<double>(hair->particles().size());
+}
+BENCHMARK(BM_NaluFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_StateHash(benchmark::State& state) {
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();

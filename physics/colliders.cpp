@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -109,11 +110,50 @@ ColliderBounds boundingSphere(const ColliderSet& colliders) noexcept {
   return {centre, length(hi - centre) * 1.0001f + colliders.thickness + 1e-6f};
 }
 
+ColliderCull cullBoxes(const ColliderSet& colliders) {
+  // 1e-4 m: far above the rounding of any distance computed here at head scale (≈ 1e-7 m).
+  constexpr float kMargin = 1e-4f;
+  ColliderCull cull;
+  const float grow = colliders.thickness + kMargin;
+  const auto add = [&](const glm::vec3& lo, const glm::vec3& hi) {
+    cull.lower.push_back(lo);
+    cull.upper.push_back(hi);
+  };
+  for (const SphereCollider& s : colliders.spheres) add(s.centre - glm::vec3(s.radius + grow), s.centre + glm::vec3(s.radius + grow));
+  for (const CapsuleCollider& c : colliders.capsules)
+    add(glm::min(c.a, c.b) - glm::vec3(c.radius + grow), glm::max(c.a, c.b) + glm::vec3(c.radius + grow));
+  if (colliders.sdf) {
+    const SignedDistanceField& f = *colliders.sdf;
+    if (colliders.thickness < f.contactLevel() - 1e-6f) {
+      if (f.contactLower().x <= f.contactUpper().x) add(f.contactLower(), f.contactUpper());
+    } else {
+      constexpr float kInf = std::numeric_limits<float>::infinity();
+      add(glm::vec3(-kInf), glm::vec3(kInf));
+    }
+  }
+  return cull;
+}
+
 bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const glm::vec3& previous,
                      float friction) noexcept {
   const float mu = friction;
   const float thickness = colliders.thickness;
   bool touched = false;
+  // The field is often sampled again exactly where it was last sampled (after friction that did
+  // not move the particle, in the next round when no other shape moved it): reuse that sample,
+  // bit for bit what sampling again would return (the same point, byte for byte).
+  glm::vec3 sampledAt(0.0f), sampledGradient(0.0f);
+  float sampledValue = 0.0f;
+  bool sampled = false;
+  const auto sampleField = [&](glm::vec3& gradient) {
+    if (!(sampled && std::memcmp(&sampledAt, &position, sizeof position) == 0)) {
+      sampledValue = colliders.sdf->sampleWithGradient(position, sampledGradient);
+      sampledAt = position;
+      sampled = true;
+    }
+    gradient = sampledGradient;
+    return sampledValue;
+  };
   for (int round = 0; round < kCollisionRounds; ++round) {
     bool contact = false;
     glm::vec3 normal;
@@ -129,11 +169,12 @@ bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const gl
         contact = true;
       }
     }
-    if (colliders.sdf && colliders.sdf->sample(position) < thickness) {
+    glm::vec3 gradient;
+    float d;  // sampleWithGradient's value is bit for bit sample's
+    if (colliders.sdf && colliders.sdf->mayBeBelow(position, thickness) &&
+        (d = sampleField(gradient)) < thickness) {
       // Newton steps along the field's gradient onto the level set `thickness` (the trilinear
       // field is smooth inside a cell, so two or three steps land within rounding).
-      glm::vec3 gradient;
-      float d = colliders.sdf->sampleWithGradient(position, gradient);
       const float depth = thickness - d;
       const float gradientSquared = dot(gradient, gradient);
       if (gradientSquared > 1e-12f) {
@@ -142,16 +183,16 @@ bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const gl
           const float g2 = dot(gradient, gradient);
           if (!(g2 > 1e-12f)) break;
           position += gradient * ((thickness - d) / g2);
-          d = colliders.sdf->sampleWithGradient(position, gradient);
+          d = sampleField(gradient);
         }
         applyFriction(position, previous, normal, depth, mu);
         // The surface may curve inwards under the tangential step: settle once more, frictionless.
-        d = colliders.sdf->sampleWithGradient(position, gradient);
+        d = sampleField(gradient);
         for (int newton = 0; newton < 4 && d < thickness; ++newton) {
           const float g2 = dot(gradient, gradient);
           if (!(g2 > 1e-12f)) break;
           position += gradient * ((thickness - d) / g2);
-          d = colliders.sdf->sampleWithGradient(position, gradient);
+          d = sampleField(gradient);
         }
         contact = true;
       }

@@ -73,6 +73,26 @@ struct ColliderBounds {
 /// The bounding ball of a set (around the box that holds every shape, grown by the thickness).
 [[nodiscard]] ColliderBounds boundingSphere(const ColliderSet& colliders) noexcept;
 
+/// Axis-aligned boxes (in the set's frame) around each collider of a set, grown by its thickness
+/// and a rounding margin; for the SDF, its contact box (sdf.hpp) when the thickness allows. A
+/// particle outside every box touches nothing: `collideParticle` would leave it as it is.
+struct ColliderCull {
+  std::vector<glm::vec3> lower;  ///< per box, metres
+  std::vector<glm::vec3> upper;  ///< per box, metres
+
+  /// False only when `p` is outside every box.
+  [[nodiscard]] bool mayTouch(const glm::vec3& p) const noexcept {
+    for (std::size_t b = 0; b < lower.size(); ++b)
+      if (p.x >= lower[b].x && p.y >= lower[b].y && p.z >= lower[b].z && p.x <= upper[b].x && p.y <= upper[b].y &&
+          p.z <= upper[b].z)
+        return true;
+    return false;
+  }
+};
+
+/// The cull boxes of a set.
+[[nodiscard]] ColliderCull cullBoxes(const ColliderSet& colliders);
+
 /// Resolves one particle against every collider of the set, in order: spheres, capsules, the
 /// field; the whole sequence runs up to `kCollisionRounds` times while it still finds contacts,
 /// since leaving one shape can push a particle into an overlapping one. Each contact moves

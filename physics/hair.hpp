@@ -22,6 +22,7 @@
 #include "physics/colliders.hpp"
 #include "physics/particles.hpp"
 #include "physics/solver.hpp"
+#include "physics/wind.hpp"
 
 namespace mane::physics {
 
@@ -50,14 +51,19 @@ struct SimulationFault {
 /// Each fixed step inside the frame places the roots on the straight line between their
 /// positions under the previous and the new head transform, at the step's time in the frame.
 /// Within one fixed step each strand runs, in order:
-/// 1. root placement and Verlet integration;
+/// 1. root placement and Verlet integration under gravity plus, when `setWind` was called, the
+///    wind's drag on each non-root particle's segment (see `setWind`);
 /// 2. collisions of the predicted positions against the colliders (`setColliders`), with
 ///    friction (the contact response sees the step's inertial motion);
 /// 3. `constraintIterations` sweeps, each: local shape constraints root → tip (when
 ///    `SolverSettings::shapeStiffness` > 0), distance constraints root → tip, then tethers;
-/// 4. collisions again, frictionless, last, so that no particle ends a step inside a collider.
-///    This push may leave a particle beyond its tether by at most what the constraints moved
-///    into the collider in this step (collisions win over the anti-stretch bound);
+/// 4. a final pass root → tip that settles each particle against both the colliders and its
+///    tether: a frictionless collision push, then, when that left the particle beyond its tether,
+///    alternating tether projections and collision pushes (up to `kSettleRounds`), and if they
+///    do not meet, the point nearest the particle on the segment from its (already settled)
+///    parent for which both hold, found by bisection. So after every step no particle is inside
+///    a collider and none is farther from its root than its rest length along the strand (both
+///    within `kSettleSlack`), whenever the root itself is outside the colliders;
 /// 5. the velocity clamp (`SolverSettings::maxSpeed`), which only moves previous positions.
 ///
 /// The head's pose at each fixed step, used by colliders and shape constraints, is a rigid
@@ -86,6 +92,32 @@ public:
   [[nodiscard]] Result<void> setColliders(ColliderSet colliders);
   /// The colliders in use (head-local space).
   [[nodiscard]] const ColliderSet& colliders() const noexcept { return colliders_; }
+
+  /// Blows `wind` (world space) through the hair from the next step on. Each non-root particle
+  /// gets the drag acceleration of its segment, `windAcceleration(w, v, axis, dragPerSecond)`
+  /// (wind.hpp: linear drag on the velocity component normal to the segment), added to gravity
+  /// in the Verlet kick. The axis runs from the parent particle to the particle, the velocity is
+  /// (x − x_prev)/h, both at the start of the step, and the air velocity is
+  /// `WindField::velocityAt(x, t)` with t the simulated time at the start of the step
+  /// (`simulatedTime()` before it). Fails, changing nothing, when `validateWind` rejects it.
+  [[nodiscard]] Result<void> setWind(const WindSettings& wind);
+  /// Removes the wind (the default: no wind).
+  void clearWind() noexcept { wind_.reset(); }
+  /// The wind in use, if any.
+  [[nodiscard]] std::optional<WindSettings> wind() const;
+
+  /// Whether the step may use the AVX2 strand kernel when the CPU has it (default: true). It
+  /// gives the same bits as the scalar kernel; the switch exists for tests and benchmarks. The
+  /// vector kernel runs the steps without wind and shape constraints; others stay scalar.
+  void setVectorised(bool allowed) noexcept { vectorise_ = allowed; }
+  /// True when the next step would run the AVX2 kernel.
+  [[nodiscard]] bool vectorised() const noexcept;
+
+  /// Collision–tether settling rounds in the final pass of a step (see the class comment).
+  static constexpr int kSettleRounds = 2;
+  /// Slack of the final pass's checks, metres: a particle counts as outside a collider when its
+  /// signed distance is ≥ thickness − slack and within its tether when at most rest + slack.
+  static constexpr float kSettleSlack = 1e-5f;
 
   /// Places every strand in its rest shape under `headTransform`, at rest (zero velocity), and
   /// clears a recorded fault. For cuts and resets; fails when an entry is NaN or infinite.
@@ -128,6 +160,9 @@ private:
 
   void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
+  // The AVX2 path: up to detail::kBlockLanes strands in lane-by-lane scratch storage.
+  void simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
+                                std::vector<float>& scratch);
 
   // The head's rigid pose at one fixed step: world = rotation · local + translation.
   struct HeadPose {
@@ -136,6 +171,13 @@ private:
     glm::vec3 translation{0.0f};
   };
   void planPoses(const StepPlan& plan);
+  // One particle (world space) against the colliders in pose `pose`, friction against the motion
+  // since `previous` (in pose `before`); true when it touched anything.
+  bool collidePoint(const HeadPose& pose, const HeadPose& before, glm::vec3& x, const glm::vec3& previous,
+                    float friction) const noexcept;
+  // The final pass for one particle: colliders and tether (class comment, item 4).
+  void settlePoint(const HeadPose& pose, glm::vec3& x, const glm::vec3& root, const glm::vec3& parent,
+                   float reach) const noexcept;
 
   static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side
   void placeAtRest(const glm::mat4& headTransform);
@@ -155,7 +197,10 @@ private:
   std::optional<SimulationFault> fault_;
   ColliderSet colliders_;          // head-local
   ColliderBounds colliderBounds_;  // head-local bounding ball of colliders_
+  ColliderCull colliderCull_;      // head-local boxes around each of colliders_
   std::vector<HeadPose> poses_;    // per advance: pose at the end of fixed step k (0: frame start)
+  std::optional<WindField> wind_;  // none: no wind
+  bool vectorise_ = true;
 };
 
 }  // namespace mane::physics

@@ -278,6 +278,7 @@ Result<SignedDistanceField> SignedDistanceField::build(std::span<const glm::vec3
   field.values_.resize(nodes.size());
   for (std::size_t n = 0; n < nodes.size(); ++n)
     field.values_[n] = static_cast<float>(nodes[n].sign < 0 ? -nodes[n].distance : nodes[n].distance);
+  field.findContactBox();
   return field;
 }
 
@@ -318,6 +319,40 @@ TriangleMesh makeIcosphere(float radius, int subdivisions) {
   return mesh;
 }
 
+void SignedDistanceField::findContactBox() {
+  // A trilinear sample is a convex combination of its cell's 8 node values, so in a cell whose
+  // nodes are all ≥ level it is ≥ level up to rounding (a few ulps, far below 1e-6 m here).
+  // Half a cell: nodes within that of the surface sit at least one padding cell minus half a
+  // cell inside the grid, so the contact cells stay off the boundary with the minimum padding.
+  const float level = 0.5f * cellSize_;
+  glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
+  for (int k = 0; k + 1 < dims_.z; ++k)
+    for (int j = 0; j + 1 < dims_.y; ++j)
+      for (int i = 0; i + 1 < dims_.x; ++i) {
+        const float* v = values_.data() + static_cast<std::size_t>(i) +
+                         static_cast<std::size_t>(dims_.x) * (static_cast<std::size_t>(j) +
+                                                              static_cast<std::size_t>(dims_.y) * static_cast<std::size_t>(k));
+        const std::size_t sy = static_cast<std::size_t>(dims_.x), sz = sy * static_cast<std::size_t>(dims_.y);
+        const float lowest = std::min({v[0], v[1], v[sy], v[sy + 1], v[sz], v[sz + 1], v[sz + sy], v[sz + sy + 1]});
+        if (!(lowest >= level)) lo = glm::min(lo, glm::ivec3(i, j, k)), hi = glm::max(hi, glm::ivec3(i, j, k));
+      }
+  if (lo.x > hi.x) {  // nothing below the level anywhere: an empty box
+    contactLevel_ = level;
+    contactLower_ = glm::vec3(1.0f);
+    contactUpper_ = glm::vec3(-1.0f);
+    return;
+  }
+  // A point outside the grid samples its clamped image on the boundary: the cull holds only when
+  // the contact cells stay off the boundary cells.
+  if (lo.x < 1 || lo.y < 1 || lo.z < 1 || hi.x > dims_.x - 3 || hi.y > dims_.y - 3 || hi.z > dims_.z - 3) {
+    contactLevel_ = -std::numeric_limits<float>::infinity();
+    return;
+  }
+  contactLevel_ = level;
+  contactLower_ = origin_ + glm::vec3(lo - 1) * cellSize_;
+  contactUpper_ = origin_ + glm::vec3(hi + 2) * cellSize_;
+}
+
 glm::vec3 SignedDistanceField::upperCorner() const noexcept {
   return origin_ + glm::vec3(dims_ - 1) * cellSize_;
 }
@@ -326,53 +361,6 @@ bool SignedDistanceField::insideGrid(const glm::vec3& p) const noexcept {
   const glm::vec3 u = (p - origin_) * inverseCellSize_;
   return u.x >= 0.0f && u.y >= 0.0f && u.z >= 0.0f && u.x <= static_cast<float>(dims_.x - 1) &&
          u.y <= static_cast<float>(dims_.y - 1) && u.z <= static_cast<float>(dims_.z - 1);
-}
-
-float SignedDistanceField::interpolate(const glm::vec3& u, glm::vec3* gradient) const noexcept {
-  // `u` in grid units, inside [0, dims − 1] on every axis.
-  const int i = std::min(static_cast<int>(u.x), dims_.x - 2);
-  const int j = std::min(static_cast<int>(u.y), dims_.y - 2);
-  const int k = std::min(static_cast<int>(u.z), dims_.z - 2);
-  const float fx = u.x - static_cast<float>(i), fy = u.y - static_cast<float>(j), fz = u.z - static_cast<float>(k);
-  const std::size_t sx = 1, sy = static_cast<std::size_t>(dims_.x), sz = sy * static_cast<std::size_t>(dims_.y);
-  const float* v = values_.data() + static_cast<std::size_t>(i) + sy * static_cast<std::size_t>(j) +
-                   sz * static_cast<std::size_t>(k);
-  const float v000 = v[0], v100 = v[sx], v010 = v[sy], v110 = v[sx + sy];
-  const float v001 = v[sz], v101 = v[sx + sz], v011 = v[sy + sz], v111 = v[sx + sy + sz];
-  const float c00 = v000 + (v100 - v000) * fx, c10 = v010 + (v110 - v010) * fx;
-  const float c01 = v001 + (v101 - v001) * fx, c11 = v011 + (v111 - v011) * fx;
-  const float c0 = c00 + (c10 - c00) * fy, c1 = c01 + (c11 - c01) * fy;
-  if (gradient) {
-    // ∂/∂fx, ∂/∂fy, ∂/∂fz of the trilinear interpolant, scaled to metres.
-    const float dx0 = (v100 - v000) + ((v110 - v010) - (v100 - v000)) * fy;
-    const float dx1 = (v101 - v001) + ((v111 - v011) - (v101 - v001)) * fy;
-    const float dy0 = c10 - c00, dy1 = c11 - c01;
-    gradient->x = (dx0 + (dx1 - dx0) * fz) * inverseCellSize_;
-    gradient->y = (dy0 + (dy1 - dy0) * fz) * inverseCellSize_;
-    gradient->z = (c1 - c0) * inverseCellSize_;
-  }
-  return c0 + (c1 - c0) * fz;
-}
-
-float SignedDistanceField::evaluate(const glm::vec3& p, glm::vec3* gradient) const noexcept {
-  const glm::vec3 u = (p - origin_) * inverseCellSize_;
-  if (!(u.x == u.x && u.y == u.y && u.z == u.z)) return u.x + u.y + u.z;  // NaN in, NaN out
-  const glm::vec3 top(dims_ - 1);
-  const glm::vec3 clamped(std::clamp(u.x, 0.0f, top.x), std::clamp(u.y, 0.0f, top.y), std::clamp(u.z, 0.0f, top.z));
-  if (clamped == u) return interpolate(u, gradient);
-  // Outside the box: the nearest grid point's value plus the way there.
-  const glm::vec3 outward = (u - clamped) * cellSize_;
-  const float gap = std::sqrt(outward.x * outward.x + outward.y * outward.y + outward.z * outward.z);
-  if (gradient) *gradient = outward / gap;
-  return interpolate(clamped, nullptr) + gap;
-}
-
-float SignedDistanceField::sample(const glm::vec3& p) const noexcept {
-  return evaluate(p, nullptr);
-}
-
-float SignedDistanceField::sampleWithGradient(const glm::vec3& p, glm::vec3& gradient) const noexcept {
-  return evaluate(p, &gradient);
 }
 
 }  // namespace mane::physics

@@ -24,8 +24,11 @@
 //
 // Units: metres, in whatever frame the mesh was given (for a head: head-local space).
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -84,6 +87,24 @@ public:
   /// Node values, x fastest, then y, then z.
   [[nodiscard]] std::span<const float> values() const noexcept { return values_; }
 
+  /// A box (metres) outside which `sample` is at least `contactLevel()`: it holds every cell
+  /// with a node value below that level, grown by one cell so that rounding of the grid
+  /// coordinates cannot move a point into such a cell. Empty (lower > upper) when no node is
+  /// below the level; when such cells reach the grid's boundary there is no such box and
+  /// `contactLevel()` is −∞.
+  [[nodiscard]] const glm::vec3& contactLower() const noexcept { return contactLower_; }
+  [[nodiscard]] const glm::vec3& contactUpper() const noexcept { return contactUpper_; }
+  /// The level of the contact box: half a cell (or −∞, see above), metres.
+  [[nodiscard]] float contactLevel() const noexcept { return contactLevel_; }
+  /// False only when `sample(p)` is certainly ≥ `level`: p lies outside the contact box and
+  /// `level` is below `contactLevel()` by more than trilinear rounding. A cheap cull for
+  /// collisions; it never changes a result.
+  [[nodiscard]] bool mayBeBelow(const glm::vec3& p, float level) const noexcept {
+    if (!(level < contactLevel_ - 1e-6f)) return true;
+    return p.x >= contactLower_.x && p.y >= contactLower_.y && p.z >= contactLower_.z && p.x <= contactUpper_.x &&
+           p.y <= contactUpper_.y && p.z <= contactUpper_.z;
+  }
+
 private:
   SignedDistanceField() = default;
   // Signed distance (and optionally gradient) at `p`, inside or outside the box.
@@ -96,7 +117,60 @@ private:
   float inverseCellSize_ = 1.0f;
   glm::ivec3 dims_{0};
   std::vector<float> values_;
+  glm::vec3 contactLower_{0.0f};
+  glm::vec3 contactUpper_{0.0f};
+  float contactLevel_ = -std::numeric_limits<float>::infinity();
+  void findContactBox();
 };
+
+// Sampling is inline: it runs several times per particle contact in the hair step.
+inline float SignedDistanceField::interpolate(const glm::vec3& u, glm::vec3* gradient) const noexcept {
+  // `u` in grid units, inside [0, dims − 1] on every axis.
+  const int i = std::min(static_cast<int>(u.x), dims_.x - 2);
+  const int j = std::min(static_cast<int>(u.y), dims_.y - 2);
+  const int k = std::min(static_cast<int>(u.z), dims_.z - 2);
+  const float fx = u.x - static_cast<float>(i), fy = u.y - static_cast<float>(j), fz = u.z - static_cast<float>(k);
+  const std::size_t sx = 1, sy = static_cast<std::size_t>(dims_.x), sz = sy * static_cast<std::size_t>(dims_.y);
+  const float* v = values_.data() + static_cast<std::size_t>(i) + sy * static_cast<std::size_t>(j) +
+                   sz * static_cast<std::size_t>(k);
+  const float v000 = v[0], v100 = v[sx], v010 = v[sy], v110 = v[sx + sy];
+  const float v001 = v[sz], v101 = v[sx + sz], v011 = v[sy + sz], v111 = v[sx + sy + sz];
+  const float c00 = v000 + (v100 - v000) * fx, c10 = v010 + (v110 - v010) * fx;
+  const float c01 = v001 + (v101 - v001) * fx, c11 = v011 + (v111 - v011) * fx;
+  const float c0 = c00 + (c10 - c00) * fy, c1 = c01 + (c11 - c01) * fy;
+  if (gradient) {
+    // ∂/∂fx, ∂/∂fy, ∂/∂fz of the trilinear interpolant, scaled to metres.
+    const float dx0 = (v100 - v000) + ((v110 - v010) - (v100 - v000)) * fy;
+    const float dx1 = (v101 - v001) + ((v111 - v011) - (v101 - v001)) * fy;
+    const float dy0 = c10 - c00, dy1 = c11 - c01;
+    gradient->x = (dx0 + (dx1 - dx0) * fz) * inverseCellSize_;
+    gradient->y = (dy0 + (dy1 - dy0) * fz) * inverseCellSize_;
+    gradient->z = (c1 - c0) * inverseCellSize_;
+  }
+  return c0 + (c1 - c0) * fz;
+}
+
+inline float SignedDistanceField::evaluate(const glm::vec3& p, glm::vec3* gradient) const noexcept {
+  const glm::vec3 u = (p - origin_) * inverseCellSize_;
+  if (!(u.x == u.x && u.y == u.y && u.z == u.z)) return u.x + u.y + u.z;  // NaN in, NaN out
+  const glm::vec3 top(dims_ - 1);
+  const glm::vec3 clamped(std::clamp(u.x, 0.0f, top.x), std::clamp(u.y, 0.0f, top.y), std::clamp(u.z, 0.0f, top.z));
+  if (clamped == u) return interpolate(u, gradient);
+  // Outside the box: the nearest grid point's value plus the way there.
+  const glm::vec3 outward = (u - clamped) * cellSize_;
+  const float gap = std::sqrt(outward.x * outward.x + outward.y * outward.y + outward.z * outward.z);
+  if (gradient) *gradient = outward / gap;
+  return interpolate(clamped, nullptr) + gap;
+}
+
+inline float SignedDistanceField::sample(const glm::vec3& p) const noexcept {
+  return evaluate(p, nullptr);
+}
+
+inline float SignedDistanceField::sampleWithGradient(const glm::vec3& p, glm::vec3& gradient) const noexcept {
+  return evaluate(p, &gradient);
+}
+
 
 /// A triangle mesh held in memory: positions (metres) and three indices per triangle.
 struct TriangleMesh {

@@ -2,6 +2,8 @@
 // detection of non-finite state during simulation, reported with the strand index.
 
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <limits>
 #include <string>
 #include <vector>
@@ -10,7 +12,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "physics/colliders.hpp"
+#include "physics/detail/strand_lanes.hpp"
 #include "physics/groom_generator.hpp"
+#include "physics/sdf.hpp"
 #include "physics/hair.hpp"
 
 namespace mane::physics {
@@ -196,6 +201,96 @@ TEST(HairSystem, StrandKernelMatchesTheGeneralSolverBitForBit) {
     const auto x = hair->strandPositions(s);
     for (std::size_t i = 0; i < points.size(); ++i)
       ASSERT_EQ(x[i], solver->particles.positions[i]) << "strand " << s << ", particle " << i;
+  }
+}
+
+TEST(HairSimd, LaneKernelsMatchTheScalarFunctionsBitForBit) {
+  // The AVX2 kernels of detail/strand_lanes.hpp against the scalar lane loops (which call
+  // projectDistance, projectTether and verletPosition) on random, stretched and compressed
+  // blocks with lanes of different lengths, idle lanes and kinematic particles. Tolerance 0.
+  if (!detail::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2; the scalar path is used";
+#if MANE_STRAND_LANES_AVX2
+  constexpr std::size_t W = detail::kBlockLanes, kLongest = 23;
+  SplitMix64 random(5);
+  std::vector<float> data[2];
+  std::vector<float> w(kLongest * W), segment(kLongest * W), reach(kLongest * W);
+  std::int32_t count[W];
+  for (std::size_t b = 0; b < W; ++b) count[b] = b % 7 == 3 ? 0 : static_cast<std::int32_t>(2 + (b * 5) % (kLongest - 1));
+  count[9] = kLongest;
+  for (std::size_t n = 0; n < kLongest * W; ++n) {
+    w[n] = n < W || n % 11 == 0 ? 0.0f : 1.0f;
+    segment[n] = random.nextFloat(0.001f, 0.03f);
+    reach[n] = static_cast<float>(n / W) * random.nextFloat(0.0f, 0.03f);
+  }
+  data[0].resize(6 * kLongest * W);
+  for (float& v : data[0]) v = random.nextFloat(-0.3f, 0.3f);
+  data[1] = data[0];
+  const auto lanes = [&](std::vector<float>& d) {
+    float* p = d.data();
+    const std::size_t n = kLongest * W;
+    return detail::StrandLanes{p, p + n, p + 2 * n, p + 3 * n, p + 4 * n, p + 5 * n,
+                               w.data(), segment.data(), reach.data(), count, kLongest};
+  };
+  const glm::vec3 kick(0.0f, -9.81f / 14400.0f, 1e-5f);
+  for (int round = 0; round < 5; ++round) {
+    detail::integrateScalar(lanes(data[0]), 0.99f, kick);
+    detail::integrateAvx2(lanes(data[1]), 0.99f, kick);
+    detail::relaxDistancesScalar(lanes(data[0]));
+    detail::relaxDistancesAvx2(lanes(data[1]));
+    detail::tethersScalar(lanes(data[0]));
+    detail::tethersAvx2(lanes(data[1]));
+    ASSERT_EQ(std::memcmp(data[0].data(), data[1].data(), data[0].size() * sizeof(float)), 0) << "round " << round;
+  }
+#endif
+}
+
+TEST(HairSimd, VectorKernelMatchesTheScalarKernelBitForBitWithCollisionsAndClamp) {
+  // The whole step, AVX2 path against the per-strand scalar path (setVectorised(false)): a
+  // groom of 45 strands (one full block of 32 and a partial one) of different lengths, a moving
+  // head with sphere, capsule and SDF colliders, friction and the velocity clamp; 1 and 2
+  // threads. Equal hashes and equal position bytes (tolerance 0).
+  if (!detail::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2; the scalar path is used";
+  GroomSettings groom;
+  groom.seed = 31;
+  groom.strandCount = 45;
+  groom.particlesPerStrand = 18;
+  groom.strandLength = 0.3f;
+  groom.curlRadius = 0.005f;
+  auto strands = generateGroom(groom);
+  ASSERT_TRUE(strands);
+  for (std::size_t s = 0; s < strands->size(); ++s) (*strands)[s].resize(6 + s % 13);
+  TriangleMesh mesh = makeIcosphere(0.09f, 3);
+  auto sdf = SignedDistanceField::build(mesh.positions, mesh.indices, {.resolution = 32});
+  ASSERT_TRUE(sdf);
+  ColliderSet head;
+  head.spheres = {{{0.0f, 0.0f, 0.0f}, 0.085f}};
+  head.capsules = {{{0.0f, -0.06f, 0.0f}, {0.0f, -0.3f, 0.0f}, 0.05f}};
+  head.sdf = std::make_shared<const SignedDistanceField>(std::move(*sdf));
+  head.friction = 0.3f;
+  const auto run = [&](bool vectorised, unsigned threads) {
+    SolverSettings settings;
+    settings.maxSpeed = 3.0f;
+    auto hair = HairSystem::create(*strands, settings);
+    EXPECT_TRUE(hair);
+    EXPECT_TRUE(hair->setColliders(head));
+    hair->setVectorised(vectorised);
+    EXPECT_EQ(hair->vectorised(), vectorised);
+    for (int frame = 1; frame <= 90; ++frame) {
+      const float t = static_cast<float>(frame) / 60.0f;
+      const float swing = t - 2.0f * static_cast<float>(static_cast<int>(t * 0.5f + 0.5f)) ;  // sawtooth, exact
+      glm::mat4 transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.15f * swing, 0.0f, 0.0f));
+      transform = glm::rotate(transform, 1.5f * swing, glm::vec3(0.0f, 1.0f, 0.0f));
+      EXPECT_TRUE(hair->setHeadTransform(transform));
+      EXPECT_TRUE(hair->advance(1.0 / 60.0, threads));
+    }
+    return std::make_pair(hair->stateHash(), hair->particles().positions);
+  };
+  const auto scalar = run(false, 1);
+  for (unsigned threads : {1u, 2u}) {
+    const auto simd = run(true, threads);
+    EXPECT_EQ(simd.first, scalar.first) << threads << " threads";
+    ASSERT_EQ(simd.second.size(), scalar.second.size());
+    EXPECT_EQ(std::memcmp(simd.second.data(), scalar.second.data(), simd.second.size() * sizeof(glm::vec3)), 0);
   }
 }
 
