@@ -78,8 +78,8 @@ void BM_StrandLaneProjections(benchmark::State& state) {
       reach[at] = 0.01f * static_cast<float>(i);
     }
   float* p = data.data();
-  const StrandLanes lanes{p, p + n, p + 2 * n, p + 3 * n, p + 4 * n, p + 5 * n, w.data(), segment.data(), reach.data(),
-                          counts.data(), count};
+  const StrandLanes lanes{p,        p + n,          p + 2 * n,    p + 3 * n,     p + 4 * n, p + 5 * n,
+                          w.data(), segment.data(), reach.data(), counts.data(), count};
   for (auto _ : state) {
 #if MANE_STRAND_LANES_AVX2
     if (avx2)
@@ -103,6 +103,25 @@ std::vector<std::vector<glm::vec3>> benchGroom() {
   return *generateGroom(groom);
 }
 
+// One 1/60 s frame per iteration with the head swaying sideways by up to 10 cm (so roots move
+// and collisions happen); reports particle-steps per second.
+void runSwayingFrames(benchmark::State& state, HairSystem& hair, unsigned threads) {
+  int frame = 0;
+  std::uint64_t particleSteps = 0;
+  for (auto _ : state) {
+    ++frame;
+    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
+    (void)hair.setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
+    const auto before = hair.stepCount();
+    if (!hair.advance(1.0 / 60.0, threads)) {
+      state.SkipWithError("advance failed");
+      return;
+    }
+    particleSteps += (hair.stepCount() - before) * hair.particles().size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
+}
+
 void BM_HairFrame(benchmark::State& state) {
   const auto threads = static_cast<unsigned>(state.range(0));
   const bool vectorised = state.range(1) != 0;
@@ -116,20 +135,7 @@ void BM_HairFrame(benchmark::State& state) {
     return;
   }
   hair->setVectorised(vectorised);
-  int frame = 0;
-  std::uint64_t particleSteps = 0;
-  for (auto _ : state) {
-    ++frame;
-    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
-    (void)hair->setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
-    const auto before = hair->stepCount();
-    if (!hair->advance(1.0 / 60.0, threads)) {
-      state.SkipWithError("advance failed");
-      return;
-    }
-    particleSteps += (hair->stepCount() - before) * hair->particles().size();
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
+  runSwayingFrames(state, *hair, threads);
   state.counters["particles"] = static_cast<double>(hair->particles().size());
 }
 BENCHMARK(BM_HairFrame)
@@ -184,20 +190,7 @@ void BM_HairFrameCollisions(benchmark::State& state) {
   head.friction = 0.3f;
   (void)hair->setColliders(head);
   hair->setVectorised(vectorised);
-  int frame = 0;
-  std::uint64_t particleSteps = 0;
-  for (auto _ : state) {
-    ++frame;
-    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
-    (void)hair->setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
-    const auto before = hair->stepCount();
-    if (!hair->advance(1.0 / 60.0, threads)) {
-      state.SkipWithError("advance failed");
-      return;
-    }
-    particleSteps += (hair->stepCount() - before) * hair->particles().size();
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
+  runSwayingFrames(state, *hair, threads);
 }
 BENCHMARK(BM_HairFrameCollisions)
     ->Args({1, 0})
