@@ -1,7 +1,9 @@
 #include "physics/groom_generator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace mane::physics {
 
@@ -36,7 +38,10 @@ float tanSeries(float u) {
 
 }  // namespace
 
-Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings) {
+namespace {
+
+// The settings' ranges (shared by both generators), naming the field.
+Result<void> validateGroomSettings(const GroomSettings& settings) {
   const auto bad = [](const char* field, const char* expected) {
     return fail(std::string("Groom settings: ") + field + " must be " + expected + ".");
   };
@@ -56,51 +61,113 @@ Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& s
     return bad("curlRadius", "a non-negative number of metres");
   if (!(std::abs(settings.curlAnglePerSegment) <= 1.5708f))
     return bad("curlAnglePerSegment", "within [-pi/2, pi/2] radians");
+  return {};
+}
 
-  // The per-segment helix rotation as an exact rational point on the unit circle:
-  // (cos θ, sin θ) = ((1 − t²)/(1 + t²), 2t/(1 + t²)) with t = tan(θ/2).
+// One strand from `root` along the unit `normal`: length jittered, optionally a helix whose
+// per-segment rotation is (cosStep, sinStep), starting at a random phase.
+std::vector<glm::vec3> growStrand(SplitMix64& rng, const GroomSettings& settings, const glm::vec3& root,
+                                  const glm::vec3& normal, float cosStep, float sinStep) {
+  const float length = settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
+  const float spacing = length / static_cast<float>(settings.particlesPerStrand - 1);
+
+  // A frame (u, v) around the growth axis, and a random starting phase on the circle.
+  const glm::vec3 helper = std::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::vec3 u = normalized(cross(normal, helper));
+  const glm::vec3 v = cross(normal, u);
+  float c = 1.0f;
+  float s = 0.0f;
+  for (;;) {
+    const float a = rng.nextFloat(-1.0f, 1.0f);
+    const float b = rng.nextFloat(-1.0f, 1.0f);
+    const float r2 = a * a + b * b;
+    if (r2 > 1.0f || r2 < 0.01f) continue;
+    const float r = std::sqrt(r2);
+    c = a / r;
+    s = b / r;
+    break;
+  }
+  const float c0 = c;
+  const float s0 = s;
+
+  std::vector<glm::vec3> strand;
+  strand.reserve(settings.particlesPerStrand);
+  for (std::size_t i = 0; i < settings.particlesPerStrand; ++i) {
+    glm::vec3 p = root + normal * (spacing * static_cast<float>(i));
+    if (settings.curlRadius > 0.0f) p += (u * (c - c0) + v * (s - s0)) * settings.curlRadius;
+    strand.push_back(p);
+    const float nextC = c * cosStep - s * sinStep;
+    const float nextS = s * cosStep + c * sinStep;
+    c = nextC;
+    s = nextS;
+  }
+  return strand;
+}
+
+// The per-segment helix rotation as an exact rational point on the unit circle:
+// (cos θ, sin θ) = ((1 − t²)/(1 + t²), 2t/(1 + t²)) with t = tan(θ/2).
+std::pair<float, float> helixStep(const GroomSettings& settings) {
   const float t = tanSeries(0.5f * settings.curlAnglePerSegment);
-  const float cosStep = (1.0f - t * t) / (1.0f + t * t);
-  const float sinStep = (2.0f * t) / (1.0f + t * t);
-  const bool curly = settings.curlRadius > 0.0f;
+  return {(1.0f - t * t) / (1.0f + t * t), (2.0f * t) / (1.0f + t * t)};
+}
 
+}  // namespace
+
+Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings) {
+  if (auto valid = validateGroomSettings(settings); !valid) return std::unexpected(valid.error());
+  const auto [cosStep, sinStep] = helixStep(settings);
   SplitMix64 rng(settings.seed);
   std::vector<std::vector<glm::vec3>> strands(settings.strandCount);
   for (std::vector<glm::vec3>& strand : strands) {
     const glm::vec3 normal = randomCapDirection(rng, settings.capMinNormalY);
-    const glm::vec3 root = settings.scalpCentre + normal * settings.scalpRadius;
-    const float length = settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
-    const float spacing = length / static_cast<float>(settings.particlesPerStrand - 1);
+    strand = growStrand(rng, settings, settings.scalpCentre + normal * settings.scalpRadius, normal, cosStep, sinStep);
+  }
+  return strands;
+}
 
-    // A frame (u, v) around the growth axis, and a random starting phase on the circle.
-    const glm::vec3 helper = std::abs(normal.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    const glm::vec3 u = normalized(cross(normal, helper));
-    const glm::vec3 v = cross(normal, u);
-    float c = 1.0f;
-    float s = 0.0f;
-    for (;;) {
-      const float a = rng.nextFloat(-1.0f, 1.0f);
-      const float b = rng.nextFloat(-1.0f, 1.0f);
-      const float r2 = a * a + b * b;
-      if (r2 > 1.0f || r2 < 0.01f) continue;
-      const float r = std::sqrt(r2);
-      c = a / r;
-      s = b / r;
-      break;
-    }
-    const float c0 = c;
-    const float s0 = s;
+Result<std::vector<std::vector<glm::vec3>>> generateGroomOnMesh(const GroomSettings& settings,
+                                                                std::span<const glm::vec3> positions,
+                                                                std::span<const std::uint32_t> indices,
+                                                                std::span<const std::uint32_t> scalpTriangles) {
+  if (auto valid = validateGroomSettings(settings); !valid) return std::unexpected(valid.error());
+  if (scalpTriangles.empty()) return fail("Groom on mesh: the scalp region has no triangles.");
+  // Cumulative areas (in double, so thousands of tiny triangles add up exactly enough) for
+  // sampling a triangle with probability proportional to its area.
+  std::vector<double> cumulative;
+  cumulative.reserve(scalpTriangles.size());
+  double total = 0.0;
+  for (std::uint32_t t : scalpTriangles) {
+    if (std::size_t(t) * 3 + 2 >= indices.size())
+      return fail("Groom on mesh: scalp triangle " + std::to_string(t) + " is not a triangle of the mesh (it has " +
+                  std::to_string(indices.size() / 3) + ").");
+    for (int k = 0; k < 3; ++k)
+      if (indices[std::size_t(t) * 3 + k] >= positions.size())
+        return fail("Groom on mesh: triangle " + std::to_string(t) + " uses vertex " +
+                    std::to_string(indices[std::size_t(t) * 3 + k]) + " of " + std::to_string(positions.size()) + ".");
+    const glm::vec3& a = positions[indices[std::size_t(t) * 3]];
+    const glm::vec3 n =
+        cross(positions[indices[std::size_t(t) * 3 + 1]] - a, positions[indices[std::size_t(t) * 3 + 2]] - a);
+    total += 0.5 * std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
+    cumulative.push_back(total);
+  }
+  if (!(total > 0.0) || !std::isfinite(total)) return fail("Groom on mesh: the scalp region has no area.");
 
-    strand.reserve(settings.particlesPerStrand);
-    for (std::size_t i = 0; i < settings.particlesPerStrand; ++i) {
-      glm::vec3 p = root + normal * (spacing * static_cast<float>(i));
-      if (curly) p += (u * (c - c0) + v * (s - s0)) * settings.curlRadius;
-      strand.push_back(p);
-      const float nextC = c * cosStep - s * sinStep;
-      const float nextS = s * cosStep + c * sinStep;
-      c = nextC;
-      s = nextS;
-    }
+  const auto [cosStep, sinStep] = helixStep(settings);
+  SplitMix64 rng(settings.seed);
+  std::vector<std::vector<glm::vec3>> strands(settings.strandCount);
+  for (std::vector<glm::vec3>& strand : strands) {
+    // A triangle by area, then a uniform point in it: (1 − √r1, √r1·(1 − r2), √r1·r2)
+    // (Osada et al. 2002, "Shape Distributions", §4.2). Zero-area triangles are never picked.
+    const double pick = double(rng.nextFloat()) * total;
+    const std::size_t k =
+        std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
+    const std::uint32_t t = scalpTriangles[std::min(k, scalpTriangles.size() - 1)];
+    const glm::vec3& a = positions[indices[std::size_t(t) * 3]];
+    const glm::vec3& b = positions[indices[std::size_t(t) * 3 + 1]];
+    const glm::vec3& c = positions[indices[std::size_t(t) * 3 + 2]];
+    const float r1 = std::sqrt(rng.nextFloat()), r2 = rng.nextFloat();
+    const glm::vec3 root = a * (1.0f - r1) + b * (r1 * (1.0f - r2)) + c * (r1 * r2);
+    strand = growStrand(rng, settings, root, normalized(cross(b - a, c - a)), cosStep, sinStep);
   }
   return strands;
 }

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -63,5 +64,15 @@ struct GroomSettings {
 /// Each strand grows along the scalp normal at its root; curls wind around that axis and
 /// start at the root. Fails with a message naming the field when a setting is out of range.
 [[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings);
+
+/// Generates guide strands rooted on a region of a triangle mesh (the scalp): roots spread by
+/// area over `scalpTriangles` (indices of triangles in `indices`, 3 per triangle), each growing
+/// along its triangle's normal (counter-clockwise winding faces out). Positions and lengths in
+/// metres, in the mesh's space. Uses every setting except the sphere's (scalpCentre,
+/// scalpRadius, capMinNormalY). Fails, naming it, on an index out of range, an empty region or
+/// one without area, and on settings out of range.
+[[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroomOnMesh(
+    const GroomSettings& settings, std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices,
+    std::span<const std::uint32_t> scalpTriangles);
 
 }  // namespace mane::physics

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
 
 #include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
@@ -14,6 +15,23 @@ namespace {
 
 render::TextureData textureOf(const Image& image) {
   return {static_cast<std::uint32_t>(image.width), static_cast<std::uint32_t>(image.height), image.rgba};
+}
+
+// The triangles a procedural groom grows from: in the top quarter of the mesh's height, facing
+// up (unit normal y ≥ minNormalY).
+std::vector<std::uint32_t> scalpTriangles(const Mesh& mesh, float minNormalY) {
+  const Bounds bounds = mesh.bounds();
+  const float lowest = bounds.max.y - 0.25f * bounds.size().y;
+  std::vector<std::uint32_t> scalp;
+  for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
+    const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
+    const glm::vec3& b = mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
+    const glm::vec3 normal = glm::cross(b - a, c - a);
+    const float length = glm::length(normal);
+    if (length > 0.0f && normal.y >= minNormalY * length && (a.y + b.y + c.y) / 3.0f >= lowest) scalp.push_back(t);
+  }
+  return scalp;
 }
 
 physics::SolverSettings solverSettings(const HairSimulation& simulation, const SimulationSettings& world) {
@@ -92,18 +110,20 @@ Result<void> World::loadGrooms(const AssetResolver& resolver) {
     const float scale = meshIt->transform.scale;
     std::vector<std::vector<glm::vec3>> guides;
     if (groom.isProcedural()) {
-      // Guides on a spherical scalp fitted to the attached mesh's bounds: centred on the box,
-      // radius from its width and depth; lengths already in metres.
-      const Bounds bounds = meshes_[meshIndex].mesh.bounds();
+      // Guides rooted by area on the mesh's scalp: the upward-facing triangles (normal y ≥ 0.2)
+      // in the top quarter of its height. Lengths are in metres, so the mesh goes to metres.
+      const Mesh& mesh = meshes_[meshIndex].mesh;
+      std::vector<glm::vec3> metres(mesh.positions.size());
+      for (std::size_t v = 0; v < metres.size(); ++v) metres[v] = mesh.positions[v] * scale;
       physics::GroomSettings settings;
       settings.seed = 1 + sceneGroom;
       if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
       if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
-      if (!bounds.isEmpty()) {
-        settings.scalpCentre = bounds.centre() * scale;
-        settings.scalpRadius = 0.5f * std::max(bounds.size().x, bounds.size().z) * scale;
-      }
-      auto generated = physics::generateGroom(settings);
+      const std::vector<std::uint32_t> scalp = scalpTriangles(mesh, settings.capMinNormalY);
+      if (scalp.empty())
+        return fail("groom " + groom.name + ": mesh " + meshIt->name +
+                    " has no scalp (no upward-facing triangles in its top quarter)");
+      auto generated = physics::generateGroomOnMesh(settings, metres, mesh.indices, scalp);
       if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
       guides = std::move(*generated);
     } else {

@@ -57,6 +57,19 @@ TEST(World, AdvancingMovesTheHeadAndTheHair) {
   ASSERT_TRUE(scene.has_value());
   auto world = World::create(std::move(*scene), *AssetResolver::createDefault(), {.loadTextures = false});
   ASSERT_TRUE(world.has_value()) << world.error().message;
+  // Before any motion the procedural roots sit on the head's scalp: the top quarter of the
+  // mesh's height (LeePerrySmith spans 8.5 units at scale 0.025; scenes/nalu.json).
+  const render::StaticScene statics = world->staticScene();
+  float top = -1e9f, bottom = 1e9f;
+  for (const glm::vec3& p : statics.meshes[0].positions) {
+    top = std::max(top, p.y * 0.025f);
+    bottom = std::min(bottom, p.y * 0.025f);
+  }
+  for (std::size_t s = 0; s < world->simulatedGroom(0).strandCount(); ++s) {
+    const float rootY = world->simulatedGroom(0).strandPositions(s).front().y;
+    EXPECT_GE(rootY, top - 0.25f * (top - bottom) - 1e-5f) << "strand " << s;
+    EXPECT_LE(rootY, top + 1e-5f) << "strand " << s;
+  }
   const glm::mat4 before = world->frameInput().instances[0].model;
   const std::uint64_t hashBefore = world->stateHash();
   ASSERT_TRUE(world->advance(0.5, 1).has_value());

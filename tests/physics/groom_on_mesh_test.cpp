@@ -1,0 +1,83 @@
+// Procedural guides rooted on a mesh region.
+//
+// Oracles: every root lies in one of the region's triangles (barycentric coordinates in [0, 1]
+// up to rounding) and never in the others; roots spread by area (two triangles with areas 3:1
+// receive 3:1 of 8,000 roots, within 4 binomial standard deviations); a straight strand grows
+// along its triangle's outward normal; the same seed gives the same bytes.
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/groom_generator.hpp"
+
+namespace mane::physics {
+namespace {
+
+// Three triangles in the y = 0 plane facing +Y (counter-clockwise seen from above): A has area
+// 1.5, B has 0.5, C (not in the region) has 2.
+const std::vector<glm::vec3> kPositions{{0, 0, 0}, {0, 0, -1}, {3, 0, 0},    // A
+                                        {5, 0, 0}, {5, 0, -1}, {6, 0, 0},    // B
+                                        {9, 0, 0}, {9, 0, -2}, {11, 0, 0}};  // C
+const std::vector<std::uint32_t> kIndices{0, 2, 1, 3, 5, 4, 6, 8, 7};
+const std::vector<std::uint32_t> kScalp{0, 1};
+
+TEST(GroomOnMesh, RootsSpreadByAreaOverTheRegionOnly) {
+  GroomSettings settings;
+  settings.strandCount = 8000;
+  settings.particlesPerStrand = 3;
+  auto strands = generateGroomOnMesh(settings, kPositions, kIndices, kScalp);
+  ASSERT_TRUE(strands.has_value()) << strands.error().message;
+  int onA = 0, onB = 0;
+  for (const auto& strand : *strands) {
+    const glm::vec3 root = strand.front();
+    EXPECT_NEAR(root.y, 0.0f, 1e-6f);
+    if (root.x <= 3.0f + 1e-5f) {
+      ++onA;
+      EXPECT_GE(root.x, -1e-5f);
+      EXPECT_LE(-root.z, 1.0f - root.x / 3.0f + 1e-5f);  // inside A's hypotenuse
+    } else {
+      ++onB;
+      EXPECT_GE(root.x, 5.0f - 1e-5f);
+      EXPECT_LE(root.x, 6.0f + 1e-5f);
+    }
+  }
+  EXPECT_EQ(onA + onB, 8000);
+  // Expected 6,000 : 2,000; σ = √(n·p·(1 − p)) = √(8000·0.75·0.25) ≈ 38.7.
+  EXPECT_NEAR(onA, 6000, 4 * 38.7);
+}
+
+TEST(GroomOnMesh, StraightStrandsGrowAlongTheFaceNormal) {
+  GroomSettings settings;
+  settings.strandCount = 50;
+  settings.strandLength = 0.2f;
+  auto strands = generateGroomOnMesh(settings, kPositions, kIndices, kScalp);
+  ASSERT_TRUE(strands.has_value());
+  for (const auto& strand : *strands) {
+    const glm::vec3 axis = glm::normalize(strand.back() - strand.front());
+    EXPECT_NEAR(axis.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(strand.back(), strand.front()), 0.2f, 0.2f * settings.lengthJitter + 1e-6f);
+  }
+  auto again = generateGroomOnMesh(settings, kPositions, kIndices, kScalp);
+  EXPECT_EQ(*again, *strands);
+}
+
+TEST(GroomOnMesh, BadRegionsAreNamed) {
+  const GroomSettings settings;
+  EXPECT_NE(generateGroomOnMesh(settings, kPositions, kIndices, {}).error().message.find("no triangles"),
+            std::string::npos);
+  const std::vector<std::uint32_t> outside{7};
+  EXPECT_NE(generateGroomOnMesh(settings, kPositions, kIndices, outside).error().message.find("scalp triangle 7"),
+            std::string::npos);
+  const std::vector<std::uint32_t> badIndex{0, 1, 99};
+  const std::vector<std::uint32_t> first{0};
+  EXPECT_NE(generateGroomOnMesh(settings, kPositions, badIndex, first).error().message.find("vertex 99"),
+            std::string::npos);
+  const std::vector<glm::vec3> flat{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  const std::vector<std::uint32_t> line{0, 1, 2};
+  EXPECT_NE(generateGroomOnMesh(settings, flat, line, first).error().message.find("no area"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mane::physics
