@@ -168,14 +168,23 @@ void BM_SdfBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_SdfBuild)->Unit(benchmark::kMillisecond)->Iterations(3);
 
-void BM_HairFrameCollisions(benchmark::State& state) {
-  const auto threads = static_cast<unsigned>(state.range(0));
-  const bool vectorised = state.range(1) != 0;
-  static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
+// The collision benches' head: a neck capsule and the head mesh's SDF (built once), μ = 0.3.
+ColliderSet benchHeadColliders() {
   static const auto sdf = [] {
     const TriangleMesh mesh = benchHeadMesh();
     return std::make_shared<const SignedDistanceField>(*SignedDistanceField::build(mesh.positions, mesh.indices));
   }();
+  ColliderSet head;
+  head.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
+  head.sdf = sdf;
+  head.friction = 0.3f;
+  return head;
+}
+
+void BM_HairFrameCollisions(benchmark::State& state) {
+  const auto threads = static_cast<unsigned>(state.range(0));
+  const bool vectorised = state.range(1) != 0;
+  static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
   SolverSettings settings;
   settings.fixedStep = 1.0 / 120.0;
   settings.constraintIterations = 4;
@@ -184,11 +193,7 @@ void BM_HairFrameCollisions(benchmark::State& state) {
     state.SkipWithError(hair.error().message.c_str());
     return;
   }
-  ColliderSet head;
-  head.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
-  head.sdf = sdf;
-  head.friction = 0.3f;
-  (void)hair->setColliders(head);
+  (void)hair->setColliders(benchHeadColliders());
   hair->setVectorised(vectorised);
   runSwayingFrames(state, *hair, threads);
 }
@@ -210,10 +215,6 @@ void BM_NaluFrame(benchmark::State& state) {
     groom.strandLength = 0.3f;
     return *generateGroom(groom);
   }();
-  static const auto sdf = [] {
-    const TriangleMesh mesh = benchHeadMesh();
-    return std::make_shared<const SignedDistanceField>(*SignedDistanceField::build(mesh.positions, mesh.indices));
-  }();
   SolverSettings settings;
   settings.fixedStep = 1.0 / 120.0;
   settings.constraintIterations = 4;
@@ -223,22 +224,9 @@ void BM_NaluFrame(benchmark::State& state) {
     return;
   }
   if (collisions) {
-    ColliderSet head;
-    head.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
-    head.sdf = sdf;
-    head.friction = 0.3f;
-    (void)hair->setColliders(head);
+    (void)hair->setColliders(benchHeadColliders());
   }
-  int frame = 0;
-  for (auto _ : state) {
-    ++frame;
-    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
-    (void)hair->setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
-    if (!hair->advance(1.0 / 60.0, 1)) {
-      state.SkipWithError("advance failed");
-      return;
-    }
-  }
+  runSwayingFrames(state, *hair, 1);
   state.counters["particles"] = static_cast<double>(hair->particles().size());
 }
 BENCHMARK(BM_NaluFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
