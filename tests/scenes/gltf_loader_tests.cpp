@@ -121,20 +121,27 @@ TEST(GltfLoader, AppliesSparseValuesOverAnAccessorWithoutBufferView) {
   for (const glm::vec3& n : mesh->normals) EXPECT_NEAR(glm::distance(n, {0, 0, 1}), 0.0f, 1e-6f);
 }
 
-/// A non-indexed triangle under `nodes`, written to `dir`.
-Result<Mesh> loadTriangleUnder(const ScratchDir& dir, nlohmann::json nodes, int mode = 4) {
+/// The triangle kTriangle as one float VEC3 accessor declaring `count` positions (3 is right;
+/// others test the loader's checks), used by `primitive` under `nodes`.
+nlohmann::json triangleDocument(std::uint64_t count, nlohmann::json primitive,
+                                nlohmann::json nodes = nlohmann::json::array({{{"mesh", 0}}})) {
   std::vector<unsigned char> buffer;
   for (float f : kTriangle) put<float>(buffer, {f});
+  return document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
+                  {{{"bufferView", 0},
+                    {"componentType", 5126},
+                    {"count", count},
+                    {"type", "VEC3"},
+                    {"min", {0, 0, 0}},
+                    {"max", {1, 1, 0}}}},
+                  primitive, nodes);
+}
+
+/// A non-indexed triangle under `nodes`, written to `dir`.
+Result<Mesh> loadTriangleUnder(const ScratchDir& dir, nlohmann::json nodes, int mode = 4) {
   auto primitive = nlohmann::json{{"attributes", {{"POSITION", 0}}}};
   if (mode != 4) primitive["mode"] = mode;
-  const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-                             {{{"bufferView", 0},
-                               {"componentType", 5126},
-                               {"count", 3},
-                               {"type", "VEC3"},
-                               {"min", {0, 0, 0}},
-                               {"max", {1, 1, 0}}}},
-                             primitive, nodes);
+  const auto gltf = triangleDocument(3, primitive, nodes);
   return loadGltf(dir.write("triangle.gltf", gltf.dump()));
 }
 
@@ -176,16 +183,7 @@ TEST(GltfLoader, RejectsTriangleStripsToo) {
 }
 
 TEST(GltfLoader, MissingAccessorIsNamed) {
-  std::vector<unsigned char> buffer;
-  for (float f : kTriangle) put<float>(buffer, {f});
-  const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-                             {{{"bufferView", 0},
-                               {"componentType", 5126},
-                               {"count", 3},
-                               {"type", "VEC3"},
-                               {"min", {0, 0, 0}},
-                               {"max", {1, 1, 0}}}},
-                             {{"attributes", {{"POSITION", 0}, {"NORMAL", 7}}}});
+  const auto gltf = triangleDocument(3, {{"attributes", {{"POSITION", 0}, {"NORMAL", 7}}}});
   ScratchDir dir;
   auto mesh = loadGltf(dir.write("missing.gltf", gltf.dump()));
   ASSERT_FALSE(mesh.has_value());
@@ -196,16 +194,7 @@ TEST(GltfLoader, MissingAccessorIsNamed) {
 }
 
 TEST(GltfLoader, AccessorPastTheEndOfItsViewIsAnError) {
-  std::vector<unsigned char> buffer;
-  for (float f : kTriangle) put<float>(buffer, {f});
-  const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-                             {{{"bufferView", 0},
-                               {"componentType", 5126},
-                               {"count", 4},
-                               {"type", "VEC3"},
-                               {"min", {0, 0, 0}},
-                               {"max", {1, 1, 0}}}},
-                             {{"attributes", {{"POSITION", 0}}}});
+  const auto gltf = triangleDocument(4, {{"attributes", {{"POSITION", 0}}}});
   ScratchDir dir;
   auto mesh = loadGltf(dir.write("short.gltf", gltf.dump()));
   ASSERT_FALSE(mesh.has_value());
@@ -216,17 +205,8 @@ TEST(GltfLoader, AccessorPastTheEndOfItsViewIsAnError) {
 // A count whose byte size wraps around 2^64 (2^62 × 12 bytes = 0 mod 2^64) or merely exceeds
 // memory must be refused before anything is allocated or copied.
 TEST(GltfLoader, HostileAccessorCountsAreRefusedBeforeAllocating) {
-  std::vector<unsigned char> buffer;
-  for (float f : kTriangle) put<float>(buffer, {f});
   for (const std::uint64_t count : {std::uint64_t(1) << 62, std::uint64_t(1) << 40, std::uint64_t(1) << 26}) {
-    const auto gltf = document(buffer, {{{"buffer", 0}, {"byteLength", 36}}},
-                               {{{"bufferView", 0},
-                                 {"componentType", 5126},
-                                 {"count", count},
-                                 {"type", "VEC3"},
-                                 {"min", {0, 0, 0}},
-                                 {"max", {1, 1, 0}}}},
-                               {{"attributes", {{"POSITION", 0}}}});
+    const auto gltf = triangleDocument(count, {{"attributes", {{"POSITION", 0}}}});
     ScratchDir dir;
     auto mesh = loadGltf(dir.write("huge.gltf", gltf.dump()));
     ASSERT_FALSE(mesh.has_value()) << count;
