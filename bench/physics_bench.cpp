@@ -5,12 +5,14 @@
 //   BM_StrandLaneProjections/<particles>/<avx2>: the hair step's distance sweep over a block of
 //     32 strands of <particles> each, lane by lane (physics/detail/strand_lanes.hpp), scalar
 //     (avx2 = 0) or AVX2 (1, bit-identical); items/s = constraint projections per second, one core.
-//   BM_HairFrame/<threads>/<vectorised>: one 1/60 s frame (two 1/120 s fixed steps) of a
-//     10,000-guide × 32-particle groom with 4 constraint iterations and tethers, on a head that
-//     sways, with the scalar (0) or the AVX2 (1) strand kernel (HairSystem::setVectorised);
-//     items/s = particle updates (particles × fixed steps) per second.
-//   BM_HairFrameCollisions/<threads>/<vectorised>: the same frame with a neck capsule and the SDF
-//     (64³ class) of a 20,480-triangle ellipsoidal head mesh as colliders, friction 0.3.
+//   BM_HairFrame/<threads>/<vectorised>/<steps>: one 1/60 s frame of a 10,000-guide ×
+//     32-particle groom with 4 constraint iterations per fixed step and tethers, on a head that
+//     sways, with the scalar (0) or the AVX2 (1) strand kernel (HairSystem::setVectorised), in
+//     <steps> fixed steps (1: one 1/60 s step, 4 iterations per frame, the case; 2: two
+//     1/120 s steps, 8); items/s = particle updates (particles × fixed steps) per second.
+//   BM_HairFrameCollisions/<threads>/<vectorised>/<steps>: the same frame with a neck capsule
+//     and the SDF (64³ class) of a 20,480-triangle ellipsoidal head mesh as colliders,
+//     friction 0.3.
 //   BM_NaluFrame/<collisions>: the Nalu case, 762 guides × 16 particles, one 1/60 s frame on one
 //     thread, without (0) or with (1) the capsule + SDF head colliders.
 //   BM_SdfBuild: building that SDF (20,480 triangles, about LeePerrySmith's 17,684) at 64³.
@@ -122,13 +124,19 @@ void runSwayingFrames(benchmark::State& state, HairSystem& hair, unsigned thread
   state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
 }
 
+// The frame benchmarks' solver: 4 iterations per fixed step, `steps` fixed steps per 1/60 s.
+SolverSettings benchFrameSettings(std::int64_t steps) {
+  SolverSettings settings;
+  settings.fixedStep = 1.0 / (60.0 * static_cast<double>(steps));
+  settings.constraintIterations = 4;
+  return settings;
+}
+
 void BM_HairFrame(benchmark::State& state) {
   const auto threads = static_cast<unsigned>(state.range(0));
   const bool vectorised = state.range(1) != 0;
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
-  SolverSettings settings;
-  settings.fixedStep = 1.0 / 120.0;
-  settings.constraintIterations = 4;
+  const SolverSettings settings = benchFrameSettings(state.range(2));
   auto hair = HairSystem::create(strands, settings);
   if (!hair) {
     state.SkipWithError(hair.error().message.c_str());
@@ -139,10 +147,12 @@ void BM_HairFrame(benchmark::State& state) {
   state.counters["particles"] = static_cast<double>(hair->particles().size());
 }
 BENCHMARK(BM_HairFrame)
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->Args({2, 0})
-    ->Args({2, 1})
+    ->Args({1, 0, 2})
+    ->Args({1, 1, 2})
+    ->Args({1, 1, 1})
+    ->Args({2, 0, 2})
+    ->Args({2, 1, 2})
+    ->Args({2, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
@@ -185,9 +195,7 @@ void BM_HairFrameCollisions(benchmark::State& state) {
   const auto threads = static_cast<unsigned>(state.range(0));
   const bool vectorised = state.range(1) != 0;
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
-  SolverSettings settings;
-  settings.fixedStep = 1.0 / 120.0;
-  settings.constraintIterations = 4;
+  const SolverSettings settings = benchFrameSettings(state.range(2));
   auto hair = HairSystem::create(strands, settings);
   if (!hair) {
     state.SkipWithError(hair.error().message.c_str());
@@ -198,10 +206,12 @@ void BM_HairFrameCollisions(benchmark::State& state) {
   runSwayingFrames(state, *hair, threads);
 }
 BENCHMARK(BM_HairFrameCollisions)
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->Args({2, 0})
-    ->Args({2, 1})
+    ->Args({1, 0, 2})
+    ->Args({1, 1, 2})
+    ->Args({1, 1, 1})
+    ->Args({2, 0, 2})
+    ->Args({2, 1, 2})
+    ->Args({2, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -119,7 +119,8 @@ ColliderCull cullBoxes(const ColliderSet& colliders) {
     cull.lower.push_back(lo);
     cull.upper.push_back(hi);
   };
-  for (const SphereCollider& s : colliders.spheres) add(s.centre - glm::vec3(s.radius + grow), s.centre + glm::vec3(s.radius + grow));
+  for (const SphereCollider& s : colliders.spheres)
+    add(s.centre - glm::vec3(s.radius + grow), s.centre + glm::vec3(s.radius + grow));
   for (const CapsuleCollider& c : colliders.capsules)
     add(glm::min(c.a, c.b) - glm::vec3(c.radius + grow), glm::max(c.a, c.b) + glm::vec3(c.radius + grow));
   if (colliders.sdf) {
@@ -171,10 +172,12 @@ bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const gl
     }
     glm::vec3 gradient;
     float d;  // sampleWithGradient's value is bit for bit sample's
-    if (colliders.sdf && colliders.sdf->mayBeBelow(position, thickness) &&
-        (d = sampleField(gradient)) < thickness) {
-      // Newton steps along the field's gradient onto the level set `thickness` (the trilinear
-      // field is smooth inside a cell, so two or three steps land within rounding).
+    if (colliders.sdf && colliders.sdf->mayBeBelow(position, thickness) && (d = sampleField(gradient)) < thickness) {
+      // Newton steps along the field's gradient onto the level set thickness + kContactSkin (the
+      // trilinear field is smooth inside a cell, so one or two steps land there). Aiming just
+      // past the contact level lets the loop and the next round end at once: aiming at it
+      // exactly lands half the time a rounding error inside, which is another contact.
+      const float target = thickness + kContactSkin;
       const float depth = thickness - d;
       const float gradientSquared = dot(gradient, gradient);
       if (gradientSquared > 1e-12f) {
@@ -182,7 +185,7 @@ bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const gl
         for (int newton = 0; newton < 4 && d < thickness; ++newton) {
           const float g2 = dot(gradient, gradient);
           if (!(g2 > 1e-12f)) break;
-          position += gradient * ((thickness - d) / g2);
+          position += gradient * ((target - d) / g2);
           d = sampleField(gradient);
         }
         applyFriction(position, previous, normal, depth, mu);
@@ -191,7 +194,7 @@ bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const gl
         for (int newton = 0; newton < 4 && d < thickness; ++newton) {
           const float g2 = dot(gradient, gradient);
           if (!(g2 > 1e-12f)) break;
-          position += gradient * ((thickness - d) / g2);
+          position += gradient * ((target - d) / g2);
           d = sampleField(gradient);
         }
         contact = true;

@@ -111,4 +111,9 @@ inline bool collideParticle(const ColliderSet& colliders, glm::vec3& position, c
 /// How many times `collideParticle` runs through the set at most.
 inline constexpr int kCollisionRounds = 3;
 
+/// How far past its contact level `collideParticle` moves a particle out of the field, metres:
+/// far above the rounding of a field sample at body scale (about 1e-9 m), far below anything
+/// visible.
+inline constexpr float kContactSkin = 1e-6f;
+
 }  // namespace mane::physics

@@ -114,6 +114,11 @@ Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> st
     }
     system.strands_.push_back(strand);
   }
+  system.rootRestNormals_.reserve(strands.size());
+  for (const std::vector<glm::vec3>& points : strands) {
+    const glm::vec3 d = points[1] - points[0];  // validateStrand: at least kMinSegmentLength long
+    system.rootRestNormals_.push_back(d / std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
+  }
   system.faultParticle_.assign(strands.size(), kNoFault);
   system.faultStep_.assign(strands.size(), 0);
   system.placeAtRest(headTransform);
@@ -127,6 +132,76 @@ void HairSystem::placeAtRest(const glm::mat4& headTransform) {
   }
   previousHead_ = headTransform;
   head_ = headTransform;
+  rootTargets_.clear();
+  rootNormals_.clear();
+  previousRootNormals_.clear();
+}
+
+namespace {
+
+// Checks one normal per strand and returns them normalised; `what` names the list in errors.
+Result<std::vector<glm::vec3>> unitNormals(std::span<const glm::vec3> normals, std::size_t strands, const char* what) {
+  if (normals.size() != strands)
+    return fail(std::string("Hair system: ") + what + " has " + std::to_string(normals.size()) + " normals for " +
+                std::to_string(strands) + " strands.");
+  std::vector<glm::vec3> unit(normals.size());
+  for (std::size_t s = 0; s < normals.size(); ++s) {
+    const glm::vec3 n = normals[s];
+    const float length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (!isFinite(n) || !(length >= 1e-6f))
+      return fail(std::string("Hair system: ") + what + ", strand " + std::to_string(s) +
+                  ": the normal must be finite and at least 1e-6 long, got (" + std::to_string(n.x) + ", " +
+                  std::to_string(n.y) + ", " + std::to_string(n.z) + ").");
+    unit[s] = n / length;
+  }
+  return unit;
+}
+
+}  // namespace
+
+Result<void> HairSystem::setRootTargets(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals) {
+  if (positions.size() != strands_.size())
+    return fail("Hair system: root targets have " + std::to_string(positions.size()) + " positions for " +
+                std::to_string(strands_.size()) + " strands.");
+  for (std::size_t s = 0; s < positions.size(); ++s)
+    if (!isFinite(positions[s]))
+      return fail("Hair system: root target of strand " + std::to_string(s) + " is NaN or infinite.");
+  auto unit = unitNormals(normals, strands_.size(), "root targets");
+  if (!unit) return std::unexpected(unit.error());
+  if (rootTargets_.empty()) {
+    // The first targets: the frame starts from the normals the head gives the roots now.
+    previousRootNormals_.resize(strands_.size());
+    const glm::vec4 rotation = rotationOf(previousHead_);
+    for (std::size_t s = 0; s < strands_.size(); ++s) previousRootNormals_[s] = rotate(rotation, rootRestNormals_[s]);
+  }
+  rootTargets_.assign(positions.begin(), positions.end());
+  rootNormals_ = std::move(*unit);
+  return {};
+}
+
+Result<void> HairSystem::setRootRestNormals(std::span<const glm::vec3> normals) {
+  auto unit = unitNormals(normals, strands_.size(), "rest root normals");
+  if (!unit) return std::unexpected(unit.error());
+  rootRestNormals_ = std::move(*unit);
+  return {};
+}
+
+void HairSystem::rootMotion(std::size_t s, glm::vec3& from, glm::vec3& travel) const noexcept {
+  const GuideStrand& strand = strands_[s];
+  if (rootTargets_.empty()) {
+    from = transformPoint(previousHead_, strand.rootLocal);
+    travel = transformPoint(head_, strand.rootLocal) - from;
+    return;
+  }
+  from = particles_.positions[strand.firstParticle];
+  travel = rootTargets_[s] - from;
+}
+
+glm::vec4 HairSystem::shapeFrame(std::size_t s, int k, float f) const noexcept {
+  const glm::vec4& head = poses_[static_cast<std::size_t>(k)].rotation;
+  if (rootTargets_.empty()) return head;
+  const glm::vec3 normal = previousRootNormals_[s] + (rootNormals_[s] - previousRootNormals_[s]) * f;
+  return multiply(shortestArc(rotate(head, rootRestNormals_[s]), normal), head);
 }
 
 Result<void> HairSystem::setHeadTransform(const glm::mat4& headTransform) {
@@ -219,19 +294,21 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
     // same whichever worker runs it, so the partition affects speed only, never the result.
     const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
     const auto rangeBegin = [&](std::size_t w) { return strands_.size() * w / workers; };
+    if (scratch_.size() < workers) scratch_.resize(workers);
     std::vector<std::jthread> pool;
     pool.reserve(workers - 1);
     std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
     for (std::size_t w = 1; w < workers; ++w) {
       try {
-        pool.emplace_back([this, &plan, b = rangeBegin(w), e = rangeBegin(w + 1)] { simulateStrands(b, e, plan); });
+        pool.emplace_back(
+            [this, &plan, w, b = rangeBegin(w), e = rangeBegin(w + 1)] { simulateStrands(b, e, plan, scratch_[w]); });
       } catch (const std::system_error&) {
         inlineFrom = w;  // no more threads available: run the remaining ranges here
         break;
       }
     }
-    simulateStrands(rangeBegin(0), rangeBegin(1), plan);
-    if (inlineFrom < workers) simulateStrands(rangeBegin(inlineFrom), strands_.size(), plan);
+    simulateStrands(rangeBegin(0), rangeBegin(1), plan, scratch_[0]);
+    if (inlineFrom < workers) simulateStrands(rangeBegin(inlineFrom), strands_.size(), plan, scratch_[0]);
     pool.clear();  // joins
 
     // Lowest strand index first, so the report does not depend on which worker saw it first.
@@ -242,13 +319,14 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
     }
   }
   previousHead_ = head_;
+  previousRootNormals_ = rootNormals_;
   if (fault_) return std::unexpected(faultError());
   return {};
 }
 
-void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan) {
+void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan,
+                                 std::vector<float>& scratch) {
   if (vectorised()) {
-    std::vector<float> scratch;  // once per worker and frame, reused by every block
     for (std::size_t s = firstStrand; s < endStrand; s += detail::kBlockLanes)
       simulateStrandBlockLanes(s, std::min(detail::kBlockLanes, endStrand - s), plan, scratch);
     return;

@@ -53,18 +53,18 @@ struct SimulationFault {
 /// Within one fixed step each strand runs, in order:
 /// 1. root placement and Verlet integration under gravity plus, when `setWind` was called, the
 ///    wind's drag on each non-root particle's segment (see `setWind`);
-/// 2. collisions of the predicted positions against the colliders (`setColliders`), with
-///    friction (the contact response sees the step's inertial motion);
-/// 3. `constraintIterations` sweeps, each: local shape constraints root → tip (when
+/// 2. `constraintIterations` sweeps, each: local shape constraints root → tip (when
 ///    `SolverSettings::shapeStiffness` > 0), distance constraints root → tip, then tethers;
-/// 4. a final pass root → tip that settles each particle against both the colliders and its
-///    tether: a frictionless collision push, then, when that left the particle beyond its tether,
-///    alternating tether projections and collision pushes (up to `kSettleRounds`), and if they
-///    do not meet, the point nearest the particle on the segment from its (already settled)
-///    parent for which both hold, found by bisection. So after every step no particle is inside
-///    a collider and none is farther from its root than its rest length along the strand (both
-///    within `kSettleSlack`), whenever the root itself is outside the colliders;
-/// 5. the velocity clamp (`SolverSettings::maxSpeed`), which only moves previous positions.
+/// 3. one collision pass root → tip (as TressFX: constraints first, then the colliders have the
+///    last word) that settles each particle against both the colliders and its tether: a push
+///    out of the colliders with friction against the particle's motion during the step, then,
+///    when that left the particle beyond its tether, alternating tether projections and
+///    frictionless collision pushes (up to `kSettleRounds`), and if they do not meet, the point
+///    nearest the particle on the segment from its (already settled) parent for which both hold,
+///    found by bisection. So after every step no particle is inside a collider and none is
+///    farther from its root than its rest length along the strand (both within
+///    `kSettleSlack`), whenever the root itself is outside the colliders;
+/// 4. the velocity clamp (`SolverSettings::maxSpeed`), which only moves previous positions.
 ///
 /// The head's pose at each fixed step, used by colliders and shape constraints, is a rigid
 /// interpolation between the frame's start and end transforms (rotation by normalised linear
@@ -85,6 +85,28 @@ public:
   /// transform is expected; roots are interpolated linearly between frames). Fails, changing
   /// nothing, when an entry is NaN or infinite.
   [[nodiscard]] Result<void> setHeadTransform(const glm::mat4& headTransform);
+
+  /// Roots on a skinned mesh: where each strand's root is at the end of the next `advance`
+  /// (world space, metres; one per strand, in strand order) and the skin's unit normal there.
+  /// During the frame each root moves on the straight line from where it is to its target.
+  /// The normal turns the strand's shape frame (shape constraints): the head's rotation, then
+  /// the shortest arc from the root's rest normal (`rootRestNormals`, carried by the head) to
+  /// the given normal, interpolated through the frame like the positions. Colliders keep
+  /// following the head transform (the skull under the skin). From the first call on, roots
+  /// follow the targets (the last ones given, until new ones come) instead of the head
+  /// transform; `teleport` returns them to the head. Fails, changing nothing, on a count that is
+  /// not `strandCount()`, a NaN or infinite entry, or a normal shorter than 1e-6 (naming the
+  /// strand).
+  [[nodiscard]] Result<void> setRootTargets(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
+  /// True when roots follow per-root targets (`setRootTargets`) rather than the head transform.
+  [[nodiscard]] bool rootsSkinned() const noexcept { return !rootTargets_.empty(); }
+  /// Per strand, the direction its root's normal has in head-local space at rest, against which
+  /// `setRootTargets` normals turn the shape frame: the direction of the strand's first rest
+  /// segment unless `setRootRestNormals` gave others.
+  [[nodiscard]] std::span<const glm::vec3> rootRestNormals() const noexcept { return rootRestNormals_; }
+  /// Replaces the rest normals (head-local, one per strand, normalised here). Fails, changing
+  /// nothing, on a wrong count, a non-finite entry or one shorter than 1e-6.
+  [[nodiscard]] Result<void> setRootRestNormals(std::span<const glm::vec3> normals);
 
   /// Sets the shapes every non-root particle collides with, in head-local space (metres): they
   /// follow the head transform each step. An empty set (the default) disables collisions. Fails,
@@ -158,7 +180,9 @@ public:
 private:
   explicit HairSystem(const SolverSettings& settings);
 
-  void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan);
+  // `scratch`: the worker's lane storage for the AVX2 path, kept between frames.
+  void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan,
+                       std::vector<float>& scratch);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
   // The AVX2 path: up to detail::kBlockLanes strands in lane-by-lane scratch storage.
   void simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
@@ -171,13 +195,21 @@ private:
     glm::vec3 translation{0.0f};
   };
   void planPoses(const StepPlan& plan);
+  // Where strand s's root is at the start of the frame and how far it moves by the frame's end.
+  void rootMotion(std::size_t s, glm::vec3& from, glm::vec3& travel) const noexcept;
+  // The shape frame strand s starts from at fixed step k (fraction f of the frame).
+  glm::vec4 shapeFrame(std::size_t s, int k, float f) const noexcept;
   // One particle (world space) against the colliders in pose `pose`, friction against the motion
   // since `previous` (in pose `before`); true when it touched anything.
   bool collidePoint(const HeadPose& pose, const HeadPose& before, glm::vec3& x, const glm::vec3& previous,
                     float friction) const noexcept;
-  // The final pass for one particle: colliders and tether (class comment, item 4).
-  void settlePoint(const HeadPose& pose, glm::vec3& x, const glm::vec3& root, const glm::vec3& parent,
-                   float reach) const noexcept;
+  // The collision pass for one particle: colliders with friction against the motion since
+  // `previous` (in pose `before`), then its tether (class comment, item 3).
+  void settlePoint(const HeadPose& pose, const HeadPose& before, glm::vec3& x, const glm::vec3& previous,
+                   const glm::vec3& root, const glm::vec3& parent, float reach) const noexcept;
+  // The rest of settlePoint once the push left `x` beyond its tether: alternate projections.
+  void settleTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& root, const glm::vec3& parent,
+                    float reach) const noexcept;
 
   static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side
   void placeAtRest(const glm::mat4& headTransform);
@@ -187,13 +219,17 @@ private:
   FixedStepAccumulator accumulator_;
   Particles particles_;
   std::vector<GuideStrand> strands_;
-  std::vector<glm::vec3> restLocal_;          // rest positions in head-local space, per particle
-  std::vector<float> segmentLengths_;         // rest distance to the previous particle (0 at roots)
-  std::vector<float> restDistances_;          // rest distance to the root along the strand
-  std::vector<std::uint32_t> faultParticle_;  // per strand: first bad particle, or kNoFault
-  std::vector<std::uint64_t> faultStep_;      // per strand: step that made it bad
-  glm::mat4 previousHead_{1.0f};              // head transform at the end of the last advance
-  glm::mat4 head_{1.0f};                      // head transform at the end of the next advance
+  std::vector<glm::vec3> restLocal_;            // rest positions in head-local space, per particle
+  std::vector<float> segmentLengths_;           // rest distance to the previous particle (0 at roots)
+  std::vector<float> restDistances_;            // rest distance to the root along the strand
+  std::vector<std::uint32_t> faultParticle_;    // per strand: first bad particle, or kNoFault
+  std::vector<std::uint64_t> faultStep_;        // per strand: step that made it bad
+  std::vector<glm::vec3> rootRestNormals_;      // per strand, head-local, unit
+  std::vector<glm::vec3> rootTargets_;          // per strand, world: empty while roots follow the head
+  std::vector<glm::vec3> rootNormals_;          // per strand, world, unit: at the end of the next advance
+  std::vector<glm::vec3> previousRootNormals_;  // ... and at the end of the last one
+  glm::mat4 previousHead_{1.0f};                // head transform at the end of the last advance
+  glm::mat4 head_{1.0f};                        // head transform at the end of the next advance
   std::optional<SimulationFault> fault_;
   ColliderSet colliders_;          // head-local
   ColliderBounds colliderBounds_;  // head-local bounding ball of colliders_
@@ -201,6 +237,7 @@ private:
   std::vector<HeadPose> poses_;    // per advance: pose at the end of fixed step k (0: frame start)
   std::optional<WindField> wind_;  // none: no wind
   bool vectorise_ = true;
+  std::vector<std::vector<float>> scratch_;  // per worker: lane storage of the AVX2 path
 };
 
 }  // namespace mane::physics

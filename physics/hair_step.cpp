@@ -6,6 +6,7 @@
 
 #include "physics/constraints.hpp"
 #include "physics/detail/hair_math.hpp"
+#include "physics/detail/collision_lanes.hpp"
 #include "physics/detail/strand_lanes.hpp"
 #include "physics/hair.hpp"
 
@@ -52,12 +53,17 @@ bool HairSystem::collidePoint(const HeadPose& pose, const HeadPose& before, glm:
   return true;
 }
 
-void HairSystem::settlePoint(const HeadPose& pose, glm::vec3& x, const glm::vec3& root, const glm::vec3& parent,
-                             float reach) const noexcept {
-  collidePoint(pose, pose, x, x, 0.0f);
+void HairSystem::settlePoint(const HeadPose& pose, const HeadPose& before, glm::vec3& x, const glm::vec3& previous,
+                             const glm::vec3& root, const glm::vec3& parent, float reach) const noexcept {
+  collidePoint(pose, before, x, previous, colliders_.friction);
   if (!settings_.tethers) return;
   const float limit = (reach + kSettleSlack) * (reach + kSettleSlack);
-  if (!(distanceSquared(x, root) > limit)) return;
+  if (distanceSquared(x, root) > limit) settleTether(pose, x, root, parent, reach);
+}
+
+void HairSystem::settleTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& root, const glm::vec3& parent,
+                              float reach) const noexcept {
+  const float limit = (reach + kSettleSlack) * (reach + kSettleSlack);
   // Beyond the tether after the push: alternate projections onto the tether ball (convex) and
   // out of the colliders; near a smooth surface they meet within a round or two.
   glm::vec3 p = x;
@@ -107,7 +113,8 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
   for (std::size_t b = 0; b < lanes; ++b) {
     const GuideStrand& strand = strands_[firstStrand + b];
     const std::size_t first = strand.firstParticle;
-    const glm::vec3 rootFrom = transformPoint(previousHead_, strand.rootLocal);
+    glm::vec3 rootFrom, rootTravel;
+    rootMotion(firstStrand + b, rootFrom, rootTravel);
     lane[b] = Lane{particles_.positions.data() + first,
                    particles_.previousPositions.data() + first,
                    particles_.inverseMasses.data() + first,
@@ -116,7 +123,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
                    restLocal_.data() + first,
                    strand.particleCount,
                    rootFrom,
-                   transformPoint(head_, strand.rootLocal) - rootFrom,
+                   rootTravel,
                    true};
     longest = std::max(longest, lane[b].count);
   }
@@ -129,24 +136,15 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
   const bool clampSpeed = settings_.maxSpeed < std::numeric_limits<float>::infinity();
   const float maxDisplacement = settings_.maxSpeed * step;
 
-  const auto collideLanes = [&](int k, float friction) {
+  // The step's collision pass against colliders and tethers, root → tip (class comment, item 3).
+  const auto settleLanes = [&](int k) {
     const HeadPose& pose = poses_[static_cast<std::size_t>(k)];
     const HeadPose& before = poses_[static_cast<std::size_t>(k - 1)];
     for (std::size_t b = 0; b < lanes; ++b) {
       const Lane& l = lane[b];
       if (!l.active) continue;
       for (std::size_t i = 1; i < l.count; ++i)
-        if (l.w[i] > 0.0f) collidePoint(pose, before, l.x[i], l.previous[i], friction);
-    }
-  };
-  // The step's final pass against colliders and tethers, root → tip (class comment, item 4).
-  const auto settleLanes = [&](int k) {
-    const HeadPose& pose = poses_[static_cast<std::size_t>(k)];
-    for (std::size_t b = 0; b < lanes; ++b) {
-      const Lane& l = lane[b];
-      if (!l.active) continue;
-      for (std::size_t i = 1; i < l.count; ++i)
-        if (l.w[i] > 0.0f) settlePoint(pose, l.x[i], l.x[0], l.x[i - 1], l.reach[i]);
+        if (l.w[i] > 0.0f) settlePoint(pose, before, l.x[i], l.previous[i], l.x[0], l.x[i - 1], l.reach[i]);
     }
   };
   const bool windy = wind_.has_value();
@@ -189,10 +187,6 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
       }
     }
 
-    // Contacts of the predicted positions, with friction (Macklin et al. 2014, §6.1), before the
-    // constraints so that the strand's constraints see the contact.
-    if (collide) collideLanes(k, colliders_.friction);
-
     for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
       // Local shape constraints (Han & Harada 2012, "Real-time Hair Simulation with Efficient
       // Hair Style Preservation", VRIPHYS, §4.2; TressFX's LocalShapeConstraints): a frame is
@@ -208,7 +202,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
       // 0.05–0.2 can flutter away from it even with strong damping (SolverSettings notes this).
       if (stiffness > 0.0f) {
         glm::vec4 frame[kStrandLanes];
-        for (std::size_t b = 0; b < lanes; ++b) frame[b] = poses_[static_cast<std::size_t>(k)].rotation;
+        for (std::size_t b = 0; b < lanes; ++b) frame[b] = shapeFrame(firstStrand + b, k, fraction);
         for (std::size_t i = 1; i < longest; ++i)
           for (std::size_t b = 0; b < lanes; ++b) {
             const Lane& l = lane[b];
@@ -234,8 +228,9 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
           }
     }
 
-    // Final pass: whatever the constraints pushed into a collider comes out, frictionless,
-    // without breaking the tethers, so no particle ends the step inside a collider or stretched.
+    // Collisions last: whatever gravity, inertia or the constraints put inside a collider comes
+    // out, with friction (Macklin et al. 2014, §6.1), without breaking the tethers, so no
+    // particle ends the step inside a collider or stretched.
     if (collide) settleLanes(k);
 
     if (clampSpeed)
@@ -290,8 +285,7 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
     const GuideStrand& strand = strands_[firstStrand + b];
     const std::size_t first = strand.firstParticle;
     count[b] = static_cast<std::int32_t>(strand.particleCount);
-    rootFrom[b] = transformPoint(previousHead_, strand.rootLocal);
-    rootTravel[b] = transformPoint(head_, strand.rootLocal) - rootFrom[b];
+    rootMotion(firstStrand + b, rootFrom[b], rootTravel[b]);
     for (std::size_t i = 0; i < strand.particleCount; ++i) {
       const std::size_t at = i * W + b;
       const glm::vec3 p = particles_.positions[first + i], q = particles_.previousPositions[first + i];
@@ -301,7 +295,8 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
       reach[at] = restDistances_[first + i];
     }
   }
-  const detail::StrandLanes block{x, y, z, px, py, pz, w, segment, reach, count, longest};
+  const std::size_t groups = (lanes + detail::kSimdWidth - 1) / detail::kSimdWidth;
+  const detail::StrandLanes block{x, y, z, px, py, pz, w, segment, reach, count, longest, groups};
   const auto get = [&](const float* cx, const float* cy, const float* cz, std::size_t at) {
     return glm::vec3(cx[at], cy[at], cz[at]);
   };
@@ -326,32 +321,34 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
     }
     detail::integrateAvx2(block, keep, kick);
 
-    const HeadPose* pose = collide ? &poses_[static_cast<std::size_t>(k)] : nullptr;
-    if (collide) {
-      const HeadPose& before = poses_[static_cast<std::size_t>(k - 1)];
-      for (std::size_t i = 1; i < longest; ++i)
-        for (std::size_t b = 0; b < lanes; ++b) {
-          const std::size_t at = i * W + b;
-          if (static_cast<std::int32_t>(i) >= count[b] || w[at] <= 0.0f) continue;
-          glm::vec3 p = get(x, y, z, at);
-          if (collidePoint(*pose, before, p, get(px, py, pz, at), colliders_.friction)) put(x, y, z, at, p);
-        }
-    }
-
     for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
       detail::relaxDistancesAvx2(block);
       if (settings_.tethers) detail::tethersAvx2(block);
     }
 
-    if (collide)
-      for (std::size_t b = 0; b < lanes; ++b)
-        for (std::size_t i = 1; i < static_cast<std::size_t>(count[b]); ++i) {
-          const std::size_t at = i * W + b;
-          if (w[at] <= 0.0f) continue;
-          glm::vec3 p = get(x, y, z, at);
-          settlePoint(*pose, p, get(x, y, z, b), get(x, y, z, at - W), reach[at]);
-          put(x, y, z, at, p);
+    // settlePoint, 8 particles at a time: the push with friction, then the rare tether repair
+    // one particle at a time. Each particle's parent is settled first, as in the scalar path.
+    if (collide) {
+      const HeadPose &pose = poses_[static_cast<std::size_t>(k)], &before = poses_[static_cast<std::size_t>(k - 1)];
+      const detail::LaneColliders contacts{&colliders_,
+                                           &colliderBounds_,
+                                           &colliderCull_,
+                                           {pose.axes, pose.translation},
+                                           {before.axes, before.translation}};
+      for (std::size_t i = 1; i < longest; ++i)
+        for (std::size_t g = 0; g < groups; ++g) {
+          detail::collideLanesAvx2(contacts, block, g, i, colliders_.friction);
+          if (!settings_.tethers) continue;
+          for (unsigned beyond = detail::beyondTetherAvx2(block, g, i, kSettleSlack); beyond != 0;
+               beyond &= beyond - 1) {
+            const std::size_t b = g * detail::kSimdWidth + static_cast<std::size_t>(__builtin_ctz(beyond));
+            const std::size_t n = i * W + b;
+            glm::vec3 p = get(x, y, z, n);
+            settleTether(pose, p, get(x, y, z, b), get(x, y, z, n - W), reach[n]);
+            put(x, y, z, n, p);
+          }
         }
+    }
 
     if (clampSpeed)
       for (std::size_t b = 0; b < lanes; ++b)
@@ -363,13 +360,12 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
           put(px, py, pz, at, q);
         }
 
+    float probe[W] = {};
+    detail::nonFiniteProbeAvx2(block, probe);
     for (std::size_t b = 0; b < lanes; ++b) {
       const auto particles = static_cast<std::size_t>(count[b]);
       if (particles == 0) continue;
-      float probe = 0.0f;
-      for (std::size_t i = 0; i < particles; ++i)
-        probe += 0.0f * x[i * W + b] + 0.0f * y[i * W + b] + 0.0f * z[i * W + b];
-      if (probe != 0.0f) {
+      if (probe[b] != 0.0f) {
         std::size_t bad = 0;
         while (bad < particles && isFinite(get(x, y, z, bad * W + b))) ++bad;
         faultParticle_[firstStrand + b] = static_cast<std::uint32_t>(std::min(bad, particles - 1));

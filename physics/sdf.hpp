@@ -80,6 +80,8 @@ public:
   [[nodiscard]] const glm::vec3& origin() const noexcept { return origin_; }
   /// Edge length of a (cubic) cell, metres.
   [[nodiscard]] float cellSize() const noexcept { return cellSize_; }
+  /// 1 / cellSize() as `sample` uses it, 1/metres.
+  [[nodiscard]] float inverseCellSize() const noexcept { return inverseCellSize_; }
   /// Node counts along x, y, z.
   [[nodiscard]] const glm::ivec3& dimensions() const noexcept { return dims_; }
   /// Far corner of the grid box (the last node), metres.
@@ -170,7 +172,6 @@ inline float SignedDistanceField::sample(const glm::vec3& p) const noexcept {
 inline float SignedDistanceField::sampleWithGradient(const glm::vec3& p, glm::vec3& gradient) const noexcept {
   return evaluate(p, &gradient);
 }
-
 
 /// A triangle mesh held in memory: positions (metres) and three indices per triangle.
 struct TriangleMesh {

@@ -42,11 +42,12 @@ struct StrandLanes {
   float* px;  // previous positions
   float* py;
   float* pz;
-  const float* w;        // inverse masses (1/kg)
-  const float* segment;  // rest distance to the previous particle, metres
-  const float* reach;    // rest distance to the root along the strand, metres
-  const std::int32_t* count;  // per lane: particles to simulate (0: lane idle or stopped)
-  std::size_t longest;        // max of count
+  const float* w;                    // inverse masses (1/kg)
+  const float* segment;              // rest distance to the previous particle, metres
+  const float* reach;                // rest distance to the root along the strand, metres
+  const std::int32_t* count;         // per lane: particles to simulate (0: lane idle or stopped)
+  std::size_t longest;               // max of count
+  std::size_t groups = kSimdGroups;  // the first groups of kSimdWidth lanes hold every active lane
 };
 
 /// True when the CPU running this process has AVX2 (checked once).
@@ -111,7 +112,8 @@ MANE_AVX2 inline __m256 laneMask(const StrandLanes& s, std::size_t g, std::size_
 // verletPosition for one coordinate of 8 lanes: current + (current − previous)·keep + kick.
 MANE_AVX2 inline void verletLanes(float* c, float* p, __m256 keep, __m256 kick, __m256 mask) noexcept {
   const __m256 current = _mm256_loadu_ps(c), previous = _mm256_loadu_ps(p);
-  const __m256 next = _mm256_add_ps(_mm256_add_ps(current, _mm256_mul_ps(_mm256_sub_ps(current, previous), keep)), kick);
+  const __m256 next =
+      _mm256_add_ps(_mm256_add_ps(current, _mm256_mul_ps(_mm256_sub_ps(current, previous), keep)), kick);
   _mm256_storeu_ps(c, _mm256_blendv_ps(current, next, mask));
   _mm256_storeu_ps(p, _mm256_blendv_ps(previous, current, mask));
 }
@@ -120,7 +122,7 @@ MANE_AVX2 inline void integrateAvx2(const StrandLanes& s, float keep, const glm:
   const __m256 k = _mm256_set1_ps(keep), kx = _mm256_set1_ps(kick.x), ky = _mm256_set1_ps(kick.y),
                kz = _mm256_set1_ps(kick.z), zero = _mm256_setzero_ps();
   for (std::size_t i = 1; i < s.longest; ++i)
-    for (std::size_t g = 0; g < kSimdGroups; ++g) {
+    for (std::size_t g = 0; g < s.groups; ++g) {
       const std::size_t n = i * kBlockLanes + g * kSimdWidth;
       // Where w > 0.
       const __m256 mask = _mm256_and_ps(laneMask(s, g, i), _mm256_cmp_ps(_mm256_loadu_ps(s.w + n), zero, _CMP_GT_OQ));
@@ -133,7 +135,7 @@ MANE_AVX2 inline void integrateAvx2(const StrandLanes& s, float keep, const glm:
 MANE_AVX2 inline void relaxDistancesAvx2(const StrandLanes& s) noexcept {
   const __m256 zero = _mm256_setzero_ps();
   for (std::size_t i = 1; i < s.longest; ++i)
-    for (std::size_t g = 0; g < kSimdGroups; ++g) {
+    for (std::size_t g = 0; g < s.groups; ++g) {
       const std::size_t n = i * kBlockLanes + g * kSimdWidth, m = n - kBlockLanes;
       // projectDistance(x[i−1], x[i], w[i−1], w[i], segment[i]), operation for operation.
       const __m256 wa = _mm256_loadu_ps(s.w + m), wb = _mm256_loadu_ps(s.w + n);
@@ -146,8 +148,8 @@ MANE_AVX2 inline void relaxDistancesAvx2(const StrandLanes& s) noexcept {
       const __m256 mask = _mm256_and_ps(_mm256_and_ps(laneMask(s, g, i), _mm256_cmp_ps(weightSum, zero, _CMP_GT_OQ)),
                                         _mm256_cmp_ps(lengthSquared, zero, _CMP_GT_OQ));
       const __m256 length = _mm256_sqrt_ps(lengthSquared);
-      const __m256 scale = _mm256_div_ps(_mm256_sub_ps(length, _mm256_loadu_ps(s.segment + n)),
-                                         _mm256_mul_ps(length, weightSum));
+      const __m256 scale =
+          _mm256_div_ps(_mm256_sub_ps(length, _mm256_loadu_ps(s.segment + n)), _mm256_mul_ps(length, weightSum));
       const __m256 sa = _mm256_mul_ps(wa, scale), sb = _mm256_mul_ps(wb, scale);
       _mm256_storeu_ps(s.x + m, _mm256_blendv_ps(ax, _mm256_add_ps(ax, _mm256_mul_ps(dx, sa)), mask));
       _mm256_storeu_ps(s.y + m, _mm256_blendv_ps(ay, _mm256_add_ps(ay, _mm256_mul_ps(dy, sa)), mask));
@@ -159,7 +161,7 @@ MANE_AVX2 inline void relaxDistancesAvx2(const StrandLanes& s) noexcept {
 }
 
 MANE_AVX2 inline void tethersAvx2(const StrandLanes& s) noexcept {
-  for (std::size_t g = 0; g < kSimdGroups; ++g) {
+  for (std::size_t g = 0; g < s.groups; ++g) {
     const std::size_t r = g * kSimdWidth;
     const __m256 rx = _mm256_loadu_ps(s.x + r), ry = _mm256_loadu_ps(s.y + r), rz = _mm256_loadu_ps(s.z + r);
     for (std::size_t i = 1; i < s.longest; ++i) {
@@ -178,6 +180,23 @@ MANE_AVX2 inline void tethersAvx2(const StrandLanes& s) noexcept {
       _mm256_storeu_ps(s.y + n, _mm256_blendv_ps(py, _mm256_add_ps(ry, _mm256_mul_ps(dy, ratio)), mask));
       _mm256_storeu_ps(s.z + n, _mm256_blendv_ps(pz, _mm256_add_ps(rz, _mm256_mul_ps(dz, ratio)), mask));
     }
+  }
+}
+
+// Per lane of the block's groups: 0 when every coordinate of the lane is finite, NaN otherwise
+// (v − v is 0 for finite v and NaN for NaN or ±∞). Lanes past their strand's end hold finite
+// values, so a lane's sum speaks for its strand.
+MANE_AVX2 inline void nonFiniteProbeAvx2(const StrandLanes& s, float (&probe)[kBlockLanes]) noexcept {
+  for (std::size_t g = 0; g < s.groups; ++g) {
+    __m256 sum = _mm256_setzero_ps();
+    for (std::size_t i = 0; i < s.longest; ++i) {
+      const std::size_t n = i * kBlockLanes + g * kSimdWidth;
+      for (const float* c : {s.x + n, s.y + n, s.z + n}) {
+        const __m256 v = _mm256_loadu_ps(c);
+        sum = _mm256_add_ps(sum, _mm256_sub_ps(v, v));
+      }
+    }
+    _mm256_storeu_ps(probe + g * kSimdWidth, sum);
   }
 }
 

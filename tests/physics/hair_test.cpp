@@ -215,7 +215,8 @@ TEST(HairSimd, LaneKernelsMatchTheScalarFunctionsBitForBit) {
   std::vector<float> data[2];
   std::vector<float> w(kLongest * W), segment(kLongest * W), reach(kLongest * W);
   std::int32_t count[W];
-  for (std::size_t b = 0; b < W; ++b) count[b] = b % 7 == 3 ? 0 : static_cast<std::int32_t>(2 + (b * 5) % (kLongest - 1));
+  for (std::size_t b = 0; b < W; ++b)
+    count[b] = b % 7 == 3 ? 0 : static_cast<std::int32_t>(2 + (b * 5) % (kLongest - 1));
   count[9] = kLongest;
   for (std::size_t n = 0; n < kLongest * W; ++n) {
     w[n] = n < W || n % 11 == 0 ? 0.0f : 1.0f;
@@ -228,8 +229,8 @@ TEST(HairSimd, LaneKernelsMatchTheScalarFunctionsBitForBit) {
   const auto lanes = [&](std::vector<float>& d) {
     float* p = d.data();
     const std::size_t n = kLongest * W;
-    return detail::StrandLanes{p, p + n, p + 2 * n, p + 3 * n, p + 4 * n, p + 5 * n,
-                               w.data(), segment.data(), reach.data(), count, kLongest};
+    return detail::StrandLanes{p,        p + n,          p + 2 * n,    p + 3 * n, p + 4 * n, p + 5 * n,
+                               w.data(), segment.data(), reach.data(), count,     kLongest};
   };
   const glm::vec3 kick(0.0f, -9.81f / 14400.0f, 1e-5f);
   for (int round = 0; round < 5; ++round) {
@@ -248,7 +249,7 @@ TEST(HairSimd, VectorKernelMatchesTheScalarKernelBitForBitWithCollisionsAndClamp
   // The whole step, AVX2 path against the per-strand scalar path (setVectorised(false)): a
   // groom of 45 strands (one full block of 32 and a partial one) of different lengths, a moving
   // head with sphere, capsule and SDF colliders, friction and the velocity clamp; 1 and 2
-  // threads. Equal hashes and equal position bytes (tolerance 0).
+  // threads; two thicknesses. Equal hashes and equal position bytes (tolerance 0).
   if (!detail::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2; the scalar path is used";
   GroomSettings groom;
   groom.seed = 31;
@@ -277,7 +278,7 @@ TEST(HairSimd, VectorKernelMatchesTheScalarKernelBitForBitWithCollisionsAndClamp
     EXPECT_EQ(hair->vectorised(), vectorised);
     for (int frame = 1; frame <= 90; ++frame) {
       const float t = static_cast<float>(frame) / 60.0f;
-      const float swing = t - 2.0f * static_cast<float>(static_cast<int>(t * 0.5f + 0.5f)) ;  // sawtooth, exact
+      const float swing = t - 2.0f * static_cast<float>(static_cast<int>(t * 0.5f + 0.5f));  // sawtooth, exact
       glm::mat4 transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.15f * swing, 0.0f, 0.0f));
       transform = glm::rotate(transform, 1.5f * swing, glm::vec3(0.0f, 1.0f, 0.0f));
       EXPECT_TRUE(hair->setHeadTransform(transform));
@@ -285,12 +286,17 @@ TEST(HairSimd, VectorKernelMatchesTheScalarKernelBitForBitWithCollisionsAndClamp
     }
     return std::make_pair(hair->stateHash(), hair->particles().positions);
   };
-  const auto scalar = run(false, 1);
-  for (unsigned threads : {1u, 2u}) {
-    const auto simd = run(true, threads);
-    EXPECT_EQ(simd.first, scalar.first) << threads << " threads";
-    ASSERT_EQ(simd.second.size(), scalar.second.size());
-    EXPECT_EQ(std::memcmp(simd.second.data(), scalar.second.data(), simd.second.size() * sizeof(glm::vec3)), 0);
+  // Thickness 0 culls field samples with the field's contact box; 6 mm lies above its level
+  // (half a cell of about 7 mm), where every particle in the grid is sampled.
+  for (const float thickness : {0.0f, 0.006f}) {
+    head.thickness = thickness;
+    const auto scalar = run(false, 1);
+    for (unsigned threads : {1u, 2u}) {
+      const auto simd = run(true, threads);
+      EXPECT_EQ(simd.first, scalar.first) << threads << " threads, thickness " << thickness;
+      ASSERT_EQ(simd.second.size(), scalar.second.size());
+      EXPECT_EQ(std::memcmp(simd.second.data(), scalar.second.data(), simd.second.size() * sizeof(glm::vec3)), 0);
+    }
   }
 }
 
