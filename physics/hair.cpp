@@ -1,6 +1,7 @@
 #include "physics/hair.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstdio>
@@ -290,25 +291,22 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
   const StepPlan plan = accumulator_.plan(frameDt);
   if (plan.substeps > 0) {
     if (!colliders_.empty() || settings_.shapeStiffness > 0.0f) planPoses(plan);
-    // A fixed partition into contiguous ranges of whole strands. Each strand's arithmetic is the
-    // same whichever worker runs it, so the partition affects speed only, never the result.
+    // Workers take blocks of kBlockLanes whole strands from a shared counter, so the load
+    // balances however the contacts are spread. Each strand's arithmetic is the same whichever
+    // worker runs it, so who runs which block affects speed only, never the result.
     const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
-    const auto rangeBegin = [&](std::size_t w) { return strands_.size() * w / workers; };
     if (scratch_.size() < workers) scratch_.resize(workers);
+    std::atomic<std::size_t> nextBlock{0};
     std::vector<std::jthread> pool;
     pool.reserve(workers - 1);
-    std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
     for (std::size_t w = 1; w < workers; ++w) {
       try {
-        pool.emplace_back(
-            [this, &plan, w, b = rangeBegin(w), e = rangeBegin(w + 1)] { simulateStrands(b, e, plan, scratch_[w]); });
+        pool.emplace_back([this, &plan, &nextBlock, w] { simulateStrands(nextBlock, plan, scratch_[w]); });
       } catch (const std::system_error&) {
-        inlineFrom = w;  // no more threads available: run the remaining ranges here
-        break;
+        break;  // no more threads available: the calling thread takes the remaining blocks
       }
     }
-    simulateStrands(rangeBegin(0), rangeBegin(1), plan, scratch_[0]);
-    if (inlineFrom < workers) simulateStrands(rangeBegin(inlineFrom), strands_.size(), plan, scratch_[0]);
+    simulateStrands(nextBlock, plan, scratch_[0]);
     pool.clear();  // joins
 
     // Lowest strand index first, so the report does not depend on which worker saw it first.
@@ -324,15 +322,19 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
   return {};
 }
 
-void HairSystem::simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan,
+void HairSystem::simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan,
                                  std::vector<float>& scratch) {
-  if (vectorised()) {
-    for (std::size_t s = firstStrand; s < endStrand; s += detail::kBlockLanes)
-      simulateStrandBlockLanes(s, std::min(detail::kBlockLanes, endStrand - s), plan, scratch);
-    return;
+  constexpr std::size_t kBlock = detail::kBlockLanes;
+  const bool lanes = vectorised();
+  for (std::size_t first = nextBlock.fetch_add(kBlock); first < strands_.size(); first = nextBlock.fetch_add(kBlock)) {
+    const std::size_t end = std::min(first + kBlock, strands_.size());
+    if (lanes) {
+      simulateStrandBlockLanes(first, end - first, plan, scratch);
+      continue;
+    }
+    for (std::size_t s = first; s < end; s += kStrandLanes)
+      simulateStrandBlock(s, std::min(kStrandLanes, end - s), plan);
   }
-  for (std::size_t s = firstStrand; s < endStrand; s += kStrandLanes)
-    simulateStrandBlock(s, std::min(kStrandLanes, endStrand - s), plan);
 }
 
 std::uint64_t HairSystem::stateHash() const noexcept {

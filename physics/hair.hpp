@@ -8,6 +8,7 @@
 // operations whichever thread runs it, and no value is reduced across threads, so the state is
 // bit-identical for any thread count.
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -180,9 +181,9 @@ public:
 private:
   explicit HairSystem(const SolverSettings& settings);
 
+  // One worker: simulates blocks of strands taken from `nextBlock` until none are left.
   // `scratch`: the worker's lane storage for the AVX2 path, kept between frames.
-  void simulateStrands(std::size_t firstStrand, std::size_t endStrand, const StepPlan& plan,
-                       std::vector<float>& scratch);
+  void simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan, std::vector<float>& scratch);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
   // The AVX2 path: up to detail::kBlockLanes strands in lane-by-lane scratch storage.
   void simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
