@@ -177,8 +177,9 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
     const auto& core = supported.get<vk::PhysicalDeviceFeatures2>().features;
     const auto& v12 = supported.get<vk::PhysicalDeviceVulkan12Features>();
     const auto& v13 = supported.get<vk::PhysicalDeviceVulkan13Features>();
-    if (!v13.dynamicRendering || !v13.synchronization2)
-      return fail(std::string(properties.deviceName.data()) + " lacks dynamic rendering or synchronization2");
+    if (!v13.dynamicRendering || !v13.synchronization2 || !v13.maintenance4)
+      return fail(std::string(properties.deviceName.data()) +
+                  " lacks dynamic rendering, synchronization2 or maintenance4 (all required by Vulkan 1.3)");
 
     vk::StructureChain<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan12Features,
                        vk::PhysicalDeviceVulkan13Features>
@@ -197,6 +198,9 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
     enabled.get<vk::PhysicalDeviceVulkan12Features>().separateDepthStencilLayouts = VK_TRUE;
     enabled.get<vk::PhysicalDeviceVulkan13Features>().dynamicRendering = VK_TRUE;
     enabled.get<vk::PhysicalDeviceVulkan13Features>().synchronization2 = VK_TRUE;
+    // glslang 12 (Debian 12) declares every compute shader's workgroup size with
+    // OpExecutionModeId LocalSizeId, which needs maintenance4 (glslang issue #3200).
+    enabled.get<vk::PhysicalDeviceVulkan13Features>().maintenance4 = VK_TRUE;
 
     const float priority = 1.0f;
     const vk::DeviceQueueCreateInfo queueInfo{
