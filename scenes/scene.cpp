@@ -149,6 +149,70 @@ HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
   return sim;
 }
 
+template <class T, class Parse>
+std::vector<T> parseList(ObjectFields& fields, const std::string& key, Parse parse) {
+  std::vector<T> out;
+  const Json& items = fields.array(key, false);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out.push_back(parse(items[i], detail::indexPath(fields.child(key), i)));
+  }
+  return out;
+}
+
+physics::SphereCollider parseSphereCollider(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  // Unknown fields first: "center" for "centre" is then reported as the typo it is.
+  for (const char* key : {"centre", "radius"}) fields.take(key);
+  fields.finish();
+  physics::SphereCollider sphere;
+  sphere.centre = fields.required<glm::vec3>("centre");
+  sphere.radius = fields.required<float>("radius");
+  require(sphere.radius > 0.0f, fields.child("radius"), "expected a radius > 0 metres");
+  return sphere;
+}
+
+physics::CapsuleCollider parseCapsuleCollider(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  for (const char* key : {"a", "b", "radius"}) fields.take(key);
+  fields.finish();
+  physics::CapsuleCollider capsule;
+  capsule.a = fields.required<glm::vec3>("a");
+  capsule.b = fields.required<glm::vec3>("b");
+  capsule.radius = fields.required<float>("radius");
+  require(capsule.radius > 0.0f, fields.child("radius"), "expected a radius > 0 metres");
+  return capsule;
+}
+
+SdfColliderSource parseSdfCollider(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  for (const char* key : {"mesh", "resolution"}) fields.take(key);
+  fields.finish();
+  SdfColliderSource sdf;
+  sdf.mesh = fields.required<std::string>("mesh");
+  require(!sdf.mesh.empty(), fields.child("mesh"), "expected the name of a mesh in meshes");
+  sdf.resolution = fields.optional<int>("resolution", sdf.resolution);
+  require(sdf.resolution >= kMinSdfResolution && sdf.resolution <= kMaxSdfResolution, fields.child("resolution"),
+          "expected a resolution in " + std::to_string(kMinSdfResolution) + ".." + std::to_string(kMaxSdfResolution) +
+              " grid nodes");
+  return sdf;
+}
+
+// Shapes in the attached body's frame (scenes/README.md, "Colliders").
+Colliders parseColliders(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Colliders colliders;
+  colliders.spheres = parseList<physics::SphereCollider>(fields, "spheres", parseSphereCollider);
+  colliders.capsules = parseList<physics::CapsuleCollider>(fields, "capsules", parseCapsuleCollider);
+  if (const Json* sdf = fields.take("sdf")) colliders.sdf = parseSdfCollider(*sdf, fields.child("sdf"));
+  colliders.friction = fields.optional<float>("friction", colliders.friction);
+  colliders.thickness = fields.optional<float>("thickness", colliders.thickness);
+  fields.finish();
+  require(colliders.friction >= 0.0f, fields.child("friction"), "expected a friction coefficient >= 0");
+  require(colliders.thickness >= 0.0f && colliders.thickness <= 1.0f, fields.child("thickness"),
+          "expected a thickness in [0, 1] metres");
+  return colliders;
+}
+
 Groom parseGroom(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Groom groom;
@@ -162,8 +226,14 @@ Groom parseGroom(const Json& json, const std::string& path) {
           "expected a strand count in 0.." + std::to_string(kMaxGuideStrands));
   require(groom.strandLengthMetres >= 0.0f && groom.strandLengthMetres <= 10.0f, fields.child("length"),
           "expected a length in [0, 10] metres");
+  groom.invertZ = fields.optional<bool>("invert_z", false);
+  require(!groom.invertZ || !groom.isProcedural(), fields.child("invert_z"),
+          "applies to groom files only, not to \"procedural\"");
   if (const Json* sim = fields.take("simulation")) {
     groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));
+  }
+  if (const Json* colliders = fields.take("colliders")) {
+    groom.colliders = parseColliders(*colliders, fields.child("colliders"));
   }
   fields.finish();
   return groom;
@@ -198,6 +268,9 @@ Cloth parseCloth(const Json& json, const std::string& path) {
     require(cloth.damping >= 0.0f && cloth.damping < 1.0f, simFields.child("damping"), "expected a damping in [0, 1)");
     require(cloth.bendingStiffness >= 0.0f && cloth.bendingStiffness <= 1.0f, simFields.child("bending"),
             "expected a bending stiffness in [0, 1]");
+  }
+  if (const Json* colliders = fields.take("colliders")) {
+    cloth.colliders = parseColliders(*colliders, fields.child("colliders"));
   }
   fields.finish();
   return cloth;
@@ -263,14 +336,11 @@ SimulationSettings parseSimulation(const Json& json, const std::string& path) {
   return sim;
 }
 
-template <class T, class Parse>
-std::vector<T> parseList(ObjectFields& fields, const std::string& key, Parse parse) {
-  std::vector<T> out;
-  const Json& items = fields.array(key, false);
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    out.push_back(parse(items[i], detail::indexPath(fields.child(key), i)));
+void checkColliderReferences(const Scene& scene, const Colliders& colliders, const std::string& path) {
+  if (colliders.sdf) {
+    require(scene.findMesh(colliders.sdf->mesh) != nullptr, path + ".sdf.mesh",
+            "no mesh named \"" + colliders.sdf->mesh + "\" in meshes");
   }
-  return out;
 }
 
 /// Names must be unique and references must point at something.
@@ -290,8 +360,10 @@ void checkReferences(const Scene& scene) {
   }
   for (std::size_t i = 0; i < scene.grooms.size(); ++i) {
     const Groom& groom = scene.grooms[i];
-    require(scene.findMesh(groom.attachedMesh) != nullptr, "grooms[" + std::to_string(i) + "].attached_mesh",
+    const std::string path = "grooms[" + std::to_string(i) + "]";
+    require(scene.findMesh(groom.attachedMesh) != nullptr, path + ".attached_mesh",
             "no mesh named \"" + groom.attachedMesh + "\" in meshes");
+    checkColliderReferences(scene, groom.colliders, path + ".colliders");
   }
   for (std::size_t i = 0; i < scene.cloths.size(); ++i) {
     const Cloth& cloth = scene.cloths[i];
@@ -300,6 +372,7 @@ void checkReferences(const Scene& scene) {
             "no mesh named \"" + cloth.attachedMesh + "\" in meshes");
     require(cloth.material.empty() || scene.findMaterial(cloth.material), path + ".material",
             "no material named \"" + cloth.material + "\" in materials");
+    checkColliderReferences(scene, cloth.colliders, path + ".colliders");
   }
   if (scene.headMotion.kind != HeadMotionKind::none) {
     require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
@@ -396,6 +469,10 @@ glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh, float tim
   // The head turns about its own placed origin: motion rotation after the mesh's rotation.
   return glm::translate(glm::mat4(1.0f), t.translation + pose.translation) * rotationMatrix(pose.rotationDegrees) *
          rotationMatrix(t.rotationDegrees) * glm::scale(glm::mat4(1.0f), glm::vec3(t.scale));
+}
+
+glm::mat4 bodyMatrix(const Scene& scene, const MeshInstance& mesh, float timeSeconds) {
+  return animatedMatrix(scene, mesh, timeSeconds) * glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / mesh.transform.scale));
 }
 
 Result<Scene> parseScene(std::string_view text, const std::filesystem::path& file) {

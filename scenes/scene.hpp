@@ -3,6 +3,7 @@
 // holds once validated. Plain data; assets are referenced by manifest name, not loaded.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "physics/colliders.hpp"
 
 namespace mane::scenes {
 
@@ -87,6 +89,33 @@ struct HairSimulation {
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
 };
 
+/// Grid resolutions a scene may ask of a collider's signed distance field (nodes along the
+/// longest axis): coarser cannot hold a head's shape, finer costs seconds to build at load.
+inline constexpr int kMinSdfResolution = 8;
+inline constexpr int kMaxSdfResolution = 128;
+
+/// A signed distance field collider, built at load from a mesh of the scene (physics/sdf.hpp).
+struct SdfColliderSource {
+  std::string mesh;     ///< name of a `MeshInstance`; its triangles, closed and wound outward
+  int resolution = 48;  ///< grid nodes along the longest axis, kMinSdfResolution..kMaxSdfResolution
+};
+
+/// What a groom's or a cloth's particles collide with. Shapes are given in the frame of the body
+/// the groom or cloth follows (its `attached_mesh`): metres, origin at the mesh's placed pivot,
+/// axes turned with the mesh, its scale not applied — the frame hair roots and cloth pins live
+/// in, so the shapes move with the head motion.
+struct Colliders {
+  std::vector<physics::SphereCollider> spheres;    ///< body frame, metres
+  std::vector<physics::CapsuleCollider> capsules;  ///< body frame, metres
+  /// The field of a mesh, taken where that mesh stands at time 0 relative to the body (for the
+  /// attached mesh itself: its model positions × its scale) and moving with the body from then on.
+  std::optional<SdfColliderSource> sdf;
+  float friction = 0.0f;   ///< Coulomb coefficient μ ≥ 0, dimensionless
+  float thickness = 0.0f;  ///< particles are kept this far outside every surface, metres ≥ 0
+
+  [[nodiscard]] bool empty() const { return spheres.empty() && capsules.empty() && !sdf; }
+};
+
 /// Most guide strands a procedural groom may ask for (memory stays in the hundreds of MB).
 inline constexpr int kMaxGuideStrands = 1'000'000;
 
@@ -97,7 +126,11 @@ struct Groom {
   std::string attachedMesh;         ///< name of a `MeshInstance`; roots follow it
   int strandCount = 0;              ///< procedural only: guide strands to grow (0: generator default)
   float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
+  /// Files only: negate the points' z on load. TressFX's Maya exporter can write z inverted (for
+  /// left-handed renderers); the TressFX ponytail's strands sit on its head only with this.
+  bool invertZ = false;
   HairSimulation simulation;
+  Colliders colliders;  ///< in the attached mesh's body frame
 
   [[nodiscard]] bool isProcedural() const { return source == "procedural"; }
 };
@@ -116,6 +149,7 @@ struct Cloth {
   float damping = 0.02f;                  ///< velocity fraction lost per step, in [0, 1)
   float bendingStiffness = 0.5f;          ///< in [0, 1]
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
+  Colliders colliders;                    ///< in the attached mesh's body frame (not the cloth's transform)
 };
 
 /// A head pose at a time; the motion interpolates these linearly.
@@ -172,6 +206,11 @@ struct Scene {
 
 /// The mesh's model matrix at `timeSeconds`, including the head motion when it targets it.
 [[nodiscard]] glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh, float timeSeconds);
+
+/// The body frame of a mesh at `timeSeconds`: `animatedMatrix` with the mesh's scale divided out,
+/// a rigid map from body-frame metres to the world. Hair roots, cloth pins and colliders live in
+/// it; a point `p` of the mesh's model space is at `p × scale` in it.
+[[nodiscard]] glm::mat4 bodyMatrix(const Scene& scene, const MeshInstance& mesh, float timeSeconds);
 
 /// Reads and validates a scene file. Errors name the file, the JSON field path (e.g.
 /// `lights[1].direction`) and what was expected; unknown fields are errors, so typos are

@@ -41,7 +41,7 @@ Result<Mesh> loadClothMesh(const Cloth& cloth, const AssetResolver& resolver,
 }
 
 Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const SimulationSettings& simulation,
-                                      const glm::mat4& body) {
+                                      const glm::mat4& body, physics::ColliderSet colliders) {
   // Pins: the vertices on the highest row of the rest mesh, in its own space (within a
   // millionth of its height, so a flat top edge is found exactly despite rounding).
   std::vector<std::uint32_t> pinned;
@@ -64,7 +64,11 @@ Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const Simul
   settings.bendingStiffness = cloth.bendingStiffness;
   auto physical = physics::Cloth::create(local, rest.indices, pinned, settings, body);
   if (!physical) return fail("cloth '" + cloth.name + "': " + physical.error().message);
+  if (!colliders.empty())
+    if (auto set = physical->setColliders(colliders); !set)
+      return fail("cloth '" + cloth.name + "': colliders: " + set.error().message);
   SceneCloth result(std::move(*physical), std::move(rest));
+  result.colliders_ = std::move(colliders);
   result.refreshSurface();
   return result;
 }

@@ -24,8 +24,9 @@ class SceneCloth {
 public:
   /// `body` is the rigid placement (no scale) of the attached mesh at time 0: cloth-local
   /// points go through `cloth.transform` into body space, then `body` into the world.
+  /// `colliders` are in body space (see `SceneColliders`); empty: none.
   static Result<SceneCloth> create(const Cloth& cloth, Mesh rest, const SimulationSettings& simulation,
-                                   const glm::mat4& body);
+                                   const glm::mat4& body, physics::ColliderSet colliders = {});
 
   /// Moves the pins to `body` over the frame and simulates `frameDt` seconds.
   Result<void> advance(const glm::mat4& body, double frameDt, unsigned threads);
@@ -33,6 +34,8 @@ public:
   /// World-space surface: positions from the particles, smooth normals, the rest mesh's uvs.
   const Mesh& surface() const { return surface_; }
   const physics::Cloth& cloth() const { return cloth_; }
+  /// What the cloth collides with, in the body frame (metres).
+  const physics::ColliderSet& colliders() const { return colliders_; }
 
 private:
   SceneCloth(physics::Cloth cloth, Mesh surface) : cloth_(std::move(cloth)), surface_(std::move(surface)) {}
@@ -40,6 +43,7 @@ private:
 
   physics::Cloth cloth_;
   Mesh surface_;
+  physics::ColliderSet colliders_;
 };
 
 }  // namespace mane::scenes

@@ -9,6 +9,7 @@
 #include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
 #include "scenes/groom_loader.hpp"
+#include "scenes/scene_colliders.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -55,8 +56,10 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   } else {
     world.materials_.resize(world.scene_.materials.size());
   }
-  if (auto loaded = world.loadGrooms(resolver); !loaded) return std::unexpected(loaded.error());
-  if (auto loaded = world.loadCloths(resolver); !loaded) return std::unexpected(loaded.error());
+  // Collider fields are built here, once each, and shared by the grooms and cloths that use them.
+  SceneColliders colliders(world.scene_, world.meshes_);
+  if (auto loaded = world.loadGrooms(resolver, colliders); !loaded) return std::unexpected(loaded.error());
+  if (auto loaded = world.loadCloths(resolver, colliders); !loaded) return std::unexpected(loaded.error());
   return world;
 }
 
@@ -98,7 +101,7 @@ Result<void> World::loadMaterials(const AssetResolver& resolver) {
   return {};
 }
 
-Result<void> World::loadGrooms(const AssetResolver& resolver) {
+Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& colliders) {
   for (std::size_t sceneGroom = 0; sceneGroom < scene_.grooms.size(); ++sceneGroom) {
     const Groom& groom = scene_.grooms[sceneGroom];
     const auto meshIt = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
@@ -129,7 +132,8 @@ Result<void> World::loadGrooms(const AssetResolver& resolver) {
     } else {
       // Like meshes: a missing asset is a note and the groom is skipped; a file that does not
       // parse is an error. Groom files hold strands in their head mesh's model space (the
-      // TressFX ponytail sits on its own head in the same units, shared/assets/README.md).
+      // TressFX ponytail sits on its own head in the same units, shared/assets/README.md, once
+      // its inverted z is turned back: `invert_z`).
       auto lookup = resolver.lookupForScene(groom.source, scene_.file.parent_path());
       if (!lookup) return fail("groom " + groom.name + ": " + lookup.error().message);
       if (!lookup->path) {
@@ -140,32 +144,46 @@ Result<void> World::loadGrooms(const AssetResolver& resolver) {
       auto loaded = loadGroomFile(*lookup->path);
       if (!loaded) return fail("groom " + groom.name + ": " + loaded.error().message);
       guides = std::move(loaded->strands);
+      const glm::vec3 axes(1.0f, 1.0f, groom.invertZ ? -1.0f : 1.0f);
       for (std::vector<glm::vec3>& strand : guides)
-        for (glm::vec3& point : strand) point *= scale;
+        for (glm::vec3& point : strand) point *= axes * scale;
     }
     auto hair = physics::HairSystem::create(guides, solverSettings(groom.simulation, scene_.simulation),
                                             bodyPlacement(*meshIt, 0.0));
     if (!hair) return fail("groom " + groom.name + " (" + groom.source + "): " + hair.error().message);
+    if (!groom.colliders.empty()) {
+      auto set = colliders.build(groom.colliders, meshIndex);
+      if (!set) return fail("groom " + groom.name + ": colliders: " + set.error().message);
+      if (auto applied = hair->setColliders(std::move(*set)); !applied)
+        return fail("groom " + groom.name + ": colliders: " + applied.error().message);
+    }
     grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom});
   }
   return {};
 }
 
 glm::mat4 World::bodyPlacement(const MeshInstance& mesh, double time) const {
-  return animatedMatrix(scene_, mesh, static_cast<float>(time)) *
-         glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / mesh.transform.scale));
+  return bodyMatrix(scene_, mesh, static_cast<float>(time));
 }
 
-Result<void> World::loadCloths(const AssetResolver& resolver) {
+Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& colliders) {
   for (const Cloth& cloth : scene_.cloths) {
     auto rest = loadClothMesh(cloth, resolver, scene_.file.parent_path());
     if (!rest) return std::unexpected(rest.error());
     const auto body = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
                                    [&](const MeshInstance& mesh) { return mesh.name == cloth.attachedMesh; });
-    auto created = SceneCloth::create(cloth, std::move(*rest), scene_.simulation, bodyPlacement(*body, 0.0));
+    const auto bodyIndex = static_cast<std::size_t>(body - scene_.meshes.begin());
+    physics::ColliderSet set;
+    if (!cloth.colliders.empty()) {
+      auto built = colliders.build(cloth.colliders, bodyIndex);
+      if (!built) return fail("cloth '" + cloth.name + "': colliders: " + built.error().message);
+      set = std::move(*built);
+    }
+    auto created =
+        SceneCloth::create(cloth, std::move(*rest), scene_.simulation, bodyPlacement(*body, 0.0), std::move(set));
     if (!created) return std::unexpected(created.error());
     cloths_.push_back(std::move(*created));
-    clothBodies_.push_back(static_cast<std::size_t>(body - scene_.meshes.begin()));
+    clothBodies_.push_back(bodyIndex);
   }
   return {};
 }

@@ -18,6 +18,8 @@
 
 namespace mane::scenes {
 
+class SceneColliders;
+
 struct WorldSettings {
   /// Decode the materials' textures (the renderer needs them; `mane sim` does not).
   bool loadTextures = true;
@@ -78,10 +80,10 @@ private:
   World() = default;
   Result<void> loadMeshes(const AssetResolver& resolver);
   Result<void> loadMaterials(const AssetResolver& resolver);
-  Result<void> loadGrooms(const AssetResolver& resolver);
-  Result<void> loadCloths(const AssetResolver& resolver);
-  /// The rigid part of the mesh's placement at `time` (its scale divided out): what hair
-  /// roots and cloth pins follow.
+  Result<void> loadGrooms(const AssetResolver& resolver, SceneColliders& colliders);
+  Result<void> loadCloths(const AssetResolver& resolver, SceneColliders& colliders);
+  /// The rigid part of the mesh's placement at `time` (its scale divided out, `bodyMatrix`):
+  /// what hair roots, cloth pins and their colliders follow.
   glm::mat4 bodyPlacement(const MeshInstance& mesh, double time) const;
 
   Scene scene_;

@@ -441,5 +441,32 @@ TEST(GroomLoaderWorld, UserGroomFileIsScaledWithItsMesh) {
   ASSERT_TRUE(world->advance(0.25, 1).has_value());
 }
 
+TEST(GroomLoaderWorld, InvertZNegatesTheFilesZ) {
+  // `invert_z` mirrors the file's points in z before they go on the mesh (TressFX's exporter
+  // can write z inverted); x and y are untouched. Placed at rest, the mirrored groom is the
+  // plain one with z negated, point for point (the synthetic strands have z ≠ 0).
+  ScratchDir dir;
+  dir.write("user.hair", cyHair({}, 3, 5));
+  std::string text = groomScene("procedural:sphere", 0.5f, "user.hair");
+  const std::filesystem::path plainFile = dir.write("plain.json", text);
+  const std::string attached = R"("attached_mesh": "head")";
+  text.replace(text.find(attached), attached.size(), attached + R"(, "invert_z": true)");
+  const std::filesystem::path mirroredFile = dir.write("mirrored.json", text);
+  auto plain = World::create(*loadScene(plainFile), sharedResolver(), {.loadTextures = false});
+  auto mirrored = World::create(*loadScene(mirroredFile), sharedResolver(), {.loadTextures = false});
+  ASSERT_TRUE(plain.has_value()) << plain.error().message;
+  ASSERT_TRUE(mirrored.has_value()) << mirrored.error().message;
+  ASSERT_TRUE(mirrored->scene().grooms[0].invertZ);
+  const auto& a = plain->simulatedGroom(0).particles().positions;
+  const auto& b = mirrored->simulatedGroom(0).particles().positions;
+  ASSERT_EQ(a.size(), b.size());
+  float largestZ = 0.0f;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(b[i], glm::vec3(a[i].x, a[i].y, -a[i].z)) << "particle " << i;
+    largestZ = std::max(largestZ, std::abs(a[i].z));
+  }
+  EXPECT_GT(largestZ, 0.0f);
+}
+
 }  // namespace
 }  // namespace mane::scenes

@@ -179,6 +179,29 @@ TEST(Scene, ReferencesMustResolve) {
             "(known: procedural:sphere)");
 }
 
+TEST(Scene, InvertZIsForGroomFilesOnly) {
+  auto scene = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                              "meshes": [{"name": "head", "source": "procedural:sphere"}],
+                              "grooms": [{"name": "a", "source": "hair/tressfx_ponytail/tail.tfx",
+                                          "attached_mesh": "head", "invert_z": true},
+                                         {"name": "b", "source": "hair/tressfx_ponytail/tail.tfx",
+                                          "attached_mesh": "head"}]})",
+                          "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_TRUE(scene->grooms[0].invertZ);
+  EXPECT_FALSE(scene->grooms[1].invertZ);
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                        "meshes": [{"name": "head", "source": "procedural:sphere"}],
+                        "grooms": [{"name": "g", "source": "procedural", "attached_mesh": "head",
+                                    "invert_z": true}]})"),
+            "dir/bad.json: grooms[0].invert_z: applies to groom files only, not to \"procedural\"");
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                        "meshes": [{"name": "head", "source": "procedural:sphere"}],
+                        "grooms": [{"name": "g", "source": "a.tfx", "attached_mesh": "head",
+                                    "invert_z": 1}]})"),
+            "dir/bad.json: grooms[0].invert_z: expected true or false, got a number");
+}
+
 // Found by tests/fuzz/fuzz_scene: nlohmann reports a number beyond double range as
 // out_of_range, not parse_error, and that exception escaped parseScene.
 TEST(Scene, NumberBeyondDoubleRangeIsInvalidJsonNotACrash) {
