@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -52,6 +53,17 @@ inline std::string readFile(const std::filesystem::path& file) {
 /// The project's resolver without downloads: tests never touch the network.
 inline AssetResolver sharedResolver() {
   AssetResolverSettings settings = defaultAssetResolverSettings();
+  settings.allowDownload = false;
+  auto resolver = AssetResolver::create(settings);
+  if (!resolver) throw std::runtime_error(resolver.error().message);
+  return *resolver;
+}
+
+/// A resolver that finds nothing and never downloads: a machine without ../shared/assets.
+inline AssetResolver resolverWithoutAssets() {
+  AssetResolverSettings settings = defaultAssetResolverSettings();
+  settings.searchRoots.clear();
+  settings.cacheDirectory.clear();
   settings.allowDownload = false;
   auto resolver = AssetResolver::create(settings);
   if (!resolver) throw std::runtime_error(resolver.error().message);

@@ -26,16 +26,7 @@ namespace {
 
 const std::filesystem::path kScenes = std::filesystem::path(MANE_SOURCE_DIR) / "scenes";
 
-// A resolver that finds nothing and never downloads: a machine without ../shared/assets.
-AssetResolver resolverWithoutAssets() {
-  AssetResolverSettings settings = defaultAssetResolverSettings();
-  settings.searchRoots.clear();
-  settings.cacheDirectory.clear();
-  settings.allowDownload = false;
-  auto resolver = AssetResolver::create(settings);
-  EXPECT_TRUE(resolver.has_value());
-  return *resolver;
-}
+using testing::resolverWithoutAssets;
 
 /// World → body frame of `mesh` at `time`, from the placement the renderer draws the mesh with
 /// (`animatedMatrix`) and the README's definition: that placement without the mesh's scale.

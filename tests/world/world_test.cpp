@@ -6,6 +6,7 @@
 
 #include "render/renderer.hpp"
 #include "scenes/world.hpp"
+#include "tests/scenes/test_support.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::scenes {
@@ -13,16 +14,7 @@ namespace {
 
 const std::filesystem::path kNalu = std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json";
 
-// A resolver that finds nothing and never downloads: a machine without ../shared/assets.
-AssetResolver resolverWithoutAssets() {
-  AssetResolverSettings settings = defaultAssetResolverSettings();
-  settings.searchRoots.clear();
-  settings.cacheDirectory.clear();
-  settings.allowDownload = false;
-  auto resolver = AssetResolver::create(settings);
-  EXPECT_TRUE(resolver.has_value());
-  return *resolver;
-}
+using testing::resolverWithoutAssets;
 
 TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   auto scene = loadScene(kNalu);
@@ -121,7 +113,7 @@ TEST(World, CapePinsFollowTheHeadAndTheSurfaceIsDynamic) {
   EXPECT_EQ(dynamic[0].positions.data(), world->cloths()[0].surface().positions.data());
 }
 
-class WorldRender : public testing::VulkanTest {};
+class WorldRender : public mane::testing::VulkanTest {};
 
 TEST_F(WorldRender, AMeshWithoutMaterialGetsTheDefaultOne) {
   auto scene = parseScene(R"({"name": "bare", "camera": {"position": [0, 0, 5], "target": [0, 0, 0]},
