@@ -132,19 +132,27 @@ SolverSettings benchFrameSettings(std::int64_t steps) {
   return settings;
 }
 
-void BM_HairFrame(benchmark::State& state) {
+ColliderSet benchHeadColliders();
+
+// BM_HairFrame and BM_HairFrameCollisions: the 10k × 32 groom, arguments <threads>/<vectorised>/
+// <steps>, with or without the head colliders.
+void runHairFrameBench(benchmark::State& state, bool collisions) {
   const auto threads = static_cast<unsigned>(state.range(0));
   const bool vectorised = state.range(1) != 0;
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
-  const SolverSettings settings = benchFrameSettings(state.range(2));
-  auto hair = HairSystem::create(strands, settings);
+  auto hair = HairSystem::create(strands, benchFrameSettings(state.range(2)));
   if (!hair) {
     state.SkipWithError(hair.error().message.c_str());
     return;
   }
+  if (collisions) (void)hair->setColliders(benchHeadColliders());
   hair->setVectorised(vectorised);
   runSwayingFrames(state, *hair, threads);
   state.counters["particles"] = static_cast<double>(hair->particles().size());
+}
+
+void BM_HairFrame(benchmark::State& state) {
+  runHairFrameBench(state, false);
 }
 BENCHMARK(BM_HairFrame)
     ->Args({1, 0, 2})
@@ -192,18 +200,7 @@ ColliderSet benchHeadColliders() {
 }
 
 void BM_HairFrameCollisions(benchmark::State& state) {
-  const auto threads = static_cast<unsigned>(state.range(0));
-  const bool vectorised = state.range(1) != 0;
-  static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
-  const SolverSettings settings = benchFrameSettings(state.range(2));
-  auto hair = HairSystem::create(strands, settings);
-  if (!hair) {
-    state.SkipWithError(hair.error().message.c_str());
-    return;
-  }
-  (void)hair->setColliders(benchHeadColliders());
-  hair->setVectorised(vectorised);
-  runSwayingFrames(state, *hair, threads);
+  runHairFrameBench(state, true);
 }
 BENCHMARK(BM_HairFrameCollisions)
     ->Args({1, 0, 2})
