@@ -173,23 +173,19 @@ bool collideParticle(const ColliderSet& colliders, glm::vec3& position, const gl
     glm::vec3 gradient;
     float d;  // sampleWithGradient's value is bit for bit sample's
     if (colliders.sdf && colliders.sdf->mayBeBelow(position, thickness) && (d = sampleField(gradient)) < thickness) {
-      // Newton steps along the field's gradient onto the level set thickness + kContactSkin (the
-      // trilinear field is smooth inside a cell, so one or two steps land there). Aiming just
-      // past the contact level lets the loop and the next round end at once: aiming at it
-      // exactly lands half the time a rounding error inside, which is another contact.
+      // A Newton step along the field's gradient onto the level set thickness + kContactSkin,
+      // then friction, then Newton steps until the particle is out (the trilinear field is
+      // smooth inside a cell, so one or two steps land there; the sample after friction checks
+      // the first step too). Aiming just past the contact level lets the loop and the next
+      // round end at once: aiming at it exactly lands half the time a rounding error inside,
+      // which is another contact.
       const float target = thickness + kContactSkin;
       const float depth = thickness - d;
       const float gradientSquared = dot(gradient, gradient);
       if (gradientSquared > 1e-12f) {
         normal = gradient / std::sqrt(gradientSquared);
-        for (int newton = 0; newton < 4 && d < thickness; ++newton) {
-          const float g2 = dot(gradient, gradient);
-          if (!(g2 > 1e-12f)) break;
-          position += gradient * ((target - d) / g2);
-          d = sampleField(gradient);
-        }
+        position += gradient * ((target - d) / gradientSquared);
         applyFriction(position, previous, normal, depth, mu);
-        // The surface may curve inwards under the tangential step: settle once more, frictionless.
         d = sampleField(gradient);
         for (int newton = 0; newton < 4 && d < thickness; ++newton) {
           const float g2 = dot(gradient, gradient);

@@ -216,15 +216,19 @@ MANE_AVX2 inline void sampleField(const SignedDistanceField& field, const Vec& p
   const Vec interpolatedGradient{mul(add(dx0, mul(sub(dx1, dx0), fz)), inverse),
                                  mul(add(dy0, mul(sub(dy1, dy0), fz)), inverse), mul(sub(c1, c0), inverse)};
 
-  // Outside the grid: the nearest grid point's value plus the way there.
-  const __m256 cell = splat(field.cellSize());
-  const Vec outward = scaled(sub(u, c), cell);
-  const __m256 gap = _mm256_sqrt_ps(dot(outward, outward));
-  const Vec outwardGradient{div(outward.x, gap), div(outward.y, gap), div(outward.z, gap)};
-
-  const __m256 sampled = pick(add(interpolated, gap), interpolated, inside);
+  __m256 sampled = interpolated;
+  Vec sampledGradient = interpolatedGradient;
+  if (_mm256_movemask_ps(both(gathering, inside)) != _mm256_movemask_ps(gathering)) {
+    // Outside the grid: the nearest grid point's value plus the way there.
+    const __m256 cell = splat(field.cellSize());
+    const Vec outward = scaled(sub(u, c), cell);
+    const __m256 gap = _mm256_sqrt_ps(dot(outward, outward));
+    const Vec outwardGradient{div(outward.x, gap), div(outward.y, gap), div(outward.z, gap)};
+    sampled = pick(add(interpolated, gap), interpolated, inside);
+    sampledGradient = pick(outwardGradient, interpolatedGradient, inside);
+  }
   value = pick(value, pick(nanValue, sampled, gathering), mask);
-  gradient = pick(gradient, pick(outwardGradient, interpolatedGradient, inside), gathering);
+  gradient = pick(gradient, sampledGradient, gathering);
 }
 
 // Lanes where a and b hold the same bytes.
@@ -307,9 +311,11 @@ MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, c
           const __m256 norm = _mm256_sqrt_ps(g2);
           const Vec& g = samples.gradient;
           const Vec normal{div(g.x, norm), div(g.y, norm), div(g.z, norm)};
-          newtonToLevel(samples, position, thickness, pushed);
+          const __m256 s = div(sub(splat(thickness + kContactSkin), samples.value), g2);
+          position =
+              pick(position, {add(position.x, mul(g.x, s)), add(position.y, mul(g.y, s)), add(position.z, mul(g.z, s))},
+                   pushed);
           applyFriction(position, previous, normal, depth, mu, pushed);
-          // The surface may curve inwards under the tangential step: settle once more.
           samples.sample(position, pushed);
           newtonToLevel(samples, position, thickness, pushed);
           contact = either(contact, pushed);
