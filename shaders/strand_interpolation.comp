@@ -1,0 +1,133 @@
+#version 460
+// Dense strands interpolated from guide strands: the GPU twin of the CPU reference
+// physics::interpolateDenseStrands. It implements the formula at the top of
+// physics/interpolation.hpp operation for operation, in the same order and in float.
+//
+// Every arithmetic result is held in a `precise` variable, so glslang decorates the operations
+// that produce it NoContraction: the driver may not fuse a*b + c into an fma nor reassociate,
+// and each product and sum is rounded as on the CPU (built with -ffp-contract=off). Only sqrt
+// and division may differ from IEEE by a few ulp on some GPUs (Vulkan's precision rules).
+//
+// One invocation per dense strand: the frame (two normalisations) is built once per strand,
+// every position is computed once, and the tangent of vertex i, which needs positions i − 1
+// and i + 1, comes from a sliding window of three positions held in registers — no second
+// dispatch, no barrier and no re-read of the positions.
+//
+// Buffers (std430), see render/passes/strand_interpolation.hpp:
+//   0 guide positions   vec4 per guide vertex, guide after guide, root first: xyz metres, w unused
+//   1 guide frames      uvec2 per guide (partner A, partner B)
+//   2 dense strands     64-byte DenseStrand per strand
+//   3 positions         vec4 per dense vertex, strand-major: xyz metres, w = t (0 root, 1 tip)
+//   4 tangents          vec4 per dense vertex, strand-major: xyz unit tangent root → tip, w = 0
+
+layout(local_size_x = 64) in;
+
+struct DenseStrand {
+  uvec4 guides;      // xyz: guide indices g[k]; w: K, the number of guides used (1 to 3)
+  vec4 weights;      // xyz: w[k]; w: vertexScale (guide vertices per dense vertex)
+  vec4 rootOffset;   // xyz: o, metres, in the primary guide's frame; w: clump c
+  vec4 tipJitter;    // xyz: j, metres, in the primary guide's frame; w: length scale (unused)
+};
+
+layout(std430, set = 0, binding = 0) readonly buffer GuidePositions { vec4 guidePositions[]; };
+layout(std430, set = 0, binding = 1) readonly buffer GuideFrames { uvec2 guideFrames[]; };
+layout(std430, set = 0, binding = 2) readonly buffer Strands { DenseStrand strands[]; };
+layout(std430, set = 0, binding = 3) writeonly buffer Positions { vec4 positions[]; };
+layout(std430, set = 0, binding = 4) writeonly buffer Tangents { vec4 tangents[]; };
+
+layout(push_constant) uniform Counts {
+  uint strandCount;       // dense strands
+  uint guideVertexCount;  // Ng, vertices per guide (≥ 2)
+  uint vertexCount;       // Nd, vertices per dense strand (≥ 2)
+} counts;
+
+vec3 guidePoint(uint guide, uint vertex) {
+  return guidePositions[guide * counts.guideVertexCount + vertex].xyz;
+}
+
+// dot, cross and normalize exactly as the header defines them (not GLSL's built-ins, whose
+// order of operations is unspecified).
+float dot3(vec3 a, vec3 b) {
+  precise float result = a.x * b.x + a.y * b.y + a.z * b.z;
+  return result;
+}
+
+vec3 cross3(vec3 a, vec3 b) {
+  precise float x = a.y * b.z - a.z * b.y;
+  precise float y = a.z * b.x - a.x * b.z;
+  precise float z = a.x * b.y - a.y * b.x;
+  return vec3(x, y, z);
+}
+
+vec3 normalize3(vec3 a) {
+  precise float length = sqrt(dot3(a, a));
+  precise float x = a.x / length;
+  precise float y = a.y / length;
+  precise float z = a.z / length;
+  return vec3(x, y, z);
+}
+
+// Step 2 of the formula for dense vertex i; `offset` = O and `jitter` = J from step 1.
+vec3 densePoint(DenseStrand strand, uint i, vec3 offset, vec3 jitter) {
+  precise float u = float(i) * strand.weights.w;
+  const uint v = min(uint(u), counts.guideVertexCount - 2u);
+  precise float f = u - float(v);
+  precise float rf = 1.0 - f;
+  precise vec3 l0 = rf * guidePoint(strand.guides.x, v) + f * guidePoint(strand.guides.x, v + 1u);
+  precise vec3 b = strand.weights.x * l0;
+  if (strand.guides.w > 1u) {
+    precise vec3 l1 = rf * guidePoint(strand.guides.y, v) + f * guidePoint(strand.guides.y, v + 1u);
+    b = b + strand.weights.y * l1;
+  }
+  if (strand.guides.w > 2u) {
+    precise vec3 l2 = rf * guidePoint(strand.guides.z, v) + f * guidePoint(strand.guides.z, v + 1u);
+    b = b + strand.weights.z * l2;
+  }
+  precise float t = float(i) / float(counts.vertexCount - 1u);
+  precise float h = strand.rootOffset.w * t;
+  precise float q = 1.0 - h;
+  precise vec3 p = (b + h * (l0 - b)) + q * (offset + t * jitter);
+  return p;
+}
+
+void main() {
+  const uint s = gl_GlobalInvocationID.x;
+  if (s >= counts.strandCount) return;
+  const DenseStrand strand = strands[s];
+
+  // Step 1: the primary guide's frame from the roots of the guide and its two partners.
+  const uint primary = strand.guides.x;
+  const uvec2 partners = guideFrames[primary];
+  precise vec3 e1 = vec3(1.0, 0.0, 0.0);
+  precise vec3 e2 = vec3(0.0, 1.0, 0.0);
+  precise vec3 n = vec3(0.0, 0.0, 1.0);
+  if (partners.x != primary || partners.y != primary) {
+    const vec3 root = guidePoint(primary, 0u);
+    precise vec3 toA = guidePoint(partners.x, 0u) - root;
+    precise vec3 toB = guidePoint(partners.y, 0u) - root;
+    e1 = normalize3(toA);
+    n = normalize3(cross3(e1, toB));
+    e2 = cross3(n, e1);
+  }
+  const vec3 o = strand.rootOffset.xyz;
+  const vec3 j = strand.tipJitter.xyz;
+  precise vec3 offset = (o.x * e1 + o.y * e2) + o.z * n;
+  precise vec3 jitter = (j.x * e1 + j.y * e2) + j.z * n;
+
+  // Steps 2 and 3 over a sliding window (previous, current, next) with P[−1] := P[0] and
+  // P[Nd] := P[Nd − 1].
+  const uint nd = counts.vertexCount;
+  const uint first = s * nd;
+  vec3 current = densePoint(strand, 0u, offset, jitter);
+  vec3 previous = current;
+  for (uint i = 0u; i < nd; ++i) {
+    const vec3 next = i + 1u < nd ? densePoint(strand, i + 1u, offset, jitter) : current;
+    precise vec3 delta = next - previous;
+    const vec3 tangent = dot3(delta, delta) > 0.0 ? normalize3(delta) : vec3(0.0);
+    precise float t = float(i) / float(nd - 1u);
+    positions[first + i] = vec4(current, t);
+    tangents[first + i] = vec4(tangent, 0.0);
+    previous = current;
+    current = next;
+  }
+}
