@@ -1,0 +1,197 @@
+// The hair ribbon pass (render/passes/hair_pass) at the size of issue 4's target: 4,096 strands ×
+// 32 vertices (4,096 × 31 × 2 = 254k triangles) at 1280×720, against an empty frame (clear, and
+// the MSAA resolve where there is one) in the same run, so the difference is the hair's cost.
+//
+//   BM_EmptyFrame/<samples>/0: record, submit, wait: begin rendering (clear colour + depth), end
+//     (resolve at 4×).
+//   BM_HairFrame/<samples>/<lights>: the same with the hair draw: blonde Marschner LUTs, a key and
+//     a back light (lights 2) or ambient only (lights 0, the cost of geometry and raster alone),
+//     strands ~1.3 pixels wide, premultiplied-alpha blending.
+//
+// The groom: strands hanging from a half-sphere "scalp" (radius 0.1 m), 0.3 m down and flaring
+// out, seen from 0.6 m: about a third of the frame. Wall time around submit + wait (LAVAPIPE.md:
+// it agrees with timestamps for graphics).
+//
+//   build/release/bench/mane_hair_pass_bench --benchmark_min_time=2
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_pass.hpp"
+#include "render/render_target.hpp"
+
+namespace {
+
+using namespace mane;
+using namespace mane::render;
+
+constexpr std::uint32_t kStrands = 4096;
+constexpr std::uint32_t kVertices = 32;
+constexpr vk::Extent2D kExtent{1280, 720};
+
+template <class T>
+T orExit(Result<T> result, const char* what) {
+  if (!result) {
+    std::fprintf(stderr, "hair pass bench: %s: %s\n", what, result.error().message.c_str());
+    std::exit(1);
+  }
+  return std::move(*result);
+}
+
+void orExit(Result<void> result, const char* what) {
+  if (!result) {
+    std::fprintf(stderr, "hair pass bench: %s: %s\n", what, result.error().message.c_str());
+    std::exit(1);
+  }
+}
+
+struct Groom {
+  Buffer positions;
+  Buffer tangents;
+};
+
+Groom makeGroom(const Device& device) {
+  std::vector<glm::vec4> positions, tangents;
+  positions.reserve(kStrands * kVertices);
+  const float golden = std::numbers::pi_v<float> * (3.0f - std::sqrt(5.0f));
+  for (std::uint32_t s = 0; s < kStrands; ++s) {
+    // Roots spread evenly over the upper half-sphere (Fibonacci lattice), falling outwards then down.
+    const float y = 1.0f - float(s) / float(kStrands);
+    const float ring = std::sqrt(1.0f - y * y);
+    const float azimuth = golden * float(s);
+    const glm::vec3 normal(ring * std::cos(azimuth), y, ring * std::sin(azimuth));
+    const glm::vec3 root = 0.1f * normal;
+    const glm::vec3 outwards = glm::normalize(glm::vec3(normal.x, 0.0f, normal.z) + glm::vec3(1e-3f));
+    std::vector<glm::vec3> points(kVertices);
+    for (std::uint32_t i = 0; i < kVertices; ++i) {
+      const float t = float(i) / float(kVertices - 1);
+      // A little out along the scalp normal, then down and outwards past the sphere.
+      points[i] = root + t * (0.04f * normal + glm::vec3(0.0f, -0.3f, 0.0f) + 0.08f * t * outwards);
+    }
+    for (std::uint32_t i = 0; i < kVertices; ++i) {
+      const glm::vec3 tangent = glm::normalize(points[std::min(i + 1, kVertices - 1)] - points[i == 0 ? 0 : i - 1]);
+      positions.emplace_back(points[i], float(i) / float(kVertices - 1));
+      tangents.emplace_back(tangent, 0.0f);
+    }
+  }
+  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
+  return {Buffer::withData(device, std::as_bytes(std::span(positions)), usage),
+          Buffer::withData(device, std::as_bytes(std::span(tangents)), usage)};
+}
+
+struct Setup {
+  std::unique_ptr<RenderTarget> target;
+  std::unique_ptr<HairPass> pass;
+};
+
+struct Shared {
+  std::unique_ptr<Device> device;
+  std::unique_ptr<MarschnerLut> lut;
+  Groom groom;
+  std::map<int, Setup> setups;
+
+  Shared() {
+    device = orExit(Device::create(deviceSettingsFromEnvironment()), "device");
+    lut = std::make_unique<MarschnerLut>(orExit(MarschnerLut::create(*device, blondeHairParams()), "LUT"));
+    groom = makeGroom(*device);
+  }
+
+  Setup& setup(vk::SampleCountFlagBits samples, std::size_t lights) {
+    auto [it, inserted] = setups.try_emplace(int(samples) * 10 + int(lights));
+    if (!inserted) return it->second;
+    it->second.target = std::make_unique<RenderTarget>(*device, RenderTargetSettings{kExtent, samples});
+    it->second.pass = orExit(
+        HairPass::create(
+            *device, *lut,
+            {.colorFormat = RenderTarget::kHdrFormat, .depthFormat = RenderTarget::kDepthFormat, .samples = samples}),
+        "hair pass");
+    orExit(it->second.pass->setStrands({.positions = *groom.positions.buffer(),
+                                        .tangents = *groom.tangents.buffer(),
+                                        .strandCount = kStrands,
+                                        .verticesPerStrand = kVertices}),
+           "strands");
+    FrameInput frame{
+        .camera = {.position = {0.0f, -0.05f, 0.6f}, .target = {0.0f, -0.05f, 0.0f}},
+        .lights = {DirectionalLight{.direction = glm::normalize(glm::vec3(0.4f, 0.6f, 0.7f)), .intensity = 2.0f},
+                   DirectionalLight{.direction = glm::normalize(glm::vec3(-0.2f, 0.3f, -0.9f)), .intensity = 1.0f}}};
+    frame.lights.resize(lights);
+    orExit(it->second.pass->update(frame, kExtent, HairGroomSettings{.width = 8e-4f, .opacity = 0.9f}), "update");
+    return it->second;
+  }
+};
+
+Shared& shared() {
+  static Shared instance;
+  return instance;
+}
+
+void frame(const Device& device, const RenderTarget& target, const HairPass* pass) {
+  device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    using Layout = vk::ImageLayout;
+    using Stage = vk::PipelineStageFlagBits2;
+    using Access = vk::AccessFlagBits2;
+    transition(commands, target.sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
+               Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
+    if (target.multisampled())
+      transition(commands, target.hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
+                 Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
+    transition(commands, target.depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
+               Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
+               Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
+    vk::RenderingAttachmentInfo color{.imageView = *target.sceneColor().view(),
+                                      .imageLayout = Layout::eColorAttachmentOptimal,
+                                      .loadOp = vk::AttachmentLoadOp::eClear,
+                                      .storeOp = vk::AttachmentStoreOp::eStore,
+                                      .clearValue = {.color = {.float32 = std::array{0.02f, 0.02f, 0.03f, 1.0f}}}};
+    if (target.multisampled()) {
+      color.resolveMode = vk::ResolveModeFlagBits::eAverage;
+      color.resolveImageView = *target.hdr().view();
+      color.resolveImageLayout = Layout::eColorAttachmentOptimal;
+      color.storeOp = vk::AttachmentStoreOp::eDontCare;
+    }
+    const vk::RenderingAttachmentInfo depth{.imageView = *target.depth().view(),
+                                            .imageLayout = Layout::eDepthAttachmentOptimal,
+                                            .loadOp = vk::AttachmentLoadOp::eClear,
+                                            .storeOp = vk::AttachmentStoreOp::eDontCare,
+                                            .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
+    commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = target.extent()},
+                                              .layerCount = 1,
+                                              .colorAttachmentCount = 1,
+                                              .pColorAttachments = &color,
+                                              .pDepthAttachment = &depth});
+    if (pass) pass->draw(commands);
+    commands.endRendering();
+  });
+}
+
+vk::SampleCountFlagBits samplesOf(const benchmark::State& state) {
+  return state.range(0) == 4 ? vk::SampleCountFlagBits::e4 : vk::SampleCountFlagBits::e1;
+}
+
+void BM_EmptyFrame(benchmark::State& state) {
+  Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)));
+  for (auto _ : state) frame(*shared().device, *setup.target, nullptr);
+}
+
+void BM_HairFrame(benchmark::State& state) {
+  Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)));
+  for (auto _ : state) frame(*shared().device, *setup.target, setup.pass.get());
+  state.counters["triangles"] = double(setup.pass->ribbonVertexCount() / 3);
+}
+
+BENCHMARK(BM_EmptyFrame)->Args({1, 0})->Args({4, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HairFrame)->Args({1, 2})->Args({4, 2})->Args({1, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace

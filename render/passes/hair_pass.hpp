@@ -1,0 +1,165 @@
+#pragma once
+// Dense hair strands drawn as camera-facing ribbons with Marschner shading (shaders/hair.vert,
+// shaders/hair.frag, shaders/hair_uniforms.glsl).
+//
+// Input. The strands come as two storage buffers in the layout of StrandInterpolationPass
+// (render/passes/strand_interpolation.hpp): per vertex a vec4 position (xyz metres, w = t along
+// the strand, 0 root .. 1 tip) and a vec4 unit tangent (xyz, root → tip), strand-major, Nd
+// vertices per strand. Any buffer with STORAGE_BUFFER usage in that layout works (tests make
+// their own).
+//
+// Ribbon expansion (vertex pulling). One draw of strands × (Nd − 1) × 6 vertices and no vertex
+// buffers: the vertex shader finds its segment and corner from gl_VertexIndex, reads the end
+// point's position and tangent, and pushes it sideways along s = normalize(t × ωe) (ωe: towards
+// the eye), perpendicular to the strand and to the view, by half the strand width. Both segments
+// that share a vertex compute the same offset there, so the ribbon has no cracks at the joints.
+// The width is metres (HairGroomSettings::width, tapered linearly to tipWidthScale at t = 1).
+//
+// Anti-aliasing: MSAA plus coverage-scaled alpha, not alpha-to-coverage.
+//  - A ribbon narrower than minimumPixelWidth on screen (measured by projecting the half-width
+//    offset) is widened to that width, and its alpha is scaled by true width / drawn width. A
+//    0.3-pixel strand thus contributes 0.3 pixels of coverage per pixel of length: it neither
+//    vanishes between pixel centres nor turns into a full pixel.
+//  - The edges of ribbons wider than a pixel are anti-aliased by the render target's MSAA (4×:
+//    quarter-pixel steps); at 1× they are aliased (pixel-centre sampling) but keep the right
+//    area on average.
+//  Why not alpha-to-coverage: at 1× it degenerates to on/off per pixel (a 0.3-pixel strand is a
+//  full pixel or nothing); at 4× it quantises alpha to quarters, and the alpha → sample-mask
+//  mapping is implementation-defined (lavapipe keeps sample i when α > i/4, a ceiling that
+//  biases thin strands up to +¼ pixel of coverage). Coverage-scaled alpha is exact in area at
+//  both sample counts.
+//
+// Compositing: premultiplied-alpha "over" blending in draw order, depth test against the opaque
+// scene (LESS_OR_EQUAL), no depth writes. Chosen because it is the cheapest method on lavapipe
+// (one pass, no extra targets; see LAVAPIPE.md: ≈ 70 ms for 4,096 blended strands at 720p) and
+// because the accumulated alpha 1 − Π(1 − α_i) does not depend on the order: coverage, the
+// quantity thin hair needs to get right, is order-independent. Limits:
+//  - The colour is order-dependent where strands overlap: the strand drawn last is weighted by
+//    its α, whatever its depth. Strands are drawn in buffer order (root to tip, strand after
+//    strand), not sorted; within one groom, whose strands share a material, the error is in the
+//    mix of lighting of overlapping layers (e.g. a shadowed back layer drawn over a lit front
+//    one), not in coverage. Opaque hair (α = 1) in the wrong order shows the back strand.
+//  - Without depth writes, hair does not occlude hair in the depth buffer: later passes that
+//    depth-test against it (none yet) see only the opaque scene.
+//  The better-looking alternatives, not done here: weighted blended OIT (McGuire & Bavoil,
+//  "Weighted Blended Order-Independent Transparency", JCGT 2013) needs an RGBA16F accumulation
+//  and an R16F revealage target plus a full-screen composite (≈ 20 ms at 720p on lavapipe, per
+//  LAVAPIPE.md); a depth pre-pass of near-opaque strands with depth writes, then blending,
+//  fixes opaque ordering; per-frame strand sorting by depth (GPU sort) fixes both.
+//
+// Shading (hair.frag): for each directional light, the Marschner scattering S(ωi, ωr) from the
+// groom's MarschnerLut (shaders/hair_shading.glsl; the model is render/luts/marschner.hpp) times
+// the light's perpendicular irradiance E = colour × intensity, plus an ambient term: under a
+// uniform environment of radiance La the scattered radiance is La · ∫S dωi, the white-furnace
+// albedo (marschner.hpp), which is taken at θr = 0 (azimuthalAlbedo(params, 1)) for the whole
+// groom. The base colour is the LUT's absorption σa (its preset): no separate tint. No shadows:
+// the opacity shadow map pass will attenuate E later.
+//
+// Units: metres, radians, pixels where named.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "render/frame.hpp"
+#include "render/luts/marschner_lut.hpp"
+#include "render/pipelines.hpp"
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+/// Per-groom look of the ribbons: plain data, may change every frame.
+struct HairGroomSettings {
+  /// Strand width at the root, metres (> 0). Human hair is 50–100 µm; grooms with fewer, thicker
+  /// strands than a real head (Nalu: 4,095) use wider ones.
+  float width = 1e-4f;
+  /// Width at the tip over width at the root, in [0, 1]; linear in t along the strand.
+  float tipWidthScale = 1.0f;
+  /// Alpha of a strand at least minimumPixelWidth wide on screen, in [0, 1].
+  float opacity = 1.0f;
+  /// Narrowest ribbon drawn, pixels (≥ 0.25); narrower strands are widened to it and their alpha
+  /// scaled by true / drawn width. 1 pixel: every strand crosses a pixel centre (or, at 4×
+  /// MSAA, one sample of each x offset) per row it spans.
+  float minimumPixelWidth = 1.0f;
+};
+
+/// The dense strands to draw: buffers in the StrandInterpolationPass layout (see the file
+/// comment). The buffers must hold strandCount × verticesPerStrand vec4s each and outlive the
+/// draws that use them.
+struct HairStrands {
+  vk::Buffer positions;
+  vk::Buffer tangents;
+  std::uint32_t strandCount = 0;
+  std::uint32_t verticesPerStrand = 0;  ///< Nd ≥ 2
+};
+
+/// What the pass is drawn into.
+struct HairPassSettings {
+  vk::Format colorFormat = vk::Format::eR16G16B16A16Sfloat;
+  /// Depth tested against (not written); eUndefined for no depth attachment.
+  vk::Format depthFormat = vk::Format::eD32Sfloat;
+  vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
+};
+
+/// Where the frame is seen from: any world → clip matrix (Vulkan clip space, depth 0..1),
+/// perspective or orthographic, and the viewport it maps to.
+struct HairView {
+  glm::mat4 viewProjection{1.0f};
+  vk::Extent2D extent{};  ///< pixels of the viewport the draw covers
+};
+
+class HairPass {
+public:
+  /// Lights read per frame; more are ignored. Must match shaders/hair_uniforms.glsl.
+  static constexpr std::size_t kMaxLights = 4;
+
+  /// Builds the pipeline for `settings` and binds `lut`'s tables, which must outlive the pass
+  /// (its params give the ambient albedo). Errors: a Vulkan failure.
+  [[nodiscard]] static Result<std::unique_ptr<HairPass>> create(const Device& device, const MarschnerLut& lut,
+                                                                const HairPassSettings& settings);
+
+  HairPass(const HairPass&) = delete;
+  HairPass& operator=(const HairPass&) = delete;
+
+  /// Points the pass at `strands`. Errors (nothing changed): null buffers, fewer than 2
+  /// vertices per strand, or more ribbon vertices than one draw can count (2³² − 1).
+  [[nodiscard]] Result<void> setStrands(const HairStrands& strands);
+
+  /// Writes the frame's view, lights (the first kMaxLights) and ambient radiance (linear RGB)
+  /// and the groom's settings. Call between frames, never while a draw recorded earlier is
+  /// still running (one uniform buffer). Errors (nothing written): a non-invertible or
+  /// non-finite view, an empty extent, or groom settings out of their documented ranges.
+  [[nodiscard]] Result<void> update(const HairView& view, std::span<const DirectionalLight> lights, glm::vec3 ambient,
+                                    const HairGroomSettings& groom);
+
+  /// `update` with the frame's perspective camera (Camera::projection at the extent's aspect).
+  [[nodiscard]] Result<void> update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom);
+
+  /// Records the draw inside a dynamic rendering scope with the formats and sample count of
+  /// HairPassSettings (viewport and scissor are set to the view's extent). Nothing is drawn
+  /// before setStrands. The strand buffers' writes must be visible to vertex-shader storage
+  /// reads (StrandInterpolationPass::record's barrier does that).
+  void draw(const vk::raii::CommandBuffer& commands) const;
+
+  /// Vertices of the ribbon draw: strands × (Nd − 1) × 6.
+  [[nodiscard]] std::uint32_t ribbonVertexCount() const { return vertexCount_; }
+
+private:
+  HairPass(const Device& device, const MarschnerLut& lut, const HairPassSettings& settings);
+
+  const Device* device_;
+  glm::vec3 ambientAlbedo_{0.0f};  ///< Σ_p ½∫A_p dh at θr = 0, per RGB
+  vk::Extent2D extent_{};
+  vk::raii::DescriptorSetLayout setLayout_{nullptr};
+  Pipeline pipeline_;
+  vk::raii::DescriptorPool pool_{nullptr};
+  vk::raii::DescriptorSet set_{nullptr};
+  Buffer uniforms_;
+  std::uint32_t vertexCount_ = 0;
+  std::uint32_t verticesPerStrand_ = 0;
+};
+
+}  // namespace mane::render

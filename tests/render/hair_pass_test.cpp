@@ -1,0 +1,379 @@
+// The hair ribbon pass (render/passes/hair_pass.hpp) against references independent of it:
+//  - coverage: parallel straight strands of known world width seen head-on by an orthographic
+//    camera cover their analytic projected area, width × length in pixels; strands narrower
+//    than a pixel still cover their own area (coverage-scaled alpha), at 1× and 4× MSAA;
+//  - shading: the colour of a wide, opaque strand under one directional light equals the CPU
+//    Marschner model (render/luts/marschner.hpp, double precision) for the pixel's tangent,
+//    light and view directions times the light's irradiance, plus the ambient term;
+//  - absorption: back-lit, blonde fibres transmit far more than dark ones, in the ratio the CPU
+//    model predicts.
+// Every test runs with the validation layers on; any message fails it (VulkanTest).
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <numbers>
+#include <span>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+
+#include "render/luts/marschner.hpp"
+#include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_pass.hpp"
+#include "render/render_target.hpp"
+#include "tests/support/vulkan_fixture.hpp"
+
+namespace mane::render {
+namespace {
+
+/// Strands laid out as the pass reads them: positions (w = t) and tangents, strand-major.
+struct StrandData {
+  std::vector<glm::vec4> positions;
+  std::vector<glm::vec4> tangents;
+  std::uint32_t verticesPerStrand = 0;
+  std::uint32_t strandCount() const { return std::uint32_t(positions.size() / verticesPerStrand); }
+};
+
+/// Straight strand from `root` to `tip` with `vertices` evenly spaced vertices.
+void addStraightStrand(StrandData& data, glm::vec3 root, glm::vec3 tip, std::uint32_t vertices) {
+  data.verticesPerStrand = vertices;
+  const glm::vec3 tangent = glm::normalize(tip - root);
+  for (std::uint32_t i = 0; i < vertices; ++i) {
+    const float t = float(i) / float(vertices - 1);
+    data.positions.emplace_back(glm::mix(root, tip, t), t);
+    data.tangents.emplace_back(tangent, 0.0f);
+  }
+}
+
+/// Orthographic world → clip seen from +z: `metresPerPixel` at `extent`, centred on the origin,
+/// Vulkan's Y flip as Camera::projection does.
+glm::mat4 orthographicView(vk::Extent2D extent, float metresPerPixel) {
+  const float halfWidth = 0.5f * metresPerPixel * float(extent.width);
+  const float halfHeight = 0.5f * metresPerPixel * float(extent.height);
+  glm::mat4 projection = glm::orthoRH_ZO(-halfWidth, halfWidth, -halfHeight, halfHeight, 0.01f, 3.0f);
+  projection[1][1] = -projection[1][1];
+  return projection * glm::lookAtRH(glm::vec3(0, 0, 1), glm::vec3(0), glm::vec3(0, 1, 0));
+}
+
+/// Linear RGBA of the resolved HDR image, rows top to bottom.
+using Pixels = std::vector<glm::vec4>;
+
+class HairPassTest : public testing::VulkanTest {
+public:
+  MarschnerLut& lut(const HairShadingParams& params) {
+    auto created = MarschnerLut::create(device(), params);
+    if (!created) throw std::runtime_error(created.error().message);
+    luts_.push_back(std::make_unique<MarschnerLut>(std::move(*created)));
+    return *luts_.back();
+  }
+
+  /// Draws `data` over a transparent black background (alpha 0) and depth 1, returns the pixels.
+  /// `configure` writes the frame's uniforms.
+  template <class Configure>
+  Pixels render(const MarschnerLut& table, const StrandData& data, vk::Extent2D extent, vk::SampleCountFlagBits samples,
+                Configure&& configure) {
+    auto pass = HairPass::create(
+        device(), table,
+        {.colorFormat = RenderTarget::kHdrFormat, .depthFormat = RenderTarget::kDepthFormat, .samples = samples});
+    EXPECT_TRUE(pass.has_value()) << pass.error().message;
+    const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
+    const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
+    const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
+    const auto set = (*pass)->setStrands({.positions = *positions.buffer(),
+                                          .tangents = *tangents.buffer(),
+                                          .strandCount = data.strandCount(),
+                                          .verticesPerStrand = data.verticesPerStrand});
+    EXPECT_TRUE(set.has_value()) << set.error().message;
+    const auto updated = configure(**pass);
+    EXPECT_TRUE(updated.has_value()) << updated.error().message;
+
+    const RenderTarget target(device(), {.extent = extent, .samples = samples});
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      using Layout = vk::ImageLayout;
+      using Stage = vk::PipelineStageFlagBits2;
+      using Access = vk::AccessFlagBits2;
+      transition(commands, target.sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal,
+                 Stage::eAllCommands, Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
+      if (target.multisampled())
+        transition(commands, target.hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
+                   Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
+      transition(commands, target.depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
+                 Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
+                 Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
+      vk::RenderingAttachmentInfo color{.imageView = *target.sceneColor().view(),
+                                        .imageLayout = Layout::eColorAttachmentOptimal,
+                                        .loadOp = vk::AttachmentLoadOp::eClear,
+                                        .storeOp = vk::AttachmentStoreOp::eStore,
+                                        .clearValue = {.color = {.float32 = std::array{0.0f, 0.0f, 0.0f, 0.0f}}}};
+      if (target.multisampled()) {
+        color.resolveMode = vk::ResolveModeFlagBits::eAverage;
+        color.resolveImageView = *target.hdr().view();
+        color.resolveImageLayout = Layout::eColorAttachmentOptimal;
+        color.storeOp = vk::AttachmentStoreOp::eDontCare;
+      }
+      const vk::RenderingAttachmentInfo depth{.imageView = *target.depth().view(),
+                                              .imageLayout = Layout::eDepthAttachmentOptimal,
+                                              .loadOp = vk::AttachmentLoadOp::eClear,
+                                              .storeOp = vk::AttachmentStoreOp::eDontCare,
+                                              .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
+      commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = extent},
+                                                .layerCount = 1,
+                                                .colorAttachmentCount = 1,
+                                                .pColorAttachments = &color,
+                                                .pDepthAttachment = &depth});
+      (*pass)->draw(commands);
+      commands.endRendering();
+      transition(commands, target.hdr(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
+                 Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
+    });
+    const std::vector<std::byte> bytes = readBack(device(), target.hdr(), 8);
+    Pixels pixels(std::size_t(extent.width) * extent.height);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+      std::array<std::uint16_t, 4> halves{};
+      std::memcpy(halves.data(), bytes.data() + 8 * i, 8);
+      for (int c = 0; c < 4; ++c) pixels[i][c] = glm::unpackHalf1x16(halves[c]);
+    }
+    return pixels;
+  }
+
+private:
+  std::vector<std::unique_ptr<MarschnerLut>> luts_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Coverage
+
+constexpr vk::Extent2D kCoverageExtent{128, 128};
+constexpr float kMetresPerPixel = 1e-3f;
+constexpr int kStrands = 10;
+constexpr float kLengthPixels = 100.0f;
+
+// Ten vertical strands (tangent +y, seen head-on along −z), 100 pixels long, 12 pixels apart.
+// Their centres sit at fractional pixel offsets 0.05, 0.15, … 0.95: the rasteriser counts pixel
+// centres (or samples), and over ten offsets spaced 1/10 an interval of width w holds exactly
+// round-to-tenths(w) of them on average, so a width in whole tenths of a pixel is reproduced
+// exactly by counting. The ends sit a quarter pixel off the pixel boundaries so that exactly 100
+// rows are crossed. The ribbon ends are flat: each strand's projected area is width × length.
+StrandData parallelStrands() {
+  StrandData data;
+  for (int i = 0; i < kStrands; ++i) {
+    const float xPixels = -60.0f + 12.0f * float(i) + 0.05f + 0.1f * float(i);
+    const float x = xPixels * kMetresPerPixel;
+    const float y0 = (-50.0f + 0.25f) * kMetresPerPixel;
+    addStraightStrand(data, {x, y0, 0.0f}, {x, y0 + kLengthPixels * kMetresPerPixel, 0.0f}, 9);
+  }
+  return data;
+}
+
+struct Coverage {
+  double sum = 0.0;      ///< Σ alpha, pixels
+  float largest = 0.0f;  ///< the largest alpha of any pixel
+  std::size_t lit = 0;   ///< pixels with alpha > 0
+};
+
+Coverage measureCoverage(const Pixels& pixels) {
+  Coverage coverage;
+  for (const glm::vec4& pixel : pixels) {
+    coverage.sum += pixel.a;
+    coverage.largest = std::max(coverage.largest, pixel.a);
+    if (pixel.a > 0.0f) ++coverage.lit;
+  }
+  return coverage;
+}
+
+Coverage renderParallelStrands(HairPassTest& test, vk::SampleCountFlagBits samples, float widthPixels) {
+  const MarschnerLut& table = test.lut(blondeHairParams());
+  const HairGroomSettings groom{.width = widthPixels * kMetresPerPixel, .opacity = 1.0f, .minimumPixelWidth = 1.0f};
+  const std::array lights{DirectionalLight{.direction = {0, 0, 1}}};
+  return measureCoverage(test.render(table, parallelStrands(), kCoverageExtent, samples, [&](HairPass& pass) {
+    return pass.update(HairView{orthographicView(kCoverageExtent, kMetresPerPixel), kCoverageExtent}, lights,
+                       glm::vec3(0.1f), groom);
+  }));
+}
+
+// Tolerance 1 %: counting is exact by construction (see parallelStrands) up to float rounding of
+// edges that fall within ~1e-5 pixel of a centre (none do) and the 16-bit alpha (2^-11 relative).
+void expectCoverage(HairPassTest& test, vk::SampleCountFlagBits samples) {
+  const float width = 3.3f;
+  const Coverage wide = renderParallelStrands(test, samples, width);
+  const double area = kStrands * width * kLengthPixels;
+  EXPECT_NEAR(wide.sum, area, 0.01 * area) << "3.3-pixel strands";
+  std::printf("coverage %dx: 3.3 px strands %.2f px² vs analytic %.2f (%.3f %%)\n", int(samples), wide.sum, area,
+              100.0 * (wide.sum - area) / area);
+}
+
+TEST_F(HairPassTest, WideStrandsCoverTheirProjectedAreaWithoutMsaa) {
+  expectCoverage(*this, vk::SampleCountFlagBits::e1);
+}
+
+TEST_F(HairPassTest, WideStrandsCoverTheirProjectedAreaWith4xMsaa) {
+  expectCoverage(*this, vk::SampleCountFlagBits::e4);
+}
+
+// A 0.3-pixel strand is drawn 1 pixel wide (the minimum) with alpha 0.3: it covers 0.3 pixel
+// per row, never 0 and never a whole pixel.
+void expectSubPixelCoverage(HairPassTest& test, vk::SampleCountFlagBits samples) {
+  const float width = 0.3f;
+  const Coverage thin = renderParallelStrands(test, samples, width);
+  const double area = kStrands * width * kLengthPixels;
+  EXPECT_NEAR(thin.sum, area, 0.01 * area) << "0.3-pixel strands";
+  EXPECT_LE(thin.largest, width * 1.01f) << "a sub-pixel strand must not fill a pixel";
+  EXPECT_GE(thin.lit, std::size_t(kStrands * kLengthPixels)) << "every row of every strand shows";
+  std::printf("coverage %dx: 0.3 px strands %.2f px² vs analytic %.2f (%.3f %%), %zu pixels lit\n", int(samples),
+              thin.sum, area, 100.0 * (thin.sum - area) / area, thin.lit);
+}
+
+TEST_F(HairPassTest, SubPixelStrandsCoverTheirAreaWithoutMsaa) {
+  expectSubPixelCoverage(*this, vk::SampleCountFlagBits::e1);
+}
+
+TEST_F(HairPassTest, SubPixelStrandsCoverTheirAreaWith4xMsaa) {
+  expectSubPixelCoverage(*this, vk::SampleCountFlagBits::e4);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shading
+
+constexpr vk::Extent2D kShadingExtent{64, 64};
+
+// One opaque strand 20 pixels wide through the image centre, tilted towards the camera so that
+// θr ≠ 0, seen by an orthographic camera along −z (ωr = +z at every pixel).
+const glm::vec3 kTiltedTangent = glm::normalize(glm::vec3(0.0f, 1.0f, 0.45f));
+
+StrandData tiltedStrand() {
+  StrandData data;
+  addStraightStrand(data, -0.03f * kTiltedTangent, 0.03f * kTiltedTangent, 16);
+  return data;
+}
+
+// The unit vector at longitudinal angle θi (radians, from the normal plane of kTiltedTangent) and
+// azimuth φ (degrees, from the eye's projection +z on that plane).
+glm::vec3 lightAt(double thetaI, double phiDegrees) {
+  const glm::dvec3 t(kTiltedTangent);
+  const glm::dvec3 u = glm::normalize(glm::dvec3(0, 0, 1) - t.z * t);
+  const glm::dvec3 w = glm::cross(t, u);
+  const double phi = phiDegrees * std::numbers::pi / 180.0;
+  return glm::vec3(std::sin(thetaI) * t + std::cos(thetaI) * (std::cos(phi) * u + std::sin(phi) * w));
+}
+
+glm::dvec3 centreColour(const Pixels& pixels, vk::Extent2D extent, int dx = 0, int dy = 0) {
+  const std::size_t i = std::size_t(extent.height / 2 + dy) * extent.width + extent.width / 2 + dx;
+  return glm::dvec3(pixels[i]);
+}
+
+TEST_F(HairPassTest, ColourOnAStrandMatchesTheCpuMarschnerModel) {
+  const HairShadingParams params = blondeHairParams();
+  const MarschnerLut& table = lut(params);
+  const glm::vec3 ambient(0.02f, 0.025f, 0.03f);
+  const HairGroomSettings groom{.width = 20 * kMetresPerPixel, .opacity = 1.0f};
+  const glm::dvec3 toEye(0.0, 0.0, 1.0);
+  // Lights on the peaks of the three lobes for this strand's θr = asin(ωr·t) ≈ 24°: each lobe
+  // peaks at θh = (θi + θr)/2 = α_p, so θi = 2α_p − θr; R at φ = 20°, TRT at φ = 10° (its
+  // azimuthal peak lies near φ = 0 at this θr), TT from behind (φ = 165°).
+  const double thetaR = std::asin(double(kTiltedTangent.z));
+  const std::array lights{
+      DirectionalLight{
+          .direction = lightAt(2.0 * params.r.shift - thetaR, 20.0), .color = {1.0f, 0.9f, 0.8f}, .intensity = 2.0f},
+      DirectionalLight{.direction = lightAt(2.0 * params.trt.shift - thetaR, 10.0), .intensity = 1.5f},
+      DirectionalLight{.direction = lightAt(2.0 * params.tt.shift - thetaR, 165.0), .intensity = 1.0f}};
+  const AzimuthalLobes albedo = azimuthalAlbedo(params, 1.0);
+  const glm::dvec3 ambientAlbedo = albedo.tt + albedo.trt + glm::dvec3(albedo.r);
+  for (const DirectionalLight& light : lights) {
+    const Pixels pixels =
+        render(table, tiltedStrand(), kShadingExtent, vk::SampleCountFlagBits::e1, [&](HairPass& pass) {
+          return pass.update(HairView{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent},
+                             std::span(&light, 1), ambient, groom);
+        });
+    // Reference: S from the CPU model (double) × perpendicular irradiance, plus ambient radiance
+    // × the white-furnace albedo at θr = 0 (the pass's documented ambient term).
+    const glm::dvec3 scattering =
+        hairScattering(params, glm::dvec3(light.direction), toEye, glm::dvec3(kTiltedTangent));
+    const glm::dvec3 expected =
+        scattering * glm::dvec3(light.color * light.intensity) + glm::dvec3(ambient) * ambientAlbedo;
+    // Pixels on the strand, away from its edges; all see the same directions.
+    for (const auto& [dx, dy] : std::array{std::pair{0, 0}, std::pair{-5, 10}, std::pair{4, -12}}) {
+      const glm::dvec3 colour = centreColour(pixels, kShadingExtent, dx, dy);
+      for (int c = 0; c < 3; ++c) {
+        // 2 %: the LUTs reproduce the model within 1 % (marschner_lut.hpp), the 16-bit target
+        // rounds by 2^-11, lavapipe's asin/acos move a lookup by < 0.05 texel.
+        EXPECT_NEAR(colour[c], expected[c], 0.02 * expected[c])
+            << "light (" << light.direction.x << ", " << light.direction.y << ", " << light.direction.z << ") channel "
+            << c << " pixel offset " << dx << "," << dy;
+      }
+      if (dx == 0)
+        std::printf("shading: light (%.2f %.2f %.2f): GPU (%.5f %.5f %.5f) CPU (%.5f %.5f %.5f)\n", light.direction.x,
+                    light.direction.y, light.direction.z, colour.r, colour.g, colour.b, expected.r, expected.g,
+                    expected.b);
+    }
+  }
+}
+
+// Back-lit (the light behind the strand, facing the camera): TT carries the light through the
+// fibre, and dark hair absorbs it (σa ≈ 27× blonde's). Through the FrameInput path with a
+// perspective camera, ambient 0. The relation: blonde is brighter in every channel, by the ratio
+// of the CPU model at the centre pixel's directions within 5 % (LUTs 1 % each, the view
+// direction of the centre pixel vs the strand's centre, half floats).
+TEST_F(HairPassTest, BlondeTransmitsMoreThanDarkWhenBackLit) {
+  const HairShadingParams blonde = blondeHairParams();
+  const HairShadingParams dark = darkHairParams();
+  FrameInput frame{
+      .camera = {.position = {0, 0, 0.3f}, .target = {0, 0, 0}},
+      .lights = {DirectionalLight{.direction = glm::normalize(glm::vec3(0.1f, 0.2f, -1.0f)), .intensity = 3.0f}},
+      .ambient = glm::vec3(0.0f)};
+  const HairGroomSettings groom{.width = 0.03f};
+  auto draw = [&](const HairShadingParams& params) {
+    return render(lut(params), tiltedStrand(), kShadingExtent, vk::SampleCountFlagBits::e1,
+                  [&](HairPass& pass) { return pass.update(frame, kShadingExtent, groom); });
+  };
+  const glm::dvec3 blondeColour = centreColour(draw(blonde), kShadingExtent);
+  const glm::dvec3 darkColour = centreColour(draw(dark), kShadingExtent);
+  const glm::dvec3 toLight(frame.lights[0].direction);
+  const glm::dvec3 toEye(0.0, 0.0, 1.0);
+  const glm::dvec3 tangent(kTiltedTangent);
+  const glm::dvec3 expectedRatio =
+      hairScattering(blonde, toLight, toEye, tangent) / hairScattering(dark, toLight, toEye, tangent);
+  for (int c = 0; c < 3; ++c) {
+    ASSERT_GT(darkColour[c], 0.0) << "channel " << c;
+    const double ratio = blondeColour[c] / darkColour[c];
+    EXPECT_GT(ratio, 2.0) << "channel " << c;
+    EXPECT_NEAR(ratio, expectedRatio[c], 0.05 * expectedRatio[c]) << "channel " << c;
+  }
+  // Pheomelanin absorbs blue most: blonde transmission is warm.
+  EXPECT_GT(blondeColour.r, blondeColour.b);
+  std::printf("back-lit: blonde (%.4f %.4f %.4f) dark (%.5f %.5f %.5f), CPU ratio (%.2f %.2f %.2f)\n", blondeColour.r,
+              blondeColour.g, blondeColour.b, darkColour.r, darkColour.g, darkColour.b, expectedRatio.r,
+              expectedRatio.g, expectedRatio.b);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input
+
+TEST_F(HairPassTest, RejectsBadStrandsAndGroomSettings) {
+  const MarschnerLut& table = lut(blondeHairParams());
+  auto pass = HairPass::create(device(), table, {});
+  ASSERT_TRUE(pass.has_value()) << pass.error().message;
+  EXPECT_FALSE((*pass)->setStrands({}).has_value()) << "null buffers";
+  const Buffer buffer(device(), 64, vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
+  EXPECT_FALSE((*pass)
+                   ->setStrands({.positions = *buffer.buffer(), .tangents = *buffer.buffer(), .verticesPerStrand = 1})
+                   .has_value());
+  const HairView view{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent};
+  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.width = 0.0f}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.width = std::nanf("")}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.opacity = 1.5f}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.minimumPixelWidth = 0.0f}).has_value());
+  EXPECT_FALSE((*pass)->update(HairView{glm::mat4(0.0f), kShadingExtent}, {}, glm::vec3(0), {}).has_value());
+  EXPECT_FALSE((*pass)->update(HairView{view.viewProjection, {0, 0}}, {}, glm::vec3(0), {}).has_value());
+  EXPECT_TRUE((*pass)->update(view, {}, glm::vec3(0), {}).has_value());
+}
+
+}  // namespace
+}  // namespace mane::render
