@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "render/hair_data.hpp"
+
 namespace mane::render {
 
 /// Tightly packed 8-bit RGBA texels, rows top to bottom.
@@ -42,6 +44,7 @@ struct MaterialData {
 struct StaticScene {
   std::vector<MeshData> meshes;
   std::vector<MaterialData> materials;
+  std::vector<HairGroomData> grooms;  ///< drawn after the surfaces; guides via Renderer::updateHair
 };
 
 struct MeshInstance {

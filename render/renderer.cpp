@@ -81,6 +81,44 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
   } catch (const std::exception& error) {
     return fail(std::string("uploading the scene failed: ") + error.what());
   }
+  hair_.clear();
+  for (std::size_t g = 0; g < scene.grooms.size(); ++g) {
+    const HairGroomData& groom = scene.grooms[g];
+    const auto failed = [&](const Error& error) { return fail("groom " + std::to_string(g) + ": " + error.message); };
+    const auto look = static_cast<std::size_t>(groom.look);
+    if (look >= 2) return fail("groom " + std::to_string(g) + ": unknown hair look");
+    if (luts_.size() < 2) luts_.resize(2);
+    if (!luts_[look]) {
+      auto lut = MarschnerLut::create(*device_, groom.look == HairLook::kDark ? darkHairParams() : blondeHairParams());
+      if (!lut) return failed(lut.error());
+      luts_[look] = std::make_unique<MarschnerLut>(std::move(*lut));
+    }
+    auto strands = StrandInterpolationPass::create(*device_, groom.layout);
+    if (!strands) return failed(strands.error());
+    auto ribbons = HairPass::create(*device_, *luts_[look],
+                                    {.colorFormat = RenderTarget::kHdrFormat,
+                                     .depthFormat = RenderTarget::kDepthFormat,
+                                     .samples = target_.samples()});
+    if (!ribbons) return failed(ribbons.error());
+    const StrandInterpolationPass& pass = **strands;
+    if (auto set = (*ribbons)->setStrands({.positions = *pass.positions().buffer(),
+                                           .tangents = *pass.tangents().buffer(),
+                                           .strandCount = pass.strandCount(),
+                                           .verticesPerStrand = pass.vertexCount()});
+        !set)
+      return failed(set.error());
+    hair_.push_back({std::move(*strands), std::move(*ribbons), groom.settings, false});
+  }
+  return {};
+}
+
+Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions) {
+  if (groom >= hair_.size())
+    return fail("updateHair: no groom " + std::to_string(groom) + " (the scene has " + std::to_string(hair_.size()) +
+                ")");
+  if (auto updated = hair_[groom].strands->updateGuides(guidePositions); !updated)
+    return fail("groom " + std::to_string(groom) + ": " + updated.error().message);
+  hair_[groom].hasGuides = true;
   return {};
 }
 
@@ -100,6 +138,16 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   transition(commands, target_.depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
              Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
              Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
+
+  // Dense strands first (compute), so the ribbons can read them inside the main pass.
+  bool hair = false;
+  for (const HairGroom& groom : hair_) {
+    if (!groom.hasGuides) continue;
+    if (!hair) timer_.begin(commands, "strands");
+    groom.strands->record(commands);
+    hair = true;
+  }
+  if (hair) timer_.end(commands);
 
   timer_.begin(commands, "surfaces");
   vk::RenderingAttachmentInfo color{
@@ -127,6 +175,14 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
                                             .pDepthAttachment = &depth});
   setViewportAndScissor(commands, target_.extent());
   surfaces_.draw(commands, frame);
+  // Hair over the opaque surfaces, depth-tested against them (render/passes/hair_pass.hpp).
+  if (hair) {
+    timer_.end(commands);
+    timer_.begin(commands, "hair");
+    for (const HairGroom& groom : hair_)
+      if (groom.hasGuides && groom.ribbons->update(frame, target_.extent(), groom.settings))
+        groom.ribbons->draw(commands);
+  }
   commands.endRendering();
   timer_.end(commands);
 

@@ -1,7 +1,7 @@
 #pragma once
-// Runs the passes of a frame into an offscreen RenderTarget: surfaces into HDR colour, then
-// the output pass to 8-bit sRGB. Reads the result back for PNG files, or leaves it for a
-// window to blit into its swapchain.
+// Runs the passes of a frame into an offscreen RenderTarget: the grooms' strand interpolation
+// (compute), surfaces then hair ribbons into HDR colour, then the output pass to 8-bit sRGB. Reads the result back for
+// PNG files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
@@ -9,7 +9,10 @@
 
 #include "render/frame.hpp"
 #include "render/gpu_timer.hpp"
+#include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_pass.hpp"
 #include "render/passes/output_pass.hpp"
+#include "render/passes/strand_interpolation.hpp"
 #include "render/passes/surface_pass.hpp"
 #include "render/render_target.hpp"
 
@@ -32,6 +35,11 @@ public:
   /// one per vertex; takes effect from the next render.
   Result<void> updateMesh(std::size_t mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
 
+  /// This frame's guide positions of groom `groom` of the scene (world space, metres: guide
+  /// after guide, root first, as the groom's layout counts them); takes effect from the next
+  /// render. Errors: no such groom, a count that does not match, a NaN or a collapsed guide frame.
+  Result<void> updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions);
+
   /// Records every pass of `frame`; leaves target().output() in TRANSFER_SRC layout.
   void record(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
 
@@ -53,6 +61,15 @@ private:
   const Device* device_;
   RenderTarget target_;
   SurfacePass surfaces_;
+  // A groom: its strands interpolated on the GPU, then drawn as ribbons.
+  struct HairGroom {
+    std::unique_ptr<StrandInterpolationPass> strands;
+    std::unique_ptr<HairPass> ribbons;
+    HairGroomSettings settings;
+    bool hasGuides = false;  // updateHair called at least once
+  };
+  std::vector<std::unique_ptr<MarschnerLut>> luts_;  // per HairLook, baked when a groom needs it
+  std::vector<HairGroom> hair_;
   OutputPass output_;
   GpuTimer timer_;
 };

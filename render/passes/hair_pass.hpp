@@ -65,26 +65,12 @@
 #include <glm/glm.hpp>
 
 #include "render/frame.hpp"
+#include "render/hair_data.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
 namespace mane::render {
-
-/// Per-groom look of the ribbons: plain data, may change every frame.
-struct HairGroomSettings {
-  /// Strand width at the root, metres (> 0). Human hair is 50–100 µm; grooms with fewer, thicker
-  /// strands than a real head (Nalu: 4,095) use wider ones.
-  float width = 1e-4f;
-  /// Width at the tip over width at the root, in [0, 1]; linear in t along the strand.
-  float tipWidthScale = 1.0f;
-  /// Alpha of a strand at least minimumPixelWidth wide on screen, in [0, 1].
-  float opacity = 1.0f;
-  /// Narrowest ribbon drawn, pixels (≥ 0.25); narrower strands are widened to it and their alpha
-  /// scaled by true / drawn width. 1 pixel: every strand crosses a pixel centre (or, at 4×
-  /// MSAA, one sample of each x offset) per row it spans.
-  float minimumPixelWidth = 1.0f;
-};
 
 /// The dense strands to draw: buffers in the StrandInterpolationPass layout (see the file
 /// comment). The buffers must hold strandCount × verticesPerStrand vec4s each and outlive the
