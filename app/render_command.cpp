@@ -82,11 +82,10 @@ void run(const RenderOptions& options) {
   std::vector<std::vector<render::PassTiming>> timings;
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < options.frames; ++frame) {
-    if (frame > 0) {
+    if (frame > 0)
       if (auto advanced = world->advance(1.0 / options.fps, options.threads); !advanced)
         return failWith(advanced.error().message);
-      if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
-    }
+    if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
     auto frameTimings = (*renderer)->render(world->frameInput());
     if (!frameTimings) return failWith(frameTimings.error().message);
     timings.push_back(*frameTimings);

@@ -23,6 +23,8 @@ Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const sc
 Result<void> uploadDynamicMeshes(const scenes::World& world, render::Renderer& renderer) {
   for (const auto& mesh : world.dynamicMeshes())
     if (auto updated = renderer.updateMesh(mesh.mesh, mesh.positions, mesh.normals); !updated) return updated;
+  for (const auto& hair : world.hairGuides())
+    if (auto updated = renderer.updateHair(hair.groom, hair.positions); !updated) return updated;
   return {};
 }
 

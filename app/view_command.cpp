@@ -107,6 +107,7 @@ void run(const ViewOptions& options) {
   auto renderer = render::Renderer::create(**device, {.extent = {width, height}, .msaaSamples = options.msaa});
   if (!renderer) return failWith(renderer.error().message);
   if (auto uploaded = (*renderer)->setScene(world->staticScene()); !uploaded) return failWith(uploaded.error().message);
+  if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
 
   InputState input;
   input.orbit = OrbitCamera::from(world->frameInput().camera);

@@ -328,11 +328,14 @@ SimulationSettings parseSimulation(const Json& json, const std::string& path) {
   SimulationSettings sim;
   sim.stepSeconds = fields.optional<float>("step", sim.stepSeconds);
   sim.maxStepsPerFrame = fields.optional<int>("max_steps_per_frame", sim.maxStepsPerFrame);
+  sim.settleSeconds = fields.optional<float>("settle_seconds", sim.settleSeconds);
   fields.finish();
   require(sim.stepSeconds > 0.0f && sim.stepSeconds <= 0.1f, fields.child("step"),
           "expected a time step in (0, 0.1] seconds");
   require(sim.maxStepsPerFrame >= 1 && sim.maxStepsPerFrame <= 1000, fields.child("max_steps_per_frame"),
           "expected 1..1000");
+  require(sim.settleSeconds >= 0.0f && sim.settleSeconds <= 10.0f, fields.child("settle_seconds"),
+          "expected 0..10 seconds");
   return sim;
 }
 

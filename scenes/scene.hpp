@@ -184,6 +184,9 @@ struct HeadMotion {
 struct SimulationSettings {
   float stepSeconds = 1.0f / 120.0f;  ///< fixed step of the accumulator, s, > 0
   int maxStepsPerFrame = 8;           ///< cap so a slow frame cannot spiral, ≥ 1
+  /// Simulated at load with every body held at its pose at time 0, before the first frame, so
+  /// hair and cloth start hanging at rest rather than in their modelled shape; s, in [0, 10].
+  float settleSeconds = 0.0f;
 };
 
 /// A validated scene.

@@ -8,6 +8,7 @@
 
 #include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
+#include "physics/interpolation.hpp"
 #include "scenes/groom_loader.hpp"
 #include "scenes/scene_colliders.hpp"
 
@@ -60,6 +61,10 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   SceneColliders colliders(world.scene_, world.meshes_);
   if (auto loaded = world.loadGrooms(resolver, colliders); !loaded) return std::unexpected(loaded.error());
   if (auto loaded = world.loadCloths(resolver, colliders); !loaded) return std::unexpected(loaded.error());
+  // Settling: 1/60 s frames with every body held where it is at time 0; the clock stays at 0.
+  const int settleFrames = static_cast<int>(std::lround(world.scene_.simulation.settleSeconds * 60.0f));
+  for (int frame = 0; frame < settleFrames; ++frame)
+    if (auto settled = world.simulate(1.0 / 60.0, 1); !settled) return std::unexpected(settled.error());
   return world;
 }
 
@@ -157,9 +162,48 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       if (auto applied = hair->setColliders(std::move(*set)); !applied)
         return fail("groom " + groom.name + ": colliders: " + applied.error().message);
     }
-    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom});
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom, denseGroom(guides)});
+    if (!grooms_.back().dense)
+      notes_.push_back("groom " + groom.name + ": guides of different lengths: simulated, not drawn");
   }
   return {};
+}
+
+namespace {
+
+// Every groom is drawn as Nalu's: 4,095 dense strands (or one per guide where there are more),
+// each following one guide with a root offset and some clumping (physics/interpolation.hpp).
+constexpr std::size_t kDenseStrands = 4095;
+
+}  // namespace
+
+std::optional<World::DenseGroom> World::denseGroom(std::span<const std::vector<glm::vec3>> guides) {
+  physics::DenseGroomSettings settings;
+  settings.strandCount = std::max(kDenseStrands, guides.size());
+  auto layout = physics::buildDenseGroomLayout(guides, settings);
+  if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
+  DenseGroom dense{layout->guideVertexCount, layout->vertexCount, {}, {}};
+  for (const physics::GuideFrameRef& frame : layout->guideFrames)
+    dense.guideFrames.push_back({frame.partnerA, frame.partnerB});
+  for (const physics::DenseStrand& strand : layout->strands) {
+    render::DenseStrand& copy = dense.strands.emplace_back();
+    std::copy(std::begin(strand.guides), std::end(strand.guides), copy.guides);
+    copy.guideCount = strand.guideCount;
+    std::copy(std::begin(strand.weights), std::end(strand.weights), copy.weights);
+    copy.vertexScale = strand.vertexScale;
+    copy.rootOffset = strand.rootOffset;
+    copy.clump = strand.clump;
+    copy.tipJitter = strand.tipJitter;
+    copy.lengthScale = strand.lengthScale;
+  }
+  return dense;
+}
+
+std::vector<World::HairGuides> World::hairGuides() const {
+  std::vector<HairGuides> result;
+  for (const SimulatedGroom& groom : grooms_)
+    if (groom.dense) result.push_back({result.size(), groom.hair.particles().positions});
+  return result;
 }
 
 glm::mat4 World::bodyPlacement(const MeshInstance& mesh, double time) const {
@@ -191,6 +235,10 @@ Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& co
 Result<void> World::advance(double frameDt, unsigned threads) {
   if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("frame time must be finite and ≥ 0");
   time_ += frameDt;
+  return simulate(frameDt, threads);
+}
+
+Result<void> World::simulate(double frameDt, unsigned threads) {
   for (SimulatedGroom& groom : grooms_) {
     const glm::mat4 head = bodyPlacement(scene_.meshes[groom.mesh], time_);
     if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
@@ -217,6 +265,19 @@ render::StaticScene World::staticScene() const {
   }
   // Last: the material of meshes that name none (a plain Material's defaults).
   result.materials.push_back(render::MaterialData{.baseColor = Material{}.baseColour});
+  // Grooms: blonde ribbons 0.4 mm wide (4,095 strands stand for a head of ~100,000 hairs).
+  for (const SimulatedGroom& groom : grooms_) {
+    if (!groom.dense) continue;
+    const DenseGroom& dense = *groom.dense;
+    result.grooms.push_back(
+        render::HairGroomData{.layout = {.guideCount = static_cast<std::uint32_t>(groom.hair.strandCount()),
+                                         .guideVertexCount = dense.guideVertexCount,
+                                         .vertexCount = dense.vertexCount,
+                                         .guideFrames = dense.guideFrames,
+                                         .strands = dense.strands},
+                              .look = render::HairLook::kBlonde,
+                              .settings = {.width = 4e-4f}});
+  }
   // Cloth surfaces come after the scene's meshes, in world space, rewritten every frame.
   for (const SceneCloth& cloth : cloths_) {
     const Mesh& surface = cloth.surface();

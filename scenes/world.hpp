@@ -4,6 +4,8 @@
 // plain data. The composition root: the only place physics, subdiv and render meet.
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,14 @@ public:
   };
   std::vector<DynamicMesh> dynamicMeshes() const;
 
+  /// A groom of staticScene() (render order) and its simulated guides this frame: hand them to
+  /// Renderer::updateHair before rendering.
+  struct HairGuides {
+    std::size_t groom = 0;
+    std::span<const glm::vec3> positions;  ///< world space, metres, guide after guide
+  };
+  std::vector<HairGuides> hairGuides() const;
+
   const std::vector<SceneCloth>& cloths() const { return cloths_; }
 
   /// Hash of every simulated state (grooms, then cloths, in scene order) and of the clock.
@@ -71,10 +81,18 @@ private:
     std::optional<Image> albedo;
     std::optional<Image> normalMap;
   };
+  /// A groom's dense strands as the renderer draws them (render::HairGroomData's spans point here).
+  struct DenseGroom {
+    std::uint32_t guideVertexCount = 0;
+    std::uint32_t vertexCount = 0;
+    std::vector<render::GuideFrameRef> guideFrames;
+    std::vector<render::DenseStrand> strands;
+  };
   struct SimulatedGroom {
     std::size_t mesh = 0;  ///< index into scene_.meshes the roots follow
     physics::HairSystem hair;
-    std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
+    std::size_t sceneGroom = 0;       ///< index into scene_.grooms (skipped grooms leave gaps)
+    std::optional<DenseGroom> dense;  ///< none when its guides differ in point count
   };
 
   World() = default;
@@ -85,6 +103,10 @@ private:
   /// The rigid part of the mesh's placement at `time` (its scale divided out, `bodyMatrix`):
   /// what hair roots, cloth pins and their colliders follow.
   glm::mat4 bodyPlacement(const MeshInstance& mesh, double time) const;
+  /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
+  Result<void> simulate(double frameDt, unsigned threads);
+  /// The dense strands drawn for `guides` (rest shape, equal point counts), or none.
+  static std::optional<DenseGroom> denseGroom(std::span<const std::vector<glm::vec3>> guides);
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;

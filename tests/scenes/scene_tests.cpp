@@ -46,7 +46,7 @@ TEST(Scene, NaluLoadsWithTheLeePerrySmithHeadAndItsMaps) {
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   EXPECT_EQ(scene->output.width, 1280);
   EXPECT_EQ(scene->output.height, 720);
-  ASSERT_EQ(scene->lights.size(), 1u);
+  ASSERT_EQ(scene->lights.size(), 2u);  // key and back light
   EXPECT_NEAR(glm::length(scene->lights[0].direction), 1.0f, 1e-6f);
   const MeshInstance* head = scene->findMesh("head");
   ASSERT_NE(head, nullptr);
@@ -164,6 +164,9 @@ TEST(Scene, ValuesOutOfRangeAreRejected) {
                         "grooms": [{"name": "g", "source": "procedural", "attached_mesh": "head",
                                     "strands": 2000000000}]})"),
             "dir/bad.json: grooms[0].strands: expected a strand count in 0..1000000");
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                        "simulation": {"settle_seconds": -1}})"),
+            "dir/bad.json: simulation.settle_seconds: expected 0..10 seconds");
 }
 
 TEST(Scene, ReferencesMustResolve) {

@@ -5,7 +5,9 @@
 // side facing the key light and is skin-coloured where lit (red > green > blue, as in the
 // albedo map), so a black, blank or untextured frame fails whatever the golden says. Then the
 // golden image (tests/golden/nalu_head.png, lavapipe, Mesa 22.3.6) within a tolerance that
-// allows rasterizer rounding, not a changed picture.
+// allows rasterizer rounding, not a changed picture. The groom's guides are not handed to the
+// renderer (Renderer::updateHair), so the hair is not drawn and the skin stays in view; the hair
+// has its own test in world_test.cpp.
 
 #include <gtest/gtest.h>
 
