@@ -263,9 +263,10 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
 // The AVX2 path. The strands of the block are copied into lane-by-lane scratch storage (so a
 // register holds one coordinate of 8 strands), stepped with the kernels of
 // detail/strand_lanes.hpp — the same operations per strand and in the same order as
-// simulateStrandBlock — and copied back. Collisions, the final settling pass, the velocity
-// clamp and the fault check run per particle on the same storage with the same code as the
-// scalar path. Only without shape constraints and wind (see vectorised()).
+// simulateStrandBlock — and copied back. The collision push runs 8 particles at a time
+// (detail/collision_lanes.hpp, bit for bit collidePoint); tether repairs and the velocity clamp
+// run per particle with the scalar path's code. Only without shape constraints and wind (see
+// vectorised()).
 void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
                                           std::vector<float>& scratch) {
 #if MANE_STRAND_LANES_AVX2
