@@ -2,6 +2,8 @@
 // The images a frame renders into: HDR colour (RGBA16F, multisampled where asked, resolved to
 // a single-sample image the post passes read), depth, and the 8-bit sRGB output.
 
+#include <glm/vec4.hpp>
+
 #include "render/resources.hpp"
 
 namespace mane::render {
@@ -31,6 +33,13 @@ public:
   const Image& depth() const { return depth_; }
   /// 8-bit sRGB display image; can be copied to the host or blitted to a swapchain.
   const Image& output() const { return output_; }
+
+  /// Starts the main scene pass: discards the colour and depth images' old contents, begins
+  /// dynamic rendering into sceneColor() (cleared to `clearColor`, linear RGBA; resolved into
+  /// hdr() at the end under MSAA) and depth (cleared to 1, not kept), and sets the viewport and
+  /// scissor to the whole target. End it with commands.endRendering(); hdr() is then in
+  /// COLOR_ATTACHMENT_OPTIMAL.
+  void beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const;
 
 private:
   RenderTargetSettings settings_;

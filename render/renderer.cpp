@@ -129,16 +129,6 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   surfaces_.update(frame, target_.aspect());
   timer_.reset(commands);
 
-  // Main pass: previous contents are discarded (UNDEFINED) and cleared.
-  transition(commands, target_.sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-             Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-  if (target_.multisampled())
-    transition(commands, target_.hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-               Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-  transition(commands, target_.depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
-             Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
-             Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
-
   // Dense strands first (compute), so the ribbons can read them inside the main pass.
   bool hair = false;
   for (const HairGroom& groom : hair_) {
@@ -150,30 +140,8 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   if (hair) timer_.end(commands);
 
   timer_.begin(commands, "surfaces");
-  vk::RenderingAttachmentInfo color{
-      .imageView = *target_.sceneColor().view(),
-      .imageLayout = Layout::eColorAttachmentOptimal,
-      .loadOp = vk::AttachmentLoadOp::eClear,
-      .storeOp = vk::AttachmentStoreOp::eStore,
-      .clearValue = {
-          .color = {.float32 = std::array{frame.background.r, frame.background.g, frame.background.b, 1.0f}}}};
-  if (target_.multisampled()) {
-    color.resolveMode = vk::ResolveModeFlagBits::eAverage;
-    color.resolveImageView = *target_.hdr().view();
-    color.resolveImageLayout = Layout::eColorAttachmentOptimal;
-    color.storeOp = vk::AttachmentStoreOp::eDontCare;
-  }
-  const vk::RenderingAttachmentInfo depth{.imageView = *target_.depth().view(),
-                                          .imageLayout = Layout::eDepthAttachmentOptimal,
-                                          .loadOp = vk::AttachmentLoadOp::eClear,
-                                          .storeOp = vk::AttachmentStoreOp::eDontCare,
-                                          .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
-  commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = target_.extent()},
-                                            .layerCount = 1,
-                                            .colorAttachmentCount = 1,
-                                            .pColorAttachments = &color,
-                                            .pDepthAttachment = &depth});
-  setViewportAndScissor(commands, target_.extent());
+  // Main pass: previous contents are discarded and cleared.
+  target_.beginScene(commands, glm::vec4(frame.background, 1.0f));
   surfaces_.draw(commands, frame);
   // Hair over the opaque surfaces, depth-tested against them (render/passes/hair_pass.hpp).
   if (hair) {

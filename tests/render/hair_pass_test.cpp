@@ -100,35 +100,7 @@ public:
       using Layout = vk::ImageLayout;
       using Stage = vk::PipelineStageFlagBits2;
       using Access = vk::AccessFlagBits2;
-      transition(commands, target.sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal,
-                 Stage::eAllCommands, Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-      if (target.multisampled())
-        transition(commands, target.hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-                   Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-      transition(commands, target.depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
-                 Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
-                 Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
-      vk::RenderingAttachmentInfo color{.imageView = *target.sceneColor().view(),
-                                        .imageLayout = Layout::eColorAttachmentOptimal,
-                                        .loadOp = vk::AttachmentLoadOp::eClear,
-                                        .storeOp = vk::AttachmentStoreOp::eStore,
-                                        .clearValue = {.color = {.float32 = std::array{0.0f, 0.0f, 0.0f, 0.0f}}}};
-      if (target.multisampled()) {
-        color.resolveMode = vk::ResolveModeFlagBits::eAverage;
-        color.resolveImageView = *target.hdr().view();
-        color.resolveImageLayout = Layout::eColorAttachmentOptimal;
-        color.storeOp = vk::AttachmentStoreOp::eDontCare;
-      }
-      const vk::RenderingAttachmentInfo depth{.imageView = *target.depth().view(),
-                                              .imageLayout = Layout::eDepthAttachmentOptimal,
-                                              .loadOp = vk::AttachmentLoadOp::eClear,
-                                              .storeOp = vk::AttachmentStoreOp::eDontCare,
-                                              .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
-      commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = extent},
-                                                .layerCount = 1,
-                                                .colorAttachmentCount = 1,
-                                                .pColorAttachments = &color,
-                                                .pDepthAttachment = &depth});
+      target.beginScene(commands, glm::vec4(0.0f));
       (*pass)->draw(commands);
       commands.endRendering();
       transition(commands, target.hdr(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
