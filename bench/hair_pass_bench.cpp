@@ -4,9 +4,10 @@
 //
 //   BM_EmptyFrame/<samples>/0: record, submit, wait: begin rendering (clear colour + depth), end
 //     (resolve at 4×).
-//   BM_HairFrame/<samples>/<lights>: the same with the hair draw: blonde Marschner LUTs, a key and
-//     a back light (lights 2) or ambient only (lights 0, the cost of geometry and raster alone),
-//     strands ~1.3 pixels wide, premultiplied-alpha blending.
+//   BM_HairFrame/<samples>/<lights>: the same with the hair: the per-vertex shading dispatch
+//     (render/passes/hair_lighting, blonde Marschner LUTs, no shadow maps) with a key and a back
+//     light (lights 2) or ambient only (lights 0), then the ribbon draw, strands ~1.3 pixels
+//     wide, premultiplied-alpha blending.
 //
 // The groom: strands hanging from a half-sphere "scalp" (radius 0.1 m), 0.3 m down and flaring
 // out, seen from 0.6 m: about a third of the frame. Wall time around submit + wait (LAVAPIPE.md:
@@ -29,7 +30,9 @@
 #include <benchmark/benchmark.h>
 
 #include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_lighting.hpp"
 #include "render/passes/hair_pass.hpp"
+#include "render/passes/hair_shadows.hpp"
 #include "render/render_target.hpp"
 
 namespace {
@@ -93,18 +96,21 @@ Groom makeGroom(const Device& device) {
 
 struct Setup {
   std::unique_ptr<RenderTarget> target;
+  std::unique_ptr<HairLightingPass> lighting;
   std::unique_ptr<HairPass> pass;
 };
 
 struct Shared {
   std::unique_ptr<Device> device;
   std::unique_ptr<MarschnerLut> lut;
+  std::unique_ptr<HairShadows> shadows;  // none: the empty map
   Groom groom;
   std::map<int, Setup> setups;
 
   Shared() {
     device = orExit(Device::create(deviceSettingsFromEnvironment()), "device");
     lut = std::make_unique<MarschnerLut>(orExit(MarschnerLut::create(*device, blondeHairParams()), "LUT"));
+    shadows = orExit(HairShadows::create(*device), "shadows");
     groom = makeGroom(*device);
   }
 
@@ -112,13 +118,16 @@ struct Shared {
     auto [it, inserted] = setups.try_emplace(int(samples) * 10 + int(lights));
     if (!inserted) return it->second;
     it->second.target = std::make_unique<RenderTarget>(*device, RenderTargetSettings{kExtent, samples});
-    it->second.pass = orExit(
-        HairPass::create(
-            *device, *lut,
-            {.colorFormat = RenderTarget::kHdrFormat, .depthFormat = RenderTarget::kDepthFormat, .samples = samples}),
-        "hair pass");
+    it->second.lighting =
+        orExit(HairLightingPass::create(*device, *lut, *shadows, groom.positions, groom.tangents, kStrands, kVertices),
+               "hair lighting");
+    it->second.pass = orExit(HairPass::create(*device, {.colorFormat = RenderTarget::kHdrFormat,
+                                                        .depthFormat = RenderTarget::kDepthFormat,
+                                                        .samples = samples}),
+                             "hair pass");
     orExit(it->second.pass->setStrands({.positions = *groom.positions.buffer(),
                                         .tangents = *groom.tangents.buffer(),
+                                        .radiance = *it->second.lighting->radiance().buffer(),
                                         .strandCount = kStrands,
                                         .verticesPerStrand = kVertices}),
            "strands");
@@ -127,6 +136,10 @@ struct Shared {
         .lights = {DirectionalLight{.direction = glm::normalize(glm::vec3(0.4f, 0.6f, 0.7f)), .intensity = 2.0f},
                    DirectionalLight{.direction = glm::normalize(glm::vec3(-0.2f, 0.3f, -0.9f)), .intensity = 1.0f}}};
     frame.lights.resize(lights);
+    const float aspect = float(kExtent.width) / float(kExtent.height);
+    orExit(it->second.lighting->update(frame.camera.projection(aspect) * frame.camera.view(), frame.lights,
+                                       frame.ambient, shadows->uniforms()),
+           "lighting");
     orExit(it->second.pass->update(frame, kExtent, HairGroomSettings{.width = 8e-4f, .opacity = 0.9f}), "update");
     return it->second;
   }
@@ -137,8 +150,10 @@ Shared& shared() {
   return instance;
 }
 
-void frame(const Device& device, const RenderTarget& target, const HairPass* pass) {
+void frame(const Device& device, const RenderTarget& target, const Setup* hair) {
+  const HairPass* pass = hair ? hair->pass.get() : nullptr;
   device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    if (hair) hair->lighting->record(commands);
     target.beginScene(commands, {0.02f, 0.02f, 0.03f, 1.0f});
     if (pass) pass->draw(commands);
     commands.endRendering();
@@ -156,7 +171,7 @@ void BM_EmptyFrame(benchmark::State& state) {
 
 void BM_HairFrame(benchmark::State& state) {
   Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)));
-  for (auto _ : state) frame(*shared().device, *setup.target, setup.pass.get());
+  for (auto _ : state) frame(*shared().device, *setup.target, &setup);
   state.counters["triangles"] = double(setup.pass->ribbonVertexCount() / 3);
 }
 

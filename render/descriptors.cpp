@@ -45,6 +45,17 @@ void writeUniformBuffer(const Device& device, const vk::raii::DescriptorSet& set
                                        {});
 }
 
+void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                        const Buffer& buffer) {
+  const vk::DescriptorBufferInfo info{.buffer = *buffer.buffer(), .offset = 0, .range = buffer.size()};
+  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
+                                                              .dstBinding = binding,
+                                                              .descriptorCount = 1,
+                                                              .descriptorType = vk::DescriptorType::eStorageBuffer,
+                                                              .pBufferInfo = &info},
+                                       {});
+}
+
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler) {
   const vk::DescriptorImageInfo info{

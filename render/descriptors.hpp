@@ -21,6 +21,8 @@ vk::raii::DescriptorSet allocateSet(const Device& device, const vk::raii::Descri
 void writeUniformBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                         const Buffer& buffer);
 
+void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                        const Buffer& buffer);
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler);
 

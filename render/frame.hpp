@@ -45,6 +45,7 @@ struct StaticScene {
   std::vector<MeshData> meshes;
   std::vector<MaterialData> materials;
   std::vector<HairGroomData> grooms;  ///< drawn after the surfaces; guides via Renderer::updateHair
+  HairShadowSettings hairShadows;
 };
 
 struct MeshInstance {

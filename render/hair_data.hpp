@@ -56,12 +56,28 @@ struct HairGroomSettings {
   /// scaled by true / drawn width. 1 pixel: every strand crosses a pixel centre (or, at 4×
   /// MSAA, one sample of each x offset) per row it spans.
   float minimumPixelWidth = 1.0f;
+  /// κ of the hair shadows: light through hair of opacity o keeps exp(−κ·o) (> 0; see
+  /// render/passes/opacity_shadow_map.hpp, where each strand crossing adds `opacity`).
+  float shadowExtinction = 1.0f;
 };
 
 /// Which Marschner parameters a groom is shaded with (render/luts/marschner.hpp presets).
 enum class HairLook : std::uint32_t {
   kBlonde = 0,  ///< low melanin: the TT and TRT highlights show
   kDark = 1,    ///< high melanin: mainly the R highlight
+};
+
+/// How a scene's hair shadows itself and the surfaces: the first light of the frame casts the
+/// shadows of every groom (render/passes/opacity_shadow_map.hpp); the other lights cast none.
+enum class HairShadowMode : std::uint32_t {
+  kOff = 0,
+  kOpacityShadowMap = 1,  ///< 16 slices across the hair's bounding sphere (Kim & Neumann 2001)
+  kDeepOpacityMap = 2,    ///< first-hair depth + 4 layers following it (Yuksel & Keyser 2008)
+};
+
+struct HairShadowSettings {
+  HairShadowMode mode = HairShadowMode::kOpacityShadowMap;
+  std::uint32_t resolution = 512;  ///< texels per side of each groom's map, 16 to 4096
 };
 
 /// A groom the renderer draws: dense strands interpolated on the GPU from the guides, which

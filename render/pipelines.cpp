@@ -88,6 +88,25 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
   return result;
 }
 
+Pipeline makeComputePipeline(const Device& device, std::string_view shader,
+                             const vk::raii::DescriptorSetLayout& setLayout, std::uint32_t pushConstantBytes) {
+  Pipeline result;
+  const vk::PushConstantRange push{
+      .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = pushConstantBytes};
+  result.layout = vk::raii::PipelineLayout(
+      device.device(), vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
+                                                    .pSetLayouts = &*setLayout,
+                                                    .pushConstantRangeCount = pushConstantBytes > 0 ? 1u : 0u,
+                                                    .pPushConstantRanges = &push});
+  const vk::raii::ShaderModule module = loadShader(device, shader);
+  result.pipeline =
+      vk::raii::Pipeline(device.device(), nullptr,
+                         vk::ComputePipelineCreateInfo{
+                             .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main"},
+                             .layout = *result.layout});
+  return result;
+}
+
 void setViewportAndScissor(const vk::raii::CommandBuffer& commands, vk::Extent2D extent) {
   commands.setViewport(
       0, vk::Viewport{

@@ -41,6 +41,11 @@ struct Pipeline {
 /// Viewport and scissor are dynamic state; set them when recording.
 Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettings& settings);
 
+/// A compute pipeline running the embedded shader `shader` with one descriptor set and
+/// `pushConstantBytes` of push constants (0 for none).
+Pipeline makeComputePipeline(const Device& device, std::string_view shader,
+                             const vk::raii::DescriptorSetLayout& setLayout, std::uint32_t pushConstantBytes = 0);
+
 /// A viewport covering `extent` with depth 0..1, and the matching scissor, set on `commands`.
 void setViewportAndScissor(const vk::raii::CommandBuffer& commands, vk::Extent2D extent);
 

@@ -1,5 +1,7 @@
 #include "render/renderer.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace mane::render {
@@ -11,10 +13,11 @@ vk::SampleCountFlagBits sampleCount(std::uint32_t samples) {
 
 }  // namespace
 
-Renderer::Renderer(const Device& device, const RendererSettings& settings)
+Renderer::Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows)
     : device_(&device),
       target_(device, {.extent = settings.extent, .samples = sampleCount(settings.msaaSamples)}),
-      surfaces_(device, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
+      shadows_(std::move(shadows)),
+      surfaces_(device, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
       output_(device, target_),
       timer_(device, 8) {}
 
@@ -27,8 +30,10 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
   if (settings.extent.width > limits.maxFramebufferWidth || settings.extent.height > limits.maxFramebufferHeight)
     return fail("the image size " + std::to_string(settings.extent.width) + "x" +
                 std::to_string(settings.extent.height) + " exceeds the device's framebuffer limit");
+  auto shadows = HairShadows::create(device);
+  if (!shadows) return std::unexpected(shadows.error());
   try {
-    return std::unique_ptr<Renderer>(new Renderer(device, settings));
+    return std::unique_ptr<Renderer>(new Renderer(device, settings, std::move(*shadows)));
   } catch (const std::exception& error) {
     return fail(std::string("creating the renderer failed: ") + error.what());
   }
@@ -82,8 +87,30 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     return fail(std::string("uploading the scene failed: ") + error.what());
   }
   hair_.clear();
+  // Strands first: the shadow maps read their positions, and the shading reads the maps.
+  std::vector<HairShadows::Groom> shadowed;
   for (std::size_t g = 0; g < scene.grooms.size(); ++g) {
     const HairGroomData& groom = scene.grooms[g];
+    auto strands = StrandInterpolationPass::create(*device_, groom.layout);
+    if (!strands) return fail("groom " + std::to_string(g) + ": " + strands.error().message);
+    float stray = 0.0f;
+    for (const DenseStrand& strand : groom.layout.strands)
+      stray = std::max(stray, glm::length(strand.rootOffset) + glm::length(strand.tipJitter));
+    const StrandInterpolationPass& pass = **strands;
+    shadowed.push_back({.strands = {.positions = &pass.positions(),
+                                    .strandCount = pass.strandCount(),
+                                    .verticesPerStrand = pass.vertexCount()},
+                        .width = groom.settings.width,
+                        .opacity = groom.settings.opacity,
+                        .extinction = groom.settings.shadowExtinction});
+    hair_.push_back({.strands = std::move(*strands), .settings = groom.settings, .strayFromGuides = stray});
+  }
+  if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
+  refreshShadowDescriptors();
+
+  for (std::size_t g = 0; g < scene.grooms.size(); ++g) {
+    const HairGroomData& groom = scene.grooms[g];
+    HairGroom& drawn = hair_[g];
     const auto failed = [&](const Error& error) { return fail("groom " + std::to_string(g) + ": " + error.message); };
     const auto look = static_cast<std::size_t>(groom.look);
     if (look >= 2) return fail("groom " + std::to_string(g) + ": unknown hair look");
@@ -93,32 +120,56 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
       if (!lut) return failed(lut.error());
       luts_[look] = std::make_unique<MarschnerLut>(std::move(*lut));
     }
-    auto strands = StrandInterpolationPass::create(*device_, groom.layout);
-    if (!strands) return failed(strands.error());
-    auto ribbons = HairPass::create(*device_, *luts_[look],
-                                    {.colorFormat = RenderTarget::kHdrFormat,
-                                     .depthFormat = RenderTarget::kDepthFormat,
-                                     .samples = target_.samples()});
+    const StrandInterpolationPass& pass = *drawn.strands;
+    auto lighting = HairLightingPass::create(*device_, *luts_[look], *shadows_, pass.positions(), pass.tangents(),
+                                             pass.strandCount(), pass.vertexCount());
+    if (!lighting) return failed(lighting.error());
+    auto ribbons = HairPass::create(*device_, {.colorFormat = RenderTarget::kHdrFormat,
+                                               .depthFormat = RenderTarget::kDepthFormat,
+                                               .samples = target_.samples()});
     if (!ribbons) return failed(ribbons.error());
-    const StrandInterpolationPass& pass = **strands;
     if (auto set = (*ribbons)->setStrands({.positions = *pass.positions().buffer(),
                                            .tangents = *pass.tangents().buffer(),
+                                           .radiance = *(*lighting)->radiance().buffer(),
                                            .strandCount = pass.strandCount(),
                                            .verticesPerStrand = pass.vertexCount()});
         !set)
       return failed(set.error());
-    hair_.push_back({std::move(*strands), std::move(*ribbons), groom.settings, false});
+    drawn.lighting = std::move(*lighting);
+    drawn.ribbons = std::move(*ribbons);
   }
   return {};
+}
+
+void Renderer::refreshShadowDescriptors() {
+  surfaces_.refreshShadows();
+  for (HairGroom& groom : hair_)
+    if (groom.lighting) groom.lighting->refreshShadows();
 }
 
 Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions) {
   if (groom >= hair_.size())
     return fail("updateHair: no groom " + std::to_string(groom) + " (the scene has " + std::to_string(hair_.size()) +
                 ")");
-  if (auto updated = hair_[groom].strands->updateGuides(guidePositions); !updated)
+  HairGroom& hair = hair_[groom];
+  if (auto updated = hair.strands->updateGuides(guidePositions); !updated)
     return fail("groom " + std::to_string(groom) + ": " + updated.error().message);
-  hair_[groom].hasGuides = true;
+  // The guides' bounding sphere (updateGuides checked they are finite), widened by the strands' stray.
+  glm::vec3 low = guidePositions[0], high = guidePositions[0];
+  for (const glm::vec3& p : guidePositions) {
+    low = glm::min(low, p);
+    high = glm::max(high, p);
+  }
+  const glm::vec3 centre = 0.5f * (low + high);
+  float radius = 0.0f;
+  for (const glm::vec3& p : guidePositions) radius = std::max(radius, glm::length(p - centre));
+  // + 0.1 %: vertices on the sphere stay inside the map's clip volume (boundingSphere does the same).
+  const BoundingSphere sphere{centre, std::max(radius + hair.strayFromGuides, 1e-6f) * 1.001f};
+  if (auto bounded = shadows_->setBounds(groom, sphere); !bounded) return bounded;
+  if (!hair.hasGuides) {
+    hair.hasGuides = true;
+    refreshShadowDescriptors();  // the groom's slot now binds its map
+  }
   return {};
 }
 
@@ -126,10 +177,10 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   using Stage = vk::PipelineStageFlagBits2;
   using Access = vk::AccessFlagBits2;
   using Layout = vk::ImageLayout;
-  surfaces_.update(frame, target_.aspect());
   timer_.reset(commands);
 
-  // Dense strands first (compute), so the ribbons can read them inside the main pass.
+  // Dense strands first (compute), then their shadow maps and their shading, so the surfaces
+  // and the ribbons can read them inside the main pass.
   bool hair = false;
   for (const HairGroom& groom : hair_) {
     if (!groom.hasGuides) continue;
@@ -137,7 +188,24 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
     groom.strands->record(commands);
     hair = true;
   }
-  if (hair) timer_.end(commands);
+  if (hair) {
+    timer_.end(commands);
+    // The first light casts the hair shadows; without lights nothing is lit, any direction does.
+    const glm::vec3 towardLight =
+        frame.lights.empty() ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::normalize(frame.lights[0].direction);
+    if (shadows_->mapCount() > 0) {
+      timer_.begin(commands, "hair shadows");
+      shadows_->record(commands, towardLight);
+      timer_.end(commands);
+    }
+    timer_.begin(commands, "hair lighting");
+    const glm::mat4 viewProjection = frame.camera.projection(target_.aspect()) * frame.camera.view();
+    for (const HairGroom& groom : hair_)
+      if (groom.hasGuides && groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()))
+        groom.lighting->record(commands);
+    timer_.end(commands);
+  }
+  surfaces_.update(frame, target_.aspect());
 
   timer_.begin(commands, "surfaces");
   // Main pass: previous contents are discarded and cleared.
@@ -178,6 +246,11 @@ Result<void> Renderer::updateMesh(std::size_t mesh, std::span<const glm::vec3> p
 }
 
 Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
+  for (std::size_t i = 0; i < frame.lights.size(); ++i) {
+    const float length = glm::length(frame.lights[i].direction);
+    if (!(std::isfinite(length) && length > 0.0f))
+      return fail("light " + std::to_string(i) + "'s direction is not finite and non-zero");
+  }
   for (std::size_t i = 0; i < frame.instances.size(); ++i)
     if (!surfaces_.canDraw(frame.instances[i]))
       return fail("instance " + std::to_string(i) + " names mesh " + std::to_string(frame.instances[i].mesh) +

@@ -1,7 +1,8 @@
 #pragma once
 // Runs the passes of a frame into an offscreen RenderTarget: the grooms' strand interpolation
-// (compute), surfaces then hair ribbons into HDR colour, then the output pass to 8-bit sRGB. Reads the result back for
-// PNG files, or leaves it for a window to blit into its swapchain.
+// (compute), their shadow maps from the first light, their per-vertex shading (compute), then
+// surfaces and hair ribbons into HDR colour, then the output pass to 8-bit sRGB. Reads the
+// result back for PNG files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
@@ -10,7 +11,9 @@
 #include "render/frame.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_lighting.hpp"
 #include "render/passes/hair_pass.hpp"
+#include "render/passes/hair_shadows.hpp"
 #include "render/passes/output_pass.hpp"
 #include "render/passes/strand_interpolation.hpp"
 #include "render/passes/surface_pass.hpp"
@@ -38,6 +41,8 @@ public:
   /// This frame's guide positions of groom `groom` of the scene (world space, metres: guide
   /// after guide, root first, as the groom's layout counts them); takes effect from the next
   /// render. Errors: no such groom, a count that does not match, a NaN or a collapsed guide frame.
+  /// The groom's shadow map (StaticScene::hairShadows) bounds the guides, widened by how far
+  /// the dense strands stray from them.
   Result<void> updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions);
 
   /// Records every pass of `frame`; leaves target().output() in TRANSFER_SRC layout.
@@ -56,17 +61,23 @@ public:
   const Device& device() const { return *device_; }
 
 private:
-  Renderer(const Device& device, const RendererSettings& settings);
+  Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows);
+
+  /// Points every pass that receives hair shadows at the current maps.
+  void refreshShadowDescriptors();
 
   const Device* device_;
   RenderTarget target_;
+  std::unique_ptr<HairShadows> shadows_;
   SurfacePass surfaces_;
-  // A groom: its strands interpolated on the GPU, then drawn as ribbons.
+  // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {
     std::unique_ptr<StrandInterpolationPass> strands;
+    std::unique_ptr<HairLightingPass> lighting;
     std::unique_ptr<HairPass> ribbons;
     HairGroomSettings settings;
-    bool hasGuides = false;  // updateHair called at least once
+    float strayFromGuides = 0.0f;  // metres: bound on a dense vertex's distance from its guides
+    bool hasGuides = false;        // updateHair called at least once
   };
   std::vector<std::unique_ptr<MarschnerLut>> luts_;  // per HairLook, baked when a groom needs it
   std::vector<HairGroom> hair_;

@@ -11,9 +11,12 @@ layout(set = 0, binding = 2, std430) readonly buffer Tangents {
   vec4 tangents[];  // xyz unit tangent root → tip
 };
 
-layout(location = 0) out vec3 outWorldPosition;
-layout(location = 1) out vec3 outTangent;
-layout(location = 2) out float outCoverage;  // true width / drawn width, ≤ 1
+layout(set = 0, binding = 3, std430) readonly buffer Radiance {
+  vec4 radiance[];  // rgb towards the eye, shaded per vertex (render/passes/hair_lighting.hpp)
+};
+
+layout(location = 0) out vec3 outRadiance;
+layout(location = 1) out float outCoverage;  // true width / drawn width, ≤ 1
 
 // Two triangles per segment, counter-clockwise seen from the side s points to:
 // (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +).
@@ -49,7 +52,6 @@ void main() {
   outCoverage = halfWidth / drawnHalfWidth;
 
   vec3 world = point.xyz + side * (kSide[corner] * drawnHalfWidth);
-  outWorldPosition = world;
-  outTangent = tangent;
+  outRadiance = radiance[vertex].rgb;
   gl_Position = hair.viewProjection * vec4(world, 1.0);
 }

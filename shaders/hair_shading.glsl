@@ -28,10 +28,14 @@ vec2 hairLutParameter(uvec2 texel, uvec2 size) {
 // light, measured perpendicular to the light direction. A directional light of perpendicular
 // irradiance E adds S·E: no cosine factor, it is inside M (d'Eon et al. 2011 normalisation).
 // toLight, toEye and tangent (root → tip) are unit vectors in one space. Three fetches: M, and
-// the two layers of N at the same coordinates. Implicit LOD: the tables are mip-mapped so that
-// strands whose tangent turns quickly within a pixel read a filtered lobe (Nalu demo). asin and
-// acos may be approximations of ~1e-4 rad (lavapipe); that moves a lookup by < 0.05 texel.
-vec3 hairScattering(sampler2D longitudinalLut, sampler2DArray azimuthalLut, vec3 toLight, vec3 toEye, vec3 tangent) {
+// the two layers of N at the same coordinates. `spread` (radians ≥ 0) is how far the tangent
+// turns over the piece of strand this evaluation stands for: the lookups read the mip level
+// whose texels span that angle, so a strand that curls within a shading sample gets the
+// filtered lobe rather than an aliased peak (the tables are mip-mapped for this, as in Nalu).
+// asin and acos may be approximations of ~1e-4 rad (lavapipe); that moves a lookup by < 0.05
+// texel.
+vec3 hairScattering(sampler2D longitudinalLut, sampler2DArray azimuthalLut, vec3 toLight, vec3 toEye, vec3 tangent,
+                    float spread) {
   float sinThetaI = clamp(dot(toLight, tangent), -1.0, 1.0);
   float sinThetaR = clamp(dot(toEye, tangent), -1.0, 1.0);
   vec2 theta = asin(vec2(sinThetaI, sinThetaR));
@@ -42,9 +46,14 @@ vec3 hairScattering(sampler2D longitudinalLut, sampler2DArray azimuthalLut, vec3
   float cosPhi = norms > 1e-12 ? clamp(dot(lightPerp, eyePerp) * inversesqrt(norms), -1.0, 1.0) : 1.0;
   float cosThetaR = sqrt(max(1.0 - sinThetaR * sinThetaR, 0.0));
 
-  vec4 m = texture(longitudinalLut, hairLutCoordinates(theta / kHairPi + 0.5, vec2(textureSize(longitudinalLut, 0))));
-  vec2 n = hairLutCoordinates(vec2(acos(cosPhi) / kHairPi, cosThetaR), vec2(textureSize(azimuthalLut, 0).xy));
-  vec4 nTTR = texture(azimuthalLut, vec3(n, 0.0));
-  vec4 nTRT = texture(azimuthalLut, vec3(n, 1.0));
+  vec2 mSize = vec2(textureSize(longitudinalLut, 0));
+  vec2 nSize = vec2(textureSize(azimuthalLut, 0).xy);
+  // Texels per radian along the θ axis of M (π rad across) and the φ axis of N (π rad across).
+  float mLod = log2(max(spread / kHairPi * (mSize.x - 1.0), 1.0));
+  float nLod = log2(max(spread / kHairPi * (nSize.x - 1.0), 1.0));
+  vec4 m = textureLod(longitudinalLut, hairLutCoordinates(theta / kHairPi + 0.5, mSize), mLod);
+  vec2 n = hairLutCoordinates(vec2(acos(cosPhi) / kHairPi, cosThetaR), nSize);
+  vec4 nTTR = textureLod(azimuthalLut, vec3(n, 0.0), nLod);
+  vec4 nTRT = textureLod(azimuthalLut, vec3(n, 1.0), nLod);
   return m.r * nTTR.a + m.g * nTTR.rgb + m.b * nTRT.rgb;
 }

@@ -1,6 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Lambert surface with an albedo texture and a tangent-space normal map.
+// Lambert surface with an albedo texture and a tangent-space normal map; the first light is
+// attenuated by the hair shadows.
 #include "frame_uniforms.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // sRGB, decoded by the sampler
@@ -47,7 +48,9 @@ void main() {
   }
   vec3 albedo = texture(albedoMap, inUv).rgb * draw.baseColor.rgb;
   vec3 irradiance = frame.ambient.rgb;
+  float hairShadow = hairShadowTransmittance(frame.hairShadows, inWorldPosition);
   for (int i = 0; i < frame.lightCount.x; ++i)
-    irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0);
+    irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
+                  (i == 0 ? hairShadow : 1.0);
   outColor = vec4(albedo * irradiance, 1.0);
 }

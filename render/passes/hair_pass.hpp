@@ -1,12 +1,13 @@
 #pragma once
-// Dense hair strands drawn as camera-facing ribbons with Marschner shading (shaders/hair.vert,
-// shaders/hair.frag, shaders/hair_uniforms.glsl).
+// Dense hair strands drawn as camera-facing ribbons (shaders/hair.vert, shaders/hair.frag,
+// shaders/hair_uniforms.glsl), coloured with the radiance HairLightingPass shaded at their
+// vertices (render/passes/hair_lighting.hpp).
 //
-// Input. The strands come as two storage buffers in the layout of StrandInterpolationPass
+// Input. The strands come as storage buffers in the layout of StrandInterpolationPass
 // (render/passes/strand_interpolation.hpp): per vertex a vec4 position (xyz metres, w = t along
-// the strand, 0 root .. 1 tip) and a vec4 unit tangent (xyz, root → tip), strand-major, Nd
-// vertices per strand. Any buffer with STORAGE_BUFFER usage in that layout works (tests make
-// their own).
+// the strand, 0 root .. 1 tip), a vec4 unit tangent (xyz, root → tip) and a vec4 radiance (rgb,
+// HairLightingPass::radiance()), strand-major, Nd vertices per strand. Any buffers with
+// STORAGE_BUFFER usage in that layout work (tests make their own).
 //
 // Ribbon expansion (vertex pulling). One draw of strands × (Nd − 1) × 6 vertices and no vertex
 // buffers: the vertex shader finds its segment and corner from gl_VertexIndex, reads the end
@@ -47,13 +48,8 @@
 //  LAVAPIPE.md); a depth pre-pass of near-opaque strands with depth writes, then blending,
 //  fixes opaque ordering; per-frame strand sorting by depth (GPU sort) fixes both.
 //
-// Shading (hair.frag): for each directional light, the Marschner scattering S(ωi, ωr) from the
-// groom's MarschnerLut (shaders/hair_shading.glsl; the model is render/luts/marschner.hpp) times
-// the light's perpendicular irradiance E = colour × intensity, plus an ambient term: under a
-// uniform environment of radiance La the scattered radiance is La · ∫S dωi, the white-furnace
-// albedo (marschner.hpp), which is taken at θr = 0 (azimuthalAlbedo(params, 1)) for the whole
-// groom. The base colour is the LUT's absorption σa (its preset): no separate tint. No shadows:
-// the opacity shadow map pass will attenuate E later.
+// Colour: the radiance of the segment's two end vertices, interpolated linearly along it (it is
+// constant across the width: see hair_lighting.hpp), times the coverage alpha.
 //
 // Units: metres, radians, pixels where named.
 
@@ -66,7 +62,6 @@
 
 #include "render/frame.hpp"
 #include "render/hair_data.hpp"
-#include "render/luts/marschner_lut.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -78,6 +73,7 @@ namespace mane::render {
 struct HairStrands {
   vk::Buffer positions;
   vk::Buffer tangents;
+  vk::Buffer radiance;
   std::uint32_t strandCount = 0;
   std::uint32_t verticesPerStrand = 0;  ///< Nd ≥ 2
 };
@@ -99,13 +95,8 @@ struct HairView {
 
 class HairPass {
 public:
-  /// Lights read per frame; more are ignored. Must match shaders/hair_uniforms.glsl.
-  static constexpr std::size_t kMaxLights = 4;
-
-  /// Builds the pipeline for `settings` and binds `lut`'s tables, which must outlive the pass
-  /// (its params give the ambient albedo). Errors: a Vulkan failure.
-  [[nodiscard]] static Result<std::unique_ptr<HairPass>> create(const Device& device, const MarschnerLut& lut,
-                                                                const HairPassSettings& settings);
+  /// Builds the pipeline for `settings`. Errors: a Vulkan failure.
+  [[nodiscard]] static Result<std::unique_ptr<HairPass>> create(const Device& device, const HairPassSettings& settings);
 
   HairPass(const HairPass&) = delete;
   HairPass& operator=(const HairPass&) = delete;
@@ -114,12 +105,11 @@ public:
   /// vertices per strand, or more ribbon vertices than one draw can count (2³² − 1).
   [[nodiscard]] Result<void> setStrands(const HairStrands& strands);
 
-  /// Writes the frame's view, lights (the first kMaxLights) and ambient radiance (linear RGB)
-  /// and the groom's settings. Call between frames, never while a draw recorded earlier is
-  /// still running (one uniform buffer). Errors (nothing written): a non-invertible or
-  /// non-finite view, an empty extent, or groom settings out of their documented ranges.
-  [[nodiscard]] Result<void> update(const HairView& view, std::span<const DirectionalLight> lights, glm::vec3 ambient,
-                                    const HairGroomSettings& groom);
+  /// Writes the frame's view and the groom's settings. Call between frames, never while a draw
+  /// recorded earlier is still running (one uniform buffer). Errors (nothing written): a
+  /// non-invertible or non-finite view, an empty extent, or groom settings out of their
+  /// documented ranges.
+  [[nodiscard]] Result<void> update(const HairView& view, const HairGroomSettings& groom);
 
   /// `update` with the frame's perspective camera (Camera::projection at the extent's aspect).
   [[nodiscard]] Result<void> update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom);
@@ -127,17 +117,16 @@ public:
   /// Records the draw inside a dynamic rendering scope with the formats and sample count of
   /// HairPassSettings (viewport and scissor are set to the view's extent). Nothing is drawn
   /// before setStrands. The strand buffers' writes must be visible to vertex-shader storage
-  /// reads (StrandInterpolationPass::record's barrier does that).
+  /// reads (StrandInterpolationPass::record's and HairLightingPass::record's barriers do that).
   void draw(const vk::raii::CommandBuffer& commands) const;
 
   /// Vertices of the ribbon draw: strands × (Nd − 1) × 6.
   [[nodiscard]] std::uint32_t ribbonVertexCount() const { return vertexCount_; }
 
 private:
-  HairPass(const Device& device, const MarschnerLut& lut, const HairPassSettings& settings);
+  HairPass(const Device& device, const HairPassSettings& settings);
 
   const Device* device_;
-  glm::vec3 ambientAlbedo_{0.0f};  ///< Σ_p ½∫A_p dh at θr = 0, per RGB
   vk::Extent2D extent_{};
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   Pipeline pipeline_;

@@ -98,18 +98,6 @@ Result<void> checkLimits(const DenseStrandLayout& layout, const vk::PhysicalDevi
   return {};
 }
 
-void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
-                        const Buffer& buffer) {
-  const vk::DescriptorBufferInfo info{.buffer = *buffer.buffer(), .offset = 0, .range = buffer.size()};
-  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
-                                                              .dstBinding = binding,
-                                                              .descriptorCount = 1,
-                                                              .descriptorType = vk::DescriptorType::eStorageBuffer,
-                                                              .pBufferInfo = &info},
-                                       {});
-}
-
-
 }  // namespace
 
 Result<std::unique_ptr<StrandInterpolationPass>> StrandInterpolationPass::create(

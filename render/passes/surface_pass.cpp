@@ -21,7 +21,11 @@ struct FrameUniforms {
   glm::vec4 lightDirection[SurfacePass::kMaxLights];
   glm::vec4 lightRadiance[SurfacePass::kMaxLights];
   glm::ivec4 lightCount;
+  HairShadowUniforms hairShadows;
 };
+
+// Where the hair shadow descriptors start in the frame set (shaders/surface.frag).
+constexpr std::uint32_t kFirstShadowBinding = 1;
 
 // Push constants of shaders/surface.{vert,frag}.
 struct DrawConstants {
@@ -39,11 +43,21 @@ Image textureOrDefault(const Device& device, const std::optional<TextureData>& t
 
 }  // namespace
 
-SurfacePass::SurfacePass(const Device& device, vk::Format colorFormat, vk::Format depthFormat,
-                         vk::SampleCountFlagBits samples)
-    : device_(&device) {
+SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::Format colorFormat,
+                         vk::Format depthFormat, vk::SampleCountFlagBits samples)
+    : device_(&device), shadows_(&shadows) {
   using Stage = vk::ShaderStageFlagBits;
-  frameLayout_ = makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, Stage::eVertex | Stage::eFragment}});
+  // Vertex too: surface.vert includes the same declarations (frame_uniforms.glsl).
+  const std::pair shadow{vk::DescriptorType::eCombinedImageSampler, Stage::eVertex | Stage::eFragment};
+  frameLayout_ = makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, Stage::eVertex | Stage::eFragment},
+                                        shadow,
+                                        shadow,
+                                        shadow,
+                                        shadow,  // hair shadow opacity, 4 slots
+                                        shadow,
+                                        shadow,
+                                        shadow,
+                                        shadow});  // hair shadow first depth, 4 slots
   materialLayout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, Stage::eFragment},
                                            {vk::DescriptorType::eCombinedImageSampler, Stage::eFragment}});
   pipeline_ = makeGraphicsPipeline(
@@ -67,9 +81,16 @@ SurfacePass::SurfacePass(const Device& device, vk::Format colorFormat, vk::Forma
 
   frameUniforms_ = Buffer(device, sizeof(FrameUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
-  framePool_ = makeDescriptorPool(device, 1, {{vk::DescriptorType::eUniformBuffer, 1}});
+  framePool_ = makeDescriptorPool(
+      device, 1,
+      {{vk::DescriptorType::eUniformBuffer, 1}, {vk::DescriptorType::eCombinedImageSampler, HairShadows::kBindings}});
   frameSet_ = allocateSet(device, framePool_, frameLayout_);
   writeUniformBuffer(device, frameSet_, 0, frameUniforms_);
+  refreshShadows();
+}
+
+void SurfacePass::refreshShadows() {
+  shadows_->writeDescriptors(frameSet_, kFirstShadowBinding);
 }
 
 void SurfacePass::setScene(const StaticScene& scene) {
@@ -137,6 +158,7 @@ void SurfacePass::update(const FrameInput& frame, float aspect) {
     uniforms.lightRadiance[i] = glm::vec4(frame.lights[i].color * frame.lights[i].intensity, 0.0f);
   }
   uniforms.lightCount = glm::ivec4(static_cast<int>(lights), 0, 0, 0);
+  uniforms.hairShadows = shadows_->uniforms();
   std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));
 }
 

@@ -1,10 +1,12 @@
 #pragma once
 // Opaque meshes lit by directional lights: albedo texture × base colour, tangent-space normal
-// map, Lambert diffuse plus ambient. The skin shading of the skin issue will replace the BRDF.
+// map, Lambert diffuse plus ambient; the first light is attenuated by the hair shadows
+// (render/passes/hair_shadows.hpp). The skin shading of the skin issue will replace the BRDF.
 
 #include <vector>
 
 #include "render/frame.hpp"
+#include "render/passes/hair_shadows.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -14,7 +16,9 @@ class SurfacePass {
 public:
   static constexpr std::size_t kMaxLights = 4;  ///< must match shaders/frame_uniforms.glsl
 
-  SurfacePass(const Device& device, vk::Format colorFormat, vk::Format depthFormat, vk::SampleCountFlagBits samples);
+  /// `shadows` (which must outlive the pass) attenuates the first light.
+  SurfacePass(const Device& device, const HairShadows& shadows, vk::Format colorFormat, vk::Format depthFormat,
+              vk::SampleCountFlagBits samples);
 
   /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError on failure.
   void setScene(const StaticScene& scene);
@@ -25,7 +29,11 @@ public:
   bool isDynamic(std::size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].dynamic; }
   std::size_t vertexCount(std::size_t mesh) const { return meshes_.at(mesh).vertexCount; }
 
-  /// Writes the frame's camera and lights; call before recording the frame.
+  /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
+  void refreshShadows();
+
+  /// Writes the frame's camera, lights and the hair shadows' current uniforms; call before
+  /// recording the frame, after HairShadows::record.
   void update(const FrameInput& frame, float aspect);
 
   /// Whether `instance` names a mesh and a material of the current scene.
@@ -54,6 +62,7 @@ private:
   };
 
   const Device* device_;
+  const HairShadows* shadows_;
   vk::raii::DescriptorSetLayout frameLayout_{nullptr};
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};
   Pipeline pipeline_;

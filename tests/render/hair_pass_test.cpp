@@ -1,4 +1,5 @@
-// The hair ribbon pass (render/passes/hair_pass.hpp) against references independent of it:
+// The hair ribbon pass (render/passes/hair_pass.hpp), shaded by the hair lighting pass
+// (render/passes/hair_lighting.hpp), against references independent of them:
 //  - coverage: parallel straight strands of known world width seen head-on by an orthographic
 //    camera cover their analytic projected area, width × length in pixels; strands narrower
 //    than a pixel still cover their own area (coverage-scaled alpha), at 1× and 4× MSAA;
@@ -27,7 +28,9 @@
 
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_lighting.hpp"
 #include "render/passes/hair_pass.hpp"
+#include "render/passes/hair_shadows.hpp"
 #include "render/render_target.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
@@ -75,31 +78,41 @@ public:
     return *luts_.back();
   }
 
-  /// Draws `data` over a transparent black background (alpha 0) and depth 1, returns the pixels.
-  /// `configure` writes the frame's uniforms.
-  template <class Configure>
-  Pixels render(const MarschnerLut& table, const StrandData& data, vk::Extent2D extent, vk::SampleCountFlagBits samples,
-                Configure&& configure) {
+  /// Shades `data` without shadows, then draws it over a transparent black background (alpha
+  /// 0) and depth 1 as seen by `view`, and returns the pixels.
+  Pixels render(const MarschnerLut& table, const StrandData& data, vk::SampleCountFlagBits samples,
+                const HairView& view, std::span<const DirectionalLight> lights, glm::vec3 ambient,
+                const HairGroomSettings& groom) {
     auto pass = HairPass::create(
-        device(), table,
+        device(),
         {.colorFormat = RenderTarget::kHdrFormat, .depthFormat = RenderTarget::kDepthFormat, .samples = samples});
     EXPECT_TRUE(pass.has_value()) << pass.error().message;
     const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
     const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
     const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
+    auto shadows = HairShadows::create(device());
+    EXPECT_TRUE(shadows.has_value()) << shadows.error().message;
+    auto lighting = HairLightingPass::create(device(), table, **shadows, positions, tangents, data.strandCount(),
+                                             data.verticesPerStrand);
+    EXPECT_TRUE(lighting.has_value()) << lighting.error().message;
     const auto set = (*pass)->setStrands({.positions = *positions.buffer(),
                                           .tangents = *tangents.buffer(),
+                                          .radiance = *(*lighting)->radiance().buffer(),
                                           .strandCount = data.strandCount(),
                                           .verticesPerStrand = data.verticesPerStrand});
     EXPECT_TRUE(set.has_value()) << set.error().message;
-    const auto updated = configure(**pass);
+    const auto lit = (*lighting)->update(view.viewProjection, lights, ambient, (*shadows)->uniforms());
+    EXPECT_TRUE(lit.has_value()) << lit.error().message;
+    const auto updated = (*pass)->update(view, groom);
     EXPECT_TRUE(updated.has_value()) << updated.error().message;
 
+    const vk::Extent2D extent = view.extent;
     const RenderTarget target(device(), {.extent = extent, .samples = samples});
     device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
       using Layout = vk::ImageLayout;
       using Stage = vk::PipelineStageFlagBits2;
       using Access = vk::AccessFlagBits2;
+      (*lighting)->record(commands);
       target.beginScene(commands, glm::vec4(0.0f));
       (*pass)->draw(commands);
       commands.endRendering();
@@ -165,10 +178,9 @@ Coverage renderParallelStrands(HairPassTest& test, vk::SampleCountFlagBits sampl
   const MarschnerLut& table = test.lut(blondeHairParams());
   const HairGroomSettings groom{.width = widthPixels * kMetresPerPixel, .opacity = 1.0f, .minimumPixelWidth = 1.0f};
   const std::array lights{DirectionalLight{.direction = {0, 0, 1}}};
-  return measureCoverage(test.render(table, parallelStrands(), kCoverageExtent, samples, [&](HairPass& pass) {
-    return pass.update(HairView{orthographicView(kCoverageExtent, kMetresPerPixel), kCoverageExtent}, lights,
-                       glm::vec3(0.1f), groom);
-  }));
+  return measureCoverage(test.render(table, parallelStrands(), samples,
+                                     {orthographicView(kCoverageExtent, kMetresPerPixel), kCoverageExtent}, lights,
+                                     glm::vec3(0.1f), groom));
 }
 
 // Tolerance 1 %: counting is exact by construction (see parallelStrands) up to float rounding of
@@ -259,11 +271,9 @@ TEST_F(HairPassTest, ColourOnAStrandMatchesTheCpuMarschnerModel) {
   const AzimuthalLobes albedo = azimuthalAlbedo(params, 1.0);
   const glm::dvec3 ambientAlbedo = albedo.tt + albedo.trt + glm::dvec3(albedo.r);
   for (const DirectionalLight& light : lights) {
-    const Pixels pixels =
-        render(table, tiltedStrand(), kShadingExtent, vk::SampleCountFlagBits::e1, [&](HairPass& pass) {
-          return pass.update(HairView{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent},
-                             std::span(&light, 1), ambient, groom);
-        });
+    const Pixels pixels = render(table, tiltedStrand(), vk::SampleCountFlagBits::e1,
+                                 {orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent},
+                                 std::span(&light, 1), ambient, groom);
     // Reference: S from the CPU model (double) × perpendicular irradiance, plus ambient radiance
     // × the white-furnace albedo at θr = 0 (the pass's documented ambient term).
     const glm::dvec3 scattering =
@@ -302,8 +312,10 @@ TEST_F(HairPassTest, BlondeTransmitsMoreThanDarkWhenBackLit) {
       .ambient = glm::vec3(0.0f)};
   const HairGroomSettings groom{.width = 0.03f};
   auto draw = [&](const HairShadingParams& params) {
-    return render(lut(params), tiltedStrand(), kShadingExtent, vk::SampleCountFlagBits::e1,
-                  [&](HairPass& pass) { return pass.update(frame, kShadingExtent, groom); });
+    const float aspect = float(kShadingExtent.width) / float(kShadingExtent.height);
+    return render(lut(params), tiltedStrand(), vk::SampleCountFlagBits::e1,
+                  {frame.camera.projection(aspect) * frame.camera.view(), kShadingExtent}, frame.lights, frame.ambient,
+                  groom);
   };
   const glm::dvec3 blondeColour = centreColour(draw(blonde), kShadingExtent);
   const glm::dvec3 darkColour = centreColour(draw(dark), kShadingExtent);
@@ -329,22 +341,24 @@ TEST_F(HairPassTest, BlondeTransmitsMoreThanDarkWhenBackLit) {
 // Bad input
 
 TEST_F(HairPassTest, RejectsBadStrandsAndGroomSettings) {
-  const MarschnerLut& table = lut(blondeHairParams());
-  auto pass = HairPass::create(device(), table, {});
+  auto pass = HairPass::create(device(), {});
   ASSERT_TRUE(pass.has_value()) << pass.error().message;
   EXPECT_FALSE((*pass)->setStrands({}).has_value()) << "null buffers";
   const Buffer buffer(device(), 64, vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
   EXPECT_FALSE((*pass)
-                   ->setStrands({.positions = *buffer.buffer(), .tangents = *buffer.buffer(), .verticesPerStrand = 1})
+                   ->setStrands({.positions = *buffer.buffer(),
+                                 .tangents = *buffer.buffer(),
+                                 .radiance = *buffer.buffer(),
+                                 .verticesPerStrand = 1})
                    .has_value());
   const HairView view{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent};
-  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.width = 0.0f}).has_value());
-  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.width = std::nanf("")}).has_value());
-  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.opacity = 1.5f}).has_value());
-  EXPECT_FALSE((*pass)->update(view, {}, glm::vec3(0), {.minimumPixelWidth = 0.0f}).has_value());
-  EXPECT_FALSE((*pass)->update(HairView{glm::mat4(0.0f), kShadingExtent}, {}, glm::vec3(0), {}).has_value());
-  EXPECT_FALSE((*pass)->update(HairView{view.viewProjection, {0, 0}}, {}, glm::vec3(0), {}).has_value());
-  EXPECT_TRUE((*pass)->update(view, {}, glm::vec3(0), {}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {.width = 0.0f}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {.width = std::nanf("")}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {.opacity = 1.5f}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {.minimumPixelWidth = 0.0f}).has_value());
+  EXPECT_FALSE((*pass)->update(HairView{glm::mat4(0.0f), kShadingExtent}, {}).has_value());
+  EXPECT_FALSE((*pass)->update(HairView{view.viewProjection, {0, 0}}, {}).has_value());
+  EXPECT_TRUE((*pass)->update(view, {}).has_value());
 }
 
 }  // namespace

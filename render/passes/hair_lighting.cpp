@@ -1,0 +1,172 @@
+#include "render/passes/hair_lighting.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "render/descriptors.hpp"
+
+namespace mane::render {
+namespace {
+
+constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of hair_lighting.comp
+constexpr std::uint32_t kFirstShadowBinding = 6;
+
+// std140 mirror of HairLighting in shaders/hair_lighting.comp.
+struct LightingUniforms {
+  glm::vec4 eye;
+  glm::vec4 ambient;
+  glm::vec4 lightDirection[HairLightingPass::kMaxLights];
+  glm::vec4 lightRadiance[HairLightingPass::kMaxLights];
+  glm::uvec4 counts;
+  HairShadowUniforms shadows;
+};
+static_assert(sizeof(LightingUniforms) == 3 * 16 + 2 * 16 * HairLightingPass::kMaxLights + sizeof(HairShadowUniforms));
+
+}  // namespace
+
+glm::vec4 hairEye(const glm::mat4& viewProjection) {
+  // The eye is the point (or, orthographic, the point at infinity) that projects to clip
+  // (0, 0, 1, 0): the null direction of the projection. Clip z grows away from the eye, so an
+  // orthographic eye lies along the negated direction.
+  const glm::vec4 eye = glm::inverse(viewProjection) * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f);
+  const float directionScale = glm::length(glm::vec3(eye));
+  if (std::abs(eye.w) > 1e-6f * directionScale) return glm::vec4(glm::vec3(eye) / eye.w, 1.0f);
+  return glm::vec4(-glm::vec3(eye) / directionScale, 0.0f);
+}
+
+Result<std::unique_ptr<HairLightingPass>> HairLightingPass::create(const Device& device, const MarschnerLut& lut,
+                                                                   const HairShadows& shadows, const Buffer& positions,
+                                                                   const Buffer& tangents, std::uint32_t strandCount,
+                                                                   std::uint32_t verticesPerStrand) {
+  if (strandCount == 0 || verticesPerStrand < 2)
+    return fail("hair lighting: need at least one strand of 2 or more vertices, got " + std::to_string(strandCount) +
+                " strands of " + std::to_string(verticesPerStrand));
+  const std::uint64_t vertices = std::uint64_t(strandCount) * verticesPerStrand;
+  const std::uint64_t bytes = vertices * sizeof(glm::vec4);
+  if (positions.size() < bytes || tangents.size() < bytes)
+    return fail("hair lighting: " + std::to_string(vertices) + " vertices need " + std::to_string(bytes) +
+                " bytes of positions and of tangents; the buffers hold " + std::to_string(positions.size()) + " and " +
+                std::to_string(tangents.size()));
+  if (bytes > device.limits().maxStorageBufferRange ||
+      (vertices + kWorkgroupSize - 1) / kWorkgroupSize > device.limits().maxComputeWorkGroupCount[0])
+    return fail("hair lighting: " + std::to_string(vertices) +
+                " vertices exceed the device's storage buffer range or dispatch size");
+  try {
+    return std::unique_ptr<HairLightingPass>(new HairLightingPass(
+        device, lut, shadows, positions, tangents, static_cast<std::uint32_t>(vertices), verticesPerStrand));
+  } catch (const vk::SystemError& error) {
+    return fail(std::string("hair lighting: Vulkan error while creating the pass: ") + error.what());
+  }
+}
+
+HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut, const HairShadows& shadows,
+                                   const Buffer& positions, const Buffer& tangents, std::uint32_t vertexCount,
+                                   std::uint32_t verticesPerStrand)
+    : device_(&device), shadows_(&shadows), vertexCount_(vertexCount), verticesPerStrand_(verticesPerStrand) {
+  using Type = vk::DescriptorType;
+  const auto compute = vk::ShaderStageFlags(vk::ShaderStageFlagBits::eCompute);
+  const std::pair sampler{Type::eCombinedImageSampler, compute};
+  setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, compute},
+                                      {Type::eStorageBuffer, compute},
+                                      {Type::eStorageBuffer, compute},
+                                      {Type::eStorageBuffer, compute},
+                                      sampler,
+                                      sampler,  // the LUTs
+                                      sampler,
+                                      sampler,
+                                      sampler,
+                                      sampler,  // shadow opacity, 4 slots
+                                      sampler,
+                                      sampler,
+                                      sampler,
+                                      sampler});  // shadow first depth, 4 slots
+  pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_);
+  pool_ = makeDescriptorPool(device, 1,
+                             {{Type::eUniformBuffer, 1},
+                              {Type::eStorageBuffer, 3},
+                              {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
+  set_ = allocateSet(device, pool_, setLayout_);
+
+  uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
+                     vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  radiance_ = Buffer(device, vk::DeviceSize(vertexCount) * sizeof(glm::vec4),
+                     vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc,
+                     vk::MemoryPropertyFlagBits::eDeviceLocal);
+  std::memset(uniforms_.mapped().data(), 0, sizeof(LightingUniforms));
+  writeUniformBuffer(device, set_, 0, uniforms_);
+  writeStorageBuffer(device, set_, 1, positions);
+  writeStorageBuffer(device, set_, 2, tangents);
+  writeStorageBuffer(device, set_, 3, radiance_);
+  const std::array luts{vk::DescriptorImageInfo{.sampler = *lut.sampler(),
+                                                .imageView = *lut.longitudinalView(),
+                                                .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal},
+                        vk::DescriptorImageInfo{.sampler = *lut.sampler(),
+                                                .imageView = *lut.azimuthalView(),
+                                                .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal}};
+  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set_,
+                                                              .dstBinding = 4,
+                                                              .descriptorCount = 2,
+                                                              .descriptorType = Type::eCombinedImageSampler,
+                                                              .pImageInfo = luts.data()},
+                                       {});
+  refreshShadows();
+
+  // Ambient: La · ∫S dωi, the white-furnace albedo of marschner.hpp, at θr = 0.
+  const AzimuthalLobes albedo = azimuthalAlbedo(lut.params(), 1.0);
+  ambientAlbedo_ = glm::vec3(albedo.tt + albedo.trt + glm::dvec3(albedo.r));
+}
+
+void HairLightingPass::refreshShadows() {
+  shadows_->writeDescriptors(set_, kFirstShadowBinding);
+}
+
+Result<void> HairLightingPass::update(const glm::mat4& viewProjection, std::span<const DirectionalLight> lights,
+                                      glm::vec3 ambient, const HairShadowUniforms& shadows) {
+  LightingUniforms uniforms{};
+  const std::size_t count = std::min(lights.size(), kMaxLights);
+  for (std::size_t i = 0; i < count; ++i) {
+    const float length = glm::length(lights[i].direction);
+    if (!(std::isfinite(length) && length > 0.0f))
+      return fail("hair lighting: light " + std::to_string(i) + "'s direction is not finite and non-zero");
+    uniforms.lightDirection[i] = glm::vec4(lights[i].direction / length, 0.0f);
+    uniforms.lightRadiance[i] = glm::vec4(lights[i].color * lights[i].intensity, 0.0f);
+  }
+  uniforms.eye = hairEye(viewProjection);
+  uniforms.ambient = glm::vec4(ambient * ambientAlbedo_, 0.0f);
+  uniforms.counts = glm::uvec4(static_cast<std::uint32_t>(count), verticesPerStrand_, vertexCount_, 0u);
+  uniforms.shadows = shadows;
+  std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
+  return {};
+}
+
+void HairLightingPass::record(const vk::raii::CommandBuffer& commands) const {
+  using Stage = vk::PipelineStageFlagBits2;
+  using Access = vk::AccessFlagBits2;
+  // In: the strands from the interpolation dispatch. Out (write-after-read): the previous
+  // frame's ribbons must have read the old radiance.
+  const std::array before{vk::MemoryBarrier2{.srcStageMask = Stage::eComputeShader,
+                                             .srcAccessMask = Access::eShaderStorageWrite,
+                                             .dstStageMask = Stage::eComputeShader,
+                                             .dstAccessMask = Access::eShaderStorageRead},
+                          vk::MemoryBarrier2{.srcStageMask = Stage::eVertexShader,
+                                             .dstStageMask = Stage::eComputeShader,
+                                             .dstAccessMask = Access::eShaderStorageWrite}};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = before.size(), .pMemoryBarriers = before.data()});
+  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, {*set_}, {});
+  commands.dispatch((vertexCount_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+  const vk::BufferMemoryBarrier2 after{.srcStageMask = Stage::eComputeShader,
+                                       .srcAccessMask = Access::eShaderStorageWrite,
+                                       .dstStageMask = Stage::eVertexShader | Stage::eCopy,
+                                       .dstAccessMask = Access::eShaderStorageRead | Access::eTransferRead,
+                                       .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                       .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                       .buffer = *radiance_.buffer(),
+                                       .offset = 0,
+                                       .size = VK_WHOLE_SIZE};
+  commands.pipelineBarrier2(vk::DependencyInfo{.bufferMemoryBarrierCount = 1, .pBufferMemoryBarriers = &after});
+}
+
+}  // namespace mane::render

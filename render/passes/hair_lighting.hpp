@@ -1,0 +1,91 @@
+#pragma once
+// Marschner shading of dense hair at its vertices (shaders/hair_lighting.comp), before the
+// ribbons are drawn (render/passes/hair_pass.hpp), which interpolate it along each segment.
+//
+// Why per vertex. The scattering S(ωi, ωr) of a fibre depends only on its tangent and the light
+// and view directions (the azimuthal integral is inside N), so it is the same across a ribbon's
+// width and changes only as the tangent turns along the strand. One evaluation per vertex, in a
+// compute pass that spreads over all cores, replaces one per fragment: on lavapipe, hair
+// fragments are many times the ribbon's pixel area (the rasterizer shades whole pixel blocks of
+// thin, overlapping ribbons, shared/LAVAPIPE.md), and the fragment shading dominated the hair
+// draw (README › Performance). The lookups read the LUT mip level that matches how far the
+// tangent turns over the vertex's share of the strand, so curls filter instead of aliasing.
+//
+// Per vertex, written to radiance() (vec4, strand-major like the positions):
+//   rgb = Σ_lights S(ωi, ωr, t) · E_i · (T for the first light) + La · A,   a = T,
+// with E_i the light's perpendicular irradiance (colour × intensity), T the hair shadows'
+// transmittance (render/passes/hair_shadows.hpp) at the vertex, La the ambient radiance and A the
+// groom's white-furnace albedo at θr = 0 (render/luts/marschner.hpp, azimuthalAlbedo). ωr points
+// from the vertex to the eye.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "render/frame.hpp"
+#include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_shadows.hpp"
+#include "render/pipelines.hpp"
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+class HairLightingPass {
+public:
+  /// Lights read per frame; more are ignored. Must match shaders/hair_lighting.comp.
+  static constexpr std::size_t kMaxLights = 4;
+
+  /// Shades the strands in `positions` and `tangents` (StrandInterpolationPass layout: vec4 per
+  /// vertex, strand-major, `verticesPerStrand` per strand) with `lut`'s model, receiving
+  /// `shadows`; all three must outlive the pass. Errors: no vertices, fewer than 2 per strand,
+  /// buffers smaller than the strands, a Vulkan failure.
+  [[nodiscard]] static Result<std::unique_ptr<HairLightingPass>> create(const Device& device, const MarschnerLut& lut,
+                                                                        const HairShadows& shadows,
+                                                                        const Buffer& positions, const Buffer& tangents,
+                                                                        std::uint32_t strandCount,
+                                                                        std::uint32_t verticesPerStrand);
+
+  HairLightingPass(const HairLightingPass&) = delete;
+  HairLightingPass& operator=(const HairLightingPass&) = delete;
+
+  /// The frame's eye (from `viewProjection`, see hairEye), lights (the first kMaxLights),
+  /// ambient radiance and shadow uniforms. Between frames only (one uniform buffer). Errors:
+  /// a light direction that is not finite and non-zero.
+  [[nodiscard]] Result<void> update(const glm::mat4& viewProjection, std::span<const DirectionalLight> lights,
+                                    glm::vec3 ambient, const HairShadowUniforms& shadows);
+
+  /// Re-reads the shadow maps' descriptors (after HairShadows' slots changed). Between frames.
+  void refreshShadows();
+
+  /// Records the dispatch. Before it: the positions and tangents written by a compute shader
+  /// (StrandInterpolationPass::record) and the shadow maps built (HairShadows::record). After
+  /// it, radiance() is visible to vertex-shader storage reads.
+  void record(const vk::raii::CommandBuffer& commands) const;
+
+  /// vec4 per vertex: rgb radiance towards the eye, a the first light's shadow transmittance.
+  [[nodiscard]] const Buffer& radiance() const { return radiance_; }
+
+private:
+  HairLightingPass(const Device& device, const MarschnerLut& lut, const HairShadows& shadows, const Buffer& positions,
+                   const Buffer& tangents, std::uint32_t vertexCount, std::uint32_t verticesPerStrand);
+
+  const Device* device_;
+  const HairShadows* shadows_;
+  glm::vec3 ambientAlbedo_{0.0f};
+  std::uint32_t vertexCount_;
+  std::uint32_t verticesPerStrand_;
+  Buffer radiance_;
+  Buffer uniforms_;
+  vk::raii::DescriptorSetLayout setLayout_{nullptr};
+  vk::raii::DescriptorPool pool_{nullptr};
+  vk::raii::DescriptorSet set_{nullptr};
+  Pipeline pipeline_;
+};
+
+/// The eye of a world → clip matrix: the point (w = 1) or, for an orthographic projection, the
+/// unit direction towards the eye (w = 0) that projects to clip (0, 0, 1, 0).
+[[nodiscard]] glm::vec4 hairEye(const glm::mat4& viewProjection);
+
+}  // namespace mane::render

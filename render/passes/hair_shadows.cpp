@@ -1,0 +1,133 @@
+#include "render/passes/hair_shadows.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mane::render {
+
+Result<std::unique_ptr<HairShadows>> HairShadows::create(const Device& device) {
+  try {
+    return std::unique_ptr<HairShadows>(new HairShadows(device));
+  } catch (const vk::SystemError& error) {
+    return fail(std::string("hair shadows: Vulkan error while creating the empty map: ") + error.what());
+  }
+}
+
+HairShadows::HairShadows(const Device& device) : device_(&device) {
+  using Layout = vk::ImageLayout;
+  using Stage = vk::PipelineStageFlagBits2;
+  using Access = vk::AccessFlagBits2;
+  const auto makeImage = [&](vk::raii::Image& image, Allocation& memory, vk::raii::ImageView& view, vk::Format format,
+                             vk::ImageUsageFlags usage, vk::ImageAspectFlags aspect, vk::ImageViewType viewType) {
+    image = vk::raii::Image(device.device(), vk::ImageCreateInfo{.imageType = vk::ImageType::e2D,
+                                                                 .format = format,
+                                                                 .extent = {1, 1, 1},
+                                                                 .mipLevels = 1,
+                                                                 .arrayLayers = 1,
+                                                                 .samples = vk::SampleCountFlagBits::e1,
+                                                                 .tiling = vk::ImageTiling::eOptimal,
+                                                                 .usage = usage | vk::ImageUsageFlagBits::eSampled,
+                                                                 .initialLayout = Layout::eUndefined});
+    memory = Allocation(device, image.getMemoryRequirements(), vk::MemoryPropertyFlagBits::eDeviceLocal);
+    image.bindMemory(*memory.memory(), 0);
+    view = vk::raii::ImageView(
+        device.device(),
+        vk::ImageViewCreateInfo{
+            .image = *image, .viewType = viewType, .format = format, .subresourceRange = {aspect, 0, 1, 0, 1}});
+  };
+  makeImage(emptyOpacity_, emptyOpacityMemory_, emptyOpacityView_, OpacityShadowMap::kOpacityFormat,
+            vk::ImageUsageFlagBits::eTransferDst, vk::ImageAspectFlagBits::eColor, vk::ImageViewType::e2DArray);
+  makeImage(emptyDepth_, emptyDepthMemory_, emptyDepthView_, OpacityShadowMap::kDepthFormat,
+            vk::ImageUsageFlagBits::eTransferDst, vk::ImageAspectFlagBits::eDepth, vk::ImageViewType::e2D);
+  device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    const vk::ImageSubresourceRange colour{vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1};
+    const vk::ImageSubresourceRange depth{vk::ImageAspectFlagBits::eDepth, 0, 1, 0, 1};
+    imageBarrier(commands, *emptyOpacity_, colour, Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eNone,
+                 Access::eNone, Stage::eClear, Access::eTransferWrite);
+    imageBarrier(commands, *emptyDepth_, depth, Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eNone,
+                 Access::eNone, Stage::eClear, Access::eTransferWrite);
+    commands.clearColorImage(*emptyOpacity_, Layout::eTransferDstOptimal,
+                             vk::ClearColorValue(std::array{0.0f, 0.0f, 0.0f, 0.0f}), colour);
+    commands.clearDepthStencilImage(*emptyDepth_, Layout::eTransferDstOptimal, vk::ClearDepthStencilValue{1.0f, 0},
+                                    depth);
+    const auto toRead = Stage::eFragmentShader | Stage::eComputeShader;
+    imageBarrier(commands, *emptyOpacity_, colour, Layout::eTransferDstOptimal, Layout::eShaderReadOnlyOptimal,
+                 Stage::eClear, Access::eTransferWrite, toRead, Access::eShaderSampledRead);
+    imageBarrier(commands, *emptyDepth_, depth, Layout::eTransferDstOptimal, Layout::eShaderReadOnlyOptimal,
+                 Stage::eClear, Access::eTransferWrite, toRead, Access::eShaderSampledRead);
+  });
+  emptySampler_ = vk::raii::Sampler(
+      device.device(),
+      vk::SamplerCreateInfo{.magFilter = vk::Filter::eNearest, .minFilter = vk::Filter::eNearest, .maxLod = 0.0f});
+}
+
+Result<void> HairShadows::setGrooms(std::span<const Groom> grooms, const HairShadowSettings& settings) {
+  std::vector<GroomMap> maps;
+  if (settings.mode != HairShadowMode::kOff) {
+    const OpacityShadowMode mode = settings.mode == HairShadowMode::kDeepOpacityMap
+                                       ? OpacityShadowMode::kDeepOpacityMap
+                                       : OpacityShadowMode::kOpacityShadowMap;
+    for (std::size_t g = 0; g < grooms.size() && g < kMaxMaps; ++g) {
+      const Groom& groom = grooms[g];
+      if (!(std::isfinite(groom.extinction) && groom.extinction > 0.0f))
+        return fail("groom " + std::to_string(g) + ": the shadow extinction must be finite and > 0, got " +
+                    std::to_string(groom.extinction));
+      auto map = OpacityShadowMap::create(*device_, groom.strands,
+                                          {.mode = mode,
+                                           .resolution = settings.resolution,
+                                           .strandRadius = 0.5f * groom.width,
+                                           .strandOpacity = groom.opacity,
+                                           .extinction = groom.extinction});
+      if (!map) return fail("groom " + std::to_string(g) + ": " + map.error().message);
+      maps.push_back({std::move(*map), std::nullopt});
+    }
+  }
+  maps_ = std::move(maps);
+  uniforms_ = {};
+  return {};
+}
+
+Result<void> HairShadows::setBounds(std::size_t groom, const BoundingSphere& hair) {
+  if (!(std::isfinite(hair.radius) && hair.radius > 0.0f) || !std::isfinite(hair.centre.x) ||
+      !std::isfinite(hair.centre.y) || !std::isfinite(hair.centre.z))
+    return fail("hair shadows: groom " + std::to_string(groom) + "'s bounding sphere is not finite and positive");
+  if (groom < maps_.size()) maps_[groom].bounds = hair;
+  return {};
+}
+
+void HairShadows::record(const vk::raii::CommandBuffer& commands, glm::vec3 towardLight) {
+  uniforms_ = {};
+  for (std::size_t g = 0; g < maps_.size(); ++g) {
+    GroomMap& groom = maps_[g];
+    if (!groom.bounds) continue;
+    // setBounds checked the sphere and callers pass a unit direction, so this cannot fail.
+    if (!groom.map->setLight(towardLight, *groom.bounds)) continue;
+    groom.map->record(commands);
+    uniforms_.maps[g] = groom.map->uniforms();
+    uniforms_.count.x = std::uint32_t(g + 1);
+  }
+}
+
+void HairShadows::writeDescriptors(const vk::raii::DescriptorSet& set, std::uint32_t firstBinding) const {
+  std::array<vk::DescriptorImageInfo, kBindings> images;
+  for (std::uint32_t slot = 0; slot < kMaxMaps; ++slot) {
+    const bool bound = slot < maps_.size() && maps_[slot].bounds;
+    const OpacityShadowMap* map = bound ? maps_[slot].map.get() : nullptr;
+    images[slot] = {.sampler = map ? *map->sampler() : *emptySampler_,
+                    .imageView = map ? *map->opacityView() : *emptyOpacityView_,
+                    .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+    images[kMaxMaps + slot] = {.sampler = map ? *map->firstDepthSampler() : *emptySampler_,
+                               .imageView = map ? *map->firstDepthView() : *emptyDepthView_,
+                               .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+  }
+  std::array<vk::WriteDescriptorSet, kBindings> writes;
+  for (std::uint32_t i = 0; i < kBindings; ++i)
+    writes[i] = vk::WriteDescriptorSet{.dstSet = *set,
+                                       .dstBinding = firstBinding + i,
+                                       .descriptorCount = 1,
+                                       .descriptorType = vk::DescriptorType::eCombinedImageSampler,
+                                       .pImageInfo = &images[i]};
+  device_->device().updateDescriptorSets(writes, {});
+}
+
+}  // namespace mane::render

@@ -1,0 +1,49 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Marschner shading of every dense hair vertex (render/passes/hair_lighting.hpp): the radiance
+// towards the eye under the frame's directional lights, the first one attenuated by the hair
+// shadows, plus the ambient term. The ribbons interpolate it along each segment.
+#include "hair_shading.glsl"
+#define HAIR_SHADOW_SET 0
+#define HAIR_SHADOW_BINDING 6
+#include "hair_shadows.glsl"
+
+const int kHairLightingMaxLights = 4;
+
+layout(set = 0, binding = 0, std140) uniform HairLighting {
+  vec4 eye;                                     // w = 1: eye position (metres); w = 0: unit direction towards the eye
+  vec4 ambient;                                 // rgb: ambient radiance × the groom's white-furnace albedo
+  vec4 lightDirection[kHairLightingMaxLights];  // xyz: unit vector towards the light
+  vec4 lightRadiance[kHairLightingMaxLights];   // rgb: perpendicular irradiance (colour × intensity)
+  uvec4 counts;                                 // x: lights, y: vertices per strand, z: vertices in all
+  HairShadowUniforms shadows;
+} lighting;
+
+layout(std430, set = 0, binding = 1) readonly buffer Positions { vec4 positions[]; };  // xyz metres, w = t
+layout(std430, set = 0, binding = 2) readonly buffer Tangents { vec4 tangents[]; };    // xyz unit, root → tip
+layout(std430, set = 0, binding = 3) writeonly buffer Radiance { vec4 radiance[]; };   // rgb; a: shadow transmittance
+layout(set = 0, binding = 4) uniform sampler2D longitudinalLut;
+layout(set = 0, binding = 5) uniform sampler2DArray azimuthalLut;
+
+layout(local_size_x = 64) in;
+
+void main() {
+  uint vertex = gl_GlobalInvocationID.x;
+  if (vertex >= lighting.counts.z) return;
+  vec3 position = positions[vertex].xyz;
+  vec3 tangent = tangents[vertex].xyz;
+  // The angle the tangent turns over this vertex's share of the strand, half a segment each way.
+  uint along = vertex % lighting.counts.y;
+  float spread = 0.0;
+  if (along > 0u) spread += 0.5 * acos(clamp(dot(tangent, tangents[vertex - 1u].xyz), -1.0, 1.0));
+  if (along + 1u < lighting.counts.y) spread += 0.5 * acos(clamp(dot(tangent, tangents[vertex + 1u].xyz), -1.0, 1.0));
+
+  vec3 toEye = lighting.eye.w != 0.0 ? normalize(lighting.eye.xyz - position) : lighting.eye.xyz;
+  float shadow = hairShadowTransmittance(lighting.shadows, position);
+  vec3 result = lighting.ambient.rgb;
+  for (uint i = 0u; i < lighting.counts.x; ++i) {
+    vec3 scattered = hairScattering(longitudinalLut, azimuthalLut, lighting.lightDirection[i].xyz, toEye, tangent, spread);
+    result += scattered * lighting.lightRadiance[i].rgb * (i == 0u ? shadow : 1.0);
+  }
+  radiance[vertex] = vec4(result, shadow);
+}
