@@ -103,7 +103,10 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
                         .width = groom.settings.width,
                         .opacity = groom.settings.opacity,
                         .extinction = groom.settings.shadowExtinction});
-    hair_.push_back({.strands = std::move(*strands), .settings = groom.settings, .strayFromGuides = stray});
+    hair_.push_back({.strands = std::move(*strands),
+                     .order = std::make_unique<StrandDrawOrder>(groom.layout),
+                     .settings = groom.settings,
+                     .strayFromGuides = stray});
   }
   if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
   refreshShadowDescriptors();
@@ -166,6 +169,11 @@ Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> 
   // + 0.1 %: vertices on the sphere stay inside the map's clip volume (boundingSphere does the same).
   const BoundingSphere sphere{centre, std::max(radius + hair.strayFromGuides, 1e-6f) * 1.001f};
   if (auto bounded = shadows_->setBounds(groom, sphere); !bounded) return bounded;
+  // Guide middles, the keys the strands are sorted by when drawn (render/hair_order.hpp).
+  const std::size_t perGuide = guidePositions.size() / hair.strands->guideCount();
+  hair.guideMiddles.resize(hair.strands->guideCount());
+  for (std::size_t g = 0; g < hair.guideMiddles.size(); ++g)
+    hair.guideMiddles[g] = guidePositions[g * perGuide + perGuide / 2];
   if (!hair.hasGuides) {
     hair.hasGuides = true;
     refreshShadowDescriptors();  // the groom's slot now binds its map
@@ -215,8 +223,10 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   if (hair) {
     timer_.end(commands);
     timer_.begin(commands, "hair");
+    const glm::vec4 eye = hairEye(frame.camera.projection(target_.aspect()) * frame.camera.view());
     for (const HairGroom& groom : hair_)
-      if (groom.hasGuides && groom.ribbons->update(frame, target_.extent(), groom.settings))
+      if (groom.hasGuides && groom.ribbons->update(frame, target_.extent(), groom.settings) &&
+          groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye)))
         groom.ribbons->draw(commands);
   }
   commands.endRendering();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/frame.hpp"
+#include "render/hair_order.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "render/passes/hair_lighting.hpp"
@@ -75,6 +76,8 @@ private:
     std::unique_ptr<StrandInterpolationPass> strands;
     std::unique_ptr<HairLightingPass> lighting;
     std::unique_ptr<HairPass> ribbons;
+    std::unique_ptr<StrandDrawOrder> order;
+    std::vector<glm::vec3> guideMiddles;  // of the last updateHair: the sort keys
     HairGroomSettings settings;
     float strayFromGuides = 0.0f;  // metres: bound on a dense vertex's distance from its guides
     bool hasGuides = false;        // updateHair called at least once

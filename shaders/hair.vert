@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Camera-facing ribbons pulled from the dense-strand storage buffers (see render/passes/hair_pass.hpp).
-// gl_VertexIndex = 6 × segment + corner; segment = strand × (Nd − 1) + i joins vertices i and i + 1.
+// gl_VertexIndex = 6 × segment + corner; segment = k × (Nd − 1) + i joins vertices i and i + 1 of
+// strand order[k], the k-th strand in drawing order (back to front).
 #include "hair_uniforms.glsl"
 
 layout(set = 0, binding = 1, std430) readonly buffer Positions {
@@ -13,6 +14,10 @@ layout(set = 0, binding = 2, std430) readonly buffer Tangents {
 
 layout(set = 0, binding = 3, std430) readonly buffer Radiance {
   vec4 radiance[];  // rgb towards the eye, shaded per vertex (render/passes/hair_lighting.hpp)
+};
+
+layout(set = 0, binding = 4, std430) readonly buffer DrawOrder {
+  uint order[];  // strand indices in the order they are drawn
 };
 
 layout(location = 0) out vec3 outRadiance;
@@ -27,7 +32,7 @@ void main() {
   uint verticesPerStrand = hair.counts.y;
   uint segment = uint(gl_VertexIndex) / 6u;
   uint corner = uint(gl_VertexIndex) % 6u;
-  uint strand = segment / (verticesPerStrand - 1u);
+  uint strand = order[segment / (verticesPerStrand - 1u)];
   uint vertex = strand * verticesPerStrand + segment % (verticesPerStrand - 1u) + kEnd[corner];
 
   vec4 point = positions[vertex];

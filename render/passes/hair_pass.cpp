@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "render/descriptors.hpp"
 #include "render/passes/hair_lighting.hpp"
@@ -59,6 +60,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment},
                                       {Type::eStorageBuffer, Stage::eVertex},
                                       {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eStorageBuffer, Stage::eVertex},
                                       {Type::eStorageBuffer, Stage::eVertex}});
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
   pipeline_ = makeGraphicsPipeline(device, GraphicsPipelineSettings{.vertexShader = "hair.vert",
@@ -71,7 +73,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                                                     .depthWrite = false,
                                                                     .samples = settings.samples,
                                                                     .setLayouts = {*setLayout_}});
-  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 3}});
+  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 4}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -98,11 +100,34 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
                                                                 .descriptorType = vk::DescriptorType::eStorageBuffer,
                                                                 .pBufferInfo = buffers.data()},
                                          {});
+  // Buffer order until setDrawOrder says otherwise.
+  order_ = Buffer(*device_, std::max<vk::DeviceSize>(strands.strandCount, 1) * sizeof(std::uint32_t),
+                  vk::BufferUsageFlagBits::eStorageBuffer,
+                  vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  auto* order = reinterpret_cast<std::uint32_t*>(order_.mapped().data());
+  for (std::uint32_t s = 0; s < strands.strandCount; ++s) order[s] = s;
+  writeStorageBuffer(*device_, set_, 4, order_);
+  strandCount_ = strands.strandCount;
   vertexCount_ = static_cast<std::uint32_t>(vertices);
   verticesPerStrand_ = strands.verticesPerStrand;
   // Keep the uniforms of an earlier update in step (counts.y is Nd).
   std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts) + sizeof(std::uint32_t), &verticesPerStrand_,
               sizeof(verticesPerStrand_));
+  return {};
+}
+
+Result<void> HairPass::setDrawOrder(std::span<const std::uint32_t> order) {
+  if (order.size() != strandCount_)
+    return fail("hair draw order: " + std::to_string(order.size()) + " entries for " + std::to_string(strandCount_) +
+                " strands");
+  std::vector<bool> seen(strandCount_, false);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (order[k] >= strandCount_ || seen[order[k]])
+      return fail("hair draw order: entry " + std::to_string(k) + " (" + std::to_string(order[k]) +
+                  ") is out of range or repeats a strand");
+    seen[order[k]] = true;
+  }
+  std::memcpy(order_.mapped().data(), order.data(), order.size_bytes());
   return {};
 }
 

@@ -30,23 +30,22 @@
 //  biases thin strands up to +¼ pixel of coverage). Coverage-scaled alpha is exact in area at
 //  both sample counts.
 //
-// Compositing: premultiplied-alpha "over" blending in draw order, depth test against the opaque
-// scene (LESS_OR_EQUAL), no depth writes. Chosen because it is the cheapest method on lavapipe
-// (one pass, no extra targets; see LAVAPIPE.md: ≈ 70 ms for 4,096 blended strands at 720p) and
-// because the accumulated alpha 1 − Π(1 − α_i) does not depend on the order: coverage, the
-// quantity thin hair needs to get right, is order-independent. Limits:
-//  - The colour is order-dependent where strands overlap: the strand drawn last is weighted by
-//    its α, whatever its depth. Strands are drawn in buffer order (root to tip, strand after
-//    strand), not sorted; within one groom, whose strands share a material, the error is in the
-//    mix of lighting of overlapping layers (e.g. a shadowed back layer drawn over a lit front
-//    one), not in coverage. Opaque hair (α = 1) in the wrong order shows the back strand.
+// Compositing: sorted, back to front, per strand. Each strand is blended with premultiplied-alpha
+// "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the
+// order setDrawOrder gives (the Renderer sorts strands every frame by the distance of their
+// guide's middle from the eye: render/hair_order.hpp). Why sorting and not an order-independent
+// method: on lavapipe it costs nothing on the GPU (one index read per vertex; the sort is of
+// guides, thousands, on the CPU), where weighted blended OIT (McGuire & Bavoil, JCGT 2013) needs
+// two more colour targets and a full-screen composite (≈ 20 ms at 720p, shared/LAVAPIPE.md) and
+// still only approximates the front-to-back weighting by a depth heuristic; a per-pixel linked
+// list (TressFX's PPLL) needs atomics and memory per fragment. What sorting gets right and wrong:
+//  - Coverage: the accumulated alpha 1 − Π(1 − α_i) does not depend on the order at all.
+//  - Colour: exact where strands are separated in depth as whole strands (layers of hair, a
+//    fringe in front of a face). Where two strands cross in depth along their lengths, the
+//    one sorted later is drawn over the other along its whole length: the residual error is
+//    the mix of lighting of such overlaps, within one groom, whose strands share a material.
 //  - Without depth writes, hair does not occlude hair in the depth buffer: later passes that
 //    depth-test against it (none yet) see only the opaque scene.
-//  The better-looking alternatives, not done here: weighted blended OIT (McGuire & Bavoil,
-//  "Weighted Blended Order-Independent Transparency", JCGT 2013) needs an RGBA16F accumulation
-//  and an R16F revealage target plus a full-screen composite (≈ 20 ms at 720p on lavapipe, per
-//  LAVAPIPE.md); a depth pre-pass of near-opaque strands with depth writes, then blending,
-//  fixes opaque ordering; per-frame strand sorting by depth (GPU sort) fixes both.
 //
 // Colour: the radiance of the segment's two end vertices, interpolated linearly along it (it is
 // constant across the width: see hair_lighting.hpp), times the coverage alpha.
@@ -105,6 +104,11 @@ public:
   /// vertices per strand, or more ribbon vertices than one draw can count (2³² − 1).
   [[nodiscard]] Result<void> setStrands(const HairStrands& strands);
 
+  /// The order to draw the strands in, first to last: a permutation of 0..strandCount − 1
+  /// (back to front for correct "over" blending). Between frames only. Errors (nothing
+  /// changed): a wrong length, an index out of range or repeated.
+  [[nodiscard]] Result<void> setDrawOrder(std::span<const std::uint32_t> order);
+
   /// Writes the frame's view and the groom's settings. Call between frames, never while a draw
   /// recorded earlier is still running (one uniform buffer). Errors (nothing written): a
   /// non-invertible or non-finite view, an empty extent, or groom settings out of their
@@ -133,6 +137,8 @@ private:
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
+  Buffer order_;  ///< uint per strand, host-visible
+  std::uint32_t strandCount_ = 0;
   std::uint32_t vertexCount_ = 0;
   std::uint32_t verticesPerStrand_ = 0;
 };

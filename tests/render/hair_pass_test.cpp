@@ -26,6 +26,7 @@
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
+#include "render/hair_order.hpp"
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "render/passes/hair_lighting.hpp"
@@ -335,6 +336,75 @@ TEST_F(HairPassTest, BlondeTransmitsMoreThanDarkWhenBackLit) {
   std::printf("back-lit: blonde (%.4f %.4f %.4f) dark (%.5f %.5f %.5f), CPU ratio (%.2f %.2f %.2f)\n", blondeColour.r,
               blondeColour.g, blondeColour.b, darkColour.r, darkColour.g, darkColour.b, expectedRatio.r,
               expectedRatio.g, expectedRatio.b);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Compositing
+
+// Two half-transparent strands on the same screen path, a red one 0.1 m in front of a blue one,
+// stored front first. Drawn in buffer order the blue one lands on top, which is wrong; in the
+// order StrandDrawOrder gives for the eye in front, the pixel is the "over" composite of the
+// front strand over the back one: C = α·c_front + (1 − α)·α·c_back, alpha 1 − (1 − α)².
+TEST_F(HairPassTest, StrandsSortedBackToFrontCompositeFrontOverBack) {
+  StrandData data;
+  addStraightStrand(data, {0.0f, -0.02f, 0.1f}, {0.0f, 0.02f, 0.1f}, 4);    // front
+  addStraightStrand(data, {0.0f, -0.02f, -0.1f}, {0.0f, 0.02f, -0.1f}, 4);  // back
+  std::vector<glm::vec4> radiance(4, glm::vec4(1, 0, 0, 1));
+  radiance.resize(8, glm::vec4(0, 0, 1, 1));
+  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
+  const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
+  const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
+  const Buffer colours = Buffer::withData(device(), std::as_bytes(std::span(radiance)), usage);
+  auto pass = HairPass::create(device(), {});
+  ASSERT_TRUE(pass.has_value()) << pass.error().message;
+  ASSERT_TRUE((*pass)
+                  ->setStrands({.positions = *positions.buffer(),
+                                .tangents = *tangents.buffer(),
+                                .radiance = *colours.buffer(),
+                                .strandCount = 2,
+                                .verticesPerStrand = 4})
+                  .has_value());
+  const HairView view{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent};
+  constexpr float kAlpha = 0.5f;
+  ASSERT_TRUE((*pass)->update(view, {.width = 20 * kMetresPerPixel, .opacity = kAlpha}).has_value());
+
+  const auto centre = [&] {
+    const RenderTarget target(device(), {.extent = kShadingExtent});
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      target.beginScene(commands, glm::vec4(0.0f));
+      (*pass)->draw(commands);
+      commands.endRendering();
+      transition(commands, target.hdr(), vk::ImageLayout::eColorAttachmentOptimal, vk::ImageLayout::eTransferSrcOptimal,
+                 vk::PipelineStageFlagBits2::eColorAttachmentOutput, vk::AccessFlagBits2::eColorAttachmentWrite,
+                 vk::PipelineStageFlagBits2::eTransfer, vk::AccessFlagBits2::eTransferRead);
+    });
+    const std::vector<std::byte> bytes = readBack(device(), target.hdr(), 8);
+    std::array<std::uint16_t, 4> halves{};
+    std::memcpy(
+        halves.data(),
+        bytes.data() + 8 * (std::size_t(kShadingExtent.height / 2) * kShadingExtent.width + kShadingExtent.width / 2),
+        8);
+    return glm::vec4(glm::unpackHalf1x16(halves[0]), glm::unpackHalf1x16(halves[1]), glm::unpackHalf1x16(halves[2]),
+                     glm::unpackHalf1x16(halves[3]));
+  };
+  const glm::vec4 unsorted = centre();
+  EXPECT_NEAR(unsorted.b, kAlpha, 1e-3) << "buffer order draws the back strand last, on top";
+
+  const std::array guides{DenseStrand{.guides = {0, 0, 0}}, DenseStrand{.guides = {1, 0, 0}}};
+  StrandDrawOrder order(DenseStrandLayout{.guideCount = 2, .strands = guides});
+  const std::array middles{glm::vec3(0.0f, 0.0f, 0.1f), glm::vec3(0.0f, 0.0f, -0.1f)};
+  const auto backToFront = order.backToFront(middles, hairEye(view.viewProjection));
+  ASSERT_EQ(std::vector<std::uint32_t>(backToFront.begin(), backToFront.end()), (std::vector<std::uint32_t>{1, 0}));
+  ASSERT_TRUE((*pass)->setDrawOrder(backToFront).has_value());
+  const glm::vec4 sorted = centre();
+  EXPECT_NEAR(sorted.r, kAlpha, 1e-3);
+  EXPECT_NEAR(sorted.b, (1 - kAlpha) * kAlpha, 1e-3);
+  EXPECT_NEAR(sorted.a, 1 - (1 - kAlpha) * (1 - kAlpha), 1e-3);
+  EXPECT_NEAR(unsorted.a, sorted.a, 1e-3) << "coverage does not depend on the order";
+
+  const std::array repeated{0u, 0u};
+  EXPECT_FALSE((*pass)->setDrawOrder(repeated).has_value());
+  EXPECT_FALSE((*pass)->setDrawOrder(std::span<const std::uint32_t>(repeated).first(1)).has_value());
 }
 
 // ---------------------------------------------------------------------------------------------
