@@ -95,7 +95,7 @@ Result<void> validate(const Device& device, const OpacityShadowStrands& strands,
   if (s.builder == OpacityShadowBuilder::kCompute && s.mode != OpacityShadowMode::kOpacityShadowMap)
     return fail(
         "Opacity shadow map: the compute builder makes 16-slice opacity shadow maps only, not deep opacity "
-        "maps.");
+        "maps or depth shadow maps.");
   if (strands.positions == nullptr || strands.strandCount == 0)
     return fail("Opacity shadow map: there are no strands (" + std::to_string(strands.strandCount) +
                 " strands, position buffer " + (strands.positions ? "given" : "missing") + ").");
@@ -133,17 +133,6 @@ Result<void> validate(const Device& device, const OpacityShadowStrands& strands,
   return checkFormat(device, OpacityShadowMap::kDepthFormat,
                      Feature::eDepthStencilAttachment | Feature::eSampledImage | Feature::eTransferSrc,
                      "the first-hair depth");
-}
-
-void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
-                        const Buffer& buffer) {
-  const vk::DescriptorBufferInfo info{.buffer = *buffer.buffer(), .offset = 0, .range = VK_WHOLE_SIZE};
-  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
-                                                              .dstBinding = binding,
-                                                              .descriptorCount = 1,
-                                                              .descriptorType = vk::DescriptorType::eStorageBuffer,
-                                                              .pBufferInfo = &info},
-                                       {});
 }
 
 Pipeline makeComputePipeline(const Device& device, const vk::raii::DescriptorSetLayout& setLayout, const char* shader) {
@@ -201,6 +190,8 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
       segmentCount_(strands.strandCount * (strands.verticesPerStrand - 1)),
       strictLines_(device.limits().strictLines == VK_TRUE) {
   const bool deep = settings.mode == OpacityShadowMode::kDeepOpacityMap;
+  const bool depthOnly = settings.mode == OpacityShadowMode::kDepthShadowMap;
+  const bool firstHair = deep || depthOnly;  // a first-hair depth pass
   const bool compute = settings.builder == OpacityShadowBuilder::kCompute;
   using Usage = vk::ImageUsageFlagBits;
 
@@ -235,23 +226,35 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
                                                              .subresourceRange = {aspect, 0, 1, layer, 1}});
   };
   const vk::Extent2D extent{settings.resolution, settings.resolution};
-  makeImage(opacity_, extent, deep ? 1 : kSlices / 4, kOpacityFormat,
-            Usage::eSampled | Usage::eTransferSrc | (compute ? Usage::eStorage : Usage::eColorAttachment),
+  makeImage(opacity_, depthOnly ? vk::Extent2D{1, 1} : extent, deep || depthOnly ? 1 : kSlices / 4, kOpacityFormat,
+            Usage::eSampled | Usage::eTransferSrc |
+                (compute     ? Usage::eStorage
+                 : depthOnly ? Usage::eTransferDst
+                             : Usage::eColorAttachment),
             vk::ImageAspectFlagBits::eColor);
-  makeImage(firstDepth_, deep ? extent : vk::Extent2D{1, 1}, 1, kDepthFormat,
+  makeImage(firstDepth_, firstHair ? extent : vk::Extent2D{1, 1}, 1, kDepthFormat,
             Usage::eDepthStencilAttachment | Usage::eSampled | Usage::eTransferSrc | Usage::eTransferDst,
             vk::ImageAspectFlagBits::eDepth);
-  if (!deep)  // a valid "no hair anywhere" depth for consumers that bind both images
+  // Valid "no hair anywhere" images for consumers that bind both: a depth of 1 where no pass
+  // writes the first depth, an opacity of 0 where none writes opacity (depth shadow maps).
+  const auto clearOnce = [&](const ArrayImage& target, vk::ImageAspectFlags aspect) {
     device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-      const vk::ImageSubresourceRange range{vk::ImageAspectFlagBits::eDepth, 0, 1, 0, 1};
-      imageBarrier(commands, *firstDepth_.image, range, Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eNone,
+      const vk::ImageSubresourceRange range{aspect, 0, 1, 0, 1};
+      imageBarrier(commands, *target.image, range, Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eNone,
                    Access::eNone, Stage::eClear, Access::eTransferWrite);
-      commands.clearDepthStencilImage(*firstDepth_.image, Layout::eTransferDstOptimal,
-                                      vk::ClearDepthStencilValue{1.0f, 0}, range);
-      imageBarrier(commands, *firstDepth_.image, range, Layout::eTransferDstOptimal, Layout::eShaderReadOnlyOptimal,
+      if (aspect == vk::ImageAspectFlagBits::eDepth)
+        commands.clearDepthStencilImage(*target.image, Layout::eTransferDstOptimal, vk::ClearDepthStencilValue{1.0f, 0},
+                                        range);
+      else
+        commands.clearColorImage(*target.image, Layout::eTransferDstOptimal,
+                                 vk::ClearColorValue(std::array{0.0f, 0.0f, 0.0f, 0.0f}), range);
+      imageBarrier(commands, *target.image, range, Layout::eTransferDstOptimal, Layout::eShaderReadOnlyOptimal,
                    Stage::eClear, Access::eTransferWrite, Stage::eFragmentShader | Stage::eComputeShader,
                    Access::eShaderSampledRead);
     });
+  };
+  if (!firstHair) clearOnce(firstDepth_, vk::ImageAspectFlagBits::eDepth);
+  if (depthOnly) clearOnce(opacity_, vk::ImageAspectFlagBits::eColor);
 
   sampler_ =
       vk::raii::Sampler(device.device(), vk::SamplerCreateInfo{.magFilter = vk::Filter::eLinear,
@@ -318,17 +321,19 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
                                          {});
     splatPipeline_ = makeComputePipeline(device, setLayout_, "opacity_shadow_splat.comp");
     resolvePipeline_ = makeComputePipeline(device, setLayout_, "opacity_shadow_resolve.comp");
-  } else if (deep) {
+  } else if (firstHair) {
     GraphicsPipelineSettings depthLines = lines;
     depthLines.fragmentShader = "opacity_shadow_depth.frag";
     depthLines.depthFormat = kDepthFormat;
     depthLines.depthTest = true;
     depthLines.depthWrite = true;
     depthPipeline_ = makeGraphicsPipeline(device, depthLines);
-    lines.fragmentShader = "opacity_shadow_deep.frag";
-    lines.colorFormats = {kOpacityFormat};
-    lines.blend = Blend::kAdditive;
-    opacityPipeline_ = makeGraphicsPipeline(device, lines);
+    if (deep) {
+      lines.fragmentShader = "opacity_shadow_deep.frag";
+      lines.colorFormats = {kOpacityFormat};
+      lines.blend = Blend::kAdditive;
+      opacityPipeline_ = makeGraphicsPipeline(device, lines);
+    }
   } else {
     lines.fragmentShader = "opacity_shadow.frag";
     lines.colorFormats = std::vector<vk::Format>(kSlices / 4, kOpacityFormat);
@@ -348,12 +353,21 @@ Result<void> OpacityShadowMap::setLight(glm::vec3 towardLight, const BoundingSph
   towardLight_ = glm::normalize(towardLight);
   sphere_ = hair;
   lightSet_ = true;
-  const bool deep = settings_.mode == OpacityShadowMode::kDeepOpacityMap;
   const float diameter = 2.0f * hair.radius;
   const float resolution = static_cast<float>(settings_.resolution);
   uniforms_.lightFromWorld = lightFrame(towardLight_, sphere_);
-  uniforms_.depth = glm::vec4(deep ? float(kDeepLayers) : float(kSlices),
-                              deep ? settings_.layerSpacing : 1.0f / kSlices, settings_.extinction, deep ? 1.0f : 0.0f);
+  const float mode = float(settings_.mode);
+  switch (settings_.mode) {
+    case OpacityShadowMode::kOpacityShadowMap:
+      uniforms_.depth = glm::vec4(float(kSlices), 1.0f / kSlices, settings_.extinction, mode);
+      break;
+    case OpacityShadowMode::kDeepOpacityMap:
+      uniforms_.depth = glm::vec4(float(kDeepLayers), settings_.layerSpacing, settings_.extinction, mode);
+      break;
+    case OpacityShadowMode::kDepthShadowMap:  // the bias: 2 texels' worth of depth (header)
+      uniforms_.depth = glm::vec4(1.0f, 2.0f / resolution, settings_.extinction, mode);
+      break;
+  }
   uniforms_.texels = glm::vec4(resolution, 1.0f / resolution, diameter, diameter / resolution);
   return {};
 }
@@ -378,6 +392,8 @@ void OpacityShadowMap::record(const vk::raii::CommandBuffer& commands) const {
     recordCompute(commands);
   else if (settings_.mode == OpacityShadowMode::kDeepOpacityMap)
     recordDeep(commands);
+  else if (settings_.mode == OpacityShadowMode::kDepthShadowMap)
+    recordFirstDepth(commands);
   else
     recordGraphics(commands);
 }
@@ -434,13 +450,10 @@ void OpacityShadowMap::recordGraphics(const vk::raii::CommandBuffer& commands) c
                 Access::eShaderSampledRead | Access::eTransferRead);
 }
 
-void OpacityShadowMap::recordDeep(const vk::raii::CommandBuffer& commands) const {
+// Nearest hair depth: deep opacity maps' pass 1, and all of a depth shadow map.
+void OpacityShadowMap::recordFirstDepth(const vk::raii::CommandBuffer& commands) const {
   const auto depthAspect = vk::ImageAspectFlagBits::eDepth;
   const auto depthTests = Stage::eEarlyFragmentTests | Stage::eLateFragmentTests;
-  const BuildConstants constants =
-      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_);
-
-  // Pass 1: nearest hair depth.
   transitionAll(commands, *firstDepth_.image, depthAspect, 1, Layout::eUndefined, Layout::eDepthAttachmentOptimal,
                 kReaders, Access::eNone, depthTests,
                 Access::eDepthStencilAttachmentRead | Access::eDepthStencilAttachmentWrite);
@@ -454,13 +467,18 @@ void OpacityShadowMap::recordDeep(const vk::raii::CommandBuffer& commands) const
   setViewportAndScissor(commands, firstDepth_.extent);
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *depthPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *depthPipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<BuildConstants>(*depthPipeline_.layout, kGraphicsStages, 0, constants);
+  commands.pushConstants<BuildConstants>(
+      *depthPipeline_.layout, kGraphicsStages, 0,
+      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_));
   commands.draw(2 * segmentCount_, 1, 0, 0);
   commands.endRendering();
   transitionAll(commands, *firstDepth_.image, depthAspect, 1, Layout::eDepthAttachmentOptimal,
                 Layout::eShaderReadOnlyOptimal, depthTests, Access::eDepthStencilAttachmentWrite, kReaders,
                 Access::eShaderSampledRead | Access::eTransferRead);
+}
 
+void OpacityShadowMap::recordDeep(const vk::raii::CommandBuffer& commands) const {
+  recordFirstDepth(commands);  // pass 1: nearest hair depth
   // Pass 2: the layers, relative to that depth.
   const auto color = vk::ImageAspectFlagBits::eColor;
   transitionAll(commands, *opacity_.image, color, 1, Layout::eUndefined, Layout::eColorAttachmentOptimal, kReaders,
@@ -478,7 +496,9 @@ void OpacityShadowMap::recordDeep(const vk::raii::CommandBuffer& commands) const
   setViewportAndScissor(commands, opacity_.extent);
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *opacityPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *opacityPipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<BuildConstants>(*opacityPipeline_.layout, kGraphicsStages, 0, constants);
+  commands.pushConstants<BuildConstants>(
+      *opacityPipeline_.layout, kGraphicsStages, 0,
+      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_));
   commands.draw(2 * segmentCount_, 1, 0, 0);
   commands.endRendering();
   transitionAll(commands, *opacity_.image, color, 1, Layout::eColorAttachmentOptimal, Layout::eShaderReadOnlyOptimal,
@@ -578,6 +598,73 @@ std::vector<float> OpacityShadowMap::readFirstDepth() const {
   std::vector<float> values(texels);
   std::memcpy(values.data(), host.mapped().data(), texels * 4);
   return values;
+}
+
+std::vector<glm::vec2> OpacityShadowMap::probe(std::span<const glm::vec3> points) const {
+  struct Push {  // mirrors the push constants of shaders/opacity_shadow_probe.comp
+    OpacityShadowUniforms osm;
+    std::uint32_t count;
+  };
+  constexpr std::uint32_t kProbeGroup = 64;  // local_size_x of opacity_shadow_probe.comp
+  if (points.empty()) return {};
+  const Device& device = *device_;
+  const auto stage = vk::ShaderStageFlagBits::eCompute;
+  const auto hostMemory = vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent;
+  Buffer input(device, points.size() * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer, hostMemory);
+  Buffer output(device, points.size() * sizeof(glm::vec2), vk::BufferUsageFlagBits::eStorageBuffer, hostMemory);
+  auto* packed = reinterpret_cast<glm::vec4*>(input.mapped().data());
+  for (std::size_t i = 0; i < points.size(); ++i) packed[i] = glm::vec4(points[i], 1.0f);
+
+  const vk::raii::DescriptorSetLayout setLayout =
+      makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, stage},
+                             {vk::DescriptorType::eCombinedImageSampler, stage},
+                             {vk::DescriptorType::eStorageBuffer, stage},
+                             {vk::DescriptorType::eStorageBuffer, stage}});
+  const vk::raii::DescriptorPool pool = makeDescriptorPool(
+      device, 1, {{vk::DescriptorType::eCombinedImageSampler, 2}, {vk::DescriptorType::eStorageBuffer, 2}});
+  const vk::raii::DescriptorSet set = allocateSet(device, pool, setLayout);
+  const std::array images{
+      vk::DescriptorImageInfo{
+          .sampler = *sampler_, .imageView = *opacity_.view, .imageLayout = Layout::eShaderReadOnlyOptimal},
+      vk::DescriptorImageInfo{
+          .sampler = *nearest_, .imageView = *firstDepth_.view, .imageLayout = Layout::eShaderReadOnlyOptimal}};
+  const std::array buffers{vk::DescriptorBufferInfo{.buffer = *input.buffer(), .range = VK_WHOLE_SIZE},
+                           vk::DescriptorBufferInfo{.buffer = *output.buffer(), .range = VK_WHOLE_SIZE}};
+  device.device().updateDescriptorSets(
+      {vk::WriteDescriptorSet{.dstSet = *set,
+                              .dstBinding = 0,
+                              .descriptorCount = 2,
+                              .descriptorType = vk::DescriptorType::eCombinedImageSampler,
+                              .pImageInfo = images.data()},
+       vk::WriteDescriptorSet{.dstSet = *set,
+                              .dstBinding = 2,
+                              .descriptorCount = 2,
+                              .descriptorType = vk::DescriptorType::eStorageBuffer,
+                              .pBufferInfo = buffers.data()}},
+      {});
+  const vk::PushConstantRange range{.stageFlags = stage, .offset = 0, .size = sizeof(Push)};
+  const vk::raii::PipelineLayout layout(
+      device.device(),
+      vk::PipelineLayoutCreateInfo{
+          .setLayoutCount = 1, .pSetLayouts = &*setLayout, .pushConstantRangeCount = 1, .pPushConstantRanges = &range});
+  const vk::raii::ShaderModule shader = loadShader(device, "opacity_shadow_probe.comp");
+  const vk::raii::Pipeline pipeline(
+      device.device(), nullptr,
+      vk::ComputePipelineCreateInfo{.stage = {.stage = stage, .module = *shader, .pName = "main"}, .layout = *layout});
+  device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*set}, {});
+    commands.pushConstants<Push>(*layout, stage, 0, Push{uniforms_, std::uint32_t(points.size())});
+    commands.dispatch(std::uint32_t((points.size() + kProbeGroup - 1) / kProbeGroup), 1, 1);
+    const vk::MemoryBarrier2 toHost{.srcStageMask = Stage::eComputeShader,
+                                    .srcAccessMask = Access::eShaderStorageWrite,
+                                    .dstStageMask = Stage::eHost,
+                                    .dstAccessMask = Access::eHostRead};
+    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &toHost});
+  });
+  std::vector<glm::vec2> results(points.size());
+  std::memcpy(results.data(), output.mapped().data(), results.size() * sizeof(glm::vec2));
+  return results;
 }
 
 }  // namespace mane::render

@@ -38,6 +38,12 @@
 //    get all of it); then bilinearly across the 4 nearest texels (each with its own z0).
 //    Deep maps suit hair that forms a layer along each light ray (hair on a head); in a deep,
 //    diffuse volume the 16 slices do better (tests/render/opacity_shadow_map_test.cpp).
+//  - kDepthShadowMap: the deep mode's depth pass alone (z0 per texel), as a classic binary shadow
+//    map, the cost baseline for the two above. The lookup gives transmittance 1 where
+//    z ≤ z0 + b and 0 behind, with the bias b = 2 texels' worth of depth (2/resolution in z, so
+//    that hair sloped up to 2:1 away from the map plane does not shadow itself within the 2×2
+//    footprint), blended over the 4 nearest texels with bilinear weights (2×2 PCF). It holds no
+//    opacity: the opacity image is a 1×1 layer of zeros, kept only so the descriptors stay valid.
 // Builders (OpacityShadowBuilder), for kOpacityShadowMap:
 //  - kGraphics: the one-draw pass above (line list; the vertex shader pulls both ends of its
 //    segment from the position buffer, so no index buffer is needed).
@@ -61,6 +67,7 @@
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -72,6 +79,7 @@ namespace mane::render {
 enum class OpacityShadowMode : std::uint32_t {
   kOpacityShadowMap = 0,  ///< 16 slices evenly spaced across the bounding sphere (Kim & Neumann 2001)
   kDeepOpacityMap = 1,    ///< first-hair depth + 4 layers following it (Yuksel & Keyser 2008)
+  kDepthShadowMap = 2,    ///< first-hair depth only: a binary shadow map (the cost baseline)
 };
 
 enum class OpacityShadowBuilder : std::uint32_t {
@@ -116,7 +124,8 @@ struct OpacityShadowStrands {
 /// std430 alike: a mat4 and two vec4s, 96 bytes). Put it in a uniform block or push constants.
 struct OpacityShadowUniforms {
   glm::mat4 lightFromWorld{1.0f};  ///< world → (x, y ∈ [−1, 1] across the map, z = d/2R ∈ [0, 1])
-  /// x: slices or layers (16 or 4); y: their spacing in z (1/16, or Δ); z: κ; w: mode (0, 1).
+  /// x: slices or layers (16, 4, or 1 depth); y: their spacing in z (1/16, Δ), or the depth
+  /// shadow map's bias (2/resolution); z: κ; w: mode (0, 1, 2: OpacityShadowMode).
   glm::vec4 depth{0.0f};
   /// x: resolution; y: 1/resolution; z: 2R (metres); w: texel size s = 2R/resolution (metres).
   glm::vec4 texels{0.0f};
@@ -132,7 +141,8 @@ public:
 
   /// Builds the images and pipelines. Fails, naming the setting, on a resolution outside
   /// [16, min(4096, device limit)], a radius, opacity or extinction that is not positive and
-  /// finite, a layer spacing outside (0, 1], kCompute with deep opacity maps, no strands, fewer
+  /// finite, a layer spacing outside (0, 1], kCompute with another mode than kOpacityShadowMap, no
+  /// strands, fewer
   /// than 2 vertices per strand, a buffer smaller than the strands, or more segments than one
   /// dispatch or draw holds.
   [[nodiscard]] static Result<std::unique_ptr<OpacityShadowMap>> create(const Device& device,
@@ -154,10 +164,11 @@ public:
 
   /// The uniforms shaders/opacity_shadow.glsl reads, for the light of the last setLight.
   [[nodiscard]] const OpacityShadowUniforms& uniforms() const { return uniforms_; }
-  /// The opacity map: a 2D array (4 layers of 4 slices, or 1 layer of 4 deep layers), RGBA16F;
-  /// bind as sampler2DArray with sampler().
+  /// The opacity map: a 2D array (4 layers of 4 slices, 1 layer of 4 deep layers, or for depth
+  /// shadow maps 1 texel of zeros), RGBA16F; bind as sampler2DArray with sampler().
   [[nodiscard]] const vk::raii::ImageView& opacityView() const { return opacity_.view; }
-  /// Nearest hair depth z0 per texel (deep opacity maps; a 1×1 image holding 1 otherwise), D32:
+  /// Nearest hair depth z0 per texel (deep opacity and depth shadow maps; a 1×1 image holding 1
+  /// otherwise), D32:
   /// bind as sampler2D with firstDepthSampler() (the lookup reads it with texelFetch).
   [[nodiscard]] const vk::raii::ImageView& firstDepthView() const { return firstDepth_.view; }
   /// For opacityView(): linear filtering, clamped to a transparent black border (no hair outside).
@@ -173,8 +184,13 @@ public:
   /// For tests and tools, after the recorded commands finished: the map's values, texel after
   /// texel (row-major, row 0 first), 16 slices or 4 layers per texel, as floats.
   [[nodiscard]] std::vector<float> readOpacity() const;
-  /// For tests and tools: z0 per texel (deep opacity maps), normalised depth d/2R, 1 = no hair.
+  /// For tests and tools: z0 per texel (deep opacity and depth shadow maps), normalised depth
+  /// d/2R, 1 = no hair.
   [[nodiscard]] std::vector<float> readFirstDepth() const;
+  /// For tests and tools, after the recorded commands finished: the lookup of
+  /// shaders/opacity_shadow.glsl at world points (metres), run on the device by
+  /// shaders/opacity_shadow_probe.comp; per point x the opacity, y the transmittance.
+  [[nodiscard]] std::vector<glm::vec2> probe(std::span<const glm::vec3> points) const;
 
   [[nodiscard]] const OpacityShadowSettings& settings() const { return settings_; }
   [[nodiscard]] std::uint32_t segmentCount() const { return segmentCount_; }
@@ -191,6 +207,7 @@ private:
 
   OpacityShadowMap(const Device& device, const OpacityShadowStrands& strands, const OpacityShadowSettings& settings);
   void recordGraphics(const vk::raii::CommandBuffer& commands) const;
+  void recordFirstDepth(const vk::raii::CommandBuffer& commands) const;
   void recordDeep(const vk::raii::CommandBuffer& commands) const;
   void recordCompute(const vk::raii::CommandBuffer& commands) const;
 
@@ -213,7 +230,7 @@ private:
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
-  Pipeline depthPipeline_;    ///< kDeepOpacityMap: nearest depth
+  Pipeline depthPipeline_;    ///< kDeepOpacityMap, kDepthShadowMap: nearest depth
   Pipeline opacityPipeline_;  ///< graphics: slices or deep layers
   Pipeline splatPipeline_;    ///< kCompute: per-segment increments
   Pipeline resolvePipeline_;  ///< kCompute: prefix sums into the image

@@ -7,7 +7,8 @@
 // - slice placement: a sheet of strands just before and just after a slice boundary lands in the
 //   slices the analytic boundary (k + 1)·2R/16 says; the first-hair depth of the deep map is
 //   the sheet's depth;
-// - the graphics and compute builders against each other.
+// - the graphics and compute builders against each other;
+// - the depth shadow map (the cost baseline): lit or shadowed as the reference's ray crossings say.
 
 #include <algorithm>
 #include <chrono>
@@ -20,10 +21,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "render/descriptors.hpp"
 #include "render/opacity_reference.hpp"
 #include "render/passes/opacity_shadow_map.hpp"
-#include "render/pipelines.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::render {
@@ -130,74 +129,12 @@ protected:
     return std::move(*map);
   }
 
-  // Runs shaders/opacity_shadow.glsl at `points` (opacity_shadow_probe.comp).
-  ProbeResult probe(const OpacityShadowMap& map, std::span<const glm::vec3> points) {
-    struct Push {
-      OpacityShadowUniforms osm;
-      std::uint32_t count;
-    };
-    const auto stage = vk::ShaderStageFlagBits::eCompute;
-    const auto hostMemory = vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent;
-    Buffer input(device(), points.size() * 16, vk::BufferUsageFlagBits::eStorageBuffer, hostMemory);
-    Buffer output(device(), points.size() * 8, vk::BufferUsageFlagBits::eStorageBuffer, hostMemory);
-    auto* packed = reinterpret_cast<glm::vec4*>(input.mapped().data());
-    for (std::size_t i = 0; i < points.size(); ++i) packed[i] = glm::vec4(points[i], 1.0f);
-
-    const vk::raii::DescriptorSetLayout setLayout =
-        makeSetLayout(device(), {{vk::DescriptorType::eCombinedImageSampler, stage},
-                                 {vk::DescriptorType::eCombinedImageSampler, stage},
-                                 {vk::DescriptorType::eStorageBuffer, stage},
-                                 {vk::DescriptorType::eStorageBuffer, stage}});
-    const vk::PushConstantRange range{.stageFlags = stage, .offset = 0, .size = sizeof(Push)};
-    const vk::raii::PipelineLayout layout(device().device(),
-                                          vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
-                                                                       .pSetLayouts = &*setLayout,
-                                                                       .pushConstantRangeCount = 1,
-                                                                       .pPushConstantRanges = &range});
-    const vk::raii::ShaderModule shader = loadShader(device(), "opacity_shadow_probe.comp");
-    const vk::raii::Pipeline pipeline(
-        device().device(), nullptr,
-        vk::ComputePipelineCreateInfo{.stage = {.stage = stage, .module = *shader, .pName = "main"},
-                                      .layout = *layout});
-    const vk::raii::DescriptorPool pool = makeDescriptorPool(
-        device(), 1, {{vk::DescriptorType::eCombinedImageSampler, 2}, {vk::DescriptorType::eStorageBuffer, 2}});
-    const vk::raii::DescriptorSet set = allocateSet(device(), pool, setLayout);
-    const std::array images{vk::DescriptorImageInfo{.sampler = *map.sampler(),
-                                                    .imageView = *map.opacityView(),
-                                                    .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal},
-                            vk::DescriptorImageInfo{.sampler = *map.firstDepthSampler(),
-                                                    .imageView = *map.firstDepthView(),
-                                                    .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal}};
-    const std::array buffers{vk::DescriptorBufferInfo{.buffer = *input.buffer(), .range = VK_WHOLE_SIZE},
-                             vk::DescriptorBufferInfo{.buffer = *output.buffer(), .range = VK_WHOLE_SIZE}};
-    device().device().updateDescriptorSets(
-        {vk::WriteDescriptorSet{.dstSet = *set,
-                                .dstBinding = 0,
-                                .descriptorCount = 2,
-                                .descriptorType = vk::DescriptorType::eCombinedImageSampler,
-                                .pImageInfo = images.data()},
-         vk::WriteDescriptorSet{.dstSet = *set,
-                                .dstBinding = 2,
-                                .descriptorCount = 2,
-                                .descriptorType = vk::DescriptorType::eStorageBuffer,
-                                .pBufferInfo = buffers.data()}},
-        {});
-    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-      commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
-      commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*set}, {});
-      commands.pushConstants<Push>(*layout, stage, 0, Push{map.uniforms(), std::uint32_t(points.size())});
-      commands.dispatch(std::uint32_t((points.size() + 63) / 64), 1, 1);
-      const vk::MemoryBarrier2 toHost{.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
-                                      .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite,
-                                      .dstStageMask = vk::PipelineStageFlagBits2::eHost,
-                                      .dstAccessMask = vk::AccessFlagBits2::eHostRead};
-      commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &toHost});
-    });
+  // Runs shaders/opacity_shadow.glsl at `points` (OpacityShadowMap::probe).
+  static ProbeResult probe(const OpacityShadowMap& map, std::span<const glm::vec3> points) {
     ProbeResult result;
-    const auto* values = reinterpret_cast<const glm::vec2*>(output.mapped().data());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      result.opacity.push_back(values[i].x);
-      result.transmittance.push_back(values[i].y);
+    for (const glm::vec2& value : map.probe(points)) {
+      result.opacity.push_back(value.x);
+      result.transmittance.push_back(value.y);
     }
     return result;
   }
@@ -453,7 +390,7 @@ TEST_F(OpacityShadowMapTest, SliceBoundariesSitAtTheirAnalyticDepths) {
 }
 
 // In front of the bounding sphere every mode gives exactly 1. Between slice 5's near boundary and
-// sheet A, still in front of all hair, the deep map gives exactly 1 while the 16 slices leak
+// sheet A, still in front of all hair, the deep and depth maps give exactly 1 while the 16 slices leak
 // (they interpolate towards slice 5, which holds the sheet: Kim & Neumann's known limit).
 TEST_F(OpacityShadowMapTest, PointsInFrontOfAllHairAreFullyLit) {
   const Sheets layout = sheets();
@@ -463,19 +400,107 @@ TEST_F(OpacityShadowMapTest, PointsInFrontOfAllHairAreFullyLit) {
   const std::vector<glm::vec3> points{{0.0f, y, 0.12f}, {0.0f, y, 0.1f - float(5.5 * layout.spacing)}};
   for (const auto& [mode, builder] : {std::pair{OpacityShadowMode::kOpacityShadowMap, OpacityShadowBuilder::kGraphics},
                                       std::pair{OpacityShadowMode::kOpacityShadowMap, OpacityShadowBuilder::kCompute},
-                                      std::pair{OpacityShadowMode::kDeepOpacityMap, OpacityShadowBuilder::kGraphics}}) {
+                                      std::pair{OpacityShadowMode::kDeepOpacityMap, OpacityShadowBuilder::kGraphics},
+                                      std::pair{OpacityShadowMode::kDepthShadowMap, OpacityShadowBuilder::kGraphics}}) {
     const auto map =
         build(positions, layout.groom, {.mode = mode, .builder = builder, .resolution = 64, .strandRadius = 2e-4f},
               light, layout.sphere);
     ASSERT_TRUE(map);
     const ProbeResult got = probe(*map, points);
     EXPECT_EQ(got.transmittance[0], 1.0);
-    if (mode == OpacityShadowMode::kDeepOpacityMap) {
+    if (mode != OpacityShadowMode::kOpacityShadowMap) {
       EXPECT_EQ(got.transmittance[1], 1.0);
     } else {
       std::printf("  16 slices between slice 5's near boundary and the sheet: T = %.3f (leak)\n", got.transmittance[1]);
     }
   }
+}
+
+// ---- Depth shadow map (the cost baseline) ----------------------------------------------------
+
+// An opaque sheet facing the light (L = +z, sphere at the origin, R = 10 cm): 201 straight strands
+// along x ∈ [−5, 5] cm, 0.3 mm apart in y ∈ [−3, 3] cm, closer than their width 2r = 0.4 mm so
+// that no ray passes between them, tilted 1:5 in depth: z = 1 cm + 0.2·x.
+constexpr float kSheetRadius = 2e-4f;
+
+double sheetZ(double x) {
+  return 0.01 + 0.2 * x;
+}
+
+Groom opaqueSheet() {
+  Groom groom{{}, 201, 8};
+  for (std::uint32_t s = 0; s < groom.strands; ++s)
+    for (std::uint32_t i = 0; i < groom.vertices; ++i) {
+      const double x = -0.05 + 0.1 * i / (groom.vertices - 1);
+      groom.positions.emplace_back(float(x), float(-0.03 + 0.0003 * s), float(sheetZ(x)), 0.0f);
+    }
+  return groom;
+}
+
+// Against the ray-cast reference as an oracle of lit or not: a point is in shadow exactly when
+// its ray towards the light crosses a strand (rayOpacity > 0), and the map must say T = 1 or 0
+// there. Left out: points within 2 texels (across) of the sheet's edges, where the 2×2 PCF
+// footprint and the 1-texel lines blur the edge over 1.5 texels, and within 3 texels' worth of
+// depth of the sheet, where the bias (2 texels' worth, plus 0.2 texel of tilt across a texel)
+// lights the first hair. Inside the bias the map says lit where the reference says shadowed, by
+// design. The build writes no opacity (1 texel of zeros) and stores the sheet's depth per texel.
+TEST_F(OpacityShadowMapTest, DepthShadowMapShadowsThePointsBehindTheFirstHair) {
+  const Groom sheet = opaqueSheet();
+  const Buffer positions = upload(sheet);
+  const glm::vec3 light(0.0f, 0.0f, 1.0f);
+  const BoundingSphere sphere{{0.0f, 0.0f, 0.0f}, 0.1f};
+  constexpr std::uint32_t kMapSize = 64;
+  const double texel = 0.2 / kMapSize;  // metres across, and one texel's worth of depth
+  const auto map =
+      build(positions, sheet,
+            {.mode = OpacityShadowMode::kDepthShadowMap, .resolution = kMapSize, .strandRadius = kSheetRadius}, light,
+            sphere);
+  ASSERT_TRUE(map);
+  EXPECT_EQ(map->readOpacity(), std::vector<float>(4, 0.0f));
+  const std::vector<float> depth = map->readFirstDepth();
+  ASSERT_EQ(depth.size(), kMapSize * kMapSize);
+  int covered = 0;
+  for (std::size_t t = 0; t < depth.size(); ++t)
+    if (depth[t] < 1.0f) {
+      ++covered;
+      const double x = ((double(t % kMapSize) + 0.5) / kMapSize * 2.0 - 1.0) * 0.1;  // texel centre
+      EXPECT_NEAR(depth[t], (0.1 - sheetZ(x)) / 0.2, 1e-5) << "texel " << t;
+    }
+  EXPECT_NEAR(covered, 32 * 19, 2 * (32 + 19));  // 10 × 6 cm: 32 × 19.2 texels
+
+  auto reference = OpacityReference::create({.positions = sheet.positions,
+                                             .strandCount = sheet.strands,
+                                             .verticesPerStrand = sheet.vertices,
+                                             .strandRadius = kSheetRadius},
+                                            light);
+  ASSERT_TRUE(reference.has_value()) << reference.error().message;
+  Random random(17);
+  std::vector<glm::vec3> points;
+  std::vector<double> expected;
+  while (points.size() < 2000) {
+    const glm::dvec3 p(0.14 * random.uniform() - 0.07, 0.1 * random.uniform() - 0.05, 0.16 * random.uniform() - 0.08);
+    const bool nearEdge = std::abs(std::abs(p.x) - 0.05) < 2.0 * texel || std::abs(std::abs(p.y) - 0.03) < 2.0 * texel;
+    if (glm::length(p) > 0.095 || nearEdge || std::abs(p.z - sheetZ(p.x)) < 3.0 * texel) continue;
+    points.emplace_back(p);
+    expected.push_back(reference->rayOpacity(p) > 0.0 ? 0.0 : 1.0);
+  }
+  // Behind the middle of the sheet: 1 texel's worth of depth (inside the bias: lit), then 3.
+  points.emplace_back(0.0f, 0.0f, float(sheetZ(0.0) - texel));
+  expected.push_back(1.0);
+  points.emplace_back(0.0f, 0.0f, float(sheetZ(0.0) - 3.0 * texel));
+  expected.push_back(0.0);
+
+  const ProbeResult got = probe(*map, points);
+  int lit = 0, shadowed = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(got.transmittance[i], expected[i])
+        << "point " << i << " at (" << points[i].x << ", " << points[i].y << ", " << points[i].z << ")";
+    EXPECT_EQ(got.opacity[i], 1.0 - expected[i]) << "point " << i;  // the shadowed fraction
+    (expected[i] == 1.0 ? lit : shadowed)++;
+  }
+  std::printf("  depth shadow map: %d lit and %d shadowed points as the ray-cast reference says\n", lit, shadowed);
+  EXPECT_GT(lit, 300);
+  EXPECT_GT(shadowed, 300);
 }
 
 // ---- Bad input --------------------------------------------------------------------------------
@@ -498,6 +523,8 @@ TEST_F(OpacityShadowMapTest, BadInputGivesClearErrors) {
   EXPECT_THAT(error(good, {.resolution = 8}), HasSubstr("resolution 8"));
   EXPECT_THAT(error(good, {.layerSpacing = 0.0f}), HasSubstr("layer spacing"));
   EXPECT_THAT(error(good, {.mode = OpacityShadowMode::kDeepOpacityMap, .builder = OpacityShadowBuilder::kCompute}),
+              HasSubstr("compute builder"));
+  EXPECT_THAT(error(good, {.mode = OpacityShadowMode::kDepthShadowMap, .builder = OpacityShadowBuilder::kCompute}),
               HasSubstr("compute builder"));
 
   auto map = OpacityShadowMap::create(device(), good);
