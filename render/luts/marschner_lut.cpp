@@ -136,19 +136,7 @@ void MarschnerLut::bake() {
   const vk::raii::DescriptorSetLayout setLayout =
       makeSetLayout(device, {{vk::DescriptorType::eStorageImage, vk::ShaderStageFlagBits::eCompute},
                              {vk::DescriptorType::eStorageImage, vk::ShaderStageFlagBits::eCompute}});
-  const vk::PushConstantRange pushRange{
-      .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = sizeof(BakeConstants)};
-  const vk::raii::PipelineLayout pipelineLayout(device.device(),
-                                                vk::PipelineLayoutCreateInfo{.setLayoutCount = 1,
-                                                                             .pSetLayouts = &*setLayout,
-                                                                             .pushConstantRangeCount = 1,
-                                                                             .pPushConstantRanges = &pushRange});
-  const vk::raii::ShaderModule shader = loadShader(device, "marschner_lut.comp");
-  const vk::raii::Pipeline pipeline(
-      device.device(), nullptr,
-      vk::ComputePipelineCreateInfo{
-          .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *shader, .pName = "main"},
-          .layout = *pipelineLayout});
+  const Pipeline pipeline = makeComputePipeline(device, "marschner_lut.comp", setLayout, sizeof(BakeConstants));
 
   const auto levelZeroView = [&](const Table& table) {
     return vk::raii::ImageView(
@@ -186,14 +174,14 @@ void MarschnerLut::bake() {
       imageBarrier(commands, *table->image, {vk::ImageAspectFlagBits::eColor, 0, table->levels, 0, table->layers},
                    Layout::eUndefined, Layout::eGeneral, Stage::eNone, Access::eNone, Stage::eComputeShader,
                    Access::eShaderStorageWrite);
-    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
-    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, *set, {});
+    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline.pipeline);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline.layout, 0, *set, {});
     for (std::uint32_t which = 0; which < 2; ++which) {
       const Table& table = which == 0 ? longitudinal_ : azimuthal_;
       constants.table.x = which;
       const auto groups = [](std::uint32_t texels) { return (texels + kWorkgroupSize - 1) / kWorkgroupSize; };
       timer.begin(commands, which == 0 ? "longitudinal" : "azimuthal");
-      commands.pushConstants<BakeConstants>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, constants);
+      commands.pushConstants<BakeConstants>(*pipeline.layout, vk::ShaderStageFlagBits::eCompute, 0, constants);
       commands.dispatch(groups(table.extent.width), groups(table.extent.height), 1);
       timer.end(commands);
     }

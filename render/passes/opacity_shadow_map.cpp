@@ -135,23 +135,6 @@ Result<void> validate(const Device& device, const OpacityShadowStrands& strands,
                      "the first-hair depth");
 }
 
-Pipeline makeComputePipeline(const Device& device, const vk::raii::DescriptorSetLayout& setLayout, const char* shader) {
-  Pipeline result;
-  const vk::PushConstantRange push{
-      .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = sizeof(BuildConstants)};
-  result.layout = vk::raii::PipelineLayout(
-      device.device(),
-      vk::PipelineLayoutCreateInfo{
-          .setLayoutCount = 1, .pSetLayouts = &*setLayout, .pushConstantRangeCount = 1, .pPushConstantRanges = &push});
-  const vk::raii::ShaderModule module = loadShader(device, shader);
-  result.pipeline =
-      vk::raii::Pipeline(device.device(), nullptr,
-                         vk::ComputePipelineCreateInfo{
-                             .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main"},
-                             .layout = *result.layout});
-  return result;
-}
-
 }  // namespace
 
 Result<BoundingSphere> boundingSphere(std::span<const glm::vec4> positions) {
@@ -319,8 +302,8 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
                                                                 .descriptorType = vk::DescriptorType::eStorageImage,
                                                                 .pImageInfo = &storage},
                                          {});
-    splatPipeline_ = makeComputePipeline(device, setLayout_, "opacity_shadow_splat.comp");
-    resolvePipeline_ = makeComputePipeline(device, setLayout_, "opacity_shadow_resolve.comp");
+    splatPipeline_ = makeComputePipeline(device, "opacity_shadow_splat.comp", setLayout_, sizeof(BuildConstants));
+    resolvePipeline_ = makeComputePipeline(device, "opacity_shadow_resolve.comp", setLayout_, sizeof(BuildConstants));
   } else if (firstHair) {
     GraphicsPipelineSettings depthLines = lines;
     depthLines.fragmentShader = "opacity_shadow_depth.frag";
@@ -642,19 +625,11 @@ std::vector<glm::vec2> OpacityShadowMap::probe(std::span<const glm::vec3> points
                               .descriptorType = vk::DescriptorType::eStorageBuffer,
                               .pBufferInfo = buffers.data()}},
       {});
-  const vk::PushConstantRange range{.stageFlags = stage, .offset = 0, .size = sizeof(Push)};
-  const vk::raii::PipelineLayout layout(
-      device.device(),
-      vk::PipelineLayoutCreateInfo{
-          .setLayoutCount = 1, .pSetLayouts = &*setLayout, .pushConstantRangeCount = 1, .pPushConstantRanges = &range});
-  const vk::raii::ShaderModule shader = loadShader(device, "opacity_shadow_probe.comp");
-  const vk::raii::Pipeline pipeline(
-      device.device(), nullptr,
-      vk::ComputePipelineCreateInfo{.stage = {.stage = stage, .module = *shader, .pName = "main"}, .layout = *layout});
+  const Pipeline probe = makeComputePipeline(device, "opacity_shadow_probe.comp", setLayout, sizeof(Push));
   device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
-    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, {*set}, {});
-    commands.pushConstants<Push>(*layout, stage, 0, Push{uniforms_, std::uint32_t(points.size())});
+    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *probe.pipeline);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *probe.layout, 0, {*set}, {});
+    commands.pushConstants<Push>(*probe.layout, stage, 0, Push{uniforms_, std::uint32_t(points.size())});
     commands.dispatch(std::uint32_t((points.size() + kProbeGroup - 1) / kProbeGroup), 1, 1);
     const vk::MemoryBarrier2 toHost{.srcStageMask = Stage::eComputeShader,
                                     .srcAccessMask = Access::eShaderStorageWrite,

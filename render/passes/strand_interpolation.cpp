@@ -137,17 +137,7 @@ StrandInterpolationPass::StrandInterpolationPass(const Device& device, const Den
                                       {vk::DescriptorType::eStorageBuffer, compute},
                                       {vk::DescriptorType::eStorageBuffer, compute},
                                       {vk::DescriptorType::eStorageBuffer, compute}});
-  const vk::PushConstantRange push{.stageFlags = compute, .offset = 0, .size = sizeof(PushConstants)};
-  pipeline_.layout = vk::raii::PipelineLayout(
-      device.device(),
-      vk::PipelineLayoutCreateInfo{
-          .setLayoutCount = 1, .pSetLayouts = &*setLayout_, .pushConstantRangeCount = 1, .pPushConstantRanges = &push});
-  const vk::raii::ShaderModule shader = loadShader(device, "strand_interpolation.comp");
-  pipeline_.pipeline = vk::raii::Pipeline(device.device(), nullptr,
-                                          vk::ComputePipelineCreateInfo{
-                                              .stage = {.stage = compute, .module = *shader, .pName = "main"},
-                                              .layout = *pipeline_.layout,
-                                          });
+  pipeline_ = makeComputePipeline(device, "strand_interpolation.comp", setLayout_, sizeof(PushConstants));
 
   pool_ = makeDescriptorPool(device, 1, {{vk::DescriptorType::eStorageBuffer, 5}});
   set_ = allocateSet(device, pool_, setLayout_);
