@@ -213,12 +213,67 @@ Colliders parseColliders(const Json& json, const std::string& path) {
   return colliders;
 }
 
+// "procedural", one groom file, or several whose guides make one groom.
+std::vector<std::string> parseGroomSources(ObjectFields& fields) {
+  const std::string path = fields.child("source");
+  const Json* source = fields.take("source");
+  if (!source) throw FieldError{path, "required field is missing"};
+  if (source->is_string()) {
+    const std::string name = source->get<std::string>();
+    require(!name.empty(), path, "expected a .tfx/.hair asset name or \"procedural\"");
+    return {name};
+  }
+  require(source->is_array(), path,
+          "expected a .tfx/.hair asset name, an array of them or \"procedural\"" + detail::got(*source));
+  require(!source->empty(), path, "expected at least one .tfx/.hair asset name");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < source->size(); ++i) {
+    const std::string itemPath = detail::indexPath(path, i);
+    names.push_back(detail::read<std::string>((*source)[i], itemPath));
+    require(!names.back().empty(), itemPath, "expected a .tfx/.hair asset name");
+    require(names.back() != "procedural", itemPath,
+            "\"procedural\" cannot be combined with groom files (write \"source\": \"procedural\")");
+  }
+  return names;
+}
+
+// How the groom is drawn; the ranges are those render::HairGroomSettings documents.
+GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  GroomRendering rendering;
+  render::HairGroomSettings& settings = rendering.settings;
+  const std::string look = fields.optional<std::string>("look", "blonde");
+  require(look == "blonde" || look == "dark", fields.child("look"),
+          "expected \"blonde\" or \"dark\", got \"" + look + "\"");
+  rendering.look = look == "dark" ? render::HairLook::kDark : render::HairLook::kBlonde;
+  settings.width = fields.optional<float>("width", settings.width);
+  settings.tipWidthScale = fields.optional<float>("tip_width_scale", settings.tipWidthScale);
+  settings.opacity = fields.optional<float>("opacity", settings.opacity);
+  settings.minimumPixelWidth = fields.optional<float>("min_pixel_width", settings.minimumPixelWidth);
+  settings.shadowExtinction = fields.optional<float>("shadow_extinction", settings.shadowExtinction);
+  const Json* strands = fields.take("strands");
+  if (strands) rendering.denseStrands = detail::read<int>(*strands, fields.child("strands"));
+  fields.finish();
+  require(!strands || (rendering.denseStrands >= 1 && rendering.denseStrands <= kMaxDenseStrands),
+          fields.child("strands"), "expected a dense strand count in 1.." + std::to_string(kMaxDenseStrands));
+  require(settings.width > 0.0f && settings.width <= 0.01f, fields.child("width"),
+          "expected a root width in (0, 0.01] metres");
+  require(settings.tipWidthScale >= 0.0f && settings.tipWidthScale <= 1.0f, fields.child("tip_width_scale"),
+          "expected a tip width scale in [0, 1]");
+  // Not 0: a groom's strands add its opacity to the shadow maps, which need it positive.
+  require(settings.opacity > 0.0f && settings.opacity <= 1.0f, fields.child("opacity"),
+          "expected an opacity in (0, 1]");
+  require(settings.minimumPixelWidth >= 0.25f, fields.child("min_pixel_width"),
+          "expected a minimum width >= 0.25 pixels");
+  require(settings.shadowExtinction > 0.0f, fields.child("shadow_extinction"), "expected a shadow extinction > 0");
+  return rendering;
+}
+
 Groom parseGroom(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Groom groom;
   groom.name = fields.required<std::string>("name");
-  groom.source = fields.required<std::string>("source");
-  require(!groom.source.empty(), fields.child("source"), "expected a .tfx/.hair asset name or \"procedural\"");
+  groom.sources = parseGroomSources(fields);
   groom.attachedMesh = fields.required<std::string>("attached_mesh");
   groom.strandCount = fields.optional<int>("strands", 0);
   groom.strandLengthMetres = fields.optional<float>("length", 0.0f);
@@ -234,6 +289,9 @@ Groom parseGroom(const Json& json, const std::string& path) {
   }
   if (const Json* colliders = fields.take("colliders")) {
     groom.colliders = parseColliders(*colliders, fields.child("colliders"));
+  }
+  if (const Json* rendering = fields.take("render")) {
+    groom.rendering = parseGroomRendering(*rendering, fields.child("render"));
   }
   fields.finish();
   return groom;
@@ -339,6 +397,28 @@ SimulationSettings parseSimulation(const Json& json, const std::string& path) {
   return sim;
 }
 
+render::HairShadowSettings parseHairShadows(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  render::HairShadowSettings shadows;
+  const std::string mode = fields.optional<std::string>("mode", "opacity");
+  if (mode == "opacity") {
+    shadows.mode = render::HairShadowMode::kOpacityShadowMap;
+  } else if (mode == "deep") {
+    shadows.mode = render::HairShadowMode::kDeepOpacityMap;
+  } else if (mode == "off") {
+    shadows.mode = render::HairShadowMode::kOff;
+  } else {
+    throw FieldError{fields.child("mode"), "expected \"opacity\", \"deep\" or \"off\", got \"" + mode + "\""};
+  }
+  const int resolution = fields.optional<int>("resolution", static_cast<int>(shadows.resolution));
+  fields.finish();
+  require(resolution >= kMinHairShadowResolution && resolution <= kMaxHairShadowResolution, fields.child("resolution"),
+          "expected a resolution in " + std::to_string(kMinHairShadowResolution) + ".." +
+              std::to_string(kMaxHairShadowResolution) + " texels");
+  shadows.resolution = static_cast<std::uint32_t>(resolution);
+  return shadows;
+}
+
 void checkColliderReferences(const Scene& scene, const Colliders& colliders, const std::string& path) {
   if (colliders.sdf) {
     require(scene.findMesh(colliders.sdf->mesh) != nullptr, path + ".sdf.mesh",
@@ -404,6 +484,7 @@ Scene parseRoot(const Json& json) {
   if (const Json* sim = fields.take("simulation")) {
     scene.simulation = parseSimulation(*sim, "simulation");
   }
+  if (const Json* shadows = fields.take("hair_shadows")) scene.hairShadows = parseHairShadows(*shadows, "hair_shadows");
   fields.finish();
   checkReferences(scene);
   return scene;

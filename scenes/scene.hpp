@@ -13,6 +13,7 @@
 
 #include "common/error.hpp"
 #include "physics/colliders.hpp"
+#include "render/hair_data.hpp"
 
 namespace mane::scenes {
 
@@ -119,10 +120,25 @@ struct Colliders {
 /// Most guide strands a procedural groom may ask for (memory stays in the hundreds of MB).
 inline constexpr int kMaxGuideStrands = 1'000'000;
 
+/// Most dense strands a groom may be drawn with (64 bytes each on the GPU, plus their vertices).
+inline constexpr int kMaxDenseStrands = 1'000'000;
+
+/// How a groom is drawn (render/hair_data.hpp): its Marschner preset, its ribbons and how many
+/// dense strands are interpolated from its guides.
+struct GroomRendering {
+  render::HairLook look = render::HairLook::kBlonde;
+  /// Ribbons 0.4 mm wide at the root: 4,095 strands stand for a head of ~100,000 hairs.
+  render::HairGroomSettings settings{.width = 4e-4f};
+  /// Dense strands, 1..kMaxDenseStrands; 0: 4,095, or one per guide where there are more guides.
+  int denseStrands = 0;
+};
+
 /// Hair or fur on a mesh.
 struct Groom {
   std::string name;
-  std::string source;               ///< asset name of a .tfx/.hair file, or "procedural"
+  /// Asset names of .tfx/.hair files, whose guides are concatenated in this order into one groom,
+  /// or exactly {"procedural"}.
+  std::vector<std::string> sources;
   std::string attachedMesh;         ///< name of a `MeshInstance`; roots follow it
   int strandCount = 0;              ///< procedural only: guide strands to grow (0: generator default)
   float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
@@ -131,8 +147,9 @@ struct Groom {
   bool invertZ = false;
   HairSimulation simulation;
   Colliders colliders;  ///< in the attached mesh's body frame
+  GroomRendering rendering;
 
-  [[nodiscard]] bool isProcedural() const { return source == "procedural"; }
+  [[nodiscard]] bool isProcedural() const { return sources.size() == 1 && sources[0] == "procedural"; }
 };
 
 /// Cloth (a fin, a scarf, a cape): a triangle mesh whose edges become constraints, moving with
@@ -189,6 +206,10 @@ struct SimulationSettings {
   float settleSeconds = 0.0f;
 };
 
+/// Hair shadow map sizes a scene may ask for, texels per side (render::HairShadowSettings).
+inline constexpr int kMinHairShadowResolution = 16;
+inline constexpr int kMaxHairShadowResolution = 4096;
+
 /// A validated scene.
 struct Scene {
   std::filesystem::path file;  ///< the file it came from (empty when built in code)
@@ -202,6 +223,7 @@ struct Scene {
   std::vector<Cloth> cloths;
   HeadMotion headMotion;
   SimulationSettings simulation;
+  render::HairShadowSettings hairShadows;  ///< opacity shadow maps at 512 × 512 unless the file says otherwise
 
   [[nodiscard]] const Material* findMaterial(std::string_view name) const;
   [[nodiscard]] const MeshInstance* findMesh(std::string_view name) const;

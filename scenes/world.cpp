@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
@@ -34,6 +35,18 @@ std::vector<std::uint32_t> scalpTriangles(const Mesh& mesh, float minNormalY) {
     if (length > 0.0f && normal.y >= minNormalY * length && (a.y + b.y + c.y) / 3.0f >= lowest) scalp.push_back(t);
   }
   return scalp;
+}
+
+// A groom draws as Nalu's unless its scene says otherwise: 4,095 dense strands (or one per guide
+// where there are more), each following one guide with a root offset and some clumping
+// (physics/interpolation.hpp).
+constexpr std::size_t kDefaultDenseStrands = 4095;
+
+// "a.tfx, b.tfx" for messages.
+std::string sourceList(const Groom& groom) {
+  std::string list;
+  for (const std::string& source : groom.sources) list += (list.empty() ? "" : ", ") + source;
+  return list;
 }
 
 physics::SolverSettings solverSettings(const HairSimulation& simulation, const SimulationSettings& world) {
@@ -135,51 +148,54 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
       guides = std::move(*generated);
     } else {
-      // Like meshes: a missing asset is a note and the groom is skipped; a file that does not
-      // parse is an error. Groom files hold strands in their head mesh's model space (the
-      // TressFX ponytail sits on its own head in the same units, shared/assets/README.md, once
-      // its inverted z is turned back: `invert_z`).
-      auto lookup = resolver.lookupForScene(groom.source, scene_.file.parent_path());
-      if (!lookup) return fail("groom " + groom.name + ": " + lookup.error().message);
-      if (!lookup->path) {
-        notes_.push_back("groom " + groom.name + ": " + groom.source + " missing (" + lookup->missingReason +
-                         "): skipped");
-        continue;
+      // Like meshes: a missing asset is a note and the groom is skipped (all its files or
+      // nothing); a file that does not parse is an error. Groom files hold strands in their head
+      // mesh's model space (the TressFX ponytail's four files sit on their own head in the same
+      // units, shared/assets/README.md, once their inverted z is turned back: `invert_z`).
+      std::vector<std::filesystem::path> files;
+      for (const std::string& source : groom.sources) {
+        auto lookup = resolver.lookupForScene(source, scene_.file.parent_path());
+        if (!lookup) return fail("groom " + groom.name + ": " + lookup.error().message);
+        if (!lookup->path) {
+          notes_.push_back("groom " + groom.name + ": " + source + " missing (" + lookup->missingReason + "): skipped");
+          break;
+        }
+        files.push_back(*lookup->path);
       }
-      auto loaded = loadGroomFile(*lookup->path);
-      if (!loaded) return fail("groom " + groom.name + ": " + loaded.error().message);
-      guides = std::move(loaded->strands);
+      if (files.size() < groom.sources.size()) continue;
+      for (const std::filesystem::path& file : files) {
+        auto loaded = loadGroomFile(file);
+        if (!loaded) return fail("groom " + groom.name + ": " + loaded.error().message);
+        guides.insert(guides.end(), std::make_move_iterator(loaded->strands.begin()),
+                      std::make_move_iterator(loaded->strands.end()));
+      }
       const glm::vec3 axes(1.0f, 1.0f, groom.invertZ ? -1.0f : 1.0f);
       for (std::vector<glm::vec3>& strand : guides)
         for (glm::vec3& point : strand) point *= axes * scale;
     }
     auto hair = physics::HairSystem::create(guides, solverSettings(groom.simulation, scene_.simulation),
                                             bodyPlacement(*meshIt, 0.0));
-    if (!hair) return fail("groom " + groom.name + " (" + groom.source + "): " + hair.error().message);
+    if (!hair) return fail("groom " + groom.name + " (" + sourceList(groom) + "): " + hair.error().message);
     if (!groom.colliders.empty()) {
       auto set = colliders.build(groom.colliders, meshIndex);
       if (!set) return fail("groom " + groom.name + ": colliders: " + set.error().message);
       if (auto applied = hair->setColliders(std::move(*set)); !applied)
         return fail("groom " + groom.name + ": colliders: " + applied.error().message);
     }
-    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom, denseGroom(guides)});
+    const std::size_t denseStrands = groom.rendering.denseStrands > 0
+                                         ? static_cast<std::size_t>(groom.rendering.denseStrands)
+                                         : std::max(kDefaultDenseStrands, guides.size());
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom, denseGroom(guides, denseStrands)});
     if (!grooms_.back().dense)
       notes_.push_back("groom " + groom.name + ": guides of different lengths: simulated, not drawn");
   }
   return {};
 }
 
-namespace {
-
-// Every groom is drawn as Nalu's: 4,095 dense strands (or one per guide where there are more),
-// each following one guide with a root offset and some clumping (physics/interpolation.hpp).
-constexpr std::size_t kDenseStrands = 4095;
-
-}  // namespace
-
-std::optional<World::DenseGroom> World::denseGroom(std::span<const std::vector<glm::vec3>> guides) {
+std::optional<World::DenseGroom> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
+                                                   std::size_t strandCount) {
   physics::DenseGroomSettings settings;
-  settings.strandCount = std::max(kDenseStrands, guides.size());
+  settings.strandCount = strandCount;
   auto layout = physics::buildDenseGroomLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
   DenseGroom dense{layout->guideVertexCount, layout->vertexCount, {}, {}};
@@ -265,19 +281,21 @@ render::StaticScene World::staticScene() const {
   }
   // Last: the material of meshes that name none (a plain Material's defaults).
   result.materials.push_back(render::MaterialData{.baseColor = Material{}.baseColour});
-  // Grooms: blonde ribbons 0.4 mm wide (4,095 strands stand for a head of ~100,000 hairs).
+  // Grooms, drawn as their scene's `render` block says (scenes/README.md).
   for (const SimulatedGroom& groom : grooms_) {
     if (!groom.dense) continue;
     const DenseGroom& dense = *groom.dense;
+    const GroomRendering& rendering = scene_.grooms[groom.sceneGroom].rendering;
     result.grooms.push_back(
         render::HairGroomData{.layout = {.guideCount = static_cast<std::uint32_t>(groom.hair.strandCount()),
                                          .guideVertexCount = dense.guideVertexCount,
                                          .vertexCount = dense.vertexCount,
                                          .guideFrames = dense.guideFrames,
                                          .strands = dense.strands},
-                              .look = render::HairLook::kBlonde,
-                              .settings = {.width = 4e-4f}});
+                              .look = rendering.look,
+                              .settings = rendering.settings});
   }
+  result.hairShadows = scene_.hairShadows;
   // Cloth surfaces come after the scene's meshes, in world space, rewritten every frame.
   for (const SceneCloth& cloth : cloths_) {
     const Mesh& surface = cloth.surface();

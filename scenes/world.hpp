@@ -105,8 +105,8 @@ private:
   glm::mat4 bodyPlacement(const MeshInstance& mesh, double time) const;
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
-  /// The dense strands drawn for `guides` (rest shape, equal point counts), or none.
-  static std::optional<DenseGroom> denseGroom(std::span<const std::vector<glm::vec3>> guides);
+  /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts), or none.
+  static std::optional<DenseGroom> denseGroom(std::span<const std::vector<glm::vec3>> guides, std::size_t strandCount);
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;

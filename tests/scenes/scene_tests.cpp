@@ -205,6 +205,218 @@ TEST(Scene, InvertZIsForGroomFilesOnly) {
             "dir/bad.json: grooms[0].invert_z: expected true or false, got a number");
 }
 
+/// A scene with one groom on a sphere whose groom object ends with `groomFields` (", ..." or
+/// ""), and `rootFields` (", ..." or "") at the top level.
+std::string groomScene(const std::string& groomFields, const std::string& rootFields = "") {
+  return R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+             "meshes": [{"name": "head", "source": "procedural:sphere"}],
+             "grooms": [{"name": "g", "attached_mesh": "head")" +
+         groomFields + "}]" + rootFields + "}";
+}
+
+TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
+  auto scene = parseScene(groomScene(R"(, "source": "procedural")"), "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  // What World drew before the render block existed: blonde, 0.4 mm, the rest as
+  // render::HairGroomSettings' defaults, 4,095 strands (denseStrands 0).
+  const GroomRendering& rendering = scene->grooms[0].rendering;
+  EXPECT_EQ(rendering.look, render::HairLook::kBlonde);
+  EXPECT_FLOAT_EQ(rendering.settings.width, 4e-4f);
+  const render::HairGroomSettings defaults;
+  EXPECT_EQ(rendering.settings.tipWidthScale, defaults.tipWidthScale);
+  EXPECT_EQ(rendering.settings.opacity, defaults.opacity);
+  EXPECT_EQ(rendering.settings.minimumPixelWidth, defaults.minimumPixelWidth);
+  EXPECT_EQ(rendering.settings.shadowExtinction, defaults.shadowExtinction);
+  EXPECT_EQ(rendering.denseStrands, 0);
+  EXPECT_EQ(scene->hairShadows.mode, render::HairShadowMode::kOpacityShadowMap);
+  EXPECT_EQ(scene->hairShadows.resolution, 512u);
+}
+
+TEST(Scene, GroomRenderBlockSetsEveryField) {
+  auto scene = parseScene(groomScene(R"(, "source": "procedural",
+      "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
+                 "min_pixel_width": 0.25, "shadow_extinction": 3.5, "strands": 1000000})"),
+                          "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const GroomRendering& rendering = scene->grooms[0].rendering;
+  EXPECT_EQ(rendering.look, render::HairLook::kDark);
+  EXPECT_FLOAT_EQ(rendering.settings.width, 1e-4f);
+  EXPECT_FLOAT_EQ(rendering.settings.tipWidthScale, 0.25f);
+  EXPECT_FLOAT_EQ(rendering.settings.opacity, 0.5f);
+  EXPECT_FLOAT_EQ(rendering.settings.minimumPixelWidth, 0.25f);
+  EXPECT_FLOAT_EQ(rendering.settings.shadowExtinction, 3.5f);
+  EXPECT_EQ(rendering.denseStrands, 1'000'000);
+  // The closed ends of the ranges are accepted.
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural",
+      "render": {"look": "blonde", "width": 0.01, "tip_width_scale": 0, "opacity": 0.001, "strands": 1})")),
+            "");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "render": {"tip_width_scale": 1, "opacity": 1})")), "");
+}
+
+TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
+  const auto renderError = [](const std::string& block) {
+    return errorOf(groomScene(R"(, "source": "procedural", "render": )" + block));
+  };
+  EXPECT_EQ(renderError(R"({"look": "red"})"),
+            "dir/bad.json: grooms[0].render.look: expected \"blonde\" or \"dark\", got \"red\"");
+  EXPECT_EQ(renderError(R"({"look": 1})"), "dir/bad.json: grooms[0].render.look: expected a string, got a number");
+  for (const char* width : {"0", "-1e-4", "0.0101"})
+    EXPECT_EQ(renderError(std::string(R"({"width": )") + width + "}"),
+              "dir/bad.json: grooms[0].render.width: expected a root width in (0, 0.01] metres")
+        << width;
+  for (const char* scale : {"-0.01", "1.01"})
+    EXPECT_EQ(renderError(std::string(R"({"tip_width_scale": )") + scale + "}"),
+              "dir/bad.json: grooms[0].render.tip_width_scale: expected a tip width scale in [0, 1]")
+        << scale;
+  for (const char* opacity : {"0", "1.5"})
+    EXPECT_EQ(renderError(std::string(R"({"opacity": )") + opacity + "}"),
+              "dir/bad.json: grooms[0].render.opacity: expected an opacity in (0, 1]")
+        << opacity;
+  EXPECT_EQ(renderError(R"({"min_pixel_width": 0.2})"),
+            "dir/bad.json: grooms[0].render.min_pixel_width: expected a minimum width >= 0.25 pixels");
+  for (const char* kappa : {"0", "-1"})
+    EXPECT_EQ(renderError(std::string(R"({"shadow_extinction": )") + kappa + "}"),
+              "dir/bad.json: grooms[0].render.shadow_extinction: expected a shadow extinction > 0")
+        << kappa;
+  EXPECT_EQ(renderError(R"({"shadow_extinction": 1e39})"),
+            "dir/bad.json: grooms[0].render.shadow_extinction: expected a finite number within float range "
+            "(|x| < 3.4e38)");
+  for (const char* strands : {"0", "-5", "1000001"})
+    EXPECT_EQ(renderError(std::string(R"({"strands": )") + strands + "}"),
+              "dir/bad.json: grooms[0].render.strands: expected a dense strand count in 1..1000000")
+        << strands;
+  EXPECT_EQ(renderError(R"({"strands": 2.5})"),
+            "dir/bad.json: grooms[0].render.strands: expected an integer, got a fraction");
+  const std::string typo = renderError(R"({"colour": "blonde"})");
+  EXPECT_NE(typo.find("dir/bad.json: grooms[0].render.colour: unknown field"), std::string::npos) << typo;
+  EXPECT_NE(typo.find("min_pixel_width"), std::string::npos) << typo;  // lists the known ones
+  EXPECT_EQ(renderError("\"dark\""), "dir/bad.json: grooms[0].render: expected an object, got a string");
+}
+
+TEST(Scene, GroomSourceMayListSeveralFilesInOrder) {
+  auto scene = parseScene(groomScene(R"(, "source": ["a.tfx", "dir/b.hair", "a.tfx"])"), "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->grooms[0].sources, (std::vector<std::string>{"a.tfx", "dir/b.hair", "a.tfx"}));
+  EXPECT_FALSE(scene->grooms[0].isProcedural());
+  auto single = parseScene(groomScene(R"(, "source": "a.tfx")"), "x.json");
+  ASSERT_TRUE(single.has_value()) << single.error().message;
+  EXPECT_EQ(single->grooms[0].sources, std::vector<std::string>{"a.tfx"});
+  EXPECT_FALSE(single->grooms[0].isProcedural());
+  auto procedural = parseScene(groomScene(R"(, "source": "procedural")"), "x.json");
+  ASSERT_TRUE(procedural.has_value()) << procedural.error().message;
+  EXPECT_TRUE(procedural->grooms[0].isProcedural());
+}
+
+TEST(Scene, GroomSourceErrorsNameTheElement) {
+  EXPECT_EQ(errorOf(groomScene("")), "dir/bad.json: grooms[0].source: required field is missing");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "")")),
+            "dir/bad.json: grooms[0].source: expected a .tfx/.hair asset name or \"procedural\"");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": 3)")),
+            "dir/bad.json: grooms[0].source: expected a .tfx/.hair asset name, an array of them or "
+            "\"procedural\", got a number");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": [])")),
+            "dir/bad.json: grooms[0].source: expected at least one .tfx/.hair asset name");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": ["a.tfx", 7])")),
+            "dir/bad.json: grooms[0].source[1]: expected a string, got a number");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": ["a.tfx", ""])")),
+            "dir/bad.json: grooms[0].source[1]: expected a .tfx/.hair asset name");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": ["procedural"])")),
+            "dir/bad.json: grooms[0].source[0]: \"procedural\" cannot be combined with groom files (write "
+            "\"source\": \"procedural\")");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": ["a.tfx", "procedural"])")),
+            "dir/bad.json: grooms[0].source[1]: \"procedural\" cannot be combined with groom files (write "
+            "\"source\": \"procedural\")");
+  // invert_z applies to file lists as to single files.
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": ["a.tfx", "b.tfx"], "invert_z": true)")), "");
+}
+
+TEST(Scene, HairShadowsPickTheModeAndResolution) {
+  const std::pair<const char*, render::HairShadowMode> modes[] = {
+      {"opacity", render::HairShadowMode::kOpacityShadowMap},
+      {"deep", render::HairShadowMode::kDeepOpacityMap},
+      {"off", render::HairShadowMode::kOff}};
+  for (const auto& [name, mode] : modes) {
+    auto scene = parseScene(std::string(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                                            "hair_shadows": {"mode": ")") +
+                                name + R"(", "resolution": 4096}})",
+                            "x.json");
+    ASSERT_TRUE(scene.has_value()) << scene.error().message;
+    EXPECT_EQ(scene->hairShadows.mode, mode) << name;
+    EXPECT_EQ(scene->hairShadows.resolution, 4096u) << name;
+  }
+  auto low = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                            "hair_shadows": {"resolution": 16}})",
+                        "x.json");
+  ASSERT_TRUE(low.has_value()) << low.error().message;
+  EXPECT_EQ(low->hairShadows.mode, render::HairShadowMode::kOpacityShadowMap);  // the default mode
+  EXPECT_EQ(low->hairShadows.resolution, 16u);
+  auto deep = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                             "hair_shadows": {"mode": "deep"}})",
+                         "x.json");
+  ASSERT_TRUE(deep.has_value()) << deep.error().message;
+  EXPECT_EQ(deep->hairShadows.resolution, 512u);  // the default resolution
+}
+
+TEST(Scene, HairShadowErrorsNameTheField) {
+  const auto shadowError = [](const std::string& block) {
+    return errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}, "hair_shadows": )" + block +
+                   "}");
+  };
+  EXPECT_EQ(shadowError(R"({"mode": "soft"})"),
+            "dir/bad.json: hair_shadows.mode: expected \"opacity\", \"deep\" or \"off\", got \"soft\"");
+  for (const char* resolution : {"15", "4097", "0"})
+    EXPECT_EQ(shadowError(std::string(R"({"resolution": )") + resolution + "}"),
+              "dir/bad.json: hair_shadows.resolution: expected a resolution in 16..4096 texels")
+        << resolution;
+  EXPECT_EQ(shadowError(R"({"resolution": 512.5})"),
+            "dir/bad.json: hair_shadows.resolution: expected an integer, got a fraction");
+  const std::string typo = shadowError(R"({"kind": "deep"})");
+  EXPECT_NE(typo.find("dir/bad.json: hair_shadows.kind: unknown field"), std::string::npos) << typo;
+  EXPECT_EQ(shadowError("true"), "dir/bad.json: hair_shadows: expected an object, got a boolean");
+}
+
+TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
+  auto scene = loadScene(kScenes / "ponytail.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->output.width, 1280);
+  EXPECT_EQ(scene->output.height, 720);
+  ASSERT_EQ(scene->lights.size(), 2u);  // key, then a brighter back light towards the camera
+  EXPECT_GT(scene->lights[1].intensity, scene->lights[0].intensity);
+  EXPECT_GT(glm::dot(scene->lights[1].direction, scene->camera.position - scene->camera.target), 0.0f);
+  EXPECT_LT(glm::dot(scene->lights[0].direction, scene->camera.position - scene->camera.target), 0.0f);
+  ASSERT_EQ(scene->grooms.size(), 1u);
+  const Groom& groom = scene->grooms[0];
+  EXPECT_EQ(groom.name, "ponytail");
+  // AMD's ponytail.tfxproj order (tests/scenes/groom_loader_tests.cpp).
+  EXPECT_EQ(groom.sources,
+            (std::vector<std::string>{"hair/tressfx_ponytail/front_top.tfx", "hair/tressfx_ponytail/side.tfx",
+                                      "hair/tressfx_ponytail/back.tfx", "hair/tressfx_ponytail/tail.tfx"}));
+  EXPECT_TRUE(groom.invertZ);
+  ASSERT_TRUE(groom.colliders.sdf.has_value());
+  EXPECT_EQ(groom.rendering.look, render::HairLook::kBlonde);
+  EXPECT_EQ(groom.rendering.denseStrands, 50'000);
+  EXPECT_EQ(scene->headMotion.kind, HeadMotionKind::shake);
+  EXPECT_EQ(scene->simulation.settleSeconds, 0.0f);  // World tests build it without settling
+  const AssetResolver resolver = testing::sharedResolver();
+  for (const std::string& name : groom.sources) EXPECT_NE(resolver.find(name), nullptr) << name;
+}
+
+TEST(Scene, NaluWritesOutTheDefaultLookAndShadows) {
+  auto scene = loadScene(kScenes / "nalu.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const GroomRendering defaults;
+  const GroomRendering& rendering = scene->grooms[0].rendering;
+  EXPECT_EQ(rendering.look, defaults.look);
+  EXPECT_EQ(rendering.settings.width, defaults.settings.width);
+  EXPECT_EQ(rendering.settings.tipWidthScale, defaults.settings.tipWidthScale);
+  EXPECT_EQ(rendering.settings.opacity, defaults.settings.opacity);
+  EXPECT_EQ(rendering.settings.minimumPixelWidth, defaults.settings.minimumPixelWidth);
+  EXPECT_EQ(rendering.settings.shadowExtinction, defaults.settings.shadowExtinction);
+  EXPECT_EQ(rendering.denseStrands, defaults.denseStrands);
+  EXPECT_EQ(scene->hairShadows.mode, render::HairShadowMode::kOpacityShadowMap);
+  EXPECT_EQ(scene->hairShadows.resolution, 512u);
+}
+
 // Found by tests/fuzz/fuzz_scene: nlohmann reports a number beyond double range as
 // out_of_range, not parse_error, and that exception escaped parseScene.
 TEST(Scene, NumberBeyondDoubleRangeIsInvalidJsonNotACrash) {

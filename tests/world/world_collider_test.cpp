@@ -335,7 +335,7 @@ TEST(WorldColliders, NaluHairStaysOutsideTheHead) {
 }
 
 // ponytail.json (TressFX, 4,933 guides on a head 0.6 m across). Its z is inverted on load, after
-// which the roots lie on the scalp: for 40 roots of each group grown from the scalp, the median
+// which the roots lie on the scalp: for 40 roots of each file grown from the scalp, the median
 // brute-force distance to the mesh is under 2 mm (without the inversion they scatter ±5 cm).
 // Then, after every fifth frame of 0.25 s of its shake (the head swings through 27°), no particle
 // is inside the scene's field, sampled here at the particle taken into the body frame — or, on a
@@ -354,13 +354,18 @@ TEST(WorldColliders, PonytailSitsOnItsHeadAndStaysOutside) {
   if (!mesh) MANE_SKIP_FOR_MISSING_ASSET("the TressFX ponytail head is not on this machine");
   auto world = createWorld(std::move(*scene), testing::sharedResolver());
   ASSERT_TRUE(world);
-  ASSERT_EQ(world->simulatedGroomCount(), 4u) << "a groom file is missing";
+  ASSERT_EQ(world->simulatedGroomCount(), 1u) << "a groom file is missing";
+  ASSERT_EQ(world->guideStrandCount(), 4933u);
 
+  // The one groom holds the four files' guides in the scene's order: front_top (876), side
+  // (3,066), back (517), tail (474; it grows from its hair band, not the scalp).
+  const physics::HairSystem& hair = world->simulatedGroom(0);
   const glm::mat4 restToBody = worldToBody(copy, head, 0.0);
-  for (std::size_t g = 0; g < 3; ++g) {  // front_top, side, back; the tail grows from its hair band
-    const physics::HairSystem& hair = world->simulatedGroom(g);
+  const std::size_t groupEnds[] = {876, 876 + 3066, 876 + 3066 + 517};
+  std::size_t groupBegin = 0;
+  for (const std::size_t groupEnd : groupEnds) {
     std::vector<double> distances;
-    for (std::size_t s = 0; s < hair.strandCount(); s += hair.strandCount() / 40) {
+    for (std::size_t s = groupBegin; s < groupEnd; s += (groupEnd - groupBegin) / 40) {
       const glm::vec3 root = transformPoint(restToBody, hair.strandPositions(s).front());
       double nearest = std::numeric_limits<double>::infinity();
       for (std::size_t t = 0; t + 2 < mesh->indices.size(); t += 3)
@@ -371,26 +376,24 @@ TEST(WorldColliders, PonytailSitsOnItsHeadAndStaysOutside) {
       distances.push_back(nearest);
     }
     std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
-    EXPECT_LT(distances[distances.size() / 2], 0.002) << copy.grooms[g].name << ": roots off the scalp";
+    EXPECT_LT(distances[distances.size() / 2], 0.002)
+        << "guides " << groupBegin << ".." << groupEnd << ": roots off the scalp";
+    groupBegin = groupEnd;
   }
 
-  const physics::SignedDistanceField& field = *world->simulatedGroom(0).colliders().sdf;
+  const physics::SignedDistanceField& field = *hair.colliders().sdf;
   std::size_t rootedInside = 0;
   float worst = std::numeric_limits<float>::infinity();
   for (int frame = 1; frame <= 8; ++frame) {  // 30 Hz
     ASSERT_TRUE(world->advance(1.0 / 30.0, 2).has_value());
     if (frame % 5 != 0 && frame != 8) continue;
     const glm::mat4 toBody = worldToBody(copy, head, world->time());
-    for (std::size_t g = 0; g < world->simulatedGroomCount(); ++g) {
-      const physics::HairSystem& hair = world->simulatedGroom(g);
-      ASSERT_EQ(hair.colliders().sdf.get(), &field) << "one field for the four groups";
-      for (std::size_t s = 0; s < hair.strandCount(); ++s) {
-        const auto strand = hair.strandPositions(s);
-        const float root = field.sample(hair.strands()[s].rootLocal);
-        rootedInside += frame == 5 && root < 0.0f;
-        for (std::size_t k = 1; k < strand.size(); ++k)
-          worst = std::min(worst, field.sample(transformPoint(toBody, strand[k])) - std::min(root, 0.0f));
-      }
+    for (std::size_t s = 0; s < hair.strandCount(); ++s) {
+      const auto strand = hair.strandPositions(s);
+      const float root = field.sample(hair.strands()[s].rootLocal);
+      rootedInside += frame == 5 && root < 0.0f;
+      for (std::size_t k = 1; k < strand.size(); ++k)
+        worst = std::min(worst, field.sample(transformPoint(toBody, strand[k])) - std::min(root, 0.0f));
     }
   }
   EXPECT_GT(worst, -1e-4f) << "a particle is " << -worst * 1e3f << " mm inside the head (or deeper than its root)";

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "render/renderer.hpp"
+#include "scenes/groom_loader.hpp"
 #include "scenes/world.hpp"
 #include "tests/scenes/test_support.hpp"
 #include "tests/support/vulkan_fixture.hpp"
@@ -18,6 +20,7 @@ namespace {
 const std::filesystem::path kNalu = std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json";
 
 using testing::resolverWithoutAssets;
+using testing::ScratchDir;
 
 TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   auto scene = loadScene(kNalu);
@@ -114,6 +117,176 @@ TEST(World, CapePinsFollowTheHeadAndTheSurfaceIsDynamic) {
   EXPECT_EQ(dynamic[0].mesh, world->staticScene().meshes.size() - 1);
   EXPECT_TRUE(world->staticScene().meshes.back().dynamic);
   EXPECT_EQ(dynamic[0].positions.data(), world->cloths()[0].surface().positions.data());
+}
+
+// --- Grooms as the scene file describes them ---------------------------------------------
+
+/// A HAIR file (cyHairFile.h: 128-byte header, then float3 points) of `hairs` strands of 4
+/// points hanging down −Y from roots 1 cm apart along X, starting at x = `firstX` (file units).
+std::string hairFile(std::uint32_t hairs, float firstX) {
+  std::string bytes(128, '\0');
+  const std::uint32_t header[] = {hairs, 4 * hairs, 2 /* points only */, 3 /* segments per hair */};
+  std::memcpy(bytes.data(), "HAIR", 4);
+  std::memcpy(bytes.data() + 4, header, sizeof header);
+  for (std::uint32_t h = 0; h < hairs; ++h)
+    for (int v = 0; v < 4; ++v) {
+      const float point[3] = {firstX + 0.01f * static_cast<float>(h), -0.01f * static_cast<float>(v), 0.0f};
+      bytes.append(reinterpret_cast<const char*>(point), sizeof point);
+    }
+  return bytes;
+}
+
+/// A scene beside its groom files: a unit sphere at scale 1 holding one groom of `source`.
+std::filesystem::path groomFilesScene(const ScratchDir& dir, const std::string& source) {
+  return dir.write("scene.json", R"({"name": "files", "camera": {"position": [0, 0, 3], "target": [0, 0, 0]},
+      "meshes": [{"name": "head", "source": "procedural:sphere"}],
+      "grooms": [{"name": "hair", "source": )" +
+                                     source + R"(, "attached_mesh": "head"}]})");
+}
+
+TEST(WorldGrooms, ASourceArrayConcatenatesTheFilesGuidesInOrderIntoOneGroom) {
+  // 2 strands from a.hair (x = 0, 0.01), then 3 from b.hair (x = 1, 1.01, 1.02): one groom of
+  // 5 guides whose roots are the files' in that order (the sphere is unscaled and still, so
+  // file units are world metres; exact up to float rounding of the identity placement).
+  ScratchDir dir;
+  dir.write("a.hair", hairFile(2, 0.0f));
+  dir.write("b.hair", hairFile(3, 1.0f));
+  auto scene = loadScene(groomFilesScene(dir, R"(["a.hair", "b.hair"])"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto world = World::create(std::move(*scene), resolverWithoutAssets(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  ASSERT_EQ(world->simulatedGroomCount(), 1u);
+  ASSERT_EQ(world->guideStrandCount(), 5u);
+  const float rootX[] = {0.0f, 0.01f, 1.0f, 1.01f, 1.02f};
+  for (std::size_t s = 0; s < 5; ++s)
+    EXPECT_NEAR(world->simulatedGroom(0).strandPositions(s).front().x, rootX[s], 1e-6f) << "guide " << s;
+  const render::StaticScene statics = world->staticScene();
+  ASSERT_EQ(statics.grooms.size(), 1u);
+  EXPECT_EQ(statics.grooms[0].layout.guideCount, 5u);
+  EXPECT_EQ(statics.grooms[0].layout.strands.size(), 4095u) << "the default dense strand count";
+}
+
+TEST(WorldGrooms, AMissingAssetOfASourceArraySkipsTheGroomWithANote) {
+  // As for a single file: a manifest asset that is not on this machine is a note and the groom
+  // is skipped, here although a.hair is there (a groom is all its files or nothing); a path that
+  // names no file is an error.
+  ScratchDir dir;
+  dir.write("a.hair", hairFile(2, 0.0f));
+  auto scene = loadScene(groomFilesScene(dir, R"(["a.hair", "hair/tressfx_bear_fur/bear.tfx"])"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto world = World::create(std::move(*scene), resolverWithoutAssets(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  EXPECT_EQ(world->simulatedGroomCount(), 0u);
+  EXPECT_TRUE(world->staticScene().grooms.empty());
+  ASSERT_EQ(world->notes().size(), 1u);
+  EXPECT_NE(world->notes()[0].find("groom hair: hair/tressfx_bear_fur/bear.tfx missing"), std::string::npos)
+      << world->notes()[0];
+  EXPECT_NE(world->notes()[0].find("skipped"), std::string::npos) << world->notes()[0];
+
+  auto typo = loadScene(groomFilesScene(dir, R"(["a.hair", "b.hair"])"));
+  ASSERT_TRUE(typo.has_value()) << typo.error().message;
+  auto failed = World::create(std::move(*typo), resolverWithoutAssets(), {.loadTextures = false});
+  ASSERT_FALSE(failed.has_value());
+  EXPECT_NE(failed.error().message.find("groom hair: 'b.hair'"), std::string::npos) << failed.error().message;
+}
+
+TEST(WorldGrooms, AMalformedFileOfASourceArrayIsAnErrorNamingIt) {
+  ScratchDir dir;
+  dir.write("a.hair", hairFile(2, 0.0f));
+  dir.write("bad.hair", "HAIX");
+  auto scene = loadScene(groomFilesScene(dir, R"(["a.hair", "bad.hair"])"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto world = World::create(std::move(*scene), resolverWithoutAssets(), {.loadTextures = false});
+  ASSERT_FALSE(world.has_value());
+  EXPECT_NE(world.error().message.find("groom hair: "), std::string::npos) << world.error().message;
+  EXPECT_NE(world.error().message.find("bad.hair"), std::string::npos) << world.error().message;
+}
+
+TEST(WorldGrooms, TheRenderBlockAndHairShadowsReachTheRenderer) {
+  // A procedural groom of 40 guides on the built-in sphere, drawn dark with every setting changed.
+  auto scene = parseScene(R"({"name": "dark", "camera": {"position": [0, 0, 3], "target": [0, 0, 0]},
+      "meshes": [{"name": "head", "source": "procedural:sphere"}],
+      "grooms": [{"name": "hair", "source": "procedural", "attached_mesh": "head", "strands": 40,
+                  "render": {"look": "dark", "width": 7e-5, "tip_width_scale": 0.3, "opacity": 0.6,
+                             "min_pixel_width": 0.5, "shadow_extinction": 2.5, "strands": 300}}],
+      "hair_shadows": {"mode": "deep", "resolution": 1024}})",
+                          "dark.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto world = World::create(std::move(*scene), resolverWithoutAssets(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  const render::StaticScene statics = world->staticScene();
+  ASSERT_EQ(statics.grooms.size(), 1u);
+  const render::HairGroomData& groom = statics.grooms[0];
+  EXPECT_EQ(groom.look, render::HairLook::kDark);
+  EXPECT_FLOAT_EQ(groom.settings.width, 7e-5f);
+  EXPECT_FLOAT_EQ(groom.settings.tipWidthScale, 0.3f);
+  EXPECT_FLOAT_EQ(groom.settings.opacity, 0.6f);
+  EXPECT_FLOAT_EQ(groom.settings.minimumPixelWidth, 0.5f);
+  EXPECT_FLOAT_EQ(groom.settings.shadowExtinction, 2.5f);
+  EXPECT_EQ(groom.layout.guideCount, 40u);
+  EXPECT_EQ(groom.layout.strands.size(), 300u);
+  EXPECT_EQ(statics.hairShadows.mode, render::HairShadowMode::kDeepOpacityMap);
+  EXPECT_EQ(statics.hairShadows.resolution, 1024u);
+}
+
+TEST(WorldGrooms, WithoutARenderBlockGroomsAreDrawnAsBefore) {
+  // Blonde ribbons 0.4 mm wide, 4,095 dense strands, or one per guide where there are more
+  // guides; opacity shadow maps at 512 texels.
+  for (const int guides : {40, 5000}) {
+    auto scene = parseScene(R"({"name": "plain", "camera": {"position": [0, 0, 3], "target": [0, 0, 0]},
+        "meshes": [{"name": "head", "source": "procedural:sphere"}],
+        "grooms": [{"name": "hair", "source": "procedural", "attached_mesh": "head", "length": 0.05,
+                    "strands": )" +
+                                std::to_string(guides) + "}]}",
+                            "plain.json");
+    ASSERT_TRUE(scene.has_value()) << scene.error().message;
+    auto world = World::create(std::move(*scene), resolverWithoutAssets(), {.loadTextures = false});
+    ASSERT_TRUE(world.has_value()) << world.error().message;
+    const render::StaticScene statics = world->staticScene();
+    ASSERT_EQ(statics.grooms.size(), 1u);
+    EXPECT_EQ(statics.grooms[0].look, render::HairLook::kBlonde);
+    EXPECT_FLOAT_EQ(statics.grooms[0].settings.width, 4e-4f);
+    EXPECT_EQ(statics.grooms[0].layout.strands.size(), std::max<std::size_t>(4095, guides)) << guides << " guides";
+    EXPECT_EQ(statics.hairShadows.mode, render::HairShadowMode::kOpacityShadowMap);
+    EXPECT_EQ(statics.hairShadows.resolution, 512u);
+  }
+}
+
+TEST(WorldGrooms, PonytailIsOneGroomOfAllFourFilesGuidesDrawnAs50000Strands) {
+  // ../shared/assets/README.md: the ponytail is 4,933 guides × 16 in four files (876, 3,066, 517,
+  // 474 in ponytail.tfxproj's order). The scene lists them in that order, so guide 876 is
+  // side.tfx's first, and so on: each file's first root, read here straight from the file and
+  // placed as the scene places it (z inverted, × 0.01; the head's shake is at rest at t = 0),
+  // must be the groom's root at that offset, within float rounding of the 1 m coordinates.
+  auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "ponytail.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  ASSERT_EQ(scene->simulation.settleSeconds, 0.0f) << "this test builds the world without simulating it";
+  std::vector<StrandSet> files;
+  for (const std::string& source : scene->grooms.at(0).sources) {
+    MANE_RESOLVE_OR_SKIP(file, source);
+    auto loaded = loadGroomFile(file);
+    ASSERT_TRUE(loaded.has_value()) << loaded.error().message;
+    files.push_back(std::move(*loaded));
+  }
+  auto world = World::create(std::move(*scene), testing::sharedResolver(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  ASSERT_EQ(world->simulatedGroomCount(), 1u);
+  EXPECT_EQ(world->guideStrandCount(), 4933u);
+  EXPECT_EQ(world->particleCount(), 4933u * 16u);
+  const physics::HairSystem& hair = world->simulatedGroom(0);
+  std::size_t first = 0;
+  for (const StrandSet& file : files) {
+    const glm::vec3 expected = file.strands.front().front() * glm::vec3(0.01f, 0.01f, -0.01f);
+    EXPECT_LT(glm::distance(hair.strandPositions(first).front(), expected), 1e-5f) << "guide " << first;
+    first += file.strands.size();
+  }
+  EXPECT_EQ(first, 4933u);
+  const render::StaticScene statics = world->staticScene();
+  ASSERT_EQ(statics.grooms.size(), 1u);
+  EXPECT_EQ(statics.grooms[0].layout.guideCount, 4933u);
+  EXPECT_EQ(statics.grooms[0].layout.guideVertexCount, 16u);
+  EXPECT_EQ(statics.grooms[0].layout.strands.size(), 50'000u);
+  EXPECT_EQ(statics.grooms[0].look, render::HairLook::kBlonde);
 }
 
 class WorldRender : public mane::testing::VulkanTest {};
