@@ -143,8 +143,11 @@ HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
   sim.iterations = fields.optional<int>("iterations", sim.iterations);
   sim.damping = fields.optional<float>("damping", sim.damping);
   sim.gravity = fields.optional<glm::vec3>("gravity", sim.gravity);
+  sim.shapeStiffness = fields.optional<float>("shape_stiffness", sim.shapeStiffness);
   fields.finish();
   require(sim.iterations >= 1 && sim.iterations <= 1000, fields.child("iterations"), "expected 1..1000 iterations");
+  require(sim.shapeStiffness >= 0.0f && sim.shapeStiffness <= 1.0f, fields.child("shape_stiffness"),
+          "expected a shape stiffness in [0, 1]");
   require(sim.damping >= 0.0f && sim.damping < 1.0f, fields.child("damping"), "expected a damping in [0, 1)");
   return sim;
 }

@@ -88,6 +88,7 @@ struct HairSimulation {
   int iterations = 8;                     ///< constraint relaxation passes per step, ≥ 1
   float damping = 0.02f;                  ///< velocity fraction lost per step, in [0, 1)
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
+  float shapeStiffness = 0.0f;            ///< local shape constraint, [0, 1] (physics::SolverSettings)
 };
 
 /// Grid resolutions a scene may ask of a collider's signed distance field (nodes along the

@@ -55,6 +55,7 @@ physics::SolverSettings solverSettings(const HairSimulation& simulation, const S
   settings.gravity = simulation.gravity;
   settings.damping = simulation.damping;
   settings.constraintIterations = simulation.iterations;
+  settings.shapeStiffness = simulation.shapeStiffness;
   settings.maxSubstepsPerFrame = world.maxStepsPerFrame;
   return settings;
 }

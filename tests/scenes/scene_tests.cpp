@@ -253,6 +253,17 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "render": {"tip_width_scale": 1, "opacity": 1})")), "");
 }
 
+TEST(Scene, GroomShapeStiffnessReachesTheSolverSettingsRange) {
+  auto scene = parseScene(groomScene(R"(, "source": "procedural", "simulation": {"shape_stiffness": 0.5})"), "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_FLOAT_EQ(scene->grooms[0].simulation.shapeStiffness, 0.5f);
+  for (const char* stiffness : {"-0.1", "1.5"})
+    EXPECT_EQ(errorOf(groomScene(std::string(R"(, "source": "procedural", "simulation": {"shape_stiffness": )") +
+                                 stiffness + "}")),
+              "dir/bad.json: grooms[0].simulation.shape_stiffness: expected a shape stiffness in [0, 1]")
+        << stiffness;
+}
+
 TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
   const auto renderError = [](const std::string& block) {
     return errorOf(groomScene(R"(, "source": "procedural", "render": )" + block));
@@ -396,7 +407,8 @@ TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
   EXPECT_EQ(groom.rendering.look, render::HairLook::kBlonde);
   EXPECT_EQ(groom.rendering.denseStrands, 50'000);
   EXPECT_EQ(scene->headMotion.kind, HeadMotionKind::shake);
-  EXPECT_EQ(scene->simulation.settleSeconds, 0.0f);  // World tests build it without settling
+  EXPECT_EQ(scene->simulation.settleSeconds, 1.0f);  // with shape stiffness 0.5 the groom keeps its style
+  EXPECT_EQ(scene->grooms[0].simulation.shapeStiffness, 0.5f);
   const AssetResolver resolver = testing::sharedResolver();
   for (const std::string& name : groom.sources) EXPECT_NE(resolver.find(name), nullptr) << name;
 }
