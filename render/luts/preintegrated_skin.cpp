@@ -1,0 +1,139 @@
+#include "render/luts/preintegrated_skin.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "render/luts/skin_specular.hpp"
+
+namespace mane::render {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Numerator and denominator of equation (1) for one Gaussian (unweighted).
+struct Moments {
+  double lit = 0.0;    // ∫ max(cos(θ + x), 0) G dx
+  double total = 0.0;  // ∫ G dx
+};
+
+// Equation (1)'s integrals for the Gaussian of variance `variance` over the part of [−X, X]
+// it reaches, by the rule of the file comment. Mirrored by shaders/preintegrated_skin.comp.
+Moments integrateGaussian(double variance, double nDotL, double theta, double curvature, double halfRange) {
+  const double reach = 0.5 * kProfileReach * std::sqrt(variance) * curvature;  // sin of half the arc
+  const double limit = reach >= 1.0 ? halfRange : std::min(halfRange, 2.0 * std::asin(reach));
+  // Breaks: −limit, the kinks of max(cos(θ + x), 0) at x = (k + ½)π − θ, the peak at 0, +limit.
+  std::array<double, 16> breaks{};
+  std::size_t count = 0;
+  breaks[count++] = -limit;
+  const auto kinkAt = [&](int k) { return (k + 0.5) * kPi - theta; };
+  const int first = static_cast<int>(std::ceil((-limit + theta) / kPi - 0.5));
+  const int last = static_cast<int>(std::floor((limit + theta) / kPi - 0.5));
+  bool zeroPlaced = false;
+  for (int k = first; k <= last && count + 2 < breaks.size(); ++k) {
+    const double kink = kinkAt(k);
+    if (!zeroPlaced && kink >= 0.0) {
+      breaks[count++] = 0.0;
+      zeroPlaced = true;
+    }
+    if (kink > -limit && kink < limit) breaks[count++] = kink;
+  }
+  if (!zeroPlaced) breaks[count++] = 0.0;
+  breaks[count++] = limit;
+
+  Moments m;
+  const double sinTheta = std::sqrt(std::max(1.0 - nDotL * nDotL, 0.0));
+  const double inverseCurvature = 1.0 / curvature;
+  for (std::size_t piece = 0; piece + 1 < count; ++piece) {
+    const double a = breaks[piece], b = breaks[piece + 1];
+    if (b <= a) continue;
+    const double middle = 0.5 * (a + b), half = 0.5 * (b - a);
+    for (const QuadratureNode& node : skinQuadratureRule()) {
+      const double x = middle + half * node.position;
+      const double chord = 2.0 * std::sin(0.5 * x) * inverseCurvature;  // mm
+      const double g = half * node.weight * skinGaussian(variance, chord);
+      m.lit += std::max(nDotL * std::cos(x) - sinTheta * std::sin(x), 0.0) * g;  // max(cos(θ + x), 0)
+      m.total += g;
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+const std::array<QuadratureNode, kSkinQuadratureNodes>& skinQuadratureRule() {
+  // Newton's method on the Legendre recurrence from the usual cosine initial guesses.
+  static const std::array<QuadratureNode, kSkinQuadratureNodes> rule = [] {
+    std::array<QuadratureNode, kSkinQuadratureNodes> nodes{};
+    constexpr int n = kSkinQuadratureNodes;
+    for (int i = 0; i < n; ++i) {
+      double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
+      double derivative = 1.0;
+      for (int iteration = 0; iteration < 100; ++iteration) {
+        double p0 = 1.0, p1 = z;
+        for (int k = 2; k <= n; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        derivative = n * (z * p1 - p0) / (z * z - 1.0);
+        const double step = p1 / derivative;
+        z -= step;
+        if (std::abs(step) < 1e-15) break;
+      }
+      nodes[i] = {z, 2.0 / ((1.0 - z * z) * derivative * derivative)};
+    }
+    return nodes;
+  }();
+  return rule;
+}
+
+double integrationHalfRange(SkinIntegrationRange range, double curvature) {
+  // π(r + 1)/(2r) = (π/2)(1 + 1/r): finite at 1/r = 0.
+  return range == SkinIntegrationRange::kPenner ? 0.5 * kPi : 0.5 * kPi * (1.0 + curvature);
+}
+
+glm::dvec3 preintegratedDiffuse(const SkinProfile& profile, SkinIntegrationRange range, double nDotL,
+                                double curvature) {
+  nDotL = std::clamp(nDotL, -1.0, 1.0);
+  // A flat surface: the kernel is a delta at x = 0.
+  if (curvature <= 0.0) return glm::dvec3(std::max(nDotL, 0.0));
+  const double theta = std::acos(nDotL);
+  const double halfRange = integrationHalfRange(range, curvature);
+  glm::dvec3 lit(0.0), total(0.0);
+  for (const SkinGaussian& g : profile.gaussians) {
+    if (g.weight == glm::dvec3(0.0)) continue;
+    const Moments m = integrateGaussian(g.variance, nDotL, theta, curvature, halfRange);
+    lit += g.weight * m.lit;
+    total += g.weight * m.total;
+  }
+  return lit / total;
+}
+
+Result<void> validate(const PreintegratedSkinSettings& settings) {
+  if (auto profile = validate(settings.profile); !profile) return profile;
+  if (settings.size < 2 || settings.size > 4096)
+    return fail("pre-integrated skin table: size " + std::to_string(settings.size) + ", expected 2 … 4096 texels");
+  if (!std::isfinite(settings.maxCurvature) || settings.maxCurvature <= 0.0 || settings.maxCurvature > 10.0)
+    return fail("pre-integrated skin table: maxCurvature " + std::to_string(settings.maxCurvature) +
+                " mm⁻¹, expected a number in (0, 10]");
+  return {};
+}
+
+PreintegratedSkinSample preintegratedSkinSample(const PreintegratedSkinSettings& settings, std::uint32_t i,
+                                                std::uint32_t j) {
+  const double s = double(i) / double(settings.size - 1);
+  const double t = double(j) / double(settings.size - 1);
+  return {
+      .nDotL = 2.0 * s - 1.0, .curvature = t * settings.maxCurvature, .nDotH = s, .roughness = t * kMaxSkinRoughness};
+}
+
+glm::dvec4 preintegratedSkinTexel(const PreintegratedSkinSettings& settings, std::uint32_t i, std::uint32_t j) {
+  const PreintegratedSkinSample p = preintegratedSkinSample(settings, i, j);
+  const glm::dvec3 diffuse = preintegratedDiffuse(settings.profile, settings.range, p.nDotL, p.curvature);
+  return {diffuse, encodeBeckmann(beckmannDistribution(p.nDotH, p.roughness))};
+}
+
+}  // namespace mane::render
