@@ -30,14 +30,39 @@ struct MeshData {
   /// Positions and normals change every frame (cloth): kept in host-visible memory and
   /// replaced with Renderer::updateMesh; topology and uvs stay.
   bool dynamic = false;
+  /// Empty or one per position: the surface's curvature 1/r (1 per mesh unit, ≥ 0; the instance's scale converts it),
+  /// which skin materials look their pre-integrated scattering up by (scenes/mesh_curvature.hpp).
+  std::span<const float> curvatures;
 };
 
-/// A Lambert surface: albedo (sRGB texture times base colour) with an optional tangent-space
-/// normal map (OpenGL convention, +Y up in the map).
+/// How a surface scatters light.
+enum class SurfaceShading : std::uint32_t {
+  kLambert = 0,  ///< diffuse only
+  kSkin = 1,     ///< pre-integrated subsurface scattering + Kelemen/Szirmay-Kalos specular
+};
+
+/// Which integration range the pre-integrated skin table uses (render/luts/preintegrated_skin.hpp).
+enum class SkinIntegrationRange : std::uint32_t {
+  kPenner = 0,     ///< x ∈ [−π/2, π/2] (Penner & Borshukov 2011)
+  kCurvature = 1,  ///< x ∈ ±π(r + 1)/(2r), the seed method's curvature-dependent range
+};
+
+/// Parameters of a skin material (render/passes/surface_pass.hpp, "Skin").
+struct SkinParameters {
+  SkinIntegrationRange range = SkinIntegrationRange::kCurvature;
+  float roughness = 0.3f;           ///< Beckmann m (GPU Gems 3 ch. 14 uses 0.3)
+  float specularIntensity = 0.18f;  ///< ρs, scaled by the specular map (GPU Gems 3 ch. 14: 0.18)
+};
+
+/// A surface: albedo (sRGB texture times base colour) with an optional tangent-space normal map
+/// (OpenGL convention, +Y up in the map); skin adds a specular map (its red channel scales ρs).
 struct MaterialData {
   glm::vec3 baseColor{1.0f};
   std::optional<TextureData> albedo;
   std::optional<TextureData> normalMap;
+  SurfaceShading shading = SurfaceShading::kLambert;
+  SkinParameters skin;
+  std::optional<TextureData> specularMap;
 };
 
 /// Everything that stays the same from frame to frame; uploaded once.
