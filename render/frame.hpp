@@ -50,8 +50,10 @@ enum class SkinIntegrationRange : std::uint32_t {
 /// Parameters of a skin material (render/passes/surface_pass.hpp, "Skin").
 struct SkinParameters {
   SkinIntegrationRange range = SkinIntegrationRange::kCurvature;
-  float roughness = 0.3f;           ///< Beckmann m (GPU Gems 3 ch. 14 uses 0.3)
-  float specularIntensity = 0.18f;  ///< ρs, scaled by the specular map (GPU Gems 3 ch. 14: 0.18)
+  float roughness = 0.3f;  ///< Beckmann m (GPU Gems 3 ch. 14 uses 0.3)
+  /// ρs, scaled by the specular map's red channel. GPU Gems 3 ch. 14 uses 0.18 with a Beckmann
+  /// term that leaves out 1/π; ours is normalised (render/luts/skin_specular.hpp), so 0.18·π.
+  float specularIntensity = 0.5655f;
 };
 
 /// A surface: albedo (sRGB texture times base colour) with an optional tangent-space normal map

@@ -91,14 +91,37 @@ Light parseLight(const Json& json, const std::string& path) {
   return light;
 }
 
+// Skin shading parameters (render::SkinParameters).
+render::SkinParameters parseSkinParameters(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  render::SkinParameters skin;
+  const std::string range = fields.optional<std::string>("range", "curvature");
+  require(range == "curvature" || range == "penner", fields.child("range"),
+          "expected \"curvature\" or \"penner\", got \"" + range + "\"");
+  skin.range = range == "penner" ? render::SkinIntegrationRange::kPenner : render::SkinIntegrationRange::kCurvature;
+  skin.roughness = fields.optional<float>("roughness", skin.roughness);
+  skin.specularIntensity = fields.optional<float>("specular_intensity", skin.specularIntensity);
+  fields.finish();
+  require(skin.roughness > 0.0f && skin.roughness <= 1.0f, fields.child("roughness"),
+          "expected a Beckmann roughness in (0, 1]");
+  require(skin.specularIntensity >= 0.0f && skin.specularIntensity <= 10.0f, fields.child("specular_intensity"),
+          "expected a specular intensity in [0, 10]");
+  return skin;
+}
+
 Material parseMaterial(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Material material;
   material.name = fields.required<std::string>("name");
   require(!material.name.empty(), fields.child("name"), "expected a non-empty name");
   const std::string kind = fields.optional<std::string>("kind", "lambert");
-  require(kind == "lambert", fields.child("kind"),
-          "expected \"lambert\" (the only material kind so far), got \"" + kind + "\"");
+  require(kind == "lambert" || kind == "skin", fields.child("kind"),
+          "expected \"lambert\" or \"skin\", got \"" + kind + "\"");
+  material.kind = kind == "skin" ? MaterialKind::skin : MaterialKind::lambert;
+  if (const Json* skin = fields.take("skin")) {
+    require(material.kind == MaterialKind::skin, fields.child("skin"), "applies to materials of kind \"skin\" only");
+    material.skin = parseSkinParameters(*skin, fields.child("skin"));
+  }
   material.albedoTexture = fields.optional<std::string>("albedo_texture", "");
   material.normalMap = fields.optional<std::string>("normal_map", "");
   material.specularMap = fields.optional<std::string>("specular_map", "");

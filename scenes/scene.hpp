@@ -13,6 +13,7 @@
 
 #include "common/error.hpp"
 #include "physics/colliders.hpp"
+#include "render/frame.hpp"
 #include "render/hair_data.hpp"
 
 namespace mane::scenes {
@@ -44,7 +45,7 @@ struct Light {
   float intensity = 1.0f;  ///< ≥ 0, unitless scale
 };
 
-enum class MaterialKind { lambert };
+enum class MaterialKind { lambert, skin };
 
 /// A surface material; texture fields hold asset names (empty: none).
 struct Material {
@@ -53,7 +54,8 @@ struct Material {
   std::string albedoTexture;
   std::string normalMap;  ///< tangent-space normal map
   std::string specularMap;
-  glm::vec3 baseColour{0.8f};  ///< linear RGB multiplier of the albedo texture, or the albedo
+  glm::vec3 baseColour{0.8f};   ///< linear RGB multiplier of the albedo texture, or the albedo
+  render::SkinParameters skin;  ///< kind skin only
 };
 
 /// Placement of a mesh: scale, then rotation (X, then Y, then Z, about the fixed axes), then

@@ -11,6 +11,7 @@
 #include "physics/hash.hpp"
 #include "physics/interpolation.hpp"
 #include "scenes/groom_loader.hpp"
+#include "scenes/mesh_curvature.hpp"
 #include "scenes/scene_colliders.hpp"
 
 namespace mane::scenes {
@@ -71,6 +72,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   } else {
     world.materials_.resize(world.scene_.materials.size());
   }
+  if (auto computed = world.computeSkinCurvatures(); !computed) return std::unexpected(computed.error());
   // Collider fields are built here, once each, and shared by the grooms and cloths that use them.
   SceneColliders colliders(world.scene_, world.meshes_);
   if (auto loaded = world.loadGrooms(resolver, colliders); !loaded) return std::unexpected(loaded.error());
@@ -115,7 +117,29 @@ Result<void> World::loadMaterials(const AssetResolver& resolver) {
     if (!normal) return std::unexpected(normal.error());
     loaded.albedo = std::move(*albedo);
     loaded.normalMap = std::move(*normal);
+    if (material.kind == MaterialKind::skin) {  // Lambert has no use for it
+      auto specular = loadTexture(material.specularMap, material.name, "specular map");
+      if (!specular) return std::unexpected(specular.error());
+      loaded.specularMap = std::move(*specular);
+    }
     materials_.push_back(std::move(loaded));
+  }
+  return {};
+}
+
+Result<void> World::computeSkinCurvatures() {
+  meshCurvatures_.assign(meshes_.size(), {});
+  for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
+    const auto material =
+        std::find_if(scene_.materials.begin(), scene_.materials.end(),
+                     [&](const Material& candidate) { return candidate.name == scene_.meshes[m].material; });
+    if (material == scene_.materials.end() || material->kind != MaterialKind::skin) continue;
+    const Mesh& mesh = meshes_[m].mesh;
+    auto curvature = computeVertexCurvature(mesh);
+    if (!curvature) return fail("mesh " + scene_.meshes[m].name + ": curvature: " + curvature.error().message);
+    auto inverseRadius = skinInverseRadius(mesh, *curvature);
+    if (!inverseRadius) return fail("mesh " + scene_.meshes[m].name + ": curvature: " + inverseRadius.error().message);
+    meshCurvatures_[m] = std::move(*inverseRadius);
   }
   return {};
 }
@@ -271,13 +295,23 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
 
 render::StaticScene World::staticScene() const {
   render::StaticScene result;
-  for (const LoadedMesh& loaded : meshes_)
-    result.meshes.push_back(
-        render::MeshData{loaded.mesh.positions, loaded.mesh.normals, loaded.mesh.uvs, loaded.mesh.indices});
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const Mesh& mesh = meshes_[m].mesh;
+    result.meshes.push_back(render::MeshData{.positions = mesh.positions,
+                                             .normals = mesh.normals,
+                                             .uvs = mesh.uvs,
+                                             .indices = mesh.indices,
+                                             .curvatures = meshCurvatures_[m]});
+  }
   for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
     render::MaterialData material{.baseColor = scene_.materials[i].baseColour};
     if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);
     if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
+    if (scene_.materials[i].kind == MaterialKind::skin) {
+      material.shading = render::SurfaceShading::kSkin;
+      material.skin = scene_.materials[i].skin;
+      if (materials_[i].specularMap) material.specularMap = textureOf(*materials_[i].specularMap);
+    }
     result.materials.push_back(material);
   }
   // Last: the material of meshes that name none (a plain Material's defaults).

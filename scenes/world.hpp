@@ -80,6 +80,7 @@ private:
   struct LoadedMaterial {
     std::optional<Image> albedo;
     std::optional<Image> normalMap;
+    std::optional<Image> specularMap;  ///< skin only
   };
   /// A groom's dense strands as the renderer draws them (render::HairGroomData's spans point here).
   struct DenseGroom {
@@ -98,6 +99,8 @@ private:
   World() = default;
   Result<void> loadMeshes(const AssetResolver& resolver);
   Result<void> loadMaterials(const AssetResolver& resolver);
+  /// The curvature skin materials shade with, for every mesh drawn with one.
+  Result<void> computeSkinCurvatures();
   Result<void> loadGrooms(const AssetResolver& resolver, SceneColliders& colliders);
   Result<void> loadCloths(const AssetResolver& resolver, SceneColliders& colliders);
   /// The rigid part of the mesh's placement at `time` (its scale divided out, `bodyMatrix`):
@@ -110,6 +113,8 @@ private:
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;
+  /// Per mesh: 1/r per vertex (mesh units) where a skin material covers it, else empty.
+  std::vector<std::vector<float>> meshCurvatures_;
   std::vector<LoadedMaterial> materials_;
   std::vector<SimulatedGroom> grooms_;
   std::vector<SceneCloth> cloths_;

@@ -1,22 +1,49 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Lambert surface with an albedo texture and a tangent-space normal map; the first light is
-// attenuated by the hair shadows.
+// Surfaces with an albedo texture and a tangent-space normal map, Lambert or skin (see
+// render/passes/surface_pass.hpp); the first light is attenuated by the hair shadows.
 #include "frame_uniforms.glsl"
+#include "preintegrated_skin.glsl"
 
 layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // sRGB, decoded by the sampler
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
+layout(set = 1, binding = 2) uniform sampler2D specularMap;  // skin: red scales ρs
+layout(set = 1, binding = 3) uniform sampler2D skinTable;    // skin: pre-integrated diffuse + Beckmann
 
 layout(push_constant) uniform Draw {
   mat4 model;
   vec4 baseColor;
-  ivec4 flags;
+  ivec4 flags;  // x: has normal map, y: shading (0 Lambert, 1 skin)
+  vec4 skin;    // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
+  vec4 blur;    // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
 } draw;
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in float inCurvature;  // 1/r, 1/mm
 layout(location = 0) out vec4 outColor;
+
+// Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights.
+void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, out vec3 specular) {
+  vec3 toEye = normalize(frame.cameraPosition.xyz - inWorldPosition);
+  vec3 normalR = normalize(mix(detail, geometric, draw.blur.r));
+  vec3 normalG = normalize(mix(detail, geometric, draw.blur.g));
+  vec3 normalB = normalize(mix(detail, geometric, draw.blur.b));
+  float rhoS = draw.skin.y * texture(specularMap, inUv).r;
+  diffuse = frame.ambient.rgb;
+  specular = vec3(0.0);
+  for (int i = 0; i < frame.lightCount.x; ++i) {
+    vec3 toLight = frame.lightDirection[i].xyz;
+    vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? hairShadow : 1.0);
+    vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, dot(normalR, toLight), inCurvature, draw.skin.z).r,
+                          preintegratedSkinDiffuse(skinTable, dot(normalG, toLight), inCurvature, draw.skin.z).g,
+                          preintegratedSkinDiffuse(skinTable, dot(normalB, toLight), inCurvature, draw.skin.z).b);
+    diffuse += radiance * scattered;
+    specular += radiance * kelemenSzirmayKalos(skinTable, detail, toLight, toEye, draw.skin.x, rhoS) *
+                max(dot(detail, toLight), 0.0);
+  }
+}
 
 // Tangent frame from screen-space derivatives of position and uv, so meshes need no stored
 // tangents (Schüler, "Normal Mapping Without Precomputed Tangents", 2013, after ShaderX5).
@@ -40,6 +67,7 @@ mat3 cotangentFrame(vec3 normal, vec3 position, vec2 uv) {
 void main() {
   vec3 normal = normalize(inWorldNormal);
   if (!gl_FrontFacing) normal = -normal;
+  vec3 geometric = normal;
   if (draw.flags.x != 0) {
     vec3 mapped = texture(normalMap, inUv).xyz * 2.0 - 1.0;
     // The uv v axis runs down the image, so the map's +Y (up) is −v.
@@ -47,8 +75,14 @@ void main() {
     normal = normalize(cotangentFrame(normal, inWorldPosition, inUv) * mapped);
   }
   vec3 albedo = texture(albedoMap, inUv).rgb * draw.baseColor.rgb;
-  vec3 irradiance = frame.ambient.rgb;
   float hairShadow = hairShadowTransmittance(frame.hairShadows, inWorldPosition);
+  if (draw.flags.y == 1) {
+    vec3 diffuse, specular;
+    shadeSkin(geometric, normal, hairShadow, diffuse, specular);
+    outColor = vec4(albedo * diffuse + specular, 1.0);
+    return;
+  }
+  vec3 irradiance = frame.ambient.rgb;
   for (int i = 0; i < frame.lightCount.x; ++i)
     irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
                   (i == 0 ? hairShadow : 1.0);

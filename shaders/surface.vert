@@ -1,21 +1,25 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Meshes in world space for the Lambert surface pass.
+// Meshes in world space for the surface pass (Lambert or skin).
 #include "frame_uniforms.glsl"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
+layout(location = 3) in float inCurvature;  // 1/r per mesh unit
 
 layout(push_constant) uniform Draw {
   mat4 model;
   vec4 baseColor;   // rgb, a unused
-  ivec4 flags;      // x: has normal map
+  ivec4 flags;      // x: has normal map, y: shading (0 Lambert, 1 skin)
+  vec4 skin;        // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
+  vec4 blur;        // rgb: skin, per channel, the weight of the geometric normal
 } draw;
 
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out vec2 outUv;
+layout(location = 3) out float outCurvature;  // 1/r in 1/mm
 
 void main() {
   vec4 world = draw.model * vec4(inPosition, 1.0);
@@ -24,5 +28,7 @@ void main() {
   outWorldNormal = transpose(inverse(mat3(draw.model))) * inNormal;
   // glTF and OBJ put v = 0 at the top of the image: no flip needed with Vulkan's texture origin.
   outUv = inUv;
+  // Per mesh unit → per metre (the model's uniform scale: its first column's length) → per mm.
+  outCurvature = inCurvature / length(draw.model[0].xyz) * 1e-3;
   gl_Position = frame.viewProjection * world;
 }

@@ -44,4 +44,11 @@ Result<void> validate(const SkinProfile& profile) {
   return {};
 }
 
+glm::dvec3 SkinProfile::broadShare(double minVariance) const {
+  glm::dvec3 share(0.0);
+  for (const SkinGaussian& gaussian : gaussians)
+    if (gaussian.variance >= minVariance) share += gaussian.weight;
+  return share;
+}
+
 }  // namespace mane::render

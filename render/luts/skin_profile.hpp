@@ -54,6 +54,10 @@ struct SkinProfile {
   glm::dvec3 reflectanceAtWorldDistance(double distance) const;
   /// A length in world units, in mm.
   double millimetres(double worldLength) const { return worldLength * millimetresPerUnit; }
+  /// Per RGB, the share of the channel's weight in Gaussians of variance ≥ `minVariance` (mm²):
+  /// how much of its light has spread wider than that scale before it exits. The skin pass
+  /// blends each channel's normal towards the geometric one by this share (blurred normals).
+  glm::dvec3 broadShare(double minVariance) const;
 };
 
 /// An error naming the first bad field: a variance that is not finite and positive, a weight

@@ -1,6 +1,7 @@
 #include "render/passes/surface_pass.hpp"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "render/descriptors.hpp"
 
@@ -11,6 +12,7 @@ struct Vertex {
   glm::vec3 position;
   glm::vec3 normal;
   glm::vec2 uv;
+  float curvature;  // 1/r per mesh unit
 };
 
 // std140 mirror of FrameUniforms in shaders/frame_uniforms.glsl.
@@ -31,8 +33,15 @@ constexpr std::uint32_t kFirstShadowBinding = 1;
 struct DrawConstants {
   glm::mat4 model;
   glm::vec4 baseColor;
-  glm::ivec4 flags;
+  glm::ivec4 flags;  // x: normal map, y: SurfaceShading
+  glm::vec4 skin;    // x: roughness, y: ρs, z: the table's maxCurvature (1/mm)
+  glm::vec4 blur;    // rgb: per channel, the weight of the geometric normal (blurred normals)
 };
+static_assert(sizeof(DrawConstants) <= 128, "Vulkan guarantees 128 bytes of push constants");
+
+// Pores are a few tenths of a millimetre across: light that spreads wider than that (d'Eon's
+// Gaussians from σ ≈ 0.43 mm) exits with the geometric normal's shading rather than the pores'.
+constexpr double kPoreVariance = 0.187;  // mm²
 
 Image textureOrDefault(const Device& device, const std::optional<TextureData>& texture,
                        const std::uint8_t (&fallback)[4], vk::Format format) {
@@ -58,8 +67,9 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
                                         shadow,
                                         shadow,
                                         shadow});  // hair shadow first depth, 4 slots
-  materialLayout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, Stage::eFragment},
-                                           {vk::DescriptorType::eCombinedImageSampler, Stage::eFragment}});
+  // albedo, normal map, specular map, pre-integrated skin table
+  const std::pair texture{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(Stage::eFragment)};
+  materialLayout_ = makeSetLayout(device, {texture, texture, texture, texture});
   pipeline_ = makeGraphicsPipeline(
       device,
       GraphicsPipelineSettings{
@@ -68,7 +78,8 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
           .vertexBindings = {{.binding = 0, .stride = sizeof(Vertex), .inputRate = vk::VertexInputRate::eVertex}},
           .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)},
                                {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
-                               {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)}},
+                               {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)},
+                               {3, 0, vk::Format::eR32Sfloat, offsetof(Vertex, curvature)}},
           .cullMode = vk::CullModeFlagBits::eNone,
           .colorFormats = {colorFormat},
           .depthFormat = depthFormat,
@@ -101,8 +112,9 @@ void SurfacePass::setScene(const StaticScene& scene) {
   for (const MeshData& mesh : scene.meshes) {
     std::vector<Vertex> vertices(mesh.positions.size());
     for (std::size_t i = 0; i < vertices.size(); ++i)
-      vertices[i] = Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
-                           mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i]};
+      vertices[i] =
+          Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
+                 mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i], mesh.curvatures.empty() ? 0.0f : mesh.curvatures[i]};
     const auto bytes = std::as_bytes(std::span(vertices));
     GpuMesh gpu{
         .indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
@@ -122,20 +134,50 @@ void SurfacePass::setScene(const StaticScene& scene) {
 
   if (scene.materials.empty()) return;
   const auto count = static_cast<std::uint32_t>(scene.materials.size());
-  materialPool_ = makeDescriptorPool(*device_, count, {{vk::DescriptorType::eCombinedImageSampler, 2 * count}});
+  materialPool_ = makeDescriptorPool(*device_, count, {{vk::DescriptorType::eCombinedImageSampler, 4 * count}});
   static constexpr std::uint8_t kWhite[4] = {255, 255, 255, 255};
   static constexpr std::uint8_t kFlatNormal[4] = {128, 128, 255, 255};
   for (const MaterialData& material : scene.materials) {
     GpuMaterial gpu{
         .albedo = textureOrDefault(*device_, material.albedo, kWhite, vk::Format::eR8G8B8A8Srgb),
         .normalMap = textureOrDefault(*device_, material.normalMap, kFlatNormal, vk::Format::eR8G8B8A8Unorm),
+        .specularMap = textureOrDefault(*device_, material.specularMap, kWhite, vk::Format::eR8G8B8A8Unorm),
         .hasNormalMap = material.normalMap.has_value(),
         .baseColor = material.baseColor,
+        .shading = material.shading,
+        .skin = material.skin,
         .descriptors = allocateSet(*device_, materialPool_, materialLayout_)};
     writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
     writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
+    writeSampledImage(*device_, gpu.descriptors, 2, gpu.specularMap, sampler_);
+    if (material.shading == SurfaceShading::kSkin) {
+      const PreintegratedSkinLut& table = skinTable(material.skin.range);
+      const vk::DescriptorImageInfo info{.sampler = *table.sampler(),
+                                         .imageView = *table.view(),
+                                         .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+      device_->device().updateDescriptorSets(
+          vk::WriteDescriptorSet{.dstSet = *gpu.descriptors,
+                                 .dstBinding = 3,
+                                 .descriptorCount = 1,
+                                 .descriptorType = vk::DescriptorType::eCombinedImageSampler,
+                                 .pImageInfo = &info},
+          {});
+    } else {
+      // Never read by Lambert materials, but every binding must hold a valid image.
+      writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
+    }
     materials_.push_back(std::move(gpu));
   }
+}
+
+const PreintegratedSkinLut& SurfacePass::skinTable(SkinIntegrationRange range) {
+  auto& table = skinTables_[range == SkinIntegrationRange::kPenner ? 0 : 1];
+  if (!table) {
+    auto baked = PreintegratedSkinLut::create(*device_, {.range = range});
+    if (!baked) throw std::runtime_error("baking the pre-integrated skin table: " + baked.error().message);
+    table = std::make_unique<PreintegratedSkinLut>(std::move(*baked));
+  }
+  return *table;
 }
 
 void SurfacePass::updateVertices(std::size_t mesh, std::span<const glm::vec3> positions,
@@ -169,8 +211,18 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
     const GpuMesh& mesh = meshes_[instance.mesh];
     const GpuMaterial& material = materials_[instance.material];
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 1, {*material.descriptors}, {});
-    const DrawConstants constants{instance.model, glm::vec4(material.baseColor, 1.0f),
-                                  glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0)};
+    float maxCurvature = 1.0f;
+    glm::vec3 blur(0.0f);
+    if (material.shading == SurfaceShading::kSkin) {
+      const PreintegratedSkinSettings& table =
+          skinTables_[material.skin.range == SkinIntegrationRange::kPenner ? 0 : 1]->settings();
+      maxCurvature = float(table.maxCurvature);
+      blur = glm::vec3(table.profile.broadShare(kPoreVariance));
+    }
+    const DrawConstants constants{
+        instance.model, glm::vec4(material.baseColor, 1.0f),
+        glm::ivec4(material.hasNormalMap ? 1 : 0, static_cast<int>(material.shading), 0, 0),
+        glm::vec4(material.skin.roughness, material.skin.specularIntensity, maxCurvature, 0.0f), glm::vec4(blur, 0.0f)};
     commands.pushConstants<DrawConstants>(
         *pipeline_.layout, vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0, constants);
     commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});

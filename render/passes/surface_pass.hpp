@@ -1,11 +1,28 @@
 #pragma once
 // Opaque meshes lit by directional lights: albedo texture × base colour, tangent-space normal
-// map, Lambert diffuse plus ambient; the first light is attenuated by the hair shadows
-// (render/passes/hair_shadows.hpp). The skin shading of the skin issue will replace the BRDF.
+// map, ambient, and per material either Lambert diffuse or skin; the first light is attenuated
+// by the hair shadows (render/passes/hair_shadows.hpp).
+//
+// Skin (shaders/surface.frag, shaders/preintegrated_skin.glsl):
+//  - diffuse: the pre-integrated table (render/luts/preintegrated_skin_lut.hpp) in place of
+//    max(N·L, 0), looked up per RGB at the vertex curvature (MeshData::curvatures, converted to
+//    1/mm with the instance's scale: world units are metres);
+//  - blurred normals per channel (Penner & Borshukov 2011): channel c reads N·L with
+//    normalize(mix(N_detail, N_geometric, w_c)); w_c is the share of the channel's profile
+//    weight in d'Eon's Gaussians of variance ≥ 0.187 mm² (σ ≥ 0.43 mm, wider than pores;
+//    SkinProfile::broadShare): (0.667, 0.209, 0.007) — red light has left the pores' scale
+//    before it exits, blue has not;
+//  - specular: Kelemen/Szirmay-Kalos with the table's Beckmann term and Schlick's Fresnel
+//    (F0 = 0.028) on the detail normal, ρs scaled by the specular map's red channel.
+// The tables are baked once per integration range, when a scene first needs one.
 
 #include <vector>
 
+#include <array>
+#include <memory>
+
 #include "render/frame.hpp"
+#include "render/luts/preintegrated_skin_lut.hpp"
 #include "render/passes/hair_shadows.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
@@ -20,7 +37,8 @@ public:
   SurfacePass(const Device& device, const HairShadows& shadows, vk::Format colorFormat, vk::Format depthFormat,
               vk::SampleCountFlagBits samples);
 
-  /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError on failure.
+  /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError (or
+  /// std::runtime_error when a skin table cannot be baked) on failure.
   void setScene(const StaticScene& scene);
 
   /// Replaces the positions and normals of dynamic mesh `mesh` (sizes checked by the caller);
@@ -56,13 +74,20 @@ private:
   struct GpuMaterial {
     Image albedo;
     Image normalMap;
+    Image specularMap;
     bool hasNormalMap = false;
     glm::vec3 baseColor{1.0f};
+    SurfaceShading shading = SurfaceShading::kLambert;
+    SkinParameters skin;
     vk::raii::DescriptorSet descriptors{nullptr};
   };
 
+  /// The table for `range`, baked on first use.
+  const PreintegratedSkinLut& skinTable(SkinIntegrationRange range);
+
   const Device* device_;
   const HairShadows* shadows_;
+  std::array<std::unique_ptr<PreintegratedSkinLut>, 2> skinTables_;  ///< Penner, curvature-dependent
   vk::raii::DescriptorSetLayout frameLayout_{nullptr};
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};
   Pipeline pipeline_;

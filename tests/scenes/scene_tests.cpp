@@ -169,6 +169,34 @@ TEST(Scene, ValuesOutOfRangeAreRejected) {
             "dir/bad.json: simulation.settle_seconds: expected 0..10 seconds");
 }
 
+TEST(Scene, SkinMaterialsTakeTheirParametersAndNameBadOnes) {
+  const std::string prefix = R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                                 "materials": [{"name": "face", )";
+  auto scene = parseScene(
+      prefix + R"("kind": "skin", "skin": {"range": "penner", "roughness": 0.4, "specular_intensity": 0.3}}]})",
+      "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const Material& material = scene->materials[0];
+  EXPECT_EQ(material.kind, MaterialKind::skin);
+  EXPECT_EQ(material.skin.range, render::SkinIntegrationRange::kPenner);
+  EXPECT_FLOAT_EQ(material.skin.roughness, 0.4f);
+  EXPECT_FLOAT_EQ(material.skin.specularIntensity, 0.3f);
+  auto defaults = parseScene(prefix + R"("kind": "skin"}]})", "x.json");
+  ASSERT_TRUE(defaults.has_value());
+  EXPECT_EQ(defaults->materials[0].skin.range, render::SkinIntegrationRange::kCurvature);
+
+  EXPECT_EQ(errorOf(prefix + R"("kind": "marble"}]})"),
+            "dir/bad.json: materials[0].kind: expected \"lambert\" or \"skin\", got \"marble\"");
+  EXPECT_EQ(errorOf(prefix + R"("skin": {}}]})"),
+            "dir/bad.json: materials[0].skin: applies to materials of kind \"skin\" only");
+  EXPECT_EQ(errorOf(prefix + R"("kind": "skin", "skin": {"range": "wide"}}]})"),
+            "dir/bad.json: materials[0].skin.range: expected \"curvature\" or \"penner\", got \"wide\"");
+  EXPECT_EQ(errorOf(prefix + R"("kind": "skin", "skin": {"roughness": 0}}]})"),
+            "dir/bad.json: materials[0].skin.roughness: expected a Beckmann roughness in (0, 1]");
+  EXPECT_EQ(errorOf(prefix + R"("kind": "skin", "skin": {"specular_intensity": -1}}]})"),
+            "dir/bad.json: materials[0].skin.specular_intensity: expected a specular intensity in [0, 10]");
+}
+
 TEST(Scene, ReferencesMustResolve) {
   EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                         "meshes": [{"name": "m", "source": "procedural:sphere", "material": "skin"}]})"),

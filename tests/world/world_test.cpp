@@ -48,6 +48,12 @@ TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   ASSERT_TRUE(statics.materials[0].albedo.has_value());
   EXPECT_EQ(statics.materials[0].albedo->width, 1024u);
   ASSERT_TRUE(statics.materials[0].normalMap.has_value());
+  // Skin: its specular map, and the head's curvature per vertex for the pre-integrated table.
+  EXPECT_EQ(statics.materials[0].shading, render::SurfaceShading::kSkin);
+  EXPECT_TRUE(statics.materials[0].specularMap.has_value());
+  EXPECT_EQ(statics.materials[1].shading, render::SurfaceShading::kLambert);
+  ASSERT_EQ(statics.meshes[0].curvatures.size(), 9279u);
+  for (const float inverseRadius : statics.meshes[0].curvatures) ASSERT_TRUE(inverseRadius >= 0.0f);
 }
 
 TEST(World, AdvancingMovesTheHeadAndTheHair) {
