@@ -1,6 +1,11 @@
-// Frame time of the default scene on the device mane picks (lavapipe here), against a baseline
-// measured in the same run: the same passes with nothing to draw (clear + output pass). The
-// README reports the ratio, which is steadier across machines than milliseconds.
+// Frame time of the default scene's head on the device mane picks (lavapipe here), against
+// baselines measured in the same run: the same passes with nothing to draw (clear + output
+// pass), and the same head shaded Lambert instead of skin. The README reports the ratios, which
+// are steadier across machines than milliseconds. The hair is not drawn (no guides are handed
+// to the renderer).
+//
+//   BM_NaluFrame/scene:0: nothing drawn; scene:1: the head, Lambert; scene:2: the head, skin
+//   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular).
 //
 //   build/release/bench/mane_render_bench --benchmark_min_time=2
 
@@ -47,12 +52,15 @@ Fixture& fixture() {
   return instance;
 }
 
-// state.range(0): 1 draws the scene, 0 draws nothing (the baseline). range(1): MSAA samples.
+// state.range(0): 0 draws nothing (the baseline), 1 the head as Lambert, 2 as skin. range(1): MSAA samples.
 void BM_NaluFrame(benchmark::State& state) {
   Fixture& f = fixture();
   auto renderer = render::Renderer::create(
       *f.device, {.extent = {1280, 720}, .msaaSamples = static_cast<std::uint32_t>(state.range(1))});
-  if (!renderer || !(*renderer)->setScene(f.world->staticScene())) return state.SkipWithError("renderer setup failed");
+  render::StaticScene statics = f.world->staticScene();
+  if (state.range(0) == 1)
+    for (render::MaterialData& material : statics.materials) material.shading = render::SurfaceShading::kLambert;
+  if (!renderer || !(*renderer)->setScene(statics)) return state.SkipWithError("renderer setup failed");
   render::FrameInput frame = f.world->frameInput();
   if (state.range(0) == 0) frame.instances.clear();
   for (auto _ : state)
@@ -63,7 +71,9 @@ BENCHMARK(BM_NaluFrame)
     ->ArgNames({"scene", "msaa"})
     ->Args({0, 1})
     ->Args({1, 1})
+    ->Args({2, 1})
     ->Args({1, 4})
+    ->Args({2, 4})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

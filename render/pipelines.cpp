@@ -13,6 +13,25 @@ vk::raii::ShaderModule loadShader(const Device& device, std::string_view name) {
                                 vk::ShaderModuleCreateInfo{.codeSize = words->size_bytes(), .pCode = words->data()});
 }
 
+namespace {
+
+// Constant i at byte 4i of the values.
+struct Specialization {
+  std::vector<vk::SpecializationMapEntry> entries;
+  vk::SpecializationInfo info;
+
+  explicit Specialization(const SpecializationConstants& values) {
+    for (std::uint32_t i = 0; i < values.size(); ++i) entries.push_back({.constantID = i, .offset = 4 * i, .size = 4});
+    info = vk::SpecializationInfo{.mapEntryCount = static_cast<std::uint32_t>(entries.size()),
+                                  .pMapEntries = entries.data(),
+                                  .dataSize = 4 * values.size(),
+                                  .pData = values.data()};
+  }
+  const vk::SpecializationInfo* get() const { return entries.empty() ? nullptr : &info; }
+};
+
+}  // namespace
+
 Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettings& settings) {
   Pipeline result;
   result.layout = vk::raii::PipelineLayout(
@@ -24,10 +43,15 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
 
   const vk::raii::ShaderModule vertex = loadShader(device, settings.vertexShader);
   const vk::raii::ShaderModule fragment = loadShader(device, settings.fragmentShader);
-  const std::array stages{
-      vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eVertex, .module = *vertex, .pName = "main"},
-      vk::PipelineShaderStageCreateInfo{
-          .stage = vk::ShaderStageFlagBits::eFragment, .module = *fragment, .pName = "main"}};
+  const Specialization specialization(settings.constants);
+  const std::array stages{vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eVertex,
+                                                            .module = *vertex,
+                                                            .pName = "main",
+                                                            .pSpecializationInfo = specialization.get()},
+                          vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eFragment,
+                                                            .module = *fragment,
+                                                            .pName = "main",
+                                                            .pSpecializationInfo = specialization.get()}};
   const vk::PipelineVertexInputStateCreateInfo vertexInput{
       .vertexBindingDescriptionCount = static_cast<std::uint32_t>(settings.vertexBindings.size()),
       .pVertexBindingDescriptions = settings.vertexBindings.data(),
@@ -89,7 +113,8 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
 }
 
 Pipeline makeComputePipeline(const Device& device, std::string_view shader,
-                             const vk::raii::DescriptorSetLayout& setLayout, std::uint32_t pushConstantBytes) {
+                             const vk::raii::DescriptorSetLayout& setLayout, std::uint32_t pushConstantBytes,
+                             const SpecializationConstants& constants) {
   Pipeline result;
   const vk::PushConstantRange push{
       .stageFlags = vk::ShaderStageFlagBits::eCompute, .offset = 0, .size = pushConstantBytes};
@@ -99,11 +124,14 @@ Pipeline makeComputePipeline(const Device& device, std::string_view shader,
                                                     .pushConstantRangeCount = pushConstantBytes > 0 ? 1u : 0u,
                                                     .pPushConstantRanges = &push});
   const vk::raii::ShaderModule module = loadShader(device, shader);
+  const Specialization specialization(constants);
   result.pipeline =
       vk::raii::Pipeline(device.device(), nullptr,
-                         vk::ComputePipelineCreateInfo{
-                             .stage = {.stage = vk::ShaderStageFlagBits::eCompute, .module = *module, .pName = "main"},
-                             .layout = *result.layout});
+                         vk::ComputePipelineCreateInfo{.stage = {.stage = vk::ShaderStageFlagBits::eCompute,
+                                                                 .module = *module,
+                                                                 .pName = "main",
+                                                                 .pSpecializationInfo = specialization.get()},
+                                                       .layout = *result.layout});
   return result;
 }
 

@@ -16,6 +16,11 @@ vk::raii::ShaderModule loadShader(const Device& device, std::string_view name);
 
 enum class Blend { kNone, kAdditive, kPremultipliedAlpha };
 
+/// Values of a shader's specialization constants: value i is constant_id i, a 32-bit int, uint
+/// or bool. Branches on them are removed when the pipeline is compiled, which matters on lavapipe:
+/// it runs both sides of a branch on a uniform it cannot see through.
+using SpecializationConstants = std::vector<std::uint32_t>;
+
 struct GraphicsPipelineSettings {
   std::string vertexShader;
   std::string fragmentShader;
@@ -31,6 +36,7 @@ struct GraphicsPipelineSettings {
   vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
   std::vector<vk::DescriptorSetLayout> setLayouts;
   std::vector<vk::PushConstantRange> pushConstants;
+  SpecializationConstants constants;  ///< for both stages
 };
 
 struct Pipeline {
@@ -41,10 +47,11 @@ struct Pipeline {
 /// Viewport and scissor are dynamic state; set them when recording.
 Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettings& settings);
 
-/// A compute pipeline running the embedded shader `shader` with one descriptor set and
-/// `pushConstantBytes` of push constants (0 for none).
+/// A compute pipeline running the embedded shader `shader` with one descriptor set,
+/// `pushConstantBytes` of push constants (0 for none) and specialization `constants`.
 Pipeline makeComputePipeline(const Device& device, std::string_view shader,
-                             const vk::raii::DescriptorSetLayout& setLayout, std::uint32_t pushConstantBytes = 0);
+                             const vk::raii::DescriptorSetLayout& setLayout, std::uint32_t pushConstantBytes = 0,
+                             const SpecializationConstants& constants = {});
 
 /// A viewport covering `extent` with depth 0..1, and the matching scissor, set on `commands`.
 void setViewportAndScissor(const vk::raii::CommandBuffer& commands, vk::Extent2D extent);

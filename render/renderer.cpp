@@ -81,11 +81,6 @@ Result<void> validateScene(const StaticScene& scene, const vk::PhysicalDeviceLim
 
 Result<void> Renderer::setScene(const StaticScene& scene) {
   if (auto valid = validateScene(scene, device_->limits()); !valid) return valid;
-  try {
-    surfaces_.setScene(scene);
-  } catch (const std::exception& error) {
-    return fail(std::string("uploading the scene failed: ") + error.what());
-  }
   hair_.clear();
   // Strands first: the shadow maps read their positions, and the shading reads the maps.
   std::vector<HairShadows::Groom> shadowed;
@@ -109,6 +104,12 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
                      .strayFromGuides = stray});
   }
   if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
+  // After the maps exist: the surfaces' pipelines are specialised for them.
+  try {
+    surfaces_.setScene(scene);
+  } catch (const std::exception& error) {
+    return fail(std::string("uploading the scene failed: ") + error.what());
+  }
   refreshShadowDescriptors();
 
   for (std::size_t g = 0; g < scene.grooms.size(); ++g) {

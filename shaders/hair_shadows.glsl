@@ -3,8 +3,13 @@
 //   #define HAIR_SHADOW_SET <set> and HAIR_SHADOW_BINDING <first binding>
 // and put a `HairShadowUniforms` member in a uniform block; then
 //   hairShadowTransmittance(block.shadows, worldPosition)
-// is the fraction of the first light that reaches the point through all the hair.
+// is the fraction of the first light that reaches the point through all the hair. The pipeline
+// sets specialization constants 0 and 1 (HairShadows::shaderConstants): how many maps exist and
+// their mode, so the lookups of absent maps and of the other mode are compiled out.
 #include "opacity_shadow.glsl"
+
+layout(constant_id = 0) const uint kHairShadowMaps = 0u;  // maps that exist, 0 to 4
+layout(constant_id = 1) const uint kHairShadowMode = 0u;  // 0: 16-slice opacity shadow maps, 1: deep opacity maps
 
 // Mirrors HairShadowUniforms (std140).
 struct HairShadowUniforms {
@@ -21,18 +26,26 @@ layout(set = HAIR_SHADOW_SET, binding = HAIR_SHADOW_BINDING + 5) uniform sampler
 layout(set = HAIR_SHADOW_SET, binding = HAIR_SHADOW_BINDING + 6) uniform sampler2D hairShadowFirstDepth2;
 layout(set = HAIR_SHADOW_SET, binding = HAIR_SHADOW_BINDING + 7) uniform sampler2D hairShadowFirstDepth3;
 
+// κ_g·opacity_g of one map at `world`, in the pipeline's mode.
+float hairShadowExtinction(sampler2DArray opacity, sampler2D firstDepth, OpacityShadow map, vec3 world) {
+  float o = kHairShadowMode == 1u ? deepOpacityMapOpacity(opacity, firstDepth, map, world)
+                                  : opacityShadowMapOpacity(opacity, map, world);
+  return map.depth.z * o;
+}
+
 // Product of the grooms' transmittances: exp(−Σ κ_g·opacity_g). Separate bindings rather than
-// an array, so no descriptor-indexing feature is needed.
+// an array, so no descriptor-indexing feature is needed; slots beyond shadows.count (grooms
+// whose guides have not arrived yet) are skipped at run time.
 float hairShadowTransmittance(HairShadowUniforms shadows, vec3 world) {
-  float transmittance = 1.0;
   uint count = shadows.count.x;
-  if (count > 0u)
-    transmittance *= opacityShadowTransmittance(hairShadowOpacity0, hairShadowFirstDepth0, shadows.maps[0], world);
-  if (count > 1u)
-    transmittance *= opacityShadowTransmittance(hairShadowOpacity1, hairShadowFirstDepth1, shadows.maps[1], world);
-  if (count > 2u)
-    transmittance *= opacityShadowTransmittance(hairShadowOpacity2, hairShadowFirstDepth2, shadows.maps[2], world);
-  if (count > 3u)
-    transmittance *= opacityShadowTransmittance(hairShadowOpacity3, hairShadowFirstDepth3, shadows.maps[3], world);
-  return transmittance;
+  float extinction = 0.0;
+  if (kHairShadowMaps > 0u && count > 0u)
+    extinction += hairShadowExtinction(hairShadowOpacity0, hairShadowFirstDepth0, shadows.maps[0], world);
+  if (kHairShadowMaps > 1u && count > 1u)
+    extinction += hairShadowExtinction(hairShadowOpacity1, hairShadowFirstDepth1, shadows.maps[1], world);
+  if (kHairShadowMaps > 2u && count > 2u)
+    extinction += hairShadowExtinction(hairShadowOpacity2, hairShadowFirstDepth2, shadows.maps[2], world);
+  if (kHairShadowMaps > 3u && count > 3u)
+    extinction += hairShadowExtinction(hairShadowOpacity3, hairShadowFirstDepth3, shadows.maps[3], world);
+  return exp(-extinction);
 }

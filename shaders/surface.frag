@@ -13,7 +13,7 @@ layout(set = 1, binding = 3) uniform sampler2D skinTable;    // skin: pre-integr
 layout(push_constant) uniform Draw {
   mat4 model;
   vec4 baseColor;
-  ivec4 flags;  // x: has normal map, y: shading (0 Lambert, 1 skin)
+  ivec4 flags;  // x: has normal map
   vec4 skin;    // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
   vec4 blur;    // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
 } draw;
@@ -23,6 +23,8 @@ layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in float inCurvature;  // 1/r, 1/mm
 layout(location = 0) out vec4 outColor;
+
+layout(constant_id = 2) const bool kSkin = false;  // the pipeline's shading: skin or Lambert
 
 // Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights.
 void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, out vec3 specular) {
@@ -76,7 +78,7 @@ void main() {
   }
   vec3 albedo = texture(albedoMap, inUv).rgb * draw.baseColor.rgb;
   float hairShadow = hairShadowTransmittance(frame.hairShadows, inWorldPosition);
-  if (draw.flags.y == 1) {
+  if (kSkin) {
     vec3 diffuse, specular;
     shadeSkin(geometric, normal, hairShadow, diffuse, specular);
     outColor = vec4(albedo * diffuse + specular, 1.0);

@@ -11,7 +11,7 @@ layout(location = 3) in float inCurvature;  // 1/r per mesh unit
 layout(push_constant) uniform Draw {
   mat4 model;
   vec4 baseColor;   // rgb, a unused
-  ivec4 flags;      // x: has normal map, y: shading (0 Lambert, 1 skin)
+  ivec4 flags;      // x: has normal map
   vec4 skin;        // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
   vec4 blur;        // rgb: skin, per channel, the weight of the geometric normal
 } draw;

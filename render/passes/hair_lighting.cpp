@@ -82,7 +82,7 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler});  // shadow first depth, 4 slots
-  pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_);
+  pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
                              {{Type::eUniformBuffer, 1},
                               {Type::eStorageBuffer, 3},

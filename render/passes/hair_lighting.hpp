@@ -39,7 +39,8 @@ public:
 
   /// Shades the strands in `positions` and `tangents` (StrandInterpolationPass layout: vec4 per
   /// vertex, strand-major, `verticesPerStrand` per strand) with `lut`'s model, receiving
-  /// `shadows`; all three must outlive the pass. Errors: no vertices, fewer than 2 per strand,
+  /// `shadows` (its maps as they are now: create the pass after HairShadows::setGrooms); all
+  /// three must outlive the pass. Errors: no vertices, fewer than 2 per strand,
   /// buffers smaller than the strands, a Vulkan failure.
   [[nodiscard]] static Result<std::unique_ptr<HairLightingPass>> create(const Device& device, const MarschnerLut& lut,
                                                                         const HairShadows& shadows,

@@ -89,6 +89,7 @@ Result<void> HairShadows::setGrooms(std::span<const Groom> grooms, const HairSha
     }
   }
   maps_ = std::move(maps);
+  mode_ = settings.mode;
   uniforms_ = {};
   return {};
 }
@@ -112,6 +113,10 @@ void HairShadows::record(const vk::raii::CommandBuffer& commands, glm::vec3 towa
     uniforms_.maps[g] = groom.map->uniforms();
     uniforms_.count.x = std::uint32_t(g + 1);
   }
+}
+
+SpecializationConstants HairShadows::shaderConstants() const {
+  return {static_cast<std::uint32_t>(maps_.size()), mode_ == HairShadowMode::kDeepOpacityMap ? 1u : 0u};
 }
 
 void HairShadows::writeDescriptors(const vk::raii::DescriptorSet& set, std::uint32_t firstBinding) const {

@@ -19,6 +19,7 @@
 
 #include "render/hair_data.hpp"
 #include "render/passes/opacity_shadow_map.hpp"
+#include "render/pipelines.hpp"
 
 namespace mane::render {
 
@@ -70,6 +71,9 @@ public:
   void writeDescriptors(const vk::raii::DescriptorSet& set, std::uint32_t firstBinding) const;
 
   [[nodiscard]] std::size_t mapCount() const { return maps_.size(); }
+  /// Specialization constants 0 and 1 of shaders/hair_shadows.glsl for the current maps: their
+  /// count and mode. Pipelines that receive the shadows are built with them after setGrooms.
+  [[nodiscard]] SpecializationConstants shaderConstants() const;
   [[nodiscard]] const OpacityShadowMap& map(std::size_t groom) const { return *maps_[groom].map; }
 
 private:
@@ -82,6 +86,7 @@ private:
 
   const Device* device_;
   std::vector<GroomMap> maps_;
+  HairShadowMode mode_ = HairShadowMode::kOff;
   HairShadowUniforms uniforms_;
   // The empty map: one transparent RGBA16F layer and a depth of 1 ("no hair").
   vk::raii::Image emptyOpacity_{nullptr};

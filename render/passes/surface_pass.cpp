@@ -33,7 +33,7 @@ constexpr std::uint32_t kFirstShadowBinding = 1;
 struct DrawConstants {
   glm::mat4 model;
   glm::vec4 baseColor;
-  glm::ivec4 flags;  // x: normal map, y: SurfaceShading
+  glm::ivec4 flags;  // x: normal map
   glm::vec4 skin;    // x: roughness, y: ρs, z: the table's maxCurvature (1/mm)
   glm::vec4 blur;    // rgb: per channel, the weight of the geometric normal (blurred normals)
 };
@@ -70,24 +70,8 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
   // albedo, normal map, specular map, pre-integrated skin table
   const std::pair texture{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(Stage::eFragment)};
   materialLayout_ = makeSetLayout(device, {texture, texture, texture, texture});
-  pipeline_ = makeGraphicsPipeline(
-      device,
-      GraphicsPipelineSettings{
-          .vertexShader = "surface.vert",
-          .fragmentShader = "surface.frag",
-          .vertexBindings = {{.binding = 0, .stride = sizeof(Vertex), .inputRate = vk::VertexInputRate::eVertex}},
-          .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)},
-                               {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
-                               {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)},
-                               {3, 0, vk::Format::eR32Sfloat, offsetof(Vertex, curvature)}},
-          .cullMode = vk::CullModeFlagBits::eNone,
-          .colorFormats = {colorFormat},
-          .depthFormat = depthFormat,
-          .depthTest = true,
-          .depthWrite = true,
-          .samples = samples,
-          .setLayouts = {*frameLayout_, *materialLayout_},
-          .pushConstants = {{Stage::eVertex | Stage::eFragment, 0, sizeof(DrawConstants)}}});
+  formats_ = {colorFormat, depthFormat, samples};
+  buildPipelines();
   sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
 
   frameUniforms_ = Buffer(device, sizeof(FrameUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
@@ -100,11 +84,41 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
   refreshShadows();
 }
 
+void SurfacePass::buildPipelines() {
+  using Stage = vk::ShaderStageFlagBits;
+  for (const SurfaceShading shading : {SurfaceShading::kLambert, SurfaceShading::kSkin}) {
+    // Constants 0, 1: the hair shadow maps (shaders/hair_shadows.glsl); 2: skin or Lambert.
+    SpecializationConstants constants = shadows_->shaderConstants();
+    constants.push_back(shading == SurfaceShading::kSkin ? 1u : 0u);
+    Pipeline& pipeline = pipelines_[static_cast<std::size_t>(shading)];
+    pipeline = makeGraphicsPipeline(
+        *device_,
+        GraphicsPipelineSettings{
+            .vertexShader = "surface.vert",
+            .fragmentShader = "surface.frag",
+            .vertexBindings = {{.binding = 0, .stride = sizeof(Vertex), .inputRate = vk::VertexInputRate::eVertex}},
+            .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)},
+                                 {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
+                                 {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)},
+                                 {3, 0, vk::Format::eR32Sfloat, offsetof(Vertex, curvature)}},
+            .cullMode = vk::CullModeFlagBits::eNone,
+            .colorFormats = {formats_.color},
+            .depthFormat = formats_.depth,
+            .depthTest = true,
+            .depthWrite = true,
+            .samples = formats_.samples,
+            .setLayouts = {*frameLayout_, *materialLayout_},
+            .pushConstants = {{Stage::eVertex | Stage::eFragment, 0, sizeof(DrawConstants)}},
+            .constants = constants});
+  }
+}
+
 void SurfacePass::refreshShadows() {
   shadows_->writeDescriptors(frameSet_, kFirstShadowBinding);
 }
 
 void SurfacePass::setScene(const StaticScene& scene) {
+  buildPipelines();  // for the hair shadows' current maps
   meshes_.clear();
   materials_.clear();
   materialPool_ = nullptr;
@@ -205,12 +219,17 @@ void SurfacePass::update(const FrameInput& frame, float aspect) {
 }
 
 void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const {
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 0, {*frameSet_}, {});
+  // Both pipelines share one layout.
+  const vk::PipelineLayout layout = *pipelines_[0].layout;
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*frameSet_}, {});
+  const Pipeline* bound = nullptr;
   for (const MeshInstance& instance : frame.instances) {
     const GpuMesh& mesh = meshes_[instance.mesh];
     const GpuMaterial& material = materials_[instance.material];
-    commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 1, {*material.descriptors}, {});
+    const Pipeline& pipeline = pipelines_[static_cast<std::size_t>(material.shading)];
+    if (bound != &pipeline) commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
+    bound = &pipeline;
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1, {*material.descriptors}, {});
     float maxCurvature = 1.0f;
     glm::vec3 blur(0.0f);
     if (material.shading == SurfaceShading::kSkin) {
@@ -220,11 +239,10 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
       blur = glm::vec3(table.profile.broadShare(kPoreVariance));
     }
     const DrawConstants constants{
-        instance.model, glm::vec4(material.baseColor, 1.0f),
-        glm::ivec4(material.hasNormalMap ? 1 : 0, static_cast<int>(material.shading), 0, 0),
+        instance.model, glm::vec4(material.baseColor, 1.0f), glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0),
         glm::vec4(material.skin.roughness, material.skin.specularIntensity, maxCurvature, 0.0f), glm::vec4(blur, 0.0f)};
-    commands.pushConstants<DrawConstants>(
-        *pipeline_.layout, vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0, constants);
+    commands.pushConstants<DrawConstants>(layout, vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment,
+                                          0, constants);
     commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
     commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
     commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);

@@ -37,7 +37,8 @@ public:
   SurfacePass(const Device& device, const HairShadows& shadows, vk::Format colorFormat, vk::Format depthFormat,
               vk::SampleCountFlagBits samples);
 
-  /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError (or
+  /// Uploads meshes and materials; replaces what was there. Rebuilds the pipelines for the hair
+  /// shadows' current maps (call after HairShadows::setGrooms). Throws vk::SystemError (or
   /// std::runtime_error when a skin table cannot be baked) on failure.
   void setScene(const StaticScene& scene);
 
@@ -90,7 +91,16 @@ private:
   std::array<std::unique_ptr<PreintegratedSkinLut>, 2> skinTables_;  ///< Penner, curvature-dependent
   vk::raii::DescriptorSetLayout frameLayout_{nullptr};
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};
-  Pipeline pipeline_;
+  /// Builds the Lambert and skin pipelines for the hair shadows' current maps.
+  void buildPipelines();
+
+  struct Formats {
+    vk::Format color;
+    vk::Format depth;
+    vk::SampleCountFlagBits samples;
+  };
+  Formats formats_{};
+  std::array<Pipeline, 2> pipelines_;  ///< by SurfaceShading: one layout, specialised shaders
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::DescriptorPool framePool_{nullptr};
   vk::raii::DescriptorSet frameSet_{nullptr};
