@@ -150,4 +150,19 @@ private:
   std::set<std::string> known_;
 };
 
+inline void require(bool condition, const std::string& path, const std::string& message) {
+  if (!condition) throw FieldError{path, message};
+}
+
+/// Each element of the array `key` (optional; none when absent) parsed by `parse(json, path)`.
+template <class T, class Parse>
+std::vector<T> parseList(ObjectFields& fields, const std::string& key, Parse parse) {
+  std::vector<T> out;
+  const nlohmann::json& items = fields.array(key, false);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out.push_back(parse(items[i], indexPath(fields.child(key), i)));
+  }
+  return out;
+}
+
 }  // namespace mane::scenes::detail

@@ -1,0 +1,237 @@
+#include "scenes/detail/scene_bodies.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "scenes/detail/json_fields.hpp"
+
+namespace mane::scenes::detail {
+namespace {
+
+using Json = nlohmann::json;
+
+HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  HairSimulation sim;
+  sim.iterations = fields.optional<int>("iterations", sim.iterations);
+  sim.damping = fields.optional<float>("damping", sim.damping);
+  sim.gravity = fields.optional<glm::vec3>("gravity", sim.gravity);
+  sim.shapeStiffness = fields.optional<float>("shape_stiffness", sim.shapeStiffness);
+  fields.finish();
+  require(sim.iterations >= 1 && sim.iterations <= 1000, fields.child("iterations"), "expected 1..1000 iterations");
+  require(sim.shapeStiffness >= 0.0f && sim.shapeStiffness <= 1.0f, fields.child("shape_stiffness"),
+          "expected a shape stiffness in [0, 1]");
+  require(sim.damping >= 0.0f && sim.damping < 1.0f, fields.child("damping"), "expected a damping in [0, 1)");
+  return sim;
+}
+
+physics::SphereCollider parseSphereCollider(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  // Unknown fields first: "center" for "centre" is then reported as the typo it is.
+  for (const char* key : {"centre", "radius"}) fields.take(key);
+  fields.finish();
+  physics::SphereCollider sphere;
+  sphere.centre = fields.required<glm::vec3>("centre");
+  sphere.radius = fields.required<float>("radius");
+  require(sphere.radius > 0.0f, fields.child("radius"), "expected a radius > 0 metres");
+  return sphere;
+}
+
+physics::CapsuleCollider parseCapsuleCollider(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  for (const char* key : {"a", "b", "radius"}) fields.take(key);
+  fields.finish();
+  physics::CapsuleCollider capsule;
+  capsule.a = fields.required<glm::vec3>("a");
+  capsule.b = fields.required<glm::vec3>("b");
+  capsule.radius = fields.required<float>("radius");
+  require(capsule.radius > 0.0f, fields.child("radius"), "expected a radius > 0 metres");
+  return capsule;
+}
+
+SdfColliderSource parseSdfCollider(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  for (const char* key : {"mesh", "resolution"}) fields.take(key);
+  fields.finish();
+  SdfColliderSource sdf;
+  sdf.mesh = fields.required<std::string>("mesh");
+  require(!sdf.mesh.empty(), fields.child("mesh"), "expected the name of a mesh in meshes");
+  sdf.resolution = fields.optional<int>("resolution", sdf.resolution);
+  require(sdf.resolution >= kMinSdfResolution && sdf.resolution <= kMaxSdfResolution, fields.child("resolution"),
+          "expected a resolution in " + std::to_string(kMinSdfResolution) + ".." + std::to_string(kMaxSdfResolution) +
+              " grid nodes");
+  return sdf;
+}
+
+// Shapes in the attached body's frame (scenes/README.md, "Colliders").
+Colliders parseColliders(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Colliders colliders;
+  colliders.spheres = parseList<physics::SphereCollider>(fields, "spheres", parseSphereCollider);
+  colliders.capsules = parseList<physics::CapsuleCollider>(fields, "capsules", parseCapsuleCollider);
+  if (const Json* sdf = fields.take("sdf")) colliders.sdf = parseSdfCollider(*sdf, fields.child("sdf"));
+  colliders.friction = fields.optional<float>("friction", colliders.friction);
+  colliders.thickness = fields.optional<float>("thickness", colliders.thickness);
+  fields.finish();
+  require(colliders.friction >= 0.0f, fields.child("friction"), "expected a friction coefficient >= 0");
+  require(colliders.thickness >= 0.0f && colliders.thickness <= 1.0f, fields.child("thickness"),
+          "expected a thickness in [0, 1] metres");
+  return colliders;
+}
+
+// "procedural", one groom file, or several whose guides make one groom.
+std::vector<std::string> parseGroomSources(ObjectFields& fields) {
+  const std::string path = fields.child("source");
+  const Json* source = fields.take("source");
+  if (!source) throw FieldError{path, "required field is missing"};
+  if (source->is_string()) {
+    const std::string name = source->get<std::string>();
+    require(!name.empty(), path, "expected a .tfx/.hair asset name or \"procedural\"");
+    return {name};
+  }
+  require(source->is_array(), path,
+          "expected a .tfx/.hair asset name, an array of them or \"procedural\"" + detail::got(*source));
+  require(!source->empty(), path, "expected at least one .tfx/.hair asset name");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < source->size(); ++i) {
+    const std::string itemPath = detail::indexPath(path, i);
+    names.push_back(detail::read<std::string>((*source)[i], itemPath));
+    require(!names.back().empty(), itemPath, "expected a .tfx/.hair asset name");
+    require(names.back() != "procedural", itemPath,
+            "\"procedural\" cannot be combined with groom files (write \"source\": \"procedural\")");
+  }
+  return names;
+}
+
+// How the groom is drawn; the ranges are those render::HairGroomSettings documents.
+GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  GroomRendering rendering;
+  render::HairGroomSettings& settings = rendering.settings;
+  const std::string look = fields.optional<std::string>("look", "blonde");
+  require(look == "blonde" || look == "dark", fields.child("look"),
+          "expected \"blonde\" or \"dark\", got \"" + look + "\"");
+  rendering.look = look == "dark" ? render::HairLook::kDark : render::HairLook::kBlonde;
+  settings.width = fields.optional<float>("width", settings.width);
+  settings.tipWidthScale = fields.optional<float>("tip_width_scale", settings.tipWidthScale);
+  settings.opacity = fields.optional<float>("opacity", settings.opacity);
+  settings.minimumPixelWidth = fields.optional<float>("min_pixel_width", settings.minimumPixelWidth);
+  settings.shadowExtinction = fields.optional<float>("shadow_extinction", settings.shadowExtinction);
+  const Json* strands = fields.take("strands");
+  if (strands) rendering.denseStrands = detail::read<int>(*strands, fields.child("strands"));
+  fields.finish();
+  require(!strands || (rendering.denseStrands >= 1 && rendering.denseStrands <= kMaxDenseStrands),
+          fields.child("strands"), "expected a dense strand count in 1.." + std::to_string(kMaxDenseStrands));
+  require(settings.width > 0.0f && settings.width <= 0.01f, fields.child("width"),
+          "expected a root width in (0, 0.01] metres");
+  require(settings.tipWidthScale >= 0.0f && settings.tipWidthScale <= 1.0f, fields.child("tip_width_scale"),
+          "expected a tip width scale in [0, 1]");
+  // Not 0: a groom's strands add its opacity to the shadow maps, which need it positive.
+  require(settings.opacity > 0.0f && settings.opacity <= 1.0f, fields.child("opacity"),
+          "expected an opacity in (0, 1]");
+  require(settings.minimumPixelWidth >= 0.25f, fields.child("min_pixel_width"),
+          "expected a minimum width >= 0.25 pixels");
+  require(settings.shadowExtinction > 0.0f, fields.child("shadow_extinction"), "expected a shadow extinction > 0");
+  return rendering;
+}
+
+}  // namespace
+
+Transform parseTransform(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Transform transform;
+  transform.translation = fields.optional<glm::vec3>("translation", transform.translation);
+  transform.rotationDegrees = fields.optional<glm::vec3>("rotation_degrees", transform.rotationDegrees);
+  transform.scale = fields.optional<float>("scale", transform.scale);
+  require(transform.scale > 0.0f, fields.child("scale"), "expected a uniform scale > 0");
+  fields.finish();
+  return transform;
+}
+
+Groom parseGroom(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Groom groom;
+  groom.name = fields.required<std::string>("name");
+  groom.sources = parseGroomSources(fields);
+  groom.attachedMesh = fields.required<std::string>("attached_mesh");
+  groom.strandCount = fields.optional<int>("strands", 0);
+  groom.strandLengthMetres = fields.optional<float>("length", 0.0f);
+  require(groom.strandCount >= 0 && groom.strandCount <= kMaxGuideStrands, fields.child("strands"),
+          "expected a strand count in 0.." + std::to_string(kMaxGuideStrands));
+  require(groom.strandLengthMetres >= 0.0f && groom.strandLengthMetres <= 10.0f, fields.child("length"),
+          "expected a length in [0, 10] metres");
+  groom.invertZ = fields.optional<bool>("invert_z", false);
+  require(!groom.invertZ || !groom.isProcedural(), fields.child("invert_z"),
+          "applies to groom files only, not to \"procedural\"");
+  if (const Json* sim = fields.take("simulation")) {
+    groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));
+  }
+  if (const Json* colliders = fields.take("colliders")) {
+    groom.colliders = parseColliders(*colliders, fields.child("colliders"));
+  }
+  if (const Json* rendering = fields.take("render")) {
+    groom.rendering = parseGroomRendering(*rendering, fields.child("render"));
+  }
+  fields.finish();
+  return groom;
+}
+
+Cloth parseCloth(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Cloth cloth;
+  cloth.name = fields.required<std::string>("name");
+  require(!cloth.name.empty(), fields.child("name"), "expected a non-empty name");
+  cloth.source = fields.required<std::string>("source");
+  require(!cloth.source.empty() && (!cloth.source.starts_with(kProceduralPrefix) || cloth.source == "procedural:grid"),
+          fields.child("source"), "expected a mesh asset, a file path or \"procedural:grid\"");
+  cloth.attachedMesh = fields.required<std::string>("attached_mesh");
+  cloth.material = fields.optional<std::string>("material", "");
+  if (const Json* transform = fields.take("transform")) {
+    cloth.transform = parseTransform(*transform, fields.child("transform"));
+  }
+  const std::string pinned = fields.optional<std::string>("pinned", "top_edge");
+  require(pinned == "top_edge" || pinned == "none", fields.child("pinned"),
+          "expected \"top_edge\" or \"none\", got \"" + pinned + "\"");
+  cloth.pinTopEdge = pinned == "top_edge";
+  if (const Json* sim = fields.take("simulation")) {
+    ObjectFields simFields(*sim, fields.child("simulation"));
+    cloth.iterations = simFields.optional<int>("iterations", cloth.iterations);
+    cloth.damping = simFields.optional<float>("damping", cloth.damping);
+    cloth.bendingStiffness = simFields.optional<float>("bending", cloth.bendingStiffness);
+    cloth.gravity = simFields.optional<glm::vec3>("gravity", cloth.gravity);
+    simFields.finish();
+    require(cloth.iterations >= 1 && cloth.iterations <= 1000, simFields.child("iterations"),
+            "expected 1..1000 iterations");
+    require(cloth.damping >= 0.0f && cloth.damping < 1.0f, simFields.child("damping"), "expected a damping in [0, 1)");
+    require(cloth.bendingStiffness >= 0.0f && cloth.bendingStiffness <= 1.0f, simFields.child("bending"),
+            "expected a bending stiffness in [0, 1]");
+  }
+  if (const Json* colliders = fields.take("colliders")) {
+    cloth.colliders = parseColliders(*colliders, fields.child("colliders"));
+  }
+  fields.finish();
+  return cloth;
+}
+
+render::HairShadowSettings parseHairShadows(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  render::HairShadowSettings shadows;
+  const std::string mode = fields.optional<std::string>("mode", "opacity");
+  if (mode == "opacity") {
+    shadows.mode = render::HairShadowMode::kOpacityShadowMap;
+  } else if (mode == "deep") {
+    shadows.mode = render::HairShadowMode::kDeepOpacityMap;
+  } else if (mode == "off") {
+    shadows.mode = render::HairShadowMode::kOff;
+  } else {
+    throw FieldError{fields.child("mode"), "expected \"opacity\", \"deep\" or \"off\", got \"" + mode + "\""};
+  }
+  const int resolution = fields.optional<int>("resolution", static_cast<int>(shadows.resolution));
+  fields.finish();
+  require(resolution >= kMinHairShadowResolution && resolution <= kMaxHairShadowResolution, fields.child("resolution"),
+          "expected a resolution in " + std::to_string(kMinHairShadowResolution) + ".." +
+              std::to_string(kMaxHairShadowResolution) + " texels");
+  shadows.resolution = static_cast<std::uint32_t>(resolution);
+  return shadows;
+}
+
+}  // namespace mane::scenes::detail
