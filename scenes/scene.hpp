@@ -137,6 +137,14 @@ struct GroomRendering {
 };
 
 /// Hair or fur on a mesh.
+/// Where a procedural groom grows on its mesh (model space, +y up, +z the front): triangles in
+/// the top `topFraction` of the mesh's height whose unit normal n has n.y ≥ minUp and n.z ≤ maxForward.
+struct ScalpRegion {
+  float topFraction = 0.25f;
+  float minUp = 0.2f;
+  float maxForward = 1.0f;  ///< 1: no limit; lower keeps the hair off a forward-facing forehead
+};
+
 struct Groom {
   std::string name;
   /// Asset names of .tfx/.hair files, whose guides are concatenated in this order into one groom,
@@ -145,6 +153,7 @@ struct Groom {
   std::string attachedMesh;         ///< name of a `MeshInstance`; roots follow it
   int strandCount = 0;              ///< procedural only: guide strands to grow (0: generator default)
   float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
+  ScalpRegion scalp;                ///< procedural only
   /// Files only: negate the points' z on load. TressFX's Maya exporter can write z inverted (for
   /// left-handed renderers); the TressFX ponytail's strands sit on its head only with this.
   bool invertZ = false;

@@ -134,6 +134,22 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   return rendering;
 }
 
+ScalpRegion parseScalp(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  ScalpRegion scalp;
+  scalp.topFraction = fields.optional<float>("top_fraction", scalp.topFraction);
+  scalp.minUp = fields.optional<float>("min_up", scalp.minUp);
+  scalp.maxForward = fields.optional<float>("max_forward", scalp.maxForward);
+  fields.finish();
+  require(scalp.topFraction > 0.0f && scalp.topFraction <= 1.0f, fields.child("top_fraction"),
+          "expected a fraction of the mesh's height in (0, 1]");
+  require(scalp.minUp >= -1.0f && scalp.minUp <= 1.0f, fields.child("min_up"),
+          "expected a normal component in [-1, 1]");
+  require(scalp.maxForward >= -1.0f && scalp.maxForward <= 1.0f, fields.child("max_forward"),
+          "expected a normal component in [-1, 1]");
+  return scalp;
+}
+
 }  // namespace
 
 Transform parseTransform(const Json& json, const std::string& path) {
@@ -162,6 +178,10 @@ Groom parseGroom(const Json& json, const std::string& path) {
   groom.invertZ = fields.optional<bool>("invert_z", false);
   require(!groom.invertZ || !groom.isProcedural(), fields.child("invert_z"),
           "applies to groom files only, not to \"procedural\"");
+  if (const Json* scalp = fields.take("scalp")) {
+    require(groom.isProcedural(), fields.child("scalp"), "applies to \"procedural\" grooms only");
+    groom.scalp = parseScalp(*scalp, fields.child("scalp"));
+  }
   if (const Json* sim = fields.take("simulation")) {
     groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));
   }

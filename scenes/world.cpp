@@ -23,9 +23,9 @@ render::TextureData textureOf(const Image& image) {
 
 // The triangles a procedural groom grows from: in the top quarter of the mesh's height, facing
 // up (unit normal y ≥ minNormalY).
-std::vector<std::uint32_t> scalpTriangles(const Mesh& mesh, float minNormalY) {
+std::vector<std::uint32_t> scalpTriangles(const Mesh& mesh, const ScalpRegion& region) {
   const Bounds bounds = mesh.bounds();
-  const float lowest = bounds.max.y - 0.25f * bounds.size().y;
+  const float lowest = bounds.max.y - region.topFraction * bounds.size().y;
   std::vector<std::uint32_t> scalp;
   for (std::uint32_t t = 0; t < mesh.triangleCount(); ++t) {
     const glm::vec3& a = mesh.positions[mesh.indices[3 * t]];
@@ -33,7 +33,9 @@ std::vector<std::uint32_t> scalpTriangles(const Mesh& mesh, float minNormalY) {
     const glm::vec3& c = mesh.positions[mesh.indices[3 * t + 2]];
     const glm::vec3 normal = glm::cross(b - a, c - a);
     const float length = glm::length(normal);
-    if (length > 0.0f && normal.y >= minNormalY * length && (a.y + b.y + c.y) / 3.0f >= lowest) scalp.push_back(t);
+    if (length > 0.0f && normal.y >= region.minUp * length && normal.z <= region.maxForward * length &&
+        (a.y + b.y + c.y) / 3.0f >= lowest)
+      scalp.push_back(t);
   }
   return scalp;
 }
@@ -156,8 +158,9 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
     const float scale = meshIt->transform.scale;
     std::vector<std::vector<glm::vec3>> guides;
     if (groom.isProcedural()) {
-      // Guides rooted by area on the mesh's scalp: the upward-facing triangles (normal y ≥ 0.2)
-      // in the top quarter of its height. Lengths are in metres, so the mesh goes to metres.
+      // Guides rooted by area on the mesh's scalp, the groom's ScalpRegion (by default the
+      // upward-facing triangles, normal y ≥ 0.2, in the top quarter of its height). Lengths are
+      // in metres, so the mesh goes to metres.
       const Mesh& mesh = meshes_[meshIndex].mesh;
       std::vector<glm::vec3> metres(mesh.positions.size());
       for (std::size_t v = 0; v < metres.size(); ++v) metres[v] = mesh.positions[v] * scale;
@@ -165,10 +168,10 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       settings.seed = 1 + sceneGroom;
       if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
       if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
-      const std::vector<std::uint32_t> scalp = scalpTriangles(mesh, settings.capMinNormalY);
+      const std::vector<std::uint32_t> scalp = scalpTriangles(mesh, groom.scalp);
       if (scalp.empty())
         return fail("groom " + groom.name + ": mesh " + meshIt->name +
-                    " has no scalp (no upward-facing triangles in its top quarter)");
+                    " has no scalp (no triangle in the groom's scalp region)");
       auto generated = physics::generateGroomOnMesh(settings, metres, mesh.indices, scalp);
       if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
       guides = std::move(*generated);

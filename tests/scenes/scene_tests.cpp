@@ -281,6 +281,22 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "render": {"tip_width_scale": 1, "opacity": 1})")), "");
 }
 
+TEST(Scene, ProceduralGroomsTakeAScalpRegion) {
+  auto scene = parseScene(
+      groomScene(R"(, "source": "procedural", "scalp": {"top_fraction": 0.3, "min_up": 0.1, "max_forward": 0.35})"),
+      "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_FLOAT_EQ(scene->grooms[0].scalp.topFraction, 0.3f);
+  EXPECT_FLOAT_EQ(scene->grooms[0].scalp.minUp, 0.1f);
+  EXPECT_FLOAT_EQ(scene->grooms[0].scalp.maxForward, 0.35f);
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "scalp": {"top_fraction": 0})")),
+            "dir/bad.json: grooms[0].scalp.top_fraction: expected a fraction of the mesh's height in (0, 1]");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "scalp": {"max_forward": 2})")),
+            "dir/bad.json: grooms[0].scalp.max_forward: expected a normal component in [-1, 1]");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "a.tfx", "scalp": {})")),
+            "dir/bad.json: grooms[0].scalp: applies to \"procedural\" grooms only");
+}
+
 TEST(Scene, GroomShapeStiffnessReachesTheSolverSettingsRange) {
   auto scene = parseScene(groomScene(R"(, "source": "procedural", "simulation": {"shape_stiffness": 0.5})"), "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
