@@ -1,0 +1,15 @@
+// What shaders/skin_irradiance.{vert,frag} share: the uniforms of one mesh instance's irradiance
+// in texture space; mirrors IrradianceUniforms in render/passes/skin_diffusion.cpp.
+// Include after `#extension GL_GOOGLE_include_directive : require`.
+
+const int kSkinIrradianceMaxLights = 4;  // SkinDiffusionPass::kMaxLights
+
+layout(set = 0, binding = 0, std140) uniform SkinIrradiance {
+  mat4 model;         // object → world
+  mat4 normalMatrix;  // the inverse transpose of model's 3×3, in the upper left
+  vec4 ambient;       // rgb, linear
+  vec4 lightDirection[kSkinIrradianceMaxLights];  // xyz unit, towards the light
+  vec4 lightRadiance[kSkinIrradianceMaxLights];   // rgb colour × intensity
+  ivec4 counts;       // x lights, y 1 with a normal map
+  vec4 scales;        // x millimetres per world unit
+} irradiance;
