@@ -5,7 +5,8 @@
 // to the renderer).
 //
 //   BM_NaluFrame/scene:0: nothing drawn; scene:1: the head, Lambert; scene:2: the head, skin
-//   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular).
+//   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular); scene:3 and 4:
+//   skin with texture-space diffusion at 1024² and 2048² (irradiance, 12 blurs, then the head).
 //
 //   build/release/bench/mane_render_bench --benchmark_min_time=2
 
@@ -52,14 +53,20 @@ Fixture& fixture() {
   return instance;
 }
 
-// state.range(0): 0 draws nothing (the baseline), 1 the head as Lambert, 2 as skin. range(1): MSAA samples.
+// state.range(0): 0 draws nothing (the baseline), 1 the head as Lambert, 2 as skin, 3 and 4 as
+// texture-space skin (1024², 2048²). range(1): MSAA samples.
 void BM_NaluFrame(benchmark::State& state) {
   Fixture& f = fixture();
   auto renderer = render::Renderer::create(
       *f.device, {.extent = {1280, 720}, .msaaSamples = static_cast<std::uint32_t>(state.range(1))});
   render::StaticScene statics = f.world->staticScene();
-  if (state.range(0) == 1)
-    for (render::MaterialData& material : statics.materials) material.shading = render::SurfaceShading::kLambert;
+  for (render::MaterialData& material : statics.materials) {
+    if (state.range(0) == 1) material.shading = render::SurfaceShading::kLambert;
+    if (state.range(0) >= 3) {
+      material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
+      material.skin.irradianceSize = state.range(0) == 3 ? 1024 : 2048;
+    }
+  }
   if (!renderer || !(*renderer)->setScene(statics)) return state.SkipWithError("renderer setup failed");
   render::FrameInput frame = f.world->frameInput();
   if (state.range(0) == 0) frame.instances.clear();
@@ -72,6 +79,8 @@ BENCHMARK(BM_NaluFrame)
     ->Args({0, 1})
     ->Args({1, 1})
     ->Args({2, 1})
+    ->Args({3, 1})
+    ->Args({4, 1})
     ->Args({1, 4})
     ->Args({2, 4})
     ->Unit(benchmark::kMillisecond)

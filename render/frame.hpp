@@ -47,8 +47,17 @@ enum class SkinIntegrationRange : std::uint32_t {
   kCurvature = 1,  ///< x ∈ ±π(r + 1)/(2r), the seed method's curvature-dependent range
 };
 
+/// How a skin material's light spreads under the surface.
+enum class SkinDiffusion : std::uint32_t {
+  kPreintegrated = 0,  ///< the pre-integrated table, looked up per pixel by curvature
+  kTextureSpace = 1,   ///< irradiance blurred in UV space (render/passes/skin_diffusion.hpp)
+};
+
 /// Parameters of a skin material (render/passes/surface_pass.hpp, "Skin").
 struct SkinParameters {
+  SkinDiffusion diffusion = SkinDiffusion::kPreintegrated;
+  /// kTextureSpace: texels per side of the irradiance maps (1024; 2048 costs 4× the blurs).
+  std::uint32_t irradianceSize = 1024;
   SkinIntegrationRange range = SkinIntegrationRange::kCurvature;
   float roughness = 0.3f;  ///< Beckmann m (GPU Gems 3 ch. 14 uses 0.3)
   /// ρs, scaled by the specular map's red channel. GPU Gems 3 ch. 14 uses 0.18 with a Beckmann

@@ -110,6 +110,7 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
   } catch (const std::exception& error) {
     return fail(std::string("uploading the scene failed: ") + error.what());
   }
+  if (auto set = setTextureSpaceSkins(scene); !set) return set;
   refreshShadowDescriptors();
 
   for (std::size_t g = 0; g < scene.grooms.size(); ++g) {
@@ -141,6 +142,32 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
       return failed(set.error());
     drawn.lighting = std::move(*lighting);
     drawn.ribbons = std::move(*ribbons);
+  }
+  return {};
+}
+
+Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
+  textureSpaceSkins_.clear();
+  diffusionMeshes_.clear();
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    const MaterialData& material = scene.materials[m];
+    if (material.shading != SurfaceShading::kSkin || material.skin.diffusion != SkinDiffusion::kTextureSpace) continue;
+    auto pass = SkinDiffusionPass::create(*device_, {.size = material.skin.irradianceSize});
+    if (!pass) return fail("material " + std::to_string(m) + ": " + pass.error().message);
+    if (auto set = pass->setNormalMap(material.normalMap); !set)
+      return fail("material " + std::to_string(m) + ": " + set.error().message);
+    auto owned = std::make_unique<SkinDiffusionPass>(std::move(*pass));
+    surfaces_.setDiffusedIrradiance(m, owned->diffusedIrradiance(), owned->sampler());
+    textureSpaceSkins_.push_back({m, std::move(owned)});
+  }
+  if (textureSpaceSkins_.empty()) return {};
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const MeshData& mesh = scene.meshes[i];
+    diffusionMeshes_.emplace_back();
+    if (mesh.dynamic || mesh.uvs.empty() || mesh.normals.empty()) continue;
+    auto uploaded = SkinDiffusionMesh::create(*device_, mesh);
+    if (!uploaded) return fail("mesh " + std::to_string(i) + ": " + uploaded.error().message);
+    diffusionMeshes_.back() = std::move(*uploaded);
   }
   return {};
 }
@@ -214,6 +241,20 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         groom.lighting->record(commands);
     timer_.end(commands);
   }
+  if (!textureSpaceSkins_.empty()) {
+    // Skin lit in UV space and blurred, before the surfaces sample it. Hair shadows are not in
+    // this irradiance (yet): texture-space skin is shaded without them.
+    timer_.begin(commands, "skin diffusion");
+    for (const TextureSpaceSkin& skin : textureSpaceSkins_)
+      for (const MeshInstance& instance : frame.instances)
+        if (instance.material == skin.material && instance.mesh < diffusionMeshes_.size() &&
+            diffusionMeshes_[instance.mesh]) {
+          skin.pass->record(commands, *diffusionMeshes_[instance.mesh],
+                            {.model = instance.model, .lights = frame.lights, .ambient = frame.ambient});
+          break;
+        }
+    timer_.end(commands);
+  }
   surfaces_.update(frame, target_.aspect());
 
   timer_.begin(commands, "surfaces");
@@ -262,10 +303,15 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
     if (!(std::isfinite(length) && length > 0.0f))
       return fail("light " + std::to_string(i) + "'s direction is not finite and non-zero");
   }
-  for (std::size_t i = 0; i < frame.instances.size(); ++i)
-    if (!surfaces_.canDraw(frame.instances[i]))
-      return fail("instance " + std::to_string(i) + " names mesh " + std::to_string(frame.instances[i].mesh) +
-                  " and material " + std::to_string(frame.instances[i].material) + ", which the scene does not have");
+  for (std::size_t i = 0; i < frame.instances.size(); ++i) {
+    const MeshInstance& instance = frame.instances[i];
+    if (!surfaces_.canDraw(instance))
+      return fail("instance " + std::to_string(i) + " names mesh " + std::to_string(instance.mesh) + " and material " +
+                  std::to_string(instance.material) + ", which the scene does not have");
+    for (const TextureSpaceSkin& skin : textureSpaceSkins_)
+      if (instance.material == skin.material && !diffusionMeshes_[instance.mesh])
+        return fail("instance " + std::to_string(i) + ": texture-space skin needs a static mesh with uvs and normals");
+  }
   try {
     device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) { record(commands, frame); });
   } catch (const std::exception& error) {

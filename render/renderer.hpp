@@ -1,11 +1,12 @@
 #pragma once
 // Runs the passes of a frame into an offscreen RenderTarget: the grooms' strand interpolation
-// (compute), their shadow maps from the first light, their per-vertex shading (compute), then
-// surfaces and hair ribbons into HDR colour, then the output pass to 8-bit sRGB. Reads the
-// result back for PNG files, or leaves it for a window to blit into its swapchain.
+// (compute), their shadow maps from the first light, their per-vertex shading (compute), the
+// texture-space diffusion of skin that asks for it, then surfaces and hair ribbons into HDR colour, then the output
+// pass to 8-bit sRGB. Reads the result back for PNG files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "render/frame.hpp"
@@ -15,6 +16,7 @@
 #include "render/passes/hair_lighting.hpp"
 #include "render/passes/hair_pass.hpp"
 #include "render/passes/hair_shadows.hpp"
+#include "render/passes/skin_diffusion.hpp"
 #include "render/passes/output_pass.hpp"
 #include "render/passes/strand_interpolation.hpp"
 #include "render/passes/surface_pass.hpp"
@@ -64,6 +66,9 @@ public:
 private:
   Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows);
 
+  /// The diffusion passes of the scene's texture-space skin materials.
+  Result<void> setTextureSpaceSkins(const StaticScene& scene);
+
   /// Points every pass that receives hair shadows at the current maps.
   void refreshShadowDescriptors();
 
@@ -82,7 +87,15 @@ private:
     float strayFromGuides = 0.0f;  // metres: bound on a dense vertex's distance from its guides
     bool hasGuides = false;        // updateHair called at least once
   };
-  std::vector<std::unique_ptr<MarschnerLut>> luts_;  // per HairLook, baked when a groom needs it
+  // Texture-space skin: one diffusion pass per such material, fed by the first instance drawn
+  // with it, over the diffusion copy of that instance's mesh.
+  struct TextureSpaceSkin {
+    std::size_t material = 0;
+    std::unique_ptr<SkinDiffusionPass> pass;
+  };
+  std::vector<TextureSpaceSkin> textureSpaceSkins_;
+  std::vector<std::optional<SkinDiffusionMesh>> diffusionMeshes_;  // per scene mesh: static, with uvs and normals
+  std::vector<std::unique_ptr<MarschnerLut>> luts_;                // per HairLook, baked when a groom needs it
   std::vector<HairGroom> hair_;
   OutputPass output_;
   GpuTimer timer_;

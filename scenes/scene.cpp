@@ -101,6 +101,15 @@ render::SkinParameters parseSkinParameters(const Json& json, const std::string& 
   require(range == "curvature" || range == "penner", fields.child("range"),
           "expected \"curvature\" or \"penner\", got \"" + range + "\"");
   skin.range = range == "penner" ? render::SkinIntegrationRange::kPenner : render::SkinIntegrationRange::kCurvature;
+  const std::string diffusion = fields.optional<std::string>("diffusion", "preintegrated");
+  require(diffusion == "preintegrated" || diffusion == "texture_space", fields.child("diffusion"),
+          "expected \"preintegrated\" or \"texture_space\", got \"" + diffusion + "\"");
+  skin.diffusion =
+      diffusion == "texture_space" ? render::SkinDiffusion::kTextureSpace : render::SkinDiffusion::kPreintegrated;
+  const int size = fields.optional<int>("irradiance_size", static_cast<int>(skin.irradianceSize));
+  require(size >= 64 && size <= 4096 && size % 8 == 0, fields.child("irradiance_size"),
+          "expected a multiple of 8 texels in 64..4096");
+  skin.irradianceSize = static_cast<std::uint32_t>(size);
   skin.roughness = fields.optional<float>("roughness", skin.roughness);
   skin.specularIntensity = fields.optional<float>("specular_intensity", skin.specularIntensity);
   fields.finish();

@@ -9,6 +9,7 @@ layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // sRGB, decoded by t
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
 layout(set = 1, binding = 2) uniform sampler2D specularMap;  // skin: red scales ρs
 layout(set = 1, binding = 3) uniform sampler2D skinTable;    // skin: pre-integrated diffuse + Beckmann
+layout(set = 1, binding = 4) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
 
 layout(push_constant) uniform Draw {
   mat4 model;
@@ -25,6 +26,9 @@ layout(location = 3) in float inCurvature;  // 1/r, 1/mm
 layout(location = 0) out vec4 outColor;
 
 layout(constant_id = 2) const bool kSkin = false;  // the pipeline's shading: skin or Lambert
+// Skin's diffuse light from texture-space diffusion (ambient and lights already in it, blurred;
+// render/passes/skin_diffusion.hpp) rather than from the pre-integrated table.
+layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 
 // Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights.
 void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, out vec3 specular) {
@@ -33,15 +37,17 @@ void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, 
   vec3 normalG = normalize(mix(detail, geometric, draw.blur.g));
   vec3 normalB = normalize(mix(detail, geometric, draw.blur.b));
   float rhoS = draw.skin.y * texture(specularMap, inUv).r;
-  diffuse = frame.ambient.rgb;
+  diffuse = kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : frame.ambient.rgb;
   specular = vec3(0.0);
   for (int i = 0; i < frame.lightCount.x; ++i) {
     vec3 toLight = frame.lightDirection[i].xyz;
     vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? hairShadow : 1.0);
-    vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, dot(normalR, toLight), inCurvature, draw.skin.z).r,
-                          preintegratedSkinDiffuse(skinTable, dot(normalG, toLight), inCurvature, draw.skin.z).g,
-                          preintegratedSkinDiffuse(skinTable, dot(normalB, toLight), inCurvature, draw.skin.z).b);
-    diffuse += radiance * scattered;
+    if (!kTextureSpaceDiffusion) {
+      vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, dot(normalR, toLight), inCurvature, draw.skin.z).r,
+                            preintegratedSkinDiffuse(skinTable, dot(normalG, toLight), inCurvature, draw.skin.z).g,
+                            preintegratedSkinDiffuse(skinTable, dot(normalB, toLight), inCurvature, draw.skin.z).b);
+      diffuse += radiance * scattered;
+    }
     specular += radiance * kelemenSzirmayKalos(skinTable, detail, toLight, toEye, draw.skin.x, rhoS) *
                 max(dot(detail, toLight), 0.0);
   }

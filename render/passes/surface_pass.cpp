@@ -67,9 +67,9 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
                                         shadow,
                                         shadow,
                                         shadow});  // hair shadow first depth, 4 slots
-  // albedo, normal map, specular map, pre-integrated skin table
+  // albedo, normal map, specular map, pre-integrated skin table, diffused irradiance
   const std::pair texture{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(Stage::eFragment)};
-  materialLayout_ = makeSetLayout(device, {texture, texture, texture, texture});
+  materialLayout_ = makeSetLayout(device, {texture, texture, texture, texture, texture});
   formats_ = {colorFormat, depthFormat, samples};
   buildPipelines();
   sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
@@ -86,11 +86,13 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
 
 void SurfacePass::buildPipelines() {
   using Stage = vk::ShaderStageFlagBits;
-  for (const SurfaceShading shading : {SurfaceShading::kLambert, SurfaceShading::kSkin}) {
-    // Constants 0, 1: the hair shadow maps (shaders/hair_shadows.glsl); 2: skin or Lambert.
+  for (std::size_t variant = 0; variant < pipelines_.size(); ++variant) {
+    // Constants 0, 1: the hair shadow maps (shaders/hair_shadows.glsl); 2: skin; 3: its diffuse
+    // light from the texture-space diffusion instead of the pre-integrated table.
     SpecializationConstants constants = shadows_->shaderConstants();
-    constants.push_back(shading == SurfaceShading::kSkin ? 1u : 0u);
-    Pipeline& pipeline = pipelines_[static_cast<std::size_t>(shading)];
+    constants.push_back(variant != kLambertPipeline ? 1u : 0u);
+    constants.push_back(variant == kTextureSpaceSkinPipeline ? 1u : 0u);
+    Pipeline& pipeline = pipelines_[variant];
     pipeline = makeGraphicsPipeline(
         *device_,
         GraphicsPipelineSettings{
@@ -148,7 +150,7 @@ void SurfacePass::setScene(const StaticScene& scene) {
 
   if (scene.materials.empty()) return;
   const auto count = static_cast<std::uint32_t>(scene.materials.size());
-  materialPool_ = makeDescriptorPool(*device_, count, {{vk::DescriptorType::eCombinedImageSampler, 4 * count}});
+  materialPool_ = makeDescriptorPool(*device_, count, {{vk::DescriptorType::eCombinedImageSampler, 5 * count}});
   static constexpr std::uint8_t kWhite[4] = {255, 255, 255, 255};
   static constexpr std::uint8_t kFlatNormal[4] = {128, 128, 255, 255};
   for (const MaterialData& material : scene.materials) {
@@ -180,6 +182,8 @@ void SurfacePass::setScene(const StaticScene& scene) {
       // Never read by Lambert materials, but every binding must hold a valid image.
       writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
     }
+    // Until setDiffusedIrradiance: likewise valid and unread.
+    writeSampledImage(*device_, gpu.descriptors, 4, gpu.albedo, sampler_);
     materials_.push_back(std::move(gpu));
   }
 }
@@ -192,6 +196,24 @@ const PreintegratedSkinLut& SurfacePass::skinTable(SkinIntegrationRange range) {
     table = std::make_unique<PreintegratedSkinLut>(std::move(*baked));
   }
   return *table;
+}
+
+void SurfacePass::setDiffusedIrradiance(std::size_t material, const vk::raii::ImageView& view,
+                                        const vk::raii::Sampler& sampler) {
+  const vk::DescriptorImageInfo info{
+      .sampler = *sampler, .imageView = *view, .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+  device_->device().updateDescriptorSets(
+      vk::WriteDescriptorSet{.dstSet = *materials_.at(material).descriptors,
+                             .dstBinding = 4,
+                             .descriptorCount = 1,
+                             .descriptorType = vk::DescriptorType::eCombinedImageSampler,
+                             .pImageInfo = &info},
+      {});
+}
+
+std::size_t SurfacePass::pipelineFor(const GpuMaterial& material) {
+  if (material.shading != SurfaceShading::kSkin) return kLambertPipeline;
+  return material.skin.diffusion == SkinDiffusion::kTextureSpace ? kTextureSpaceSkinPipeline : kSkinPipeline;
 }
 
 void SurfacePass::updateVertices(std::size_t mesh, std::span<const glm::vec3> positions,
@@ -226,7 +248,7 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
   for (const MeshInstance& instance : frame.instances) {
     const GpuMesh& mesh = meshes_[instance.mesh];
     const GpuMaterial& material = materials_[instance.material];
-    const Pipeline& pipeline = pipelines_[static_cast<std::size_t>(material.shading)];
+    const Pipeline& pipeline = pipelines_[pipelineFor(material)];
     if (bound != &pipeline) commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
     bound = &pipeline;
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1, {*material.descriptors}, {});

@@ -48,6 +48,10 @@ public:
   bool isDynamic(std::size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].dynamic; }
   std::size_t vertexCount(std::size_t mesh) const { return meshes_.at(mesh).vertexCount; }
 
+  /// The diffused irradiance (render/passes/skin_diffusion.hpp) that texture-space skin
+  /// material `material` of the scene reads at its uvs; both must outlive the scene. Between frames.
+  void setDiffusedIrradiance(std::size_t material, const vk::raii::ImageView& view, const vk::raii::Sampler& sampler);
+
   /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
   void refreshShadows();
 
@@ -93,6 +97,10 @@ private:
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};
   /// Builds the Lambert and skin pipelines for the hair shadows' current maps.
   void buildPipelines();
+  static constexpr std::size_t kLambertPipeline = 0;
+  static constexpr std::size_t kSkinPipeline = 1;              ///< pre-integrated
+  static constexpr std::size_t kTextureSpaceSkinPipeline = 2;  ///< diffuse from the diffused irradiance
+  static std::size_t pipelineFor(const GpuMaterial& material);
 
   struct Formats {
     vk::Format color;
@@ -100,7 +108,7 @@ private:
     vk::SampleCountFlagBits samples;
   };
   Formats formats_{};
-  std::array<Pipeline, 2> pipelines_;  ///< by SurfaceShading: one layout, specialised shaders
+  std::array<Pipeline, 3> pipelines_;  ///< one layout, specialised shaders
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::DescriptorPool framePool_{nullptr};
   vk::raii::DescriptorSet frameSet_{nullptr};

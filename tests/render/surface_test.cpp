@@ -131,6 +131,25 @@ TEST_F(Surface, SkinSpecularMatchesKelemenSzirmayKalos) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(shot.centre()[c], expected, 2.0) << "channel " << c;
 }
 
+// Texture-space diffusion of a uniformly lit quad: the blurs of a constant irradiance give it
+// back (coverage-normalised kernels), so the centre pixel is albedo × (ambient + N·L·E), as
+// Lambert, with the specular term off.
+TEST_F(Surface, TextureSpaceSkinOfAUniformlyLitQuadKeepsItsIrradiance) {
+  const glm::vec3 base(0.9f, 0.7f, 0.6f);
+  const glm::vec3 ambient(0.03f);
+  const DirectionalLight light{.direction = glm::normalize(glm::vec3(0, 0.6f, 0.8f)), .intensity = 0.9f};
+  const MaterialData skin{
+      .baseColor = base,
+      .shading = SurfaceShading::kSkin,
+      .skin = {.diffusion = SkinDiffusion::kTextureSpace, .irradianceSize = 256, .specularIntensity = 0.0f}};
+  const Shot shot = render(skin, light, ambient);
+  const auto centre = shot.centre();
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(centre[c], 255.0 * srgbEncode(base[c] * (ambient[c] + 0.9 * 0.8)), 1.5) << "channel " << c;
+  ASSERT_GE(shot.timings.size(), 3u);
+  EXPECT_EQ(shot.timings[0].pass, "skin diffusion");
+}
+
 TEST_F(Surface, BackgroundOutsideTheQuad) {
   const Shot shot = render({.baseColor = glm::vec3(1)}, {.direction = {0, 0, 1}}, glm::vec3(0));
   const glm::vec3 background = FrameInput{}.background;

@@ -184,6 +184,17 @@ TEST(Scene, SkinMaterialsTakeTheirParametersAndNameBadOnes) {
   auto defaults = parseScene(prefix + R"("kind": "skin"}]})", "x.json");
   ASSERT_TRUE(defaults.has_value());
   EXPECT_EQ(defaults->materials[0].skin.range, render::SkinIntegrationRange::kCurvature);
+  EXPECT_EQ(defaults->materials[0].skin.diffusion, render::SkinDiffusion::kPreintegrated);
+  auto textureSpace = parseScene(
+      prefix + R"("kind": "skin", "skin": {"diffusion": "texture_space", "irradiance_size": 2048}}]})", "x.json");
+  ASSERT_TRUE(textureSpace.has_value()) << textureSpace.error().message;
+  EXPECT_EQ(textureSpace->materials[0].skin.diffusion, render::SkinDiffusion::kTextureSpace);
+  EXPECT_EQ(textureSpace->materials[0].skin.irradianceSize, 2048u);
+  EXPECT_EQ(errorOf(prefix + R"("kind": "skin", "skin": {"diffusion": "screen"}}]})"),
+            "dir/bad.json: materials[0].skin.diffusion: expected \"preintegrated\" or \"texture_space\", got "
+            "\"screen\"");
+  EXPECT_EQ(errorOf(prefix + R"("kind": "skin", "skin": {"irradiance_size": 1001}}]})"),
+            "dir/bad.json: materials[0].skin.irradiance_size: expected a multiple of 8 texels in 64..4096");
 
   EXPECT_EQ(errorOf(prefix + R"("kind": "marble"}]})"),
             "dir/bad.json: materials[0].kind: expected \"lambert\" or \"skin\", got \"marble\"");

@@ -22,11 +22,25 @@ namespace {
 constexpr std::uint32_t kWidth = 320;
 constexpr std::uint32_t kHeight = 180;
 
-class NaluHead : public testing::VulkanTest {};
+class NaluHead : public testing::VulkanTest {
+protected:
+  /// The default scene's head with its skin diffused `diffusion`, against golden `golden`.
+  void renderAndCompare(render::SkinDiffusion diffusion, const std::string& golden);
+};
 
 TEST_F(NaluHead, RendersTheLitTexturedHead) {
+  renderAndCompare(render::SkinDiffusion::kPreintegrated, "nalu_head");
+}
+
+TEST_F(NaluHead, RendersTheHeadWithTextureSpaceDiffusion) {
+  renderAndCompare(render::SkinDiffusion::kTextureSpace, "nalu_head_texture_space");
+}
+
+void NaluHead::renderAndCompare(render::SkinDiffusion diffusion, const std::string& golden) {
   auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  ASSERT_EQ(scene->materials.at(0).kind, MaterialKind::skin);
+  scene->materials[0].skin.diffusion = diffusion;
   auto resolver = AssetResolver::createDefault();
   ASSERT_TRUE(resolver.has_value()) << resolver.error().message;
   auto world = World::create(std::move(*scene), *resolver);
@@ -55,7 +69,7 @@ TEST_F(NaluHead, RendersTheLitTexturedHead) {
   EXPECT_LT(coverage, 0.90) << "the background should still show";
   EXPECT_GT(double(skinLike) / double(head), 0.5) << "lit skin is red > green > blue";
 
-  const auto comparison = testing::compareWithGolden("nalu_head", {kWidth, kHeight, *pixels},
+  const auto comparison = testing::compareWithGolden(golden, {kWidth, kHeight, *pixels},
                                                      {.maxChannelDifference = 6, .maxFailingFraction = 0.005});
   EXPECT_TRUE(comparison.passed) << comparison.message;
 }
