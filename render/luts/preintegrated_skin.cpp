@@ -64,28 +64,11 @@ Moments integrateGaussian(double variance, double nDotL, double theta, double cu
 }  // namespace
 
 const std::array<QuadratureNode, kSkinQuadratureNodes>& skinQuadratureRule() {
-  // Newton's method on the Legendre recurrence from the usual cosine initial guesses.
   static const std::array<QuadratureNode, kSkinQuadratureNodes> rule = [] {
-    std::array<QuadratureNode, kSkinQuadratureNodes> nodes{};
-    constexpr int n = kSkinQuadratureNodes;
-    for (int i = 0; i < n; ++i) {
-      double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-      double derivative = 1.0;
-      for (int iteration = 0; iteration < 100; ++iteration) {
-        double p0 = 1.0, p1 = z;
-        for (int k = 2; k <= n; ++k) {
-          const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-          p0 = p1;
-          p1 = p2;
-        }
-        derivative = n * (z * p1 - p0) / (z * z - 1.0);
-        const double step = p1 / derivative;
-        z -= step;
-        if (std::abs(step) < 1e-15) break;
-      }
-      nodes[i] = {z, 2.0 / ((1.0 - z * z) * derivative * derivative)};
-    }
-    return nodes;
+    const std::vector<QuadratureNode> nodes = gaussLegendre(kSkinQuadratureNodes);
+    std::array<QuadratureNode, kSkinQuadratureNodes> fixed{};
+    std::copy(nodes.begin(), nodes.end(), fixed.begin());
+    return fixed;
   }();
   return rule;
 }

@@ -40,6 +40,7 @@
 
 #include "common/error.hpp"
 #include "render/frame.hpp"
+#include "render/luts/gauss_legendre.hpp"
 #include "render/luts/skin_profile.hpp"
 
 namespace mane::render {
@@ -58,10 +59,6 @@ inline constexpr std::uint32_t kSkinQuadratureNodes = 12;
 /// How many standard deviations of each Gaussian the quadrature covers.
 inline constexpr double kProfileReach = 6.0;
 
-struct QuadratureNode {
-  double position = 0.0;  ///< in [−1, 1]
-  double weight = 0.0;
-};
 /// The kSkinQuadratureNodes-point Gauss-Legendre rule on [−1, 1].
 const std::array<QuadratureNode, kSkinQuadratureNodes>& skinQuadratureRule();
 

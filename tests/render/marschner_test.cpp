@@ -24,6 +24,7 @@
 
 #include <gtest/gtest.h>
 
+#include "render/luts/gauss_legendre.hpp"
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "tests/support/vulkan_fixture.hpp"
@@ -47,42 +48,19 @@ glm::dvec3 direction(double theta, double phi) {
   return {std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta)};
 }
 
-// Gauss-Legendre nodes and weights on [−1, 1] (Newton on the three-term recurrence).
 struct Quadrature {
   std::vector<double> nodes, weights;
 };
-Quadrature gaussLegendre(int n) {
-  Quadrature q;
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double derivative = 1.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p0 = 1.0, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      derivative = n * (z * p1 - p0) / (z * z - 1.0);
-      const double dz = p1 / derivative;
-      z -= dz;
-      if (std::abs(dz) < 1e-15) break;
-    }
-    q.nodes.push_back(z);
-    q.weights.push_back(2.0 / ((1.0 - z * z) * derivative * derivative));
-  }
-  return q;
-}
 
 // Composite 8-point Gauss-Legendre over θ ∈ [−π/2, π/2] in `panels` panels.
 Quadrature thetaRule(int panels) {
-  const Quadrature base = gaussLegendre(8);
+  const std::vector<QuadratureNode> base = gaussLegendre(8);
   Quadrature q;
   const double width = kPi / panels;
   for (int k = 0; k < panels; ++k)
-    for (std::size_t i = 0; i < base.nodes.size(); ++i) {
-      q.nodes.push_back(-0.5 * kPi + width * (k + 0.5 + 0.5 * base.nodes[i]));
-      q.weights.push_back(0.5 * width * base.weights[i]);
+    for (const QuadratureNode& node : base) {
+      q.nodes.push_back(-0.5 * kPi + width * (k + 0.5 + 0.5 * node.position));
+      q.weights.push_back(0.5 * width * node.weight);
     }
   return q;
 }
