@@ -48,6 +48,7 @@
 #include "render/opacity_reference.hpp"
 #include "render/passes/opacity_shadow_map.hpp"
 #include "render/passes/strand_interpolation.hpp"
+#include "scenes/render_groom_layout.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/groom_loader.hpp"
 
@@ -125,24 +126,8 @@ Ponytail load() {
   for (const auto& guide : guides) p.guides.insert(p.guides.end(), guide.begin(), guide.end());
   p.vertices = layout->vertexCount;
 
-  // render's mirror of the layout: the same 8- and 64-byte elements (static_asserts in both headers).
-  std::vector<render::GuideFrameRef> frames;
-  for (const auto& ref : layout->guideFrames) frames.push_back({ref.partnerA, ref.partnerB});
-  std::vector<render::DenseStrand> strands;
-  for (const auto& s : layout->strands)
-    strands.push_back({.guides = {s.guides[0], s.guides[1], s.guides[2]},
-                       .guideCount = s.guideCount,
-                       .weights = {s.weights[0], s.weights[1], s.weights[2]},
-                       .vertexScale = s.vertexScale,
-                       .rootOffset = s.rootOffset,
-                       .clump = s.clump,
-                       .tipJitter = s.tipJitter,
-                       .lengthScale = s.lengthScale});
-  auto pass = render::StrandInterpolationPass::create(*p.device, {.guideCount = layout->guideCount,
-                                                                  .guideVertexCount = layout->guideVertexCount,
-                                                                  .vertexCount = layout->vertexCount,
-                                                                  .guideFrames = frames,
-                                                                  .strands = strands});
+  const scenes::RenderGroomLayout mirrored = scenes::renderLayoutOf(*layout);
+  auto pass = render::StrandInterpolationPass::create(*p.device, mirrored.view());
   if (!pass) {
     p.problem = pass.error().message;
     return p;

@@ -24,6 +24,7 @@
 #include "physics/groom_generator.hpp"
 #include "physics/interpolation.hpp"
 #include "render/passes/strand_interpolation.hpp"
+#include "scenes/render_groom_layout.hpp"
 
 namespace {
 
@@ -77,24 +78,8 @@ render::Device& device() {
 void BM_StrandInterpolationGpu(benchmark::State& state) {
   const physics::DenseGroomLayout layout =
       layoutFor(static_cast<std::size_t>(state.range(0)), static_cast<physics::GuideBlend>(state.range(1)));
-  // render's mirror of the layout: the same 8- and 64-byte elements (static_asserts in both headers).
-  std::vector<render::GuideFrameRef> frames;
-  for (const auto& ref : layout.guideFrames) frames.push_back({ref.partnerA, ref.partnerB});
-  std::vector<render::DenseStrand> strands;
-  for (const auto& s : layout.strands)
-    strands.push_back({.guides = {s.guides[0], s.guides[1], s.guides[2]},
-                       .guideCount = s.guideCount,
-                       .weights = {s.weights[0], s.weights[1], s.weights[2]},
-                       .vertexScale = s.vertexScale,
-                       .rootOffset = s.rootOffset,
-                       .clump = s.clump,
-                       .tipJitter = s.tipJitter,
-                       .lengthScale = s.lengthScale});
-  auto pass = render::StrandInterpolationPass::create(device(), {.guideCount = layout.guideCount,
-                                                                 .guideVertexCount = layout.guideVertexCount,
-                                                                 .vertexCount = layout.vertexCount,
-                                                                 .guideFrames = frames,
-                                                                 .strands = strands});
+  const scenes::RenderGroomLayout mirrored = scenes::renderLayoutOf(layout);
+  auto pass = render::StrandInterpolationPass::create(device(), mirrored.view());
   if (!pass) return state.SkipWithError(pass.error().message.c_str());
   const std::vector<glm::vec3> guides = flatGuides();
   for (auto _ : state) {

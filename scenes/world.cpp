@@ -132,10 +132,8 @@ Result<void> World::loadMaterials(const AssetResolver& resolver) {
 Result<void> World::computeSkinCurvatures() {
   meshCurvatures_.assign(meshes_.size(), {});
   for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
-    const auto material =
-        std::find_if(scene_.materials.begin(), scene_.materials.end(),
-                     [&](const Material& candidate) { return candidate.name == scene_.meshes[m].material; });
-    if (material == scene_.materials.end() || material->kind != MaterialKind::skin) continue;
+    const Material* material = scene_.findMaterial(scene_.meshes[m].material);
+    if (material == nullptr || material->kind != MaterialKind::skin) continue;
     const Mesh& mesh = meshes_[m].mesh;
     auto curvature = computeVertexCurvature(mesh);
     if (!curvature) return fail("mesh " + scene_.meshes[m].name + ": curvature: " + curvature.error().message);
@@ -220,27 +218,13 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
   return {};
 }
 
-std::optional<World::DenseGroom> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
+std::optional<RenderGroomLayout> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
                                                    std::size_t strandCount) {
   physics::DenseGroomSettings settings;
   settings.strandCount = strandCount;
   auto layout = physics::buildDenseGroomLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
-  DenseGroom dense{layout->guideVertexCount, layout->vertexCount, {}, {}};
-  for (const physics::GuideFrameRef& frame : layout->guideFrames)
-    dense.guideFrames.push_back({frame.partnerA, frame.partnerB});
-  for (const physics::DenseStrand& strand : layout->strands) {
-    render::DenseStrand& copy = dense.strands.emplace_back();
-    std::copy(std::begin(strand.guides), std::end(strand.guides), copy.guides);
-    copy.guideCount = strand.guideCount;
-    std::copy(std::begin(strand.weights), std::end(strand.weights), copy.weights);
-    copy.vertexScale = strand.vertexScale;
-    copy.rootOffset = strand.rootOffset;
-    copy.clump = strand.clump;
-    copy.tipJitter = strand.tipJitter;
-    copy.lengthScale = strand.lengthScale;
-  }
-  return dense;
+  return renderLayoutOf(*layout);
 }
 
 std::vector<World::HairGuides> World::hairGuides() const {
@@ -322,16 +306,9 @@ render::StaticScene World::staticScene() const {
   // Grooms, drawn as their scene's `render` block says (scenes/README.md).
   for (const SimulatedGroom& groom : grooms_) {
     if (!groom.dense) continue;
-    const DenseGroom& dense = *groom.dense;
     const GroomRendering& rendering = scene_.grooms[groom.sceneGroom].rendering;
     result.grooms.push_back(
-        render::HairGroomData{.layout = {.guideCount = static_cast<std::uint32_t>(groom.hair.strandCount()),
-                                         .guideVertexCount = dense.guideVertexCount,
-                                         .vertexCount = dense.vertexCount,
-                                         .guideFrames = dense.guideFrames,
-                                         .strands = dense.strands},
-                              .look = rendering.look,
-                              .settings = rendering.settings});
+        render::HairGroomData{.layout = groom.dense->view(), .look = rendering.look, .settings = rendering.settings});
   }
   result.hairShadows = scene_.hairShadows;
   // Cloth surfaces come after the scene's meshes, in world space, rewritten every frame.

@@ -15,6 +15,7 @@
 #include "scenes/assets.hpp"
 #include "scenes/image.hpp"
 #include "scenes/scene_cloth.hpp"
+#include "scenes/render_groom_layout.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_meshes.hpp"
 
@@ -82,18 +83,13 @@ private:
     std::optional<Image> normalMap;
     std::optional<Image> specularMap;  ///< skin only
   };
-  /// A groom's dense strands as the renderer draws them (render::HairGroomData's spans point here).
-  struct DenseGroom {
-    std::uint32_t guideVertexCount = 0;
-    std::uint32_t vertexCount = 0;
-    std::vector<render::GuideFrameRef> guideFrames;
-    std::vector<render::DenseStrand> strands;
-  };
   struct SimulatedGroom {
     std::size_t mesh = 0;  ///< index into scene_.meshes the roots follow
     physics::HairSystem hair;
-    std::size_t sceneGroom = 0;       ///< index into scene_.grooms (skipped grooms leave gaps)
-    std::optional<DenseGroom> dense;  ///< none when its guides differ in point count
+    std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
+    /// The dense strands as the renderer draws them (render::HairGroomData's spans point here);
+    /// none when its guides differ in point count.
+    std::optional<RenderGroomLayout> dense;
   };
 
   World() = default;
@@ -109,7 +105,8 @@ private:
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
   /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts), or none.
-  static std::optional<DenseGroom> denseGroom(std::span<const std::vector<glm::vec3>> guides, std::size_t strandCount);
+  static std::optional<RenderGroomLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,
+                                                     std::size_t strandCount);
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;

@@ -25,6 +25,7 @@
 #include "physics/hair.hpp"
 #include "physics/interpolation.hpp"
 #include "render/passes/strand_interpolation.hpp"
+#include "scenes/render_groom_layout.hpp"
 #include "scenes/groom_loader.hpp"
 #include "shaders/embedded.hpp"
 #include "tests/scenes/test_support.hpp"
@@ -37,33 +38,6 @@ using ::testing::HasSubstr;
 
 // The GPU must match the CPU reference within 1e-5 relative (physics/interpolation.hpp).
 constexpr double kRelativeTolerance = 1e-5;
-
-// physics' layout → render's mirror types, field by field (render never includes physics).
-struct RenderLayout {
-  std::vector<GuideFrameRef> frames;
-  std::vector<DenseStrand> strands;
-  DenseStrandLayout view;
-};
-
-RenderLayout mirror(const physics::DenseGroomLayout& layout) {
-  RenderLayout result;
-  for (const physics::GuideFrameRef& ref : layout.guideFrames) result.frames.push_back({ref.partnerA, ref.partnerB});
-  for (const physics::DenseStrand& s : layout.strands)
-    result.strands.push_back(DenseStrand{.guides = {s.guides[0], s.guides[1], s.guides[2]},
-                                         .guideCount = s.guideCount,
-                                         .weights = {s.weights[0], s.weights[1], s.weights[2]},
-                                         .vertexScale = s.vertexScale,
-                                         .rootOffset = s.rootOffset,
-                                         .clump = s.clump,
-                                         .tipJitter = s.tipJitter,
-                                         .lengthScale = s.lengthScale});
-  result.view = {.guideCount = layout.guideCount,
-                 .guideVertexCount = layout.guideVertexCount,
-                 .vertexCount = layout.vertexCount,
-                 .guideFrames = result.frames,
-                 .strands = result.strands};
-  return result;
-}
 
 struct GpuResult {
   std::vector<glm::vec4> positions;
@@ -137,8 +111,8 @@ void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<gl
   const auto reference = physics::interpolateDenseStrands(moved, *layout, positions, tangents);
   ASSERT_TRUE(reference.has_value()) << reference.error().message;
 
-  const RenderLayout mirrored = mirror(*layout);
-  const GpuResult gpu = test.interpolate(mirrored.view, moved);
+  const scenes::RenderGroomLayout mirrored = scenes::renderLayoutOf(*layout);
+  const GpuResult gpu = test.interpolate(mirrored.view(), moved);
   ASSERT_EQ(gpu.positions.size(), positions.size());
   ASSERT_EQ(gpu.tangents.size(), tangents.size());
   const Comparison error = compare(gpu, positions, tangents);
