@@ -58,8 +58,13 @@ void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set
 
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler) {
+  writeSampledImage(device, set, binding, image.view(), sampler);
+}
+
+void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                       const vk::raii::ImageView& view, const vk::raii::Sampler& sampler) {
   const vk::DescriptorImageInfo info{
-      .sampler = *sampler, .imageView = *image.view(), .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+      .sampler = *sampler, .imageView = *view, .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
   device.device().updateDescriptorSets(
       vk::WriteDescriptorSet{.dstSet = *set,
                              .dstBinding = binding,

@@ -185,18 +185,11 @@ Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> 
   HairGroom& hair = hair_[groom];
   if (auto updated = hair.strands->updateGuides(guidePositions); !updated)
     return fail("groom " + std::to_string(groom) + ": " + updated.error().message);
-  // The guides' bounding sphere (updateGuides checked they are finite), widened by the strands' stray.
-  glm::vec3 low = guidePositions[0], high = guidePositions[0];
-  for (const glm::vec3& p : guidePositions) {
-    low = glm::min(low, p);
-    high = glm::max(high, p);
-  }
-  const glm::vec3 centre = 0.5f * (low + high);
-  float radius = 0.0f;
-  for (const glm::vec3& p : guidePositions) radius = std::max(radius, glm::length(p - centre));
-  // + 0.1 %: vertices on the sphere stay inside the map's clip volume (boundingSphere does the same).
-  const BoundingSphere sphere{centre, std::max(radius + hair.strayFromGuides, 1e-6f) * 1.001f};
-  if (auto bounded = shadows_->setBounds(groom, sphere); !bounded) return bounded;
+  // The guides' bounding sphere, widened by how far the dense strands stray from them.
+  auto sphere = boundingSphere(guidePositions);
+  if (!sphere) return fail("groom " + std::to_string(groom) + ": " + sphere.error().message);
+  sphere->radius += hair.strayFromGuides * 1.001f;
+  if (auto bounded = shadows_->setBounds(groom, *sphere); !bounded) return bounded;
   // Guide middles, the keys the strands are sorted by when drawn (render/hair_order.hpp).
   const std::size_t perGuide = guidePositions.size() / hair.strands->guideCount();
   hair.guideMiddles.resize(hair.strands->guideCount());

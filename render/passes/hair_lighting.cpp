@@ -99,18 +99,8 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   writeStorageBuffer(device, set_, 1, positions);
   writeStorageBuffer(device, set_, 2, tangents);
   writeStorageBuffer(device, set_, 3, radiance_);
-  const std::array luts{vk::DescriptorImageInfo{.sampler = *lut.sampler(),
-                                                .imageView = *lut.longitudinalView(),
-                                                .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal},
-                        vk::DescriptorImageInfo{.sampler = *lut.sampler(),
-                                                .imageView = *lut.azimuthalView(),
-                                                .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal}};
-  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set_,
-                                                              .dstBinding = 4,
-                                                              .descriptorCount = 2,
-                                                              .descriptorType = Type::eCombinedImageSampler,
-                                                              .pImageInfo = luts.data()},
-                                       {});
+  writeSampledImage(device, set_, 4, lut.longitudinalView(), lut.sampler());
+  writeSampledImage(device, set_, 5, lut.azimuthalView(), lut.sampler());
   refreshShadows();
 
   // Ambient: La · ∫S dωi, the white-furnace albedo of marschner.hpp, at θr = 0.

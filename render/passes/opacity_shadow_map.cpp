@@ -137,7 +137,11 @@ Result<void> validate(const Device& device, const OpacityShadowStrands& strands,
 
 }  // namespace
 
-Result<BoundingSphere> boundingSphere(std::span<const glm::vec4> positions) {
+namespace {
+
+// Both overloads: xyz of each element.
+template <class Point>
+Result<BoundingSphere> boundingSphereOf(std::span<const Point> positions) {
   if (positions.empty()) return fail("Opacity shadow map: no positions to bound.");
   glm::vec3 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
   for (std::size_t i = 0; i < positions.size(); ++i) {
@@ -148,9 +152,19 @@ Result<BoundingSphere> boundingSphere(std::span<const glm::vec4> positions) {
   }
   const glm::vec3 centre = 0.5f * (low + high);
   float radius = 0.0f;
-  for (const glm::vec4& p : positions) radius = std::max(radius, glm::length(glm::vec3(p) - centre));
+  for (const Point& p : positions) radius = std::max(radius, glm::length(glm::vec3(p) - centre));
   if (!(radius > 0.0f)) return fail("Opacity shadow map: all positions coincide; the hair has no extent to bound.");
   return BoundingSphere{centre, radius * 1.001f};
+}
+
+}  // namespace
+
+Result<BoundingSphere> boundingSphere(std::span<const glm::vec4> positions) {
+  return boundingSphereOf(positions);
+}
+
+Result<BoundingSphere> boundingSphere(std::span<const glm::vec3> positions) {
+  return boundingSphereOf(positions);
 }
 
 Result<std::unique_ptr<OpacityShadowMap>> OpacityShadowMap::create(const Device& device,

@@ -97,6 +97,8 @@ struct BoundingSphere {
 /// bounding box, radius the largest distance from it plus 0.1 % so that hair on the sphere stays
 /// inside the clip volume. Fails on an empty span or non-finite positions.
 [[nodiscard]] Result<BoundingSphere> boundingSphere(std::span<const glm::vec4> positions);
+/// The same for xyz points (guides, say).
+[[nodiscard]] Result<BoundingSphere> boundingSphere(std::span<const glm::vec3> positions);
 
 struct OpacityShadowSettings {
   OpacityShadowMode mode = OpacityShadowMode::kOpacityShadowMap;

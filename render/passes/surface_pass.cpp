@@ -168,16 +168,10 @@ void SurfacePass::setScene(const StaticScene& scene) {
     writeSampledImage(*device_, gpu.descriptors, 2, gpu.specularMap, sampler_);
     if (material.shading == SurfaceShading::kSkin) {
       const PreintegratedSkinLut& table = skinTable(material.skin.range);
-      const vk::DescriptorImageInfo info{.sampler = *table.sampler(),
-                                         .imageView = *table.view(),
-                                         .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
-      device_->device().updateDescriptorSets(
-          vk::WriteDescriptorSet{.dstSet = *gpu.descriptors,
-                                 .dstBinding = 3,
-                                 .descriptorCount = 1,
-                                 .descriptorType = vk::DescriptorType::eCombinedImageSampler,
-                                 .pImageInfo = &info},
-          {});
+      writeSampledImage(*device_, gpu.descriptors, 3, table.view(), table.sampler());
+      gpu.skinConstants = glm::vec4(material.skin.roughness, material.skin.specularIntensity,
+                                    float(table.settings().maxCurvature), 0.0f);
+      gpu.blur = glm::vec4(glm::vec3(table.settings().profile.broadShare(kPoreVariance)), 0.0f);
     } else {
       // Never read by Lambert materials, but every binding must hold a valid image.
       writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
@@ -200,15 +194,7 @@ const PreintegratedSkinLut& SurfacePass::skinTable(SkinIntegrationRange range) {
 
 void SurfacePass::setDiffusedIrradiance(std::size_t material, const vk::raii::ImageView& view,
                                         const vk::raii::Sampler& sampler) {
-  const vk::DescriptorImageInfo info{
-      .sampler = *sampler, .imageView = *view, .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
-  device_->device().updateDescriptorSets(
-      vk::WriteDescriptorSet{.dstSet = *materials_.at(material).descriptors,
-                             .dstBinding = 4,
-                             .descriptorCount = 1,
-                             .descriptorType = vk::DescriptorType::eCombinedImageSampler,
-                             .pImageInfo = &info},
-      {});
+  writeSampledImage(*device_, materials_.at(material).descriptors, 4, view, sampler);
 }
 
 std::size_t SurfacePass::pipelineFor(const GpuMaterial& material) {
@@ -252,17 +238,9 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
     if (bound != &pipeline) commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
     bound = &pipeline;
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1, {*material.descriptors}, {});
-    float maxCurvature = 1.0f;
-    glm::vec3 blur(0.0f);
-    if (material.shading == SurfaceShading::kSkin) {
-      const PreintegratedSkinSettings& table =
-          skinTables_[material.skin.range == SkinIntegrationRange::kPenner ? 0 : 1]->settings();
-      maxCurvature = float(table.maxCurvature);
-      blur = glm::vec3(table.profile.broadShare(kPoreVariance));
-    }
-    const DrawConstants constants{
-        instance.model, glm::vec4(material.baseColor, 1.0f), glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0),
-        glm::vec4(material.skin.roughness, material.skin.specularIntensity, maxCurvature, 0.0f), glm::vec4(blur, 0.0f)};
+    const DrawConstants constants{instance.model, glm::vec4(material.baseColor, 1.0f),
+                                  glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0), material.skinConstants,
+                                  material.blur};
     commands.pushConstants<DrawConstants>(layout, vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment,
                                           0, constants);
     commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});

@@ -84,6 +84,8 @@ private:
     glm::vec3 baseColor{1.0f};
     SurfaceShading shading = SurfaceShading::kLambert;
     SkinParameters skin;
+    glm::vec4 skinConstants{0.0f};  ///< skin: roughness, ρs, the table's maxCurvature (1/mm)
+    glm::vec4 blur{0.0f};           ///< skin: per channel, the geometric normal's weight
     vk::raii::DescriptorSet descriptors{nullptr};
   };
 

@@ -539,7 +539,7 @@ TEST_F(OpacityShadowMapTest, BadInputGivesClearErrors) {
   EXPECT_THAT(lightError({std::nanf(""), 0.0f, 1.0f}, sphere), HasSubstr("not a finite unit vector"));
   EXPECT_THAT(lightError({0.0f, 0.0f, 1.0f}, {{0.0f, 0.0f, 0.0f}, 0.0f}), HasSubstr("positive, finite radius"));
 
-  EXPECT_FALSE(boundingSphere({}).has_value());
+  EXPECT_FALSE(boundingSphere(std::span<const glm::vec4>{}).has_value());
   const std::vector<glm::vec4> same(3, glm::vec4(1.0f));
   EXPECT_THAT(boundingSphere(same).error().message, HasSubstr("coincide"));
 
