@@ -6,7 +6,13 @@
 //
 //   BM_NaluFrame/scene:0: nothing drawn; scene:1: the head, Lambert; scene:2: the head, skin
 //   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular); scene:3 and 4:
-//   skin with texture-space diffusion at 1024² and 2048² (irradiance, 12 blurs, then the head).
+//   skin with texture-space diffusion at 1024² and 2048² (irradiance, 12 blurs, then the head);
+//   scene:5: pre-integrated skin with depth-map translucency (the light's depth map, then the
+//   head reading it).
+//
+//   BM_TranslucentCube/method:0..2: scenes/translucent_cube.json at 1280×720, its cube drawn
+//   without translucency (the baseline), with the depth-map method and with the voxel table
+//   (N = 32, built before the timed frames).
 //
 //   build/release/bench/mane_render_bench --benchmark_min_time=2
 
@@ -22,57 +28,62 @@ namespace {
 
 using namespace mane;
 
-struct Fixture {
-  std::unique_ptr<render::Device> device;
-  std::optional<scenes::World> world;
-};
-
-Fixture& fixture() {
-  static Fixture instance = [] {
-    Fixture result;
-    auto device = render::Device::create(render::deviceSettingsFromEnvironment());
-    if (!device) {
-      std::fprintf(stderr, "render bench: %s\n", device.error().message.c_str());
+render::Device& device() {
+  static std::unique_ptr<render::Device> instance = [] {
+    auto created = render::Device::create(render::deviceSettingsFromEnvironment());
+    if (!created) {
+      std::fprintf(stderr, "render bench: %s\n", created.error().message.c_str());
       std::exit(1);
     }
-    result.device = std::move(*device);
-    auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
-    auto resolver = scenes::AssetResolver::createDefault();
-    if (!scene || !resolver) {
-      std::fprintf(stderr, "render bench: cannot load scenes/nalu.json\n");
-      std::exit(1);
-    }
-    auto world = scenes::World::create(std::move(*scene), *resolver);
-    if (!world) {
-      std::fprintf(stderr, "render bench: %s\n", world.error().message.c_str());
-      std::exit(1);
-    }
-    result.world = std::move(*world);
-    return result;
+    return std::move(*created);
   }();
-  return instance;
+  return *instance;
+}
+
+scenes::World loadWorld(const char* file) {
+  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / file);
+  auto resolver = scenes::AssetResolver::createDefault();
+  if (!scene || !resolver) {
+    std::fprintf(stderr, "render bench: cannot load scenes/%s\n", file);
+    std::exit(1);
+  }
+  auto world = scenes::World::create(std::move(*scene), *resolver);
+  if (!world) {
+    std::fprintf(stderr, "render bench: %s\n", world.error().message.c_str());
+    std::exit(1);
+  }
+  return std::move(*world);
+}
+
+// Renders `statics` with `frame` for every iteration of `state`.
+void renderFrames(benchmark::State& state, const render::StaticScene& statics, const render::FrameInput& frame,
+                  std::uint32_t samples) {
+  auto renderer = render::Renderer::create(device(), {.extent = {1280, 720}, .msaaSamples = samples});
+  if (!renderer || !(*renderer)->setScene(statics)) return state.SkipWithError("renderer setup failed");
+  // Untimed: first-use work (the voxel table's build, pipeline compiles).
+  if (!(*renderer)->render(frame)) return state.SkipWithError("render failed");
+  for (auto _ : state)
+    if (!(*renderer)->render(frame)) return state.SkipWithError("render failed");
+  state.SetLabel(device().info().name);
 }
 
 // state.range(0): 0 draws nothing (the baseline), 1 the head as Lambert, 2 as skin, 3 and 4 as
-// texture-space skin (1024², 2048²). range(1): MSAA samples.
+// texture-space skin (1024², 2048²), 5 skin with depth-map translucency. range(1): MSAA samples.
 void BM_NaluFrame(benchmark::State& state) {
-  Fixture& f = fixture();
-  auto renderer = render::Renderer::create(
-      *f.device, {.extent = {1280, 720}, .msaaSamples = static_cast<std::uint32_t>(state.range(1))});
-  render::StaticScene statics = f.world->staticScene();
+  static const scenes::World world = loadWorld("nalu.json");
+  render::StaticScene statics = world.staticScene();
   for (render::MaterialData& material : statics.materials) {
     if (state.range(0) == 1) material.shading = render::SurfaceShading::kLambert;
-    if (state.range(0) >= 3) {
+    if (state.range(0) == 3 || state.range(0) == 4) {
       material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
       material.skin.irradianceSize = state.range(0) == 3 ? 1024 : 2048;
     }
+    if (state.range(0) == 5 && material.shading == render::SurfaceShading::kSkin)
+      material.translucency.method = render::TranslucencyMethod::kDepthMap;
   }
-  if (!renderer || !(*renderer)->setScene(statics)) return state.SkipWithError("renderer setup failed");
-  render::FrameInput frame = f.world->frameInput();
+  render::FrameInput frame = world.frameInput();
   if (state.range(0) == 0) frame.instances.clear();
-  for (auto _ : state)
-    if (!(*renderer)->render(frame)) return state.SkipWithError("render failed");
-  state.SetLabel(f.device->info().name);
+  renderFrames(state, statics, frame, static_cast<std::uint32_t>(state.range(1)));
 }
 BENCHMARK(BM_NaluFrame)
     ->ArgNames({"scene", "msaa"})
@@ -81,9 +92,20 @@ BENCHMARK(BM_NaluFrame)
     ->Args({2, 1})
     ->Args({3, 1})
     ->Args({4, 1})
+    ->Args({5, 1})
     ->Args({1, 4})
     ->Args({2, 4})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// state.range(0): the cube's TranslucencyMethod (0 none, 1 depth map, 2 voxel table).
+void BM_TranslucentCube(benchmark::State& state) {
+  static const scenes::World world = loadWorld("translucent_cube.json");
+  render::StaticScene statics = world.staticScene();
+  for (render::MaterialData& material : statics.materials)
+    material.translucency.method = static_cast<render::TranslucencyMethod>(state.range(0));
+  renderFrames(state, statics, world.frameInput(), 1);
+}
+BENCHMARK(BM_TranslucentCube)->ArgName("method")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

@@ -65,6 +65,30 @@ struct SkinParameters {
   float specularIntensity = 0.5655f;
 };
 
+/// How light entering a surface on the side facing the first light shines out of the far side
+/// (issue 5, item 7). Both measure the thickness d between the light's entry point and the
+/// shaded point; skin then transmits its diffusion profile's T(d) (render/luts/translucency.hpp),
+/// any other material exp(−σ·d) per RGB.
+enum class TranslucencyMethod : std::uint32_t {
+  kNone = 0,
+  /// d from the first light's depth map (Jimenez et al. 2010, after Dachsbacher & Stamminger's
+  /// translucent shadow maps): the distance from the first surface the light meets. Cheap, but
+  /// hollows and gaps between entry and exit count as material.
+  kDepthMap = 1,
+  /// d from the mesh's voxelized thickness table (render/luts/voxel_thickness.hpp, the seed
+  /// method): the entry point from the same depth map, hollows subtracted.
+  kVoxelLut = 2,
+};
+
+struct TranslucencyParameters {
+  TranslucencyMethod method = TranslucencyMethod::kNone;
+  /// σ per RGB channel, 1/metre, for materials other than skin.
+  glm::vec3 extinction{100.0f};
+  /// kVoxelLut: N, cells per axis of the voxel grid over the mesh's bounding box
+  /// (VoxelThicknessSettings::resolution).
+  int voxelResolution = 32;
+};
+
 /// A surface: albedo (sRGB texture times base colour) with an optional tangent-space normal map
 /// (OpenGL convention, +Y up in the map); skin adds a specular map (its red channel scales ρs).
 struct MaterialData {
@@ -74,6 +98,7 @@ struct MaterialData {
   SurfaceShading shading = SurfaceShading::kLambert;
   SkinParameters skin;
   std::optional<TextureData> specularMap;
+  TranslucencyParameters translucency;
 };
 
 /// Everything that stays the same from frame to frame; uploaded once.

@@ -42,16 +42,19 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
                                    .pPushConstantRanges = settings.pushConstants.data()});
 
   const vk::raii::ShaderModule vertex = loadShader(device, settings.vertexShader);
-  const vk::raii::ShaderModule fragment = loadShader(device, settings.fragmentShader);
+  const bool hasFragment = !settings.fragmentShader.empty();
+  const vk::raii::ShaderModule fragment =
+      hasFragment ? loadShader(device, settings.fragmentShader) : vk::raii::ShaderModule(nullptr);
   const Specialization specialization(settings.constants);
-  const std::array stages{vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eVertex,
-                                                            .module = *vertex,
-                                                            .pName = "main",
-                                                            .pSpecializationInfo = specialization.get()},
-                          vk::PipelineShaderStageCreateInfo{.stage = vk::ShaderStageFlagBits::eFragment,
-                                                            .module = *fragment,
-                                                            .pName = "main",
-                                                            .pSpecializationInfo = specialization.get()}};
+  std::vector<vk::PipelineShaderStageCreateInfo> stages{{.stage = vk::ShaderStageFlagBits::eVertex,
+                                                         .module = *vertex,
+                                                         .pName = "main",
+                                                         .pSpecializationInfo = specialization.get()}};
+  if (hasFragment)
+    stages.push_back({.stage = vk::ShaderStageFlagBits::eFragment,
+                      .module = *fragment,
+                      .pName = "main",
+                      .pSpecializationInfo = specialization.get()});
   const vk::PipelineVertexInputStateCreateInfo vertexInput{
       .vertexBindingDescriptionCount = static_cast<std::uint32_t>(settings.vertexBindings.size()),
       .pVertexBindingDescriptions = settings.vertexBindings.data(),
@@ -96,19 +99,20 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
       .pColorAttachmentFormats = settings.colorFormats.data(),
       .depthAttachmentFormat = settings.depthFormat};
 
-  result.pipeline = vk::raii::Pipeline(device.device(), nullptr,
-                                       vk::GraphicsPipelineCreateInfo{.pNext = &rendering,
-                                                                      .stageCount = stages.size(),
-                                                                      .pStages = stages.data(),
-                                                                      .pVertexInputState = &vertexInput,
-                                                                      .pInputAssemblyState = &inputAssembly,
-                                                                      .pViewportState = &viewport,
-                                                                      .pRasterizationState = &rasterization,
-                                                                      .pMultisampleState = &multisample,
-                                                                      .pDepthStencilState = &depthStencil,
-                                                                      .pColorBlendState = &colorBlend,
-                                                                      .pDynamicState = &dynamic,
-                                                                      .layout = *result.layout});
+  result.pipeline =
+      vk::raii::Pipeline(device.device(), nullptr,
+                         vk::GraphicsPipelineCreateInfo{.pNext = &rendering,
+                                                        .stageCount = static_cast<std::uint32_t>(stages.size()),
+                                                        .pStages = stages.data(),
+                                                        .pVertexInputState = &vertexInput,
+                                                        .pInputAssemblyState = &inputAssembly,
+                                                        .pViewportState = &viewport,
+                                                        .pRasterizationState = &rasterization,
+                                                        .pMultisampleState = &multisample,
+                                                        .pDepthStencilState = &depthStencil,
+                                                        .pColorBlendState = &colorBlend,
+                                                        .pDynamicState = &dynamic,
+                                                        .layout = *result.layout});
   return result;
 }
 

@@ -23,7 +23,7 @@ using SpecializationConstants = std::vector<std::uint32_t>;
 
 struct GraphicsPipelineSettings {
   std::string vertexShader;
-  std::string fragmentShader;
+  std::string fragmentShader;  ///< empty: no fragment stage (depth-only passes)
   std::vector<vk::VertexInputBindingDescription> vertexBindings;
   std::vector<vk::VertexInputAttributeDescription> vertexAttributes;
   vk::PrimitiveTopology topology = vk::PrimitiveTopology::eTriangleList;

@@ -152,7 +152,7 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
   for (std::size_t m = 0; m < scene.materials.size(); ++m) {
     const MaterialData& material = scene.materials[m];
     if (material.shading != SurfaceShading::kSkin || material.skin.diffusion != SkinDiffusion::kTextureSpace) continue;
-    auto pass = SkinDiffusionPass::create(*device_, {.size = material.skin.irradianceSize});
+    auto pass = SkinDiffusionPass::create(*device_, {.size = material.skin.irradianceSize}, shadows_.get());
     if (!pass) return fail("material " + std::to_string(m) + ": " + pass.error().message);
     if (auto set = pass->setNormalMap(material.normalMap); !set)
       return fail("material " + std::to_string(m) + ": " + set.error().message);
@@ -174,6 +174,7 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
 
 void Renderer::refreshShadowDescriptors() {
   surfaces_.refreshShadows();
+  for (TextureSpaceSkin& skin : textureSpaceSkins_) skin.pass->refreshShadows();
   for (HairGroom& groom : hair_)
     if (groom.lighting) groom.lighting->refreshShadows();
 }
@@ -235,8 +236,8 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
     timer_.end(commands);
   }
   if (!textureSpaceSkins_.empty()) {
-    // Skin lit in UV space and blurred, before the surfaces sample it. Hair shadows are not in
-    // this irradiance (yet): texture-space skin is shaded without them.
+    // Skin lit in UV space (light 0 through the hair shadows) and blurred, before the surfaces
+    // sample it.
     timer_.begin(commands, "skin diffusion");
     for (const TextureSpaceSkin& skin : textureSpaceSkins_)
       for (const MeshInstance& instance : frame.instances)
@@ -246,6 +247,11 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
                             {.model = instance.model, .lights = frame.lights, .ambient = frame.ambient});
           break;
         }
+    timer_.end(commands);
+  }
+  if (surfaces_.drawsTranslucency(frame)) {
+    timer_.begin(commands, "translucency depth");
+    surfaces_.recordLightDepth(commands, frame);
     timer_.end(commands);
   }
   surfaces_.update(frame, target_.aspect());
@@ -305,6 +311,7 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
       if (instance.material == skin.material && !diffusionMeshes_[instance.mesh])
         return fail("instance " + std::to_string(i) + ": texture-space skin needs a static mesh with uvs and normals");
   }
+  if (auto prepared = surfaces_.prepareThickness(frame); !prepared) return std::unexpected(prepared.error());
   try {
     device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) { record(commands, frame); });
   } catch (const std::exception& error) {

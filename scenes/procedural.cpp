@@ -3,34 +3,151 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace mane::scenes {
+namespace {
+
+/// (cos, sin) of turn·k/steps for k = 0..steps, computed in double.
+std::vector<glm::vec2> stepsAround(int steps, double turn) {
+  std::vector<glm::vec2> angles;
+  for (int k = 0; k <= steps; ++k) {
+    const double angle = turn * static_cast<double>(k) / static_cast<double>(steps);
+    angles.emplace_back(static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle)));
+  }
+  return angles;
+}
+
+// The ends are set exactly: in float, sin(2π) is 1.7e-7 and sin(π) −8.7e-8, which would leave a
+// duplicated seam column or a pole copy a hair away from its twin and the mesh open by position.
+
+/// `stepsAround` a full turn, the last entry a bitwise copy of the first (a closed seam).
+std::vector<glm::vec2> fullTurn(int steps) {
+  std::vector<glm::vec2> angles = stepsAround(steps, 2.0 * std::numbers::pi);
+  angles.front() = {1.0f, 0.0f};
+  angles.back() = angles.front();
+  return angles;
+}
+
+/// `stepsAround` a half turn, from exactly (1, 0) to exactly (−1, 0) (the poles).
+std::vector<glm::vec2> halfTurn(int steps) {
+  std::vector<glm::vec2> angles = stepsAround(steps, std::numbers::pi);
+  angles.front() = {1.0f, 0.0f};
+  angles.back() = {-1.0f, 0.0f};
+  return angles;
+}
+
+/// Index of vertex (row, column) in a grid of rows with `columns` vertices each.
+std::uint32_t gridIndex(int row, int column, int columns) {
+  return static_cast<std::uint32_t>(row * columns + column);
+}
+
+/// The same surface seen from the other side: normals negated, every triangle's winding reversed.
+Mesh turnedInsideOut(Mesh mesh) {
+  for (glm::vec3& normal : mesh.normals) normal = -normal;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+  return mesh;
+}
+
+/// Appends `part`'s vertices and triangles to `mesh` (both with normals and UVs).
+void append(Mesh& mesh, const Mesh& part) {
+  const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
+  mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
+  mesh.uvs.insert(mesh.uvs.end(), part.uvs.begin(), part.uvs.end());
+  for (std::uint32_t index : part.indices) mesh.indices.push_back(offset + index);
+}
+
+/// The cube [−halfSide, halfSide]³: 4 vertices per face (flat normals), 2 triangles each.
+Mesh makeCube(float halfSide) {
+  Mesh cube;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const float sign : {1.0f, -1.0f}) {
+      glm::vec3 normal(0.0f);
+      normal[axis] = sign;
+      // Tangents with u × v = normal, so (−−, +−, ++) turns counter-clockwise seen from outside.
+      glm::vec3 u(0.0f);
+      glm::vec3 v(0.0f);
+      u[(axis + 1) % 3] = 1.0f;
+      v[(axis + 2) % 3] = 1.0f;
+      if (sign < 0.0f) std::swap(u, v);
+      const auto first = static_cast<std::uint32_t>(cube.positions.size());
+      for (const glm::vec2 corner : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+        cube.positions.push_back(halfSide * (normal + corner.x * u + corner.y * v));
+        cube.normals.push_back(normal);
+        cube.uvs.emplace_back(0.5f * (corner.x + 1.0f), 0.5f * (1.0f - corner.y));  // v down
+      }
+      cube.indices.insert(cube.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+    }
+  }
+  return cube;
+}
+
+}  // namespace
 
 Mesh makeSphere(int rings, int segments, float radius) {
   rings = std::max(rings, 2);
   segments = std::max(segments, 3);
   Mesh mesh;
   mesh.name = "procedural:sphere";
-  const auto columns = static_cast<std::uint32_t>(segments + 1);
+  const std::vector<glm::vec2> polar = halfTurn(rings);       // 0 at +Y
+  const std::vector<glm::vec2> azimuth = fullTurn(segments);  // 0 at +Z
+  const int columns = segments + 1;
   for (int r = 0; r <= rings; ++r) {
-    const float v = static_cast<float>(r) / static_cast<float>(rings);
-    const float polar = v * std::numbers::pi_v<float>;  // 0 at +Y
     for (int s = 0; s <= segments; ++s) {
-      const float u = static_cast<float>(s) / static_cast<float>(segments);
-      const float azimuth = u * 2.0f * std::numbers::pi_v<float>;
-      const glm::vec3 n(std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth));
+      const float sinPolar = polar[r].y;
+      const glm::vec3 n(sinPolar * azimuth[s].y, polar[r].x, sinPolar * azimuth[s].x);
       mesh.positions.push_back(n * radius);
       mesh.normals.push_back(n);
-      mesh.uvs.emplace_back(u, v);
+      mesh.uvs.emplace_back(static_cast<float>(s) / static_cast<float>(segments),
+                            static_cast<float>(r) / static_cast<float>(rings));
     }
   }
   for (int r = 0; r < rings; ++r) {
     for (int s = 0; s < segments; ++s) {
-      const std::uint32_t a = static_cast<std::uint32_t>(r) * columns + static_cast<std::uint32_t>(s);
-      const std::uint32_t b = a + columns;  // one ring further south
+      const std::uint32_t a = gridIndex(r, s, columns);
+      const std::uint32_t b = gridIndex(r + 1, s, columns);  // one ring further south
       // The pole rows collapse to a point: emit only the triangle with area.
       if (r != 0) mesh.indices.insert(mesh.indices.end(), {a, b, a + 1});
       if (r != rings - 1) mesh.indices.insert(mesh.indices.end(), {a + 1, b, b + 1});
+    }
+  }
+  return mesh;
+}
+
+Mesh makeCubeWithHollow(float halfSide, float hollowRadius, int hollowRings, int hollowSegments) {
+  Mesh mesh = makeCube(halfSide);
+  append(mesh, turnedInsideOut(makeSphere(hollowRings, hollowSegments, hollowRadius)));
+  mesh.name = "procedural:cube_with_hollow";
+  return mesh;
+}
+
+Mesh makeTorus(float majorRadius, float minorRadius, int majorSegments, int minorSegments) {
+  majorSegments = std::max(majorSegments, 3);
+  minorSegments = std::max(minorSegments, 3);
+  Mesh mesh;
+  mesh.name = "procedural:torus";
+  const std::vector<glm::vec2> around = fullTurn(majorSegments);  // φ, 0 at +X
+  const std::vector<glm::vec2> tube = fullTurn(minorSegments);    // θ, 0 outermost
+  const int columns = minorSegments + 1;
+  for (int i = 0; i <= majorSegments; ++i) {
+    const glm::vec3 radial(around[i].x, 0.0f, around[i].y);
+    for (int j = 0; j <= minorSegments; ++j) {
+      const glm::vec3 n = tube[j].x * radial + glm::vec3(0.0f, tube[j].y, 0.0f);
+      mesh.positions.push_back(majorRadius * radial + minorRadius * n);
+      mesh.normals.push_back(n);
+      mesh.uvs.emplace_back(static_cast<float>(i) / static_cast<float>(majorSegments),
+                            static_cast<float>(j) / static_cast<float>(minorSegments));
+    }
+  }
+  // ∂P/∂θ × ∂P/∂φ points away from the tube, so (a, a + θ, a + θ + φ) winds counter-clockwise
+  // seen from outside.
+  for (int i = 0; i < majorSegments; ++i) {
+    for (int j = 0; j < minorSegments; ++j) {
+      const std::uint32_t a = gridIndex(i, j, columns);
+      const std::uint32_t b = gridIndex(i + 1, j, columns);  // one step further around the axis
+      mesh.indices.insert(mesh.indices.end(), {a, a + 1, b + 1, a, b + 1, b});
     }
   }
   return mesh;

@@ -1,5 +1,10 @@
 #pragma once
-// Built-in meshes: the stand-ins used when an asset is missing, and test geometry.
+// Built-in meshes: the stand-ins used when an asset is missing, and test geometry (the seed
+// paper's translucency objects among them).
+//
+// Every mesh here is closed by position: vertices duplicated for UV seams and poles repeat
+// their twin's position bit for bit, so each directed edge a→b is matched by b→a when a and b
+// are compared by position (what render/luts/solid_voxels.hpp checks before voxelizing).
 
 #include "scenes/mesh.hpp"
 
@@ -13,5 +18,25 @@ namespace mane::scenes {
 /// Normals are the exact unit radial directions; u grows eastward around +Y, v from 0 at
 /// the north pole to 1 at the south pole. Triangles wind counter-clockwise seen from outside.
 [[nodiscard]] Mesh makeSphere(int rings, int segments, float radius);
+
+/// The cube [−halfSide, halfSide]³ with a spherical hollow of `hollowRadius` (< halfSide) at
+/// its centre: the seed paper's test of hollows in translucency. The cube has 4 vertices and 2
+/// triangles per face, flat normals, UVs 0..1 per face, and winds counter-clockwise seen from
+/// outside. The hollow is `makeSphere(hollowRings, hollowSegments, hollowRadius)` turned inside
+/// out: its triangles wind inward and its normals point into the hollow, away from the material,
+/// so the whole surface bounds the material the way solid_voxels.hpp expects. Cube vertices
+/// come first (24), then the hollow's.
+[[nodiscard]] Mesh makeCubeWithHollow(float halfSide, float hollowRadius, int hollowRings, int hollowSegments);
+
+/// A ring torus around +Y (lying flat in the XZ plane), centred on the origin: the circle of
+/// `majorRadius` in the XZ plane swept by a tube of `minorRadius` (< majorRadius). `majorSegments`
+/// ≥ 3 steps around the axis, `minorSegments` ≥ 3 around the tube; smaller values are raised to
+/// these. Both seams are duplicated: (majorSegments + 1) · (minorSegments + 1) vertices and
+/// 2 · majorSegments · minorSegments triangles. u = φ / 2π around the axis (φ from +X toward +Z),
+/// v = θ / 2π around the tube (θ = 0 on the outer equator, π/2 on top). Normals are the exact
+/// unit directions away from the tube's core circle; triangles wind counter-clockwise seen from
+/// outside. Its quads are planar trapezoids, so the enclosed volume is exactly
+/// 2π²·R·r² · s(majorSegments) · s(minorSegments), s(k) = k·sin(2π/k) / 2π.
+[[nodiscard]] Mesh makeTorus(float majorRadius, float minorRadius, int majorSegments, int minorSegments);
 
 }  // namespace mane::scenes

@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
+#include "render/luts/solid_voxels.hpp"
 #include "scenes/detail/json_fields.hpp"
 #include "scenes/detail/scene_bodies.hpp"
 
@@ -26,8 +27,14 @@ using detail::parseTransform;
 using detail::require;
 using Json = nlohmann::json;
 
-// Procedural mesh kinds the loader can build (scenes/procedural.hpp).
-const std::set<std::string> kProceduralMeshKinds = {"sphere"};
+// "procedural:sphere, procedural:cube_with_hollow, ..." for error messages.
+std::string knownProceduralMeshes() {
+  std::string list;
+  for (const std::string_view kind : kProceduralMeshKinds) {
+    list += (list.empty() ? "" : ", ") + std::string(kProceduralPrefix) + std::string(kind);
+  }
+  return list;
+}
 
 glm::mat4 rotationMatrix(const glm::vec3& degrees) {
   const glm::vec3 r = glm::radians(degrees);
@@ -120,6 +127,46 @@ render::SkinParameters parseSkinParameters(const Json& json, const std::string& 
   return skin;
 }
 
+render::TranslucencyMethod parseTranslucencyMethod(ObjectFields& fields) {
+  const std::string method = fields.required<std::string>("method");
+  if (method == "none") return render::TranslucencyMethod::kNone;
+  if (method == "depth_map") return render::TranslucencyMethod::kDepthMap;
+  if (method == "voxel_lut") return render::TranslucencyMethod::kVoxelLut;
+  throw FieldError{fields.child("method"), "expected \"none\", \"depth_map\" or \"voxel_lut\", got \"" + method + "\""};
+}
+
+// Light through the object (render::TranslucencyParameters). As with `skin` on a Lambert
+// material, a field the method or the material's kind would ignore is an error, not a no-op.
+render::TranslucencyParameters parseTranslucency(const Json& json, const std::string& path, MaterialKind kind) {
+  ObjectFields fields(json, path);
+  render::TranslucencyParameters translucency;
+  translucency.method = parseTranslucencyMethod(fields);
+  if (const Json* extinction = fields.take("extinction")) {
+    require(translucency.method != render::TranslucencyMethod::kNone, fields.child("extinction"),
+            "applies to methods \"depth_map\" and \"voxel_lut\" only");
+    require(kind != MaterialKind::skin, fields.child("extinction"),
+            "applies to materials other than \"skin\" (skin transmits its diffusion profile)");
+    translucency.extinction = detail::read<glm::vec3>(*extinction, fields.child("extinction"));
+    for (int c = 0; c < 3; ++c) {
+      require(translucency.extinction[c] >= 0.0f,
+              detail::indexPath(fields.child("extinction"), static_cast<std::size_t>(c)),
+              "expected an extinction >= 0 per metre");
+    }
+  }
+  if (const Json* resolution = fields.take("voxel_resolution")) {
+    require(translucency.method == render::TranslucencyMethod::kVoxelLut, fields.child("voxel_resolution"),
+            "applies to method \"voxel_lut\" only");
+    translucency.voxelResolution = detail::read<int>(*resolution, fields.child("voxel_resolution"));
+    require(translucency.voxelResolution >= render::SolidVoxels::kMinResolution &&
+                translucency.voxelResolution <= render::SolidVoxels::kMaxResolution,
+            fields.child("voxel_resolution"),
+            "expected a resolution in " + std::to_string(render::SolidVoxels::kMinResolution) + ".." +
+                std::to_string(render::SolidVoxels::kMaxResolution) + " cells per axis");
+  }
+  fields.finish();
+  return translucency;
+}
+
 Material parseMaterial(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Material material;
@@ -137,6 +184,9 @@ Material parseMaterial(const Json& json, const std::string& path) {
   material.normalMap = fields.optional<std::string>("normal_map", "");
   material.specularMap = fields.optional<std::string>("specular_map", "");
   material.baseColour = fields.optional<glm::vec3>("base_colour", material.baseColour);
+  if (const Json* translucency = fields.take("translucency")) {
+    material.translucency = parseTranslucency(*translucency, fields.child("translucency"), material.kind);
+  }
   fields.finish();
   return material;
 }
@@ -149,8 +199,9 @@ MeshInstance parseMesh(const Json& json, const std::string& path) {
   mesh.source = fields.required<std::string>("source");
   require(!mesh.source.empty(), fields.child("source"), "expected an asset name or \"procedural:<kind>\"");
   if (mesh.isProcedural()) {
-    require(kProceduralMeshKinds.contains(mesh.proceduralKind()), fields.child("source"),
-            "unknown procedural mesh \"" + mesh.source + "\" (known: procedural:sphere)");
+    require(std::ranges::find(kProceduralMeshKinds, mesh.proceduralKind()) != kProceduralMeshKinds.end(),
+            fields.child("source"),
+            "unknown procedural mesh \"" + mesh.source + "\" (known: " + knownProceduralMeshes() + ")");
   }
   mesh.material = fields.optional<std::string>("material", "");
   if (const Json* transform = fields.take("transform")) {

@@ -2,6 +2,7 @@
 // The scene description: what a JSON scene file (scenes/*.json, format in scenes/README.md)
 // holds once validated. Plain data; assets are referenced by manifest name, not loaded.
 
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -56,6 +57,9 @@ struct Material {
   std::string specularMap;
   glm::vec3 baseColour{0.8f};   ///< linear RGB multiplier of the albedo texture, or the albedo
   render::SkinParameters skin;  ///< kind skin only
+  /// Light from the first light shining through the object (render::TranslucencyMethod); off by
+  /// default. Extinction (1/metre) is for kinds other than skin, the voxel resolution for kVoxelLut.
+  render::TranslucencyParameters translucency;
 };
 
 /// Placement of a mesh: scale, then rotation (X, then Y, then Z, about the fixed axes), then
@@ -71,6 +75,10 @@ struct Transform {
 
 /// Prefix of `MeshInstance::source` for built-in geometry, e.g. "procedural:sphere".
 inline constexpr std::string_view kProceduralPrefix = "procedural:";
+
+/// The kinds after `kProceduralPrefix` that `loadSceneMesh` builds (scenes/procedural.hpp): a
+/// unit sphere, the cube [−1, 1]³ with a hollow of radius 0.5, a torus of radii 1 and 0.4 around +Y.
+inline constexpr std::array<std::string_view, 3> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus"};
 
 /// A mesh placed in the scene.
 struct MeshInstance {

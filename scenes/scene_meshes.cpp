@@ -1,5 +1,9 @@
 #include "scenes/scene_meshes.hpp"
 
+#include <optional>
+#include <string_view>
+#include <utility>
+
 #include "scenes/obj_loader.hpp"
 #include "scenes/procedural.hpp"
 
@@ -10,17 +14,34 @@ namespace {
 constexpr int kSphereRings = 32;
 constexpr int kSphereSegments = 64;
 
+// The seed paper's translucency objects, in model units (the instance's scale sets the size).
+// The hollow is seen only through the material, but its outline shows in the transmitted light
+// and the voxelization: as fine as the sphere. The torus's tube steps 360°/32 = 11°.
+constexpr float kCubeHalfSide = 1.0f;
+constexpr float kHollowRadius = 0.5f;
+constexpr float kTorusMajorRadius = 1.0f;
+constexpr float kTorusMinorRadius = 0.4f;
+constexpr int kTorusMajorSegments = 96;
+constexpr int kTorusMinorSegments = 32;
+
+/// The mesh of a `kProceduralMeshKinds` entry; nothing for another kind.
+std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
+  if (kind == "sphere") return makeSphere(kSphereRings, kSphereSegments, 1.0f);
+  if (kind == "cube_with_hollow")
+    return makeCubeWithHollow(kCubeHalfSide, kHollowRadius, kSphereRings, kSphereSegments);
+  if (kind == "torus") return makeTorus(kTorusMajorRadius, kTorusMinorRadius, kTorusMajorSegments, kTorusMinorSegments);
+  return std::nullopt;
+}
+
 }  // namespace
 
 Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver,
                                  const std::filesystem::path& sceneDirectory) {
   LoadedMesh loaded;
   if (instance.isProcedural()) {
-    if (instance.proceduralKind() != "sphere") {
-      return fail("mesh '" + instance.name + "': unknown procedural mesh '" + instance.source + "'");
-    }
-    // Unit radius: the instance's transform scale sets the size.
-    loaded.mesh = makeSphere(kSphereRings, kSphereSegments, 1.0f);
+    std::optional<Mesh> mesh = makeProceduralMesh(instance.proceduralKind());
+    if (!mesh) return fail("mesh '" + instance.name + "': unknown procedural mesh '" + instance.source + "'");
+    loaded.mesh = std::move(*mesh);
     loaded.procedural = true;
     return loaded;
   }

@@ -291,7 +291,8 @@ render::StaticScene World::staticScene() const {
                                              .curvatures = meshCurvatures_[m]});
   }
   for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
-    render::MaterialData material{.baseColor = scene_.materials[i].baseColour};
+    render::MaterialData material{.baseColor = scene_.materials[i].baseColour,
+                                  .translucency = scene_.materials[i].translucency};
     if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);
     if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
     if (scene_.materials[i].kind == MaterialKind::skin) {

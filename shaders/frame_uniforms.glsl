@@ -3,6 +3,7 @@
 #define HAIR_SHADOW_SET 0
 #define HAIR_SHADOW_BINDING 1
 #include "hair_shadows.glsl"
+#include "light_depth.glsl"
 
 const int kMaxLights = 4;
 
@@ -14,4 +15,5 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 lightRadiance[kMaxLights];   // rgb colour × intensity
   ivec4 lightCount;           // x
   HairShadowUniforms hairShadows;  // cast by light 0
+  LightDepth lightDepth;           // of light 0
 } frame;

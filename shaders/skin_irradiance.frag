@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Irradiance and stretch in texture space (render/passes/skin_diffusion.hpp): per texel
-// E = ambient + Σ max(N·L, 0)·radiance with coverage 1, and the millimetres of surface one texel
+// E = ambient + Σ max(N·L, 0)·radiance (light 0 through the hair shadows) with coverage 1, and the millimetres of surface one texel
 // spans along u and along v (the stretch map of d'Eon & Luebke, GPU Gems 3 §14.4.2, here as
 // lengths rather than their inverses, so that texels off the mesh can hold 0).
 #include "skin_irradiance.glsl"
@@ -30,7 +30,9 @@ void main() {
     normal = normalize(cotangentFrame(normal, inWorldPosition, inUv) * mapped);
   }
   vec3 sum = irradiance.ambient.rgb;
+  float hairShadow = hairShadowTransmittance(irradiance.hairShadows, inWorldPosition);
   for (int i = 0; i < irradiance.counts.x; ++i)
-    sum += irradiance.lightRadiance[i].rgb * max(dot(normal, irradiance.lightDirection[i].xyz), 0.0);
+    sum += irradiance.lightRadiance[i].rgb * max(dot(normal, irradiance.lightDirection[i].xyz), 0.0) *
+           (i == 0 ? hairShadow : 1.0);
   outIrradiance = vec4(sum, 1.0);
 }

@@ -4,6 +4,10 @@
 
 const int kSkinIrradianceMaxLights = 4;  // SkinDiffusionPass::kMaxLights
 
+#define HAIR_SHADOW_SET 0
+#define HAIR_SHADOW_BINDING 2
+#include "hair_shadows.glsl"
+
 layout(set = 0, binding = 0, std140) uniform SkinIrradiance {
   mat4 model;         // object → world
   mat4 normalMatrix;  // the inverse transpose of model's 3×3, in the upper left
@@ -12,4 +16,5 @@ layout(set = 0, binding = 0, std140) uniform SkinIrradiance {
   vec4 lightRadiance[kSkinIrradianceMaxLights];   // rgb colour × intensity
   ivec4 counts;       // x lights, y 1 with a normal map
   vec4 scales;        // x millimetres per world unit
+  HairShadowUniforms hairShadows;  // cast by light 0
 } irradiance;

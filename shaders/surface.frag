@@ -11,18 +11,23 @@ layout(set = 1, binding = 2) uniform sampler2D specularMap;  // skin: red scales
 layout(set = 1, binding = 3) uniform sampler2D skinTable;    // skin: pre-integrated diffuse + Beckmann
 layout(set = 1, binding = 4) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
 
-layout(push_constant) uniform Draw {
-  mat4 model;
+// Mirrors MaterialUniforms in render/passes/surface_pass.cpp.
+layout(set = 1, binding = 5, std140) uniform Material {
   vec4 baseColor;
-  ivec4 flags;  // x: has normal map
-  vec4 skin;    // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
-  vec4 blur;    // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
+  ivec4 flags;       // x: has normal map
+  vec4 skin;         // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
+  vec4 blur;         // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
+  vec4 extinction;   // rgb: σ, 1/m (translucency of materials other than skin)
+  vec4 profile[6];   // skin: d'Eon's Gaussians, rgb weight, a variance (mm²)
 } draw;
+#include "translucency.glsl"
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in float inCurvature;  // 1/r, 1/mm
+layout(location = 4) in vec3 inObjectPosition;  // mesh units
+layout(location = 5) flat in vec4 inObjectTowardLight;  // xyz: light 0's direction, mesh units per metre; w: metres per unit
 layout(location = 0) out vec4 outColor;
 
 layout(constant_id = 2) const bool kSkin = false;  // the pipeline's shading: skin or Lambert
@@ -31,13 +36,33 @@ layout(constant_id = 2) const bool kSkin = false;  // the pipeline's shading: sk
 layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 
 // Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights.
+// Of light that crossed `thickness` metres: skin's diffusion profile summed over the plane of
+// entry points, Σ w_i·exp(−d²/2v_i) (render/luts/skin_profile.hpp, SkinProfile::transmittance);
+// any other material exp(−σ·d) per channel (Beer–Lambert, the seed method's I = I0·exp(−σd)).
+vec3 transmittance(float thickness) {
+  if (!kSkin) return exp(-draw.extinction.rgb * thickness);
+  float mm2 = thickness * thickness * 1e6;
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < 6; ++i) sum += draw.profile[i].rgb * exp(-mm2 / (2.0 * draw.profile[i].a));
+  return sum;
+}
+
+// Light 0 through the surface: nothing without translucency (compiled out).
+vec3 translucency(vec3 geometric) {
+  if (kTranslucency == 0u || frame.lightCount.x == 0 || frame.lightDepth.scale.w == 0.0) return vec3(0.0);
+  float thickness = translucentThickness(inWorldPosition, inObjectPosition, inObjectTowardLight.xyz,
+                                         inObjectTowardLight.w);
+  return translucentLight(transmittance(thickness), geometric);
+}
+
 void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, out vec3 specular) {
   vec3 toEye = normalize(frame.cameraPosition.xyz - inWorldPosition);
   vec3 normalR = normalize(mix(detail, geometric, draw.blur.r));
   vec3 normalG = normalize(mix(detail, geometric, draw.blur.g));
   vec3 normalB = normalize(mix(detail, geometric, draw.blur.b));
   float rhoS = draw.skin.y * texture(specularMap, inUv).r;
-  diffuse = kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : frame.ambient.rgb;
+  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : frame.ambient.rgb) +
+            translucency(geometric);
   specular = vec3(0.0);
   for (int i = 0; i < frame.lightCount.x; ++i) {
     vec3 toLight = frame.lightDirection[i].xyz;
@@ -90,7 +115,7 @@ void main() {
     outColor = vec4(albedo * diffuse + specular, 1.0);
     return;
   }
-  vec3 irradiance = frame.ambient.rgb;
+  vec3 irradiance = frame.ambient.rgb + translucency(geometric);
   for (int i = 0; i < frame.lightCount.x; ++i)
     irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
                   (i == 0 ? hairShadow : 1.0);

@@ -10,16 +10,14 @@ layout(location = 3) in float inCurvature;  // 1/r per mesh unit
 
 layout(push_constant) uniform Draw {
   mat4 model;
-  vec4 baseColor;   // rgb, a unused
-  ivec4 flags;      // x: has normal map
-  vec4 skin;        // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
-  vec4 blur;        // rgb: skin, per channel, the weight of the geometric normal
 } draw;
 
 layout(location = 0) out vec3 outWorldPosition;
 layout(location = 1) out vec3 outWorldNormal;
 layout(location = 2) out vec2 outUv;
 layout(location = 3) out float outCurvature;  // 1/r in 1/mm
+layout(location = 4) out vec3 outObjectPosition;  // mesh units: where the thickness table is indexed
+layout(location = 5) flat out vec4 outObjectTowardLight;  // xyz: light 0's direction, mesh units per metre; w: metres per unit
 
 void main() {
   vec4 world = draw.model * vec4(inPosition, 1.0);
@@ -29,6 +27,10 @@ void main() {
   // glTF and OBJ put v = 0 at the top of the image: no flip needed with Vulkan's texture origin.
   outUv = inUv;
   // Per mesh unit → per metre (the model's uniform scale: its first column's length) → per mm.
-  outCurvature = inCurvature / length(draw.model[0].xyz) * 1e-3;
+  float metresPerUnit = length(draw.model[0].xyz);
+  outCurvature = inCurvature / metresPerUnit * 1e-3;
+  outObjectPosition = inPosition;
+  // A world direction into mesh units: the inverse of the model's linear part (uniform scale).
+  outObjectTowardLight = vec4(inverse(mat3(draw.model)) * frame.lightDirection[0].xyz, metresPerUnit);
   gl_Position = frame.viewProjection * world;
 }

@@ -44,6 +44,12 @@ Result<void> validate(const SkinProfile& profile) {
   return {};
 }
 
+glm::dvec3 SkinProfile::transmittance(double thickness) const {
+  glm::dvec3 sum(0.0);
+  for (const SkinGaussian& g : gaussians) sum += g.weight * std::exp(-thickness * thickness / (2.0 * g.variance));
+  return sum;
+}
+
 glm::dvec3 SkinProfile::broadShare(double minVariance) const {
   glm::dvec3 share(0.0);
   for (const SkinGaussian& gaussian : gaussians)

@@ -52,6 +52,12 @@ struct SkinProfile {
   /// R at a distance given in world units, as a density per world unit²: R(d·s)·s² with
   /// s = millimetresPerUnit, so it integrates to 1 over the plane in world units too.
   glm::dvec3 reflectanceAtWorldDistance(double distance) const;
+  /// Per RGB, of light that crossed `thickness` mm of skin, the fraction that leaves: R summed
+  /// over a plane of entry points at that depth, ∫ R(√(d² + ρ²)) dA = Σ_i w_i·exp(−d²/(2v_i))
+  /// (each G integrates to 1 over a plane; its exp(−d²/2v) factor is constant across it), so
+  /// T(0) = 1. The translucency of thin skin, after Jimenez et al., "Real-Time Realistic Skin
+  /// Translucency" (IEEE CG&A 2010), whose sum exp(−d²/v_i) leaves out the 2 of d'Eon's G.
+  glm::dvec3 transmittance(double thickness) const;
   /// A length in world units, in mm.
   double millimetres(double worldLength) const { return worldLength * millimetresPerUnit; }
   /// Per RGB, the share of the channel's weight in Gaussians of variance ≥ `minVariance` (mm²):

@@ -45,28 +45,6 @@ bool positiveFinite(float value) {
   return std::isfinite(value) && value > 0.0f;
 }
 
-// The orthographic light frame of the header: x, y across the sphere's cross-section in [−1, 1],
-// z = (R − (p − C)·L)/2R in [0, 1] (0 on the light's side).
-glm::mat4 lightFrame(glm::vec3 towardLight, const BoundingSphere& sphere) {
-  const glm::dvec3 l = glm::normalize(glm::dvec3(towardLight));
-  const glm::dvec3 helper = std::abs(l.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(1.0, 0.0, 0.0);
-  const glm::dvec3 e1 = glm::normalize(glm::cross(helper, l));
-  const glm::dvec3 e2 = glm::cross(l, e1);
-  const glm::dvec3 c(sphere.centre);
-  const double r = sphere.radius;
-  glm::dmat4 m(0.0);  // column-major: m[column][row]
-  for (int i = 0; i < 3; ++i) {
-    m[i][0] = e1[i] / r;
-    m[i][1] = e2[i] / r;
-    m[i][2] = -l[i] / (2.0 * r);
-  }
-  m[3][0] = -glm::dot(c, e1) / r;
-  m[3][1] = -glm::dot(c, e2) / r;
-  m[3][2] = (r + glm::dot(c, l)) / (2.0 * r);
-  m[3][3] = 1.0;
-  return glm::mat4(m);
-}
-
 Result<void> checkFormat(const Device& device, vk::Format format, vk::FormatFeatureFlags needed, const char* what) {
   const vk::FormatFeatureFlags present = device.physicalDevice().getFormatProperties(format).optimalTilingFeatures;
   if ((present & needed) != needed)
@@ -165,6 +143,26 @@ Result<BoundingSphere> boundingSphere(std::span<const glm::vec4> positions) {
 
 Result<BoundingSphere> boundingSphere(std::span<const glm::vec3> positions) {
   return boundingSphereOf(positions);
+}
+
+glm::mat4 orthographicLightFrame(glm::vec3 towardLight, const BoundingSphere& sphere) {
+  const glm::dvec3 l = glm::normalize(glm::dvec3(towardLight));
+  const glm::dvec3 helper = std::abs(l.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(1.0, 0.0, 0.0);
+  const glm::dvec3 e1 = glm::normalize(glm::cross(helper, l));
+  const glm::dvec3 e2 = glm::cross(l, e1);
+  const glm::dvec3 c(sphere.centre);
+  const double r = sphere.radius;
+  glm::dmat4 m(0.0);  // column-major: m[column][row]
+  for (int i = 0; i < 3; ++i) {
+    m[i][0] = e1[i] / r;
+    m[i][1] = e2[i] / r;
+    m[i][2] = -l[i] / (2.0 * r);
+  }
+  m[3][0] = -glm::dot(c, e1) / r;
+  m[3][1] = -glm::dot(c, e2) / r;
+  m[3][2] = (r + glm::dot(c, l)) / (2.0 * r);
+  m[3][3] = 1.0;
+  return glm::mat4(m);
 }
 
 Result<std::unique_ptr<OpacityShadowMap>> OpacityShadowMap::create(const Device& device,
@@ -352,7 +350,7 @@ Result<void> OpacityShadowMap::setLight(glm::vec3 towardLight, const BoundingSph
   lightSet_ = true;
   const float diameter = 2.0f * hair.radius;
   const float resolution = static_cast<float>(settings_.resolution);
-  uniforms_.lightFromWorld = lightFrame(towardLight_, sphere_);
+  uniforms_.lightFromWorld = orthographicLightFrame(towardLight_, sphere_);
   const float mode = float(settings_.mode);
   switch (settings_.mode) {
     case OpacityShadowMode::kOpacityShadowMap:

@@ -100,6 +100,11 @@ struct BoundingSphere {
 /// The same for xyz points (guides, say).
 [[nodiscard]] Result<BoundingSphere> boundingSphere(std::span<const glm::vec3> positions);
 
+/// The orthographic frame of a light shining along −towardLight (unit) over `sphere`: x, y across
+/// the sphere's cross-section in [−1, 1], z = (R − (p − C)·L)/2R in [0, 1], 0 on the light's side,
+/// so a depth z lies z·2R metres behind the sphere's light-side plane.
+[[nodiscard]] glm::mat4 orthographicLightFrame(glm::vec3 towardLight, const BoundingSphere& sphere);
+
 struct OpacityShadowSettings {
   OpacityShadowMode mode = OpacityShadowMode::kOpacityShadowMap;
   OpacityShadowBuilder builder = OpacityShadowBuilder::kGraphics;

@@ -24,8 +24,12 @@ struct IrradianceUniforms {
   glm::vec4 lightRadiance[SkinDiffusionPass::kMaxLights];
   glm::ivec4 counts;  // x lights, y normal map
   glm::vec4 scales;   // x millimetres per world unit
+  HairShadowUniforms hairShadows;
 };
-static_assert(sizeof(IrradianceUniforms) == 304);
+static_assert(sizeof(IrradianceUniforms) == 304 + sizeof(HairShadowUniforms));
+
+// Where the hair shadow descriptors start in the irradiance set (shaders/skin_irradiance.glsl).
+constexpr std::uint32_t kFirstShadowBinding = 2;
 
 // Push constants of shaders/skin_diffusion_blur.comp.
 struct BlurConstants {
@@ -94,13 +98,21 @@ Result<void> validate(const SkinDiffusionSettings& settings) {
   return {};
 }
 
-Result<SkinDiffusionPass> SkinDiffusionPass::create(const Device& device, const SkinDiffusionSettings& settings) {
+Result<SkinDiffusionPass> SkinDiffusionPass::create(const Device& device, const SkinDiffusionSettings& settings,
+                                                    const HairShadows* shadows) {
   if (auto valid = validate(settings); !valid) return std::unexpected(valid.error());
   if (auto ok = checkDevice(device, settings.size); !ok) return std::unexpected(ok.error());
   SkinDiffusionPass pass;
   pass.device_ = &device;
   pass.settings_ = settings;
   pass.stages_ = skinDiffusionStages(settings.profile);
+  pass.shadows_ = shadows;
+  if (!shadows) {
+    auto empty = HairShadows::create(device);
+    if (!empty) return std::unexpected(empty.error());
+    pass.noShadows_ = std::move(*empty);
+    pass.shadows_ = pass.noShadows_.get();
+  }
   try {
     pass.createResources();
   } catch (const std::exception& error) {
@@ -132,9 +144,20 @@ void SkinDiffusionPass::createResources() {
   normalSampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
 
   using ShaderStage = vk::ShaderStageFlagBits;
+  // Uniforms, normal map, then the hair shadows (kFirstShadowBinding; 2 × 4 maps).
+  const std::pair shadow{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(ShaderStage::eFragment)};
   irradianceLayout_ =
       makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, ShaderStage::eVertex | ShaderStage::eFragment},
-                             {vk::DescriptorType::eCombinedImageSampler, ShaderStage::eFragment}});
+                             {vk::DescriptorType::eCombinedImageSampler, ShaderStage::eFragment},
+                             shadow,
+                             shadow,
+                             shadow,
+                             shadow,
+                             shadow,
+                             shadow,
+                             shadow,
+                             shadow});
+  static_assert(HairShadows::kBindings == 8);
   const std::pair sampled{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(ShaderStage::eCompute)};
   const std::pair storage{vk::DescriptorType::eStorageImage, vk::ShaderStageFlags(ShaderStage::eCompute)};
   blurLayout_ = makeSetLayout(device, {storage, sampled, storage, storage, storage});
@@ -152,7 +175,8 @@ void SkinDiffusionPass::createResources() {
                   // UV layouts mirror islands freely: both windings are the surface.
                   .cullMode = vk::CullModeFlagBits::eNone,
                   .colorFormats = {kIrradianceFormat, kStretchFormat},
-                  .setLayouts = {*irradianceLayout_}});
+                  .setLayouts = {*irradianceLayout_},
+                  .constants = shadows_->shaderConstants()});
   // The blur pipelines the stages use: specialised for their tap count and what they add up.
   for (std::size_t i = 0; i < stages_.size(); ++i)
     for (const Accumulate accumulate : {Accumulate::kNone, accumulation(i)}) {
@@ -164,11 +188,12 @@ void SkinDiffusionPass::createResources() {
 
   pool_ = makeDescriptorPool(device, 4,
                              {{vk::DescriptorType::eUniformBuffer, 1},
-                              {vk::DescriptorType::eCombinedImageSampler, 4},
+                              {vk::DescriptorType::eCombinedImageSampler, 4 + HairShadows::kBindings},
                               {vk::DescriptorType::eStorageImage, 12}});
   irradianceSet_ = allocateSet(device, pool_, irradianceLayout_);
   writeUniformBuffer(device, irradianceSet_, 0, uniforms_);
   writeSampledImage(device, irradianceSet_, 1, flatNormal_, normalSampler_);
+  refreshShadows();
 
   // The blurs: source, stretch, destination, sums of E·c, sums of c.
   const auto blurSet = [&](const Image& source, const Image& destination) {
@@ -224,6 +249,10 @@ Result<void> SkinDiffusionPass::setNormalMap(const std::optional<TextureData>& n
   return {};
 }
 
+void SkinDiffusionPass::refreshShadows() {
+  shadows_->writeDescriptors(irradianceSet_, kFirstShadowBinding);
+}
+
 void SkinDiffusionPass::recordIrradiance(const vk::raii::CommandBuffer& commands, const SkinDiffusionMesh& mesh,
                                          const SkinIrradianceInput& input) {
   IrradianceUniforms uniforms{};
@@ -241,6 +270,7 @@ void SkinDiffusionPass::recordIrradiance(const vk::raii::CommandBuffer& commands
   }
   uniforms.counts = glm::ivec4(lights, hasNormalMap_ ? 1 : 0, 0, 0);
   uniforms.scales = glm::vec4(float(settings_.profile.millimetresPerUnit), 0.0f, 0.0f, 0.0f);
+  uniforms.hairShadows = shadows_->uniforms();
 
   // A uniform scale of the model (the cube root of its determinant) scales the mesh's uv stretch.
   const double modelScale = std::cbrt(std::abs(double(glm::determinant(glm::mat3(input.model)))));

@@ -32,9 +32,11 @@
 // stretch at half the bytes, four for the blurs): 44 MiB at 1024², 176 MiB at 2048². One pass
 // holds one mesh's maps: one pass object per skin mesh.
 //
-// Not yet: shadows (hair shadows would enter as the first light's transmittance in
-// skin_irradiance.frag; the blurs then soften them: texture-space soft shadows, [dEL07] §14.4.4),
-// "pre-scatter" albedo, and the blurring of the stretch map itself.
+// Shadows: the hair shadows (render/passes/hair_shadows.hpp) attenuate the first light in the
+// irradiance, so the blurs soften their edges by the profile's widths, red most: texture-space
+// soft shadows ([dEL07] §14.4.4).
+//
+// Not yet: "pre-scatter" albedo, and the blurring of the stretch map itself.
 
 #include <array>
 #include <cstdint>
@@ -46,6 +48,7 @@
 
 #include "render/frame.hpp"
 #include "render/luts/skin_profile.hpp"
+#include "render/passes/hair_shadows.hpp"
 #include "render/passes/skin_diffusion_kernel.hpp"
 #include "render/passes/skin_diffusion_mesh.hpp"
 #include "render/pipelines.hpp"
@@ -81,11 +84,17 @@ public:
   static constexpr vk::Format kIrradianceFormat = vk::Format::eR16G16B16A16Sfloat;
   static constexpr vk::Format kStretchFormat = vk::Format::eR16G16Sfloat;
 
-  /// Makes the maps (cleared to 0) and pipelines. Errors: invalid settings, a size past the
+  /// Makes the maps (cleared to 0) and pipelines. `shadows` (which must outlive the pass)
+  /// attenuates the first light, with its maps as they are now (create the pass after
+  /// HairShadows::setGrooms); none: no hair shadows. Errors: invalid settings, a size past the
   /// device's image or framebuffer limits, a device that cannot render to, store to or linearly
   /// filter the formats, or a Vulkan failure.
   [[nodiscard]] static Result<SkinDiffusionPass> create(const Device& device,
-                                                        const SkinDiffusionSettings& settings = {});
+                                                        const SkinDiffusionSettings& settings = {},
+                                                        const HairShadows* shadows = nullptr);
+
+  /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
+  void refreshShadows();
 
   SkinDiffusionPass(SkinDiffusionPass&&) noexcept = default;
   SkinDiffusionPass& operator=(SkinDiffusionPass&&) noexcept = default;
@@ -141,6 +150,8 @@ private:
 
   const Device* device_ = nullptr;
   SkinDiffusionSettings settings_;
+  const HairShadows* shadows_ = nullptr;
+  std::unique_ptr<HairShadows> noShadows_;  ///< the empty maps bound when created without shadows
   std::array<SkinDiffusionStage, kSkinGaussianCount> stages_{};
   double uncoveredStretch_ = 1.0;  ///< mm per texel for texels off the mesh
 

@@ -1,9 +1,12 @@
 #include "render/passes/surface_pass.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "render/descriptors.hpp"
+#include "render/luts/skin_profile.hpp"
 
 namespace mane::render {
 namespace {
@@ -24,20 +27,24 @@ struct FrameUniforms {
   glm::vec4 lightRadiance[SurfacePass::kMaxLights];
   glm::ivec4 lightCount;
   HairShadowUniforms hairShadows;
+  LightDepthUniforms lightDepth;
 };
 
-// Where the hair shadow descriptors start in the frame set (shaders/surface.frag).
+// Where the hair shadow descriptors start in the frame set (shaders/surface.frag), and the light
+// depth map after them (shaders/light_depth.glsl).
 constexpr std::uint32_t kFirstShadowBinding = 1;
+constexpr std::uint32_t kLightDepthBinding = kFirstShadowBinding + HairShadows::kBindings;
+static_assert(kLightDepthBinding == 9, "shaders/light_depth.glsl binds the map at 9");
 
-// Push constants of shaders/surface.{vert,frag}.
-struct DrawConstants {
-  glm::mat4 model;
-  glm::vec4 baseColor;
-  glm::ivec4 flags;  // x: normal map
-  glm::vec4 skin;    // x: roughness, y: ρs, z: the table's maxCurvature (1/mm)
-  glm::vec4 blur;    // rgb: per channel, the weight of the geometric normal (blurred normals)
+// std140 mirror of the Material block of shaders/surface.frag (set 1, binding 5).
+struct MaterialUniforms {
+  glm::vec4 baseColor{1.0f};
+  glm::ivec4 flags{0};                      // x: normal map
+  glm::vec4 skin{0.0f};                     // x: roughness, y: ρs, z: the table's maxCurvature (1/mm)
+  glm::vec4 blur{0.0f};                     // rgb: per channel, the weight of the geometric normal (blurred normals)
+  glm::vec4 extinction{0.0f};               // rgb: σ, 1/m
+  glm::vec4 profile[kSkinGaussianCount]{};  // rgb: weight, a: variance (mm²)
 };
-static_assert(sizeof(DrawConstants) <= 128, "Vulkan guarantees 128 bytes of push constants");
 
 // Pores are a few tenths of a millimetre across: light that spreads wider than that (d'Eon's
 // Gaussians from σ ≈ 0.43 mm) exits with the geometric normal's shading rather than the pores'.
@@ -54,7 +61,7 @@ Image textureOrDefault(const Device& device, const std::optional<TextureData>& t
 
 SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::Format colorFormat,
                          vk::Format depthFormat, vk::SampleCountFlagBits samples)
-    : device_(&device), shadows_(&shadows) {
+    : device_(&device), shadows_(&shadows), lightDepth_(device, sizeof(Vertex)) {
   using Stage = vk::ShaderStageFlagBits;
   // Vertex too: surface.vert includes the same declarations (frame_uniforms.glsl).
   const std::pair shadow{vk::DescriptorType::eCombinedImageSampler, Stage::eVertex | Stage::eFragment};
@@ -66,34 +73,60 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
                                         shadow,
                                         shadow,
                                         shadow,
-                                        shadow});  // hair shadow first depth, 4 slots
-  // albedo, normal map, specular map, pre-integrated skin table, diffused irradiance
-  const std::pair texture{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(Stage::eFragment)};
-  materialLayout_ = makeSetLayout(device, {texture, texture, texture, texture, texture});
+                                        shadow,    // hair shadow first depth, 4 slots
+                                        shadow});  // light 0's depth map of translucent surfaces
+  // albedo, normal map, specular map, pre-integrated skin table, diffused irradiance, constants
+  const vk::ShaderStageFlags fragment = Stage::eFragment;
+  const std::pair texture{vk::DescriptorType::eCombinedImageSampler, fragment};
+  materialLayout_ = makeSetLayout(
+      device, {texture, texture, texture, texture, texture, {vk::DescriptorType::eUniformBuffer, fragment}});
+  // A mesh's thickness table: its grid, nearest surface voxels, pair thicknesses.
+  thicknessLayout_ = makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, fragment},
+                                            {vk::DescriptorType::eStorageBuffer, fragment},
+                                            {vk::DescriptorType::eStorageBuffer, fragment}});
   formats_ = {colorFormat, depthFormat, samples};
   buildPipelines();
   sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
 
   frameUniforms_ = Buffer(device, sizeof(FrameUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
-  framePool_ = makeDescriptorPool(
-      device, 1,
-      {{vk::DescriptorType::eUniformBuffer, 1}, {vk::DescriptorType::eCombinedImageSampler, HairShadows::kBindings}});
+  framePool_ = makeDescriptorPool(device, 1,
+                                  {{vk::DescriptorType::eUniformBuffer, 1},
+                                   {vk::DescriptorType::eCombinedImageSampler, HairShadows::kBindings + 1}});
   frameSet_ = allocateSet(device, framePool_, frameLayout_);
   writeUniformBuffer(device, frameSet_, 0, frameUniforms_);
+  writeSampledImage(device, frameSet_, kLightDepthBinding, lightDepth_.image().view(), lightDepth_.sampler());
   refreshShadows();
+
+  const ThicknessGridUniforms noGrid{};
+  emptyGrid_ = Buffer::withData(device, std::as_bytes(std::span(&noGrid, 1)), vk::BufferUsageFlagBits::eUniformBuffer);
+  const std::uint32_t noWord = 0;
+  emptyWords_ = Buffer::withData(device, std::as_bytes(std::span(&noWord, 1)), vk::BufferUsageFlagBits::eStorageBuffer);
+  emptyThicknessPool_ =
+      makeDescriptorPool(device, 1, {{vk::DescriptorType::eUniformBuffer, 1}, {vk::DescriptorType::eStorageBuffer, 2}});
+  emptyThickness_ = allocateSet(device, emptyThicknessPool_, thicknessLayout_);
+  writeUniformBuffer(device, emptyThickness_, 0, emptyGrid_);
+  writeStorageBuffer(device, emptyThickness_, 1, emptyWords_);
+  writeStorageBuffer(device, emptyThickness_, 2, emptyWords_);
 }
 
 void SurfacePass::buildPipelines() {
   using Stage = vk::ShaderStageFlagBits;
+  std::array<bool, kShadings * kTranslucencyMethods> used{};
+  used[0] = true;  // Lambert: its layout binds the frame set even when nothing is drawn
+  for (const GpuMaterial& material : materials_) used[pipelineFor(material)] = true;
   for (std::size_t variant = 0; variant < pipelines_.size(); ++variant) {
+    pipelines_[variant] = {};
+    if (!used[variant]) continue;
+    const std::size_t shading = variant / kTranslucencyMethods;
     // Constants 0, 1: the hair shadow maps (shaders/hair_shadows.glsl); 2: skin; 3: its diffuse
-    // light from the texture-space diffusion instead of the pre-integrated table.
+    // light from the texture-space diffusion instead of the pre-integrated table; 4: the
+    // translucency method (shaders/translucency.glsl).
     SpecializationConstants constants = shadows_->shaderConstants();
-    constants.push_back(variant != kLambertPipeline ? 1u : 0u);
-    constants.push_back(variant == kTextureSpaceSkinPipeline ? 1u : 0u);
-    Pipeline& pipeline = pipelines_[variant];
-    pipeline = makeGraphicsPipeline(
+    constants.push_back(shading != 0 ? 1u : 0u);
+    constants.push_back(shading == 2 ? 1u : 0u);
+    constants.push_back(static_cast<std::uint32_t>(variant % kTranslucencyMethods));
+    pipelines_[variant] = makeGraphicsPipeline(
         *device_,
         GraphicsPipelineSettings{
             .vertexShader = "surface.vert",
@@ -109,8 +142,8 @@ void SurfacePass::buildPipelines() {
             .depthTest = true,
             .depthWrite = true,
             .samples = formats_.samples,
-            .setLayouts = {*frameLayout_, *materialLayout_},
-            .pushConstants = {{Stage::eVertex | Stage::eFragment, 0, sizeof(DrawConstants)}},
+            .setLayouts = {*frameLayout_, *materialLayout_, *thicknessLayout_},
+            .pushConstants = {{Stage::eVertex, 0, sizeof(glm::mat4)}},
             .constants = constants});
   }
 }
@@ -120,10 +153,12 @@ void SurfacePass::refreshShadows() {
 }
 
 void SurfacePass::setScene(const StaticScene& scene) {
-  buildPipelines();  // for the hair shadows' current maps
   meshes_.clear();
   materials_.clear();
   materialPool_ = nullptr;
+  const bool voxelTranslucency = std::any_of(scene.materials.begin(), scene.materials.end(), [](const MaterialData& m) {
+    return m.translucency.method == TranslucencyMethod::kVoxelLut;
+  });
 
   for (const MeshData& mesh : scene.meshes) {
     std::vector<Vertex> vertices(mesh.positions.size());
@@ -144,42 +179,60 @@ void SurfacePass::setScene(const StaticScene& scene) {
       std::memcpy(gpu.vertices.mapped().data(), bytes.data(), bytes.size());
     } else {
       gpu.vertices = Buffer::withData(*device_, bytes, vk::BufferUsageFlagBits::eVertexBuffer);
+      if (auto sphere = boundingSphere(mesh.positions)) gpu.bounds = *sphere;
+      if (voxelTranslucency) {
+        gpu.positions.assign(mesh.positions.begin(), mesh.positions.end());
+        gpu.triangles.assign(mesh.indices.begin(), mesh.indices.end());
+      }
     }
     meshes_.push_back(std::move(gpu));
   }
 
-  if (scene.materials.empty()) return;
-  const auto count = static_cast<std::uint32_t>(scene.materials.size());
-  materialPool_ = makeDescriptorPool(*device_, count, {{vk::DescriptorType::eCombinedImageSampler, 5 * count}});
+  if (!scene.materials.empty()) {
+    const auto count = static_cast<std::uint32_t>(scene.materials.size());
+    materialPool_ = makeDescriptorPool(
+        *device_, count,
+        {{vk::DescriptorType::eCombinedImageSampler, 5 * count}, {vk::DescriptorType::eUniformBuffer, count}});
+  }
+  for (const MaterialData& material : scene.materials) materials_.push_back(uploadMaterial(material));
+  buildPipelines();  // for the materials and the hair shadows' current maps
+}
+
+SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& material) {
   static constexpr std::uint8_t kWhite[4] = {255, 255, 255, 255};
   static constexpr std::uint8_t kFlatNormal[4] = {128, 128, 255, 255};
-  for (const MaterialData& material : scene.materials) {
-    GpuMaterial gpu{
-        .albedo = textureOrDefault(*device_, material.albedo, kWhite, vk::Format::eR8G8B8A8Srgb),
-        .normalMap = textureOrDefault(*device_, material.normalMap, kFlatNormal, vk::Format::eR8G8B8A8Unorm),
-        .specularMap = textureOrDefault(*device_, material.specularMap, kWhite, vk::Format::eR8G8B8A8Unorm),
-        .hasNormalMap = material.normalMap.has_value(),
-        .baseColor = material.baseColor,
-        .shading = material.shading,
-        .skin = material.skin,
-        .descriptors = allocateSet(*device_, materialPool_, materialLayout_)};
-    writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
-    writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
-    writeSampledImage(*device_, gpu.descriptors, 2, gpu.specularMap, sampler_);
-    if (material.shading == SurfaceShading::kSkin) {
-      const PreintegratedSkinLut& table = skinTable(material.skin.range);
-      writeSampledImage(*device_, gpu.descriptors, 3, table.view(), table.sampler());
-      gpu.skinConstants = glm::vec4(material.skin.roughness, material.skin.specularIntensity,
-                                    float(table.settings().maxCurvature), 0.0f);
-      gpu.blur = glm::vec4(glm::vec3(table.settings().profile.broadShare(kPoreVariance)), 0.0f);
-    } else {
-      // Never read by Lambert materials, but every binding must hold a valid image.
-      writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
-    }
-    // Until setDiffusedIrradiance: likewise valid and unread.
-    writeSampledImage(*device_, gpu.descriptors, 4, gpu.albedo, sampler_);
-    materials_.push_back(std::move(gpu));
+  GpuMaterial gpu{.albedo = textureOrDefault(*device_, material.albedo, kWhite, vk::Format::eR8G8B8A8Srgb),
+                  .normalMap = textureOrDefault(*device_, material.normalMap, kFlatNormal, vk::Format::eR8G8B8A8Unorm),
+                  .specularMap = textureOrDefault(*device_, material.specularMap, kWhite, vk::Format::eR8G8B8A8Unorm),
+                  .shading = material.shading,
+                  .skin = material.skin,
+                  .translucency = material.translucency,
+                  .descriptors = allocateSet(*device_, materialPool_, materialLayout_)};
+  writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
+  writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
+  writeSampledImage(*device_, gpu.descriptors, 2, gpu.specularMap, sampler_);
+  MaterialUniforms uniforms{.baseColor = glm::vec4(material.baseColor, 1.0f),
+                            .flags = glm::ivec4(material.normalMap ? 1 : 0, 0, 0, 0),
+                            .extinction = glm::vec4(material.translucency.extinction, 0.0f)};
+  if (material.shading == SurfaceShading::kSkin) {
+    const PreintegratedSkinLut& table = skinTable(material.skin.range);
+    writeSampledImage(*device_, gpu.descriptors, 3, table.view(), table.sampler());
+    const SkinProfile& profile = table.settings().profile;
+    uniforms.skin =
+        glm::vec4(material.skin.roughness, material.skin.specularIntensity, float(table.settings().maxCurvature), 0.0f);
+    uniforms.blur = glm::vec4(glm::vec3(profile.broadShare(kPoreVariance)), 0.0f);
+    for (std::size_t i = 0; i < kSkinGaussianCount; ++i)
+      uniforms.profile[i] = glm::vec4(glm::vec3(profile.gaussians[i].weight), float(profile.gaussians[i].variance));
+  } else {
+    // Never read by Lambert materials, but every binding must hold a valid image.
+    writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
   }
+  // Until setDiffusedIrradiance: likewise valid and unread.
+  writeSampledImage(*device_, gpu.descriptors, 4, gpu.albedo, sampler_);
+  gpu.uniforms =
+      Buffer::withData(*device_, std::as_bytes(std::span(&uniforms, 1)), vk::BufferUsageFlagBits::eUniformBuffer);
+  writeUniformBuffer(*device_, gpu.descriptors, 5, gpu.uniforms);
+  return gpu;
 }
 
 const PreintegratedSkinLut& SurfacePass::skinTable(SkinIntegrationRange range) {
@@ -198,8 +251,79 @@ void SurfacePass::setDiffusedIrradiance(std::size_t material, const vk::raii::Im
 }
 
 std::size_t SurfacePass::pipelineFor(const GpuMaterial& material) {
-  if (material.shading != SurfaceShading::kSkin) return kLambertPipeline;
-  return material.skin.diffusion == SkinDiffusion::kTextureSpace ? kTextureSpaceSkinPipeline : kSkinPipeline;
+  std::size_t shading = 0;
+  if (material.shading == SurfaceShading::kSkin)
+    shading = material.skin.diffusion == SkinDiffusion::kTextureSpace ? 2 : 1;
+  return shading * kTranslucencyMethods + static_cast<std::size_t>(material.translucency.method);
+}
+
+const SurfacePass::Thickness* SurfacePass::thicknessOf(const GpuMesh& mesh, const GpuMaterial& material) const {
+  if (material.translucency.method != TranslucencyMethod::kVoxelLut) return nullptr;
+  const auto found = mesh.thickness.find(material.translucency.voxelResolution);
+  return found == mesh.thickness.end() ? nullptr : &found->second;
+}
+
+Result<void> SurfacePass::prepareThickness(const FrameInput& frame) {
+  for (const MeshInstance& instance : frame.instances) {
+    const GpuMaterial& material = materials_[instance.material];
+    GpuMesh& mesh = meshes_[instance.mesh];
+    if (material.translucency.method != TranslucencyMethod::kVoxelLut || thicknessOf(mesh, material)) continue;
+    const std::string name = "mesh " + std::to_string(instance.mesh);
+    if (mesh.dynamic) return fail(name + ": voxel translucency needs a static mesh, and this one is dynamic");
+    const int resolution = material.translucency.voxelResolution;
+    // The table is one storage buffer: the device's range caps it (128 MiB on lavapipe: a cube
+    // at N = 40, 9,128 surface voxels, needs 167 MB).
+    // (Less a word: an odd count of halves is padded to whole words.)
+    const std::size_t maxTableBytes = std::min<std::size_t>(device_->limits().maxStorageBufferRange - 4, 1u << 30);
+    auto lut = VoxelThicknessLut::build(mesh.positions, mesh.triangles,
+                                        {.resolution = resolution, .maxTableBytes = maxTableBytes});
+    if (!lut)
+      return fail(name + ": its voxel thickness table at N = " + std::to_string(resolution) + ": " +
+                  lut.error().message);
+    try {
+      Thickness thickness{.table = std::make_unique<ThicknessTable>(*device_, *lut)};
+      thickness.pool = makeDescriptorPool(
+          *device_, 1, {{vk::DescriptorType::eUniformBuffer, 1}, {vk::DescriptorType::eStorageBuffer, 2}});
+      thickness.set = allocateSet(*device_, thickness.pool, thicknessLayout_);
+      writeUniformBuffer(*device_, thickness.set, 0, thickness.table->grid());
+      writeStorageBuffer(*device_, thickness.set, 1, thickness.table->nearest());
+      writeStorageBuffer(*device_, thickness.set, 2, thickness.table->table());
+      mesh.thickness.emplace(resolution, std::move(thickness));
+    } catch (const std::exception& error) {
+      return fail(name + ": uploading its voxel thickness table failed: " + error.what());
+    }
+  }
+  return {};
+}
+
+bool SurfacePass::drawsTranslucency(const FrameInput& frame) const {
+  return std::any_of(frame.instances.begin(), frame.instances.end(), [&](const MeshInstance& instance) {
+    return materials_[instance.material].translucency.method != TranslucencyMethod::kNone;
+  });
+}
+
+void SurfacePass::recordLightDepth(const vk::raii::CommandBuffer& commands, const FrameInput& frame) {
+  std::vector<LightDepthDraw> draws;
+  glm::vec3 lo(std::numeric_limits<float>::max());
+  glm::vec3 hi(std::numeric_limits<float>::lowest());
+  for (const MeshInstance& instance : frame.instances) {
+    const GpuMesh& mesh = meshes_[instance.mesh];
+    if (materials_[instance.material].translucency.method == TranslucencyMethod::kNone || mesh.dynamic) continue;
+    draws.push_back({.vertices = *mesh.vertices.buffer(),
+                     .indices = *mesh.indices.buffer(),
+                     .indexCount = mesh.indexCount,
+                     .model = instance.model});
+    // The mesh's sphere placed in the world: centre moved, radius by the largest axis scale.
+    const glm::vec3 centre = glm::vec3(instance.model * glm::vec4(mesh.bounds.centre, 1.0f));
+    const float scale = std::max({glm::length(glm::vec3(instance.model[0])), glm::length(glm::vec3(instance.model[1])),
+                                  glm::length(glm::vec3(instance.model[2]))});
+    lo = glm::min(lo, centre - mesh.bounds.radius * scale);
+    hi = glm::max(hi, centre + mesh.bounds.radius * scale);
+  }
+  const glm::vec3 towardLight = frame.lights.empty() ? glm::vec3(0, 1, 0) : glm::normalize(frame.lights[0].direction);
+  BoundingSphere bounds{.centre = glm::vec3(0.0f), .radius = 1.0f};
+  if (!draws.empty()) bounds = {.centre = 0.5f * (lo + hi), .radius = 0.5f * glm::length(hi - lo) * 1.001f};
+  lightDepth_.record(commands, draws, towardLight, bounds);
 }
 
 void SurfacePass::updateVertices(std::size_t mesh, std::span<const glm::vec3> positions,
@@ -223,11 +347,12 @@ void SurfacePass::update(const FrameInput& frame, float aspect) {
   }
   uniforms.lightCount = glm::ivec4(static_cast<int>(lights), 0, 0, 0);
   uniforms.hairShadows = shadows_->uniforms();
+  uniforms.lightDepth = lightDepth_.uniforms();
   std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));
 }
 
 void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const {
-  // Both pipelines share one layout.
+  // Every pipeline shares one layout.
   const vk::PipelineLayout layout = *pipelines_[0].layout;
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*frameSet_}, {});
   const Pipeline* bound = nullptr;
@@ -237,12 +362,10 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
     const Pipeline& pipeline = pipelines_[pipelineFor(material)];
     if (bound != &pipeline) commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
     bound = &pipeline;
-    commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1, {*material.descriptors}, {});
-    const DrawConstants constants{instance.model, glm::vec4(material.baseColor, 1.0f),
-                                  glm::ivec4(material.hasNormalMap ? 1 : 0, 0, 0, 0), material.skinConstants,
-                                  material.blur};
-    commands.pushConstants<DrawConstants>(layout, vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment,
-                                          0, constants);
+    const Thickness* thickness = thicknessOf(mesh, material);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1,
+                                {*material.descriptors, thickness ? *thickness->set : *emptyThickness_}, {});
+    commands.pushConstants<glm::mat4>(layout, vk::ShaderStageFlagBits::eVertex, 0, instance.model);
     commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
     commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
     commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);

@@ -15,15 +15,27 @@
 //  - specular: Kelemen/Szirmay-Kalos with the table's Beckmann term and Schlick's Fresnel
 //    (F0 = 0.028) on the detail normal, ρs scaled by the specular map's red channel.
 // The tables are baked once per integration range, when a scene first needs one.
-
-#include <vector>
+//
+// Translucency (MaterialData::translucency; shaders/translucency.glsl): light 0 also reaches a
+// translucent surface through the material behind it. Before the main pass the translucent
+// instances are drawn into light 0's depth map (render/passes/light_depth_map.hpp); a shaded
+// point then finds the thickness d the light crossed, either from that map alone or, for the
+// voxel method, through its mesh's thickness table (render/passes/thickness_table.hpp) between
+// the entry point and itself, and adds light 0's radiance × T(d) × max(0.3 − N·L, 0) to its
+// diffuse irradiance (Jimenez et al. 2010), T being skin's profile transmittance or exp(−σd).
+// A mesh's table is built on the CPU the first frame that draws it with a voxel material
+// (seconds at N = 50: see VoxelThicknessLut), once per resolution, and kept with the scene.
 
 #include <array>
+#include <map>
 #include <memory>
+#include <vector>
 
 #include "render/frame.hpp"
 #include "render/luts/preintegrated_skin_lut.hpp"
 #include "render/passes/hair_shadows.hpp"
+#include "render/passes/light_depth_map.hpp"
+#include "render/passes/thickness_table.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -55,8 +67,20 @@ public:
   /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
   void refreshShadows();
 
-  /// Writes the frame's camera, lights and the hair shadows' current uniforms; call before
-  /// recording the frame, after HairShadows::record.
+  /// Builds the thickness tables that the frame's voxel-translucent instances need and do not
+  /// have yet. Errors name the mesh: a dynamic mesh, or one VoxelThicknessLut cannot voxelize
+  /// (not closed, say).
+  [[nodiscard]] Result<void> prepareThickness(const FrameInput& frame);
+
+  /// Whether the frame draws a translucent material (and so needs recordLightDepth).
+  [[nodiscard]] bool drawsTranslucency(const FrameInput& frame) const;
+
+  /// Records light 0's depth map of the frame's translucent instances; outside a rendering
+  /// scope, before update().
+  void recordLightDepth(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
+
+  /// Writes the frame's camera, lights, the hair shadows' and the light depth map's current
+  /// uniforms; call before recording the main pass, after HairShadows::record and recordLightDepth.
   void update(const FrameInput& frame, float aspect);
 
   /// Whether `instance` names a mesh and a material of the current scene.
@@ -69,26 +93,38 @@ public:
   void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
 
 private:
+  // A thickness table of a mesh and the descriptor set (set 2) that binds it.
+  struct Thickness {
+    std::unique_ptr<ThicknessTable> table;
+    vk::raii::DescriptorPool pool{nullptr};
+    vk::raii::DescriptorSet set{nullptr};
+  };
   struct GpuMesh {
     Buffer vertices;
     Buffer indices;
     std::uint32_t indexCount = 0;
     std::size_t vertexCount = 0;
     bool dynamic = false;
+    BoundingSphere bounds;  ///< mesh units
+    // Static meshes of a scene with voxel-translucent materials keep their triangles on the CPU
+    // until their table is built.
+    std::vector<glm::vec3> positions;
+    std::vector<std::uint32_t> triangles;
+    std::map<int, Thickness> thickness;  ///< by voxel resolution
   };
   struct GpuMaterial {
     Image albedo;
     Image normalMap;
     Image specularMap;
-    bool hasNormalMap = false;
-    glm::vec3 baseColor{1.0f};
+    Buffer uniforms;  ///< MaterialUniforms
     SurfaceShading shading = SurfaceShading::kLambert;
     SkinParameters skin;
-    glm::vec4 skinConstants{0.0f};  ///< skin: roughness, ρs, the table's maxCurvature (1/mm)
-    glm::vec4 blur{0.0f};           ///< skin: per channel, the geometric normal's weight
+    TranslucencyParameters translucency;
     vk::raii::DescriptorSet descriptors{nullptr};
   };
 
+  /// Uploads `material`'s textures and constants into a set of materialPool_.
+  GpuMaterial uploadMaterial(const MaterialData& material);
   /// The table for `range`, baked on first use.
   const PreintegratedSkinLut& skinTable(SkinIntegrationRange range);
 
@@ -97,12 +133,15 @@ private:
   std::array<std::unique_ptr<PreintegratedSkinLut>, 2> skinTables_;  ///< Penner, curvature-dependent
   vk::raii::DescriptorSetLayout frameLayout_{nullptr};
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};
-  /// Builds the Lambert and skin pipelines for the hair shadows' current maps.
+  vk::raii::DescriptorSetLayout thicknessLayout_{nullptr};
+  /// Builds the pipelines the materials of the scene use, for the hair shadows' current maps.
   void buildPipelines();
-  static constexpr std::size_t kLambertPipeline = 0;
-  static constexpr std::size_t kSkinPipeline = 1;              ///< pre-integrated
-  static constexpr std::size_t kTextureSpaceSkinPipeline = 2;  ///< diffuse from the diffused irradiance
+  // Pipelines: shading (Lambert, pre-integrated skin, texture-space skin) × translucency method.
+  static constexpr std::size_t kShadings = 3;
+  static constexpr std::size_t kTranslucencyMethods = 3;
   static std::size_t pipelineFor(const GpuMaterial& material);
+  /// The table of `mesh` at `resolution`, or nullptr until prepareThickness built it.
+  const Thickness* thicknessOf(const GpuMesh& mesh, const GpuMaterial& material) const;
 
   struct Formats {
     vk::Format color;
@@ -110,7 +149,13 @@ private:
     vk::SampleCountFlagBits samples;
   };
   Formats formats_{};
-  std::array<Pipeline, 3> pipelines_;  ///< one layout, specialised shaders
+  std::array<Pipeline, kShadings * kTranslucencyMethods> pipelines_;  ///< one layout; unused ones empty
+  LightDepthMap lightDepth_;
+  // Bound for meshes drawn without a table: valid, never read.
+  Buffer emptyGrid_;
+  Buffer emptyWords_;
+  vk::raii::DescriptorPool emptyThicknessPool_{nullptr};
+  vk::raii::DescriptorSet emptyThickness_{nullptr};
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::DescriptorPool framePool_{nullptr};
   vk::raii::DescriptorSet frameSet_{nullptr};

@@ -3,6 +3,7 @@
 // references are closed forms for a flat quad: E = ambient + Σ max(N·L, 0)·radiance with the
 // quad's one normal, and the stretch = its world size / the texels its uvs span.
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -165,6 +166,73 @@ TEST_F(SkinIrradianceTest, TheStretchMapHoldsTheQuadsSizePerTexel) {
 template <class T>
 std::string errorOf(const Result<T>& result) {
   return result ? std::string("(no error)") : result.error().message;
+}
+
+TEST_F(SkinIrradianceTest, HairShadowsDimTheFirstLightAsTheirLookupSays) {
+  // A sheet of 1,500 strands 1 cm above the left half of the quad (x < 5 cm), the first light
+  // straight down through it, a second light unshadowed. Each texel on the quad must hold
+  // ambient + T·E0 + E1 with T the opacity shadow map's own lookup at the texel's point
+  // (OpacityShadowMap::probe); texture-space soft shadows are the blurs of exactly this.
+  constexpr std::uint32_t kSize = 128;
+  const Quad quad;
+  std::vector<glm::vec4> strands;
+  std::uint64_t state = 12345;
+  const auto uniform = [&] {  // a fixed LCG: the same sheet every run
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return float(state >> 40) / float(1ull << 24);
+  };
+  constexpr std::uint32_t kVertices = 8;
+  for (int s = 0; s < 1500; ++s) {
+    const float x = 0.05f * uniform();
+    const float z = 0.01f + 0.002f * uniform();
+    for (std::uint32_t v = 0; v < kVertices; ++v)
+      strands.emplace_back(x, -0.01f + 0.04f * float(v) / (kVertices - 1), z, 0.0f);
+  }
+  const Buffer positions =
+      Buffer::withData(device(), std::as_bytes(std::span(strands)), vk::BufferUsageFlagBits::eStorageBuffer);
+  auto shadows = HairShadows::create(device());
+  ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
+  const std::array grooms{HairShadows::Groom{
+      .strands = {&positions, std::uint32_t(strands.size() / kVertices), kVertices}, .width = 4e-5f}};
+  ASSERT_TRUE((*shadows)->setGrooms(grooms, {.resolution = 256}).has_value());
+  ASSERT_TRUE((*shadows)->setBounds(0, *boundingSphere(strands)).has_value());
+  auto pass = SkinDiffusionPass::create(device(), {.size = kSize}, shadows->get());
+  ASSERT_TRUE(pass.has_value()) << pass.error().message;
+  const std::vector<DirectionalLight> lights{{.direction = {0, 0, 1}, .intensity = 2.0f},
+                                             {.direction = {0.6f, 0, 0.8f}, .intensity = 0.5f}};
+  const glm::vec3 ambient(0.05f);
+  auto mesh = SkinDiffusionMesh::create(device(), quad.mesh());
+  ASSERT_TRUE(mesh.has_value()) << mesh.error().message;
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    (*shadows)->record(commands, lights[0].direction);
+    pass->recordIrradiance(commands, *mesh, {.lights = lights, .ambient = ambient});
+  });
+  auto irradiance = pass->readIrradiance();
+  ASSERT_TRUE(irradiance.has_value()) << irradiance.error().message;
+
+  std::vector<glm::uvec2> texels;
+  std::vector<glm::vec3> points;
+  for (std::uint32_t y = 0; y < kSize; ++y)
+    for (std::uint32_t x = 0; x < kSize; ++x)
+      if (quad.inside(kSize, x, y, 0.5f)) {
+        const glm::vec2 uv = (glm::vec2(x, y) + 0.5f) / float(kSize);
+        texels.emplace_back(x, y);
+        points.emplace_back((uv.x - quad.uvMin.x) / (quad.uvMax.x - quad.uvMin.x) * quad.width,
+                            (quad.uvMax.y - uv.y) / (quad.uvMax.y - quad.uvMin.y) * quad.height, 0.0f);
+      }
+  const std::vector<glm::vec2> lookup = (*shadows)->map(0).probe(points);
+  double shadowedLeft = 0.0, litRight = 0.0;
+  int left = 0, right = 0;
+  for (std::size_t i = 0; i < texels.size(); ++i) {
+    const float t = lookup[i].y;
+    const float expected = ambient.x + 2.0f * t + 0.5f * 0.8f;
+    const glm::vec4 texel = (*irradiance)[texels[i].y * kSize + texels[i].x];
+    ASSERT_NEAR(texel.r, expected, 2e-3f * expected) << "texel (" << texels[i].x << ", " << texels[i].y << ")";
+    if (points[i].x < 0.045f) shadowedLeft += t, ++left;
+    if (points[i].x > 0.055f) litRight += t, ++right;
+  }
+  EXPECT_LT(shadowedLeft / left, 0.8) << "the sheet must shadow the left half";
+  EXPECT_NEAR(litRight / right, 1.0, 1e-3) << "nothing shadows the right half";
 }
 
 TEST_F(SkinIrradianceTest, BadSettingsAndMeshesGiveClearErrors) {

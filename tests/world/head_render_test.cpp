@@ -9,6 +9,9 @@
 // renderer (Renderer::updateHair), so the hair is not drawn and the skin stays in view; the hair
 // has its own test in world_test.cpp.
 
+#include <algorithm>
+#include <functional>
+
 #include <gtest/gtest.h>
 
 #include "render/renderer.hpp"
@@ -26,6 +29,9 @@ class NaluHead : public testing::VulkanTest {
 protected:
   /// The default scene's head with its skin diffused `diffusion`, against golden `golden`.
   void renderAndCompare(render::SkinDiffusion diffusion, const std::string& golden);
+  /// The default scene's head, its material and frame changed by `change`, rendered to RGBA8.
+  std::vector<std::uint8_t> render(const std::function<void(Scene&)>& changeScene,
+                                   const std::function<void(render::FrameInput&)>& changeFrame);
 };
 
 TEST_F(NaluHead, RendersTheLitTexturedHead) {
@@ -34,6 +40,57 @@ TEST_F(NaluHead, RendersTheLitTexturedHead) {
 
 TEST_F(NaluHead, RendersTheHeadWithTextureSpaceDiffusion) {
   renderAndCompare(render::SkinDiffusion::kTextureSpace, "nalu_head_texture_space");
+}
+
+TEST_F(NaluHead, BackLitSkinGlowsRedThroughTheDepthMap) {
+  // The key light moved behind the head (its direction mirrored through the view plane), the
+  // fill lights off: without translucency the face is dark but for the ambient; with it, light 0
+  // comes through the thin parts (the nose, the ears' rims) by skin's transmittance, which keeps
+  // red longest (SkinProfile::transmittance): what is added must be red > green > blue.
+  const auto backLit = [](render::FrameInput& frame) {
+    const glm::vec3 view = glm::normalize(frame.camera.target - frame.camera.position);
+    render::DirectionalLight light = frame.lights.at(0);
+    light.direction = glm::normalize(light.direction - 2.0f * glm::dot(light.direction, -view) * -view);
+    frame.lights = {light};
+  };
+  const std::vector<std::uint8_t> opaque = render([](Scene&) {}, backLit);
+  const std::vector<std::uint8_t> translucent = render(
+      [](Scene& scene) { scene.materials[0].translucency.method = render::TranslucencyMethod::kDepthMap; }, backLit);
+  ASSERT_EQ(opaque.size(), translucent.size());
+  ASSERT_FALSE(opaque.empty());
+  glm::dvec3 added(0.0);
+  std::size_t glowing = 0;
+  for (std::size_t i = 0; i < opaque.size(); i += 4) {
+    const glm::dvec3 difference(translucent[i] - opaque[i], translucent[i + 1] - opaque[i + 1],
+                                translucent[i + 2] - opaque[i + 2]);
+    EXPECT_GE(std::min({difference.r, difference.g, difference.b}), -1.0) << "translucency only adds light";
+    added += difference;
+    if (difference.r >= 8.0) ++glowing;
+  }
+  EXPECT_GT(added.r, added.g);
+  EXPECT_GT(added.g, added.b);
+  EXPECT_GT(glowing, kWidth * kHeight / 200) << "some of the head must glow";
+  const auto comparison = testing::compareWithGolden("nalu_head_translucent", {kWidth, kHeight, translucent},
+                                                     {.maxChannelDifference = 6, .maxFailingFraction = 0.005});
+  EXPECT_TRUE(comparison.passed) << comparison.message;
+}
+
+std::vector<std::uint8_t> NaluHead::render(const std::function<void(Scene&)>& changeScene,
+                                           const std::function<void(render::FrameInput&)>& changeFrame) {
+  auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
+  EXPECT_TRUE(scene.has_value()) << scene.error().message;
+  auto resolver = AssetResolver::createDefault();
+  if (!scene || !resolver) return {};
+  changeScene(*scene);
+  auto world = World::create(std::move(*scene), *resolver);
+  EXPECT_TRUE(world.has_value()) << world.error().message;
+  auto renderer = render::Renderer::create(device(), {.extent = {kWidth, kHeight}, .msaaSamples = 4});
+  if (!world || !renderer || !(*renderer)->setScene(world->staticScene())) return {};
+  render::FrameInput frame = world->frameInput();
+  changeFrame(frame);
+  if (!(*renderer)->render(frame)) return {};
+  auto pixels = (*renderer)->readOutput();
+  return pixels ? *pixels : std::vector<std::uint8_t>{};
 }
 
 void NaluHead::renderAndCompare(render::SkinDiffusion diffusion, const std::string& golden) {
