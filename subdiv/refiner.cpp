@@ -3,14 +3,13 @@
 #include <memory>
 
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "subdiv/detail/osd_topology.hpp"
 
 namespace mane::subdiv {
 namespace {
 
 namespace Far = OpenSubdiv::Far;
-namespace Sdc = OpenSubdiv::Sdc;
 
 // The vertex type PrimvarRefiner interpolates: it needs Clear and AddWithWeight.
 struct Point {
@@ -25,30 +24,9 @@ Result<RefinedMesh> refineUniformly(const Cage& cage, int level) {
   if (level < 1 || level > 8) return fail("refinement level " + std::to_string(level) + " is outside 1..8");
   if (auto valid = validateCage(cage); !valid) return std::unexpected(valid.error());
 
-  std::vector<int> vertsPerFace(cage.faceSizes.begin(), cage.faceSizes.end());
-  std::vector<int> vertIndices(cage.faceVertices.begin(), cage.faceVertices.end());
-  std::vector<int> creasePairs;
-  std::vector<float> creaseWeights;
-  for (const Crease& crease : cage.creases) {
-    creasePairs.push_back(static_cast<int>(crease.a));
-    creasePairs.push_back(static_cast<int>(crease.b));
-    creaseWeights.push_back(crease.sharpness);
-  }
-  Far::TopologyDescriptor descriptor;
-  descriptor.numVertices = static_cast<int>(cage.positions.size());
-  descriptor.numFaces = static_cast<int>(vertsPerFace.size());
-  descriptor.numVertsPerFace = vertsPerFace.data();
-  descriptor.vertIndicesPerFace = vertIndices.data();
-  descriptor.numCreases = static_cast<int>(creaseWeights.size());
-  descriptor.creaseVertexIndexPairs = creasePairs.data();
-  descriptor.creaseWeights = creaseWeights.data();
-
-  Sdc::Options options;
-  options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-  using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-  std::unique_ptr<Far::TopologyRefiner> refiner(
-      Factory::Create(descriptor, Factory::Options(Sdc::SCHEME_CATMARK, options)));
-  if (!refiner) return fail("OpenSubdiv could not build a topology from the cage");
+  auto created = detail::createTopologyRefiner(cage);
+  if (!created) return std::unexpected(created.error());
+  const std::unique_ptr<Far::TopologyRefiner> refiner = std::move(*created);
   refiner->RefineUniform(Far::TopologyRefiner::UniformOptions(level));
 
   // Vertices of all levels, one after another; PrimvarRefiner fills each level from the last.

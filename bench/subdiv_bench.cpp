@@ -1,0 +1,252 @@
+// Adaptive Catmull-Clark tessellation of the LeePerrySmith head per frame (issue 6): the
+// cage is the scan's own triangle mesh (vertices welded where positions are equal, UVs kept
+// as face-varying data), refined adaptively once; each frame re-tessellates for a 1280×720
+// camera at three distances. A deforming-cage update (new cage positions → refined and local
+// points) is timed on its own and with the tessellation.
+//
+// The summary compares, at each distance, the adaptive triangle count with what a uniform
+// tessellation (every ptex face cut into a 2^k × 2^k grid of limit points) needs for the
+// same maximum pixel error. Errors are measured on every 16th ptex face (the same faces for
+// both), sampling each output edge at ¼, ½, ¾: the pixel distance between the straight edge
+// and the limit point at the same ptex parameter.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scenes/assets.hpp"
+#include "scenes/gltf_loader.hpp"
+#include "subdiv/limit.hpp"
+#include "subdiv/tessellator.hpp"
+
+namespace mane {
+namespace {
+
+constexpr glm::vec2 kViewport{1280.0f, 720.0f};
+// Camera distances from the head's centre in the file's units (the head is ~8 units tall):
+// filling the screen, about two thirds of its height, about a seventh of it.
+constexpr float kDistances[] = {12.0f, 30.0f, 80.0f};
+constexpr const char* kDistanceNames[] = {"near", "mid", "far"};
+constexpr int kErrorSampleStride = 16;
+
+struct Head {
+  std::string problem;
+  subdiv::Cage cage;
+  std::unique_ptr<subdiv::LimitSurface> surface;
+  std::unique_ptr<subdiv::AdaptiveTessellator> tessellator;
+  std::vector<std::vector<glm::vec3>> poses;  ///< deformed cages, alternated per frame
+  glm::vec3 centre{0.0f};
+};
+
+/// The glTF mesh as a cage: equal positions welded (the file splits vertices at UV seams),
+/// the file's per-vertex UVs as face-varying values, triangles that collapse dropped.
+subdiv::Cage cageFromMesh(const scenes::Mesh& mesh) {
+  subdiv::Cage cage;
+  std::map<std::tuple<float, float, float>, std::uint32_t> welded;
+  std::vector<std::uint32_t> remap;
+  for (const glm::vec3& p : mesh.positions) {
+    const auto [it, inserted] = welded.try_emplace({p.x, p.y, p.z}, std::uint32_t(cage.positions.size()));
+    if (inserted) cage.positions.push_back(p);
+    remap.push_back(it->second);
+  }
+  cage.uvs = mesh.uvs;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::uint32_t a = remap[mesh.indices[t]], b = remap[mesh.indices[t + 1]], c = remap[mesh.indices[t + 2]];
+    if (a == b || b == c || a == c) continue;
+    cage.faceSizes.push_back(3);
+    cage.faceVertices.insert(cage.faceVertices.end(), {a, b, c});
+    if (!mesh.uvs.empty())
+      cage.faceUvIndices.insert(cage.faceUvIndices.end(), {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]});
+  }
+  if (mesh.uvs.empty()) cage.uvs.clear();
+  return cage;
+}
+
+Head loadHead() {
+  Head head;
+  auto resolver = scenes::AssetResolver::createDefault();
+  if (!resolver) return {.problem = resolver.error().message};
+  auto found = resolver->lookup("head/LeePerrySmith/LeePerrySmith.glb");
+  if (!found || !found->path) return {.problem = found ? found->missingReason : found.error().message};
+  auto mesh = scenes::loadGltf(*found->path);
+  if (!mesh) return {.problem = mesh.error().message};
+  head.cage = cageFromMesh(*mesh);
+  head.centre = mesh->bounds().centre();
+  // Isolation level 1: every vertex of a triangle cage is extraordinary after one step, so
+  // each level multiplies the Gregory end caps' local points (and the update time).
+  auto surface = subdiv::LimitSurface::create(head.cage, {.maxIsolationLevel = 1});
+  if (!surface) return {.problem = surface.error().message};
+  head.surface = std::make_unique<subdiv::LimitSurface>(std::move(*surface));
+  auto tessellator = subdiv::AdaptiveTessellator::create(*head.surface);
+  if (!tessellator) return {.problem = tessellator.error().message};
+  head.tessellator = std::make_unique<subdiv::AdaptiveTessellator>(std::move(*tessellator));
+  // A jaw-like deformation: points below the centre swing about the x axis by ±3°.
+  for (float angle : {0.05f, -0.05f}) {
+    std::vector<glm::vec3> pose = head.cage.positions;
+    for (glm::vec3& p : pose) {
+      const float weight = std::clamp((head.centre.y - p.y) / 4.0f, 0.0f, 1.0f);
+      const float a = angle * weight;
+      const glm::vec3 d = p - head.centre;
+      p = head.centre + glm::vec3(d.x, d.y * std::cos(a) - d.z * std::sin(a), d.y * std::sin(a) + d.z * std::cos(a));
+    }
+    head.poses.push_back(std::move(pose));
+  }
+  return head;
+}
+
+Head& head() {
+  static Head loaded = loadHead();
+  return loaded;
+}
+
+subdiv::ScreenView viewAt(float distance) {
+  const glm::mat4 projection = glm::perspective(glm::radians(40.0f), kViewport.x / kViewport.y, 0.1f, 1000.0f);
+  const glm::vec3 eye = head().centre + glm::vec3(0.0f, 0.0f, distance);
+  return {projection * glm::lookAt(eye, head().centre, glm::vec3(0.0f, 1.0f, 0.0f)), kViewport};
+}
+
+bool skipWithoutHead(benchmark::State& state) {
+  if (head().problem.empty()) return false;
+  state.SkipWithError(head().problem.c_str());
+  return true;
+}
+
+void BM_AdaptiveFrame(benchmark::State& state) {
+  if (skipWithoutHead(state)) return;
+  const subdiv::ScreenView view = viewAt(kDistances[state.range(0)]);
+  subdiv::TessellatedMesh mesh;
+  for (auto _ : state) {
+    head().tessellator->tessellate(view, mesh);
+    benchmark::DoNotOptimize(mesh.indices.data());
+  }
+  state.SetLabel(kDistanceNames[state.range(0)]);
+  state.counters["triangles"] = double(mesh.triangleCount());
+  state.counters["cells"] = double(head().tessellator->statistics().cells);
+}
+BENCHMARK(BM_AdaptiveFrame)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DeformingCageUpdate(benchmark::State& state) {
+  if (skipWithoutHead(state)) return;
+  std::size_t frame = 0;
+  for (auto _ : state) {
+    auto updated = head().surface->updatePositions(head().poses[frame++ % 2]);
+    benchmark::DoNotOptimize(updated);
+  }
+  state.counters["points"] = double(head().surface->controlPointCount());
+}
+BENCHMARK(BM_DeformingCageUpdate)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DeformAndTessellateFrame(benchmark::State& state) {
+  if (skipWithoutHead(state)) return;
+  const subdiv::ScreenView view = viewAt(kDistances[state.range(0)]);
+  subdiv::TessellatedMesh mesh;
+  std::size_t frame = 0;
+  for (auto _ : state) {
+    auto updated = head().surface->updatePositions(head().poses[frame++ % 2]);
+    benchmark::DoNotOptimize(updated);
+    head().tessellator->tessellate(view, mesh);
+    benchmark::DoNotOptimize(mesh.indices.data());
+  }
+  state.SetLabel(kDistanceNames[state.range(0)]);
+  state.counters["triangles"] = double(mesh.triangleCount());
+}
+BENCHMARK(BM_DeformAndTessellateFrame)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+glm::dvec2 toPixels(const subdiv::ScreenView& view, const glm::dvec3& p) {
+  const glm::dvec4 clip = glm::dmat4(view.viewProjection) * glm::dvec4(p, 1.0);
+  return (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * glm::dvec2(view.viewportSize);
+}
+
+/// Pixel error of the straight edge a–b (ptex coordinates ua, ub of `face`) against the
+/// limit surface, sampled at ¼, ½, ¾.
+double edgeError(const subdiv::ScreenView& view, std::uint32_t face, const glm::dvec3& a, const glm::dvec3& b,
+                 glm::dvec2 ua, glm::dvec2 ub) {
+  double worst = 0.0;
+  for (double f : {0.25, 0.5, 0.75}) {
+    const glm::dvec2 uv = glm::mix(ua, ub, f);
+    const glm::dvec3 onSurface = head().surface->evaluatePosition(face, uv.x, uv.y);
+    worst = std::max(worst, glm::length(toPixels(view, glm::mix(a, b, f)) - toPixels(view, onSurface)));
+  }
+  return worst;
+}
+
+double adaptiveError(const subdiv::ScreenView& view, const subdiv::TessellatedMesh& mesh) {
+  double worst = 0.0;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
+    if (mesh.trianglePtexFaces[t] % kErrorSampleStride != 0) continue;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = 3 * t + k, b = 3 * t + (k + 1) % 3;
+      worst = std::max(worst,
+                       edgeError(view, mesh.trianglePtexFaces[t], glm::dvec3(mesh.positions[mesh.indices[a]]),
+                                 glm::dvec3(mesh.positions[mesh.indices[b]]), glm::dvec2(mesh.cornerPtexCoordinates[a]),
+                                 glm::dvec2(mesh.cornerPtexCoordinates[b])));
+    }
+  }
+  return worst;
+}
+
+/// The error of cutting every ptex face into an n × n grid (two triangles per cell).
+double uniformError(const subdiv::ScreenView& view, int n) {
+  double worst = 0.0;
+  std::vector<glm::dvec3> grid(std::size_t((n + 1) * (n + 1)));
+  for (std::uint32_t face = 0; face < head().surface->ptexFaceCount(); face += kErrorSampleStride) {
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i)
+        grid[std::size_t(j * (n + 1) + i)] = head().surface->evaluatePosition(face, double(i) / n, double(j) / n);
+    const auto at = [&](int i, int j) { return grid[std::size_t(j * (n + 1) + i)]; };
+    const auto uv = [&](int i, int j) { return glm::dvec2(double(i) / n, double(j) / n); };
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        if (i < n) worst = std::max(worst, edgeError(view, face, at(i, j), at(i + 1, j), uv(i, j), uv(i + 1, j)));
+        if (j < n) worst = std::max(worst, edgeError(view, face, at(i, j), at(i, j + 1), uv(i, j), uv(i, j + 1)));
+        if (i < n && j < n)
+          worst = std::max(worst, edgeError(view, face, at(i, j), at(i + 1, j + 1), uv(i, j), uv(i + 1, j + 1)));
+      }
+  }
+  return worst;
+}
+
+void printSummary() {
+  if (!head().problem.empty()) return;
+  std::fprintf(stderr, "\nLeePerrySmith cage: %zu vertices, %zu triangles, %u ptex faces, %zu patches, %zu points\n",
+               head().cage.positions.size(), head().cage.faceSizes.size(), head().surface->ptexFaceCount(),
+               head().surface->patchCount(), head().surface->controlPointCount());
+  std::fprintf(stderr, "%-5s %10s %9s %12s %12s %7s\n", "view", "adaptive", "max px", "uniform grid", "uniform tris",
+               "ratio");
+  auto tessellator = subdiv::AdaptiveTessellator::create(*head().surface, {.keepPtexCoordinates = true});
+  if (!tessellator) return;
+  for (int d = 0; d < 3; ++d) {
+    const subdiv::ScreenView view = viewAt(kDistances[d]);
+    subdiv::TessellatedMesh mesh;
+    tessellator->tessellate(view, mesh);
+    const double target = adaptiveError(view, mesh);
+    int n = 1;
+    while (n < 32 && uniformError(view, n) > target) n *= 2;  // 32 × 32 at most: slow to measure
+    const double uniformTriangles = 2.0 * n * n * head().surface->ptexFaceCount();
+    std::fprintf(stderr, "%-5s %10zu %9.3f %9d×%-2d %12.0f %7.3f\n", kDistanceNames[d], mesh.triangleCount(), target, n,
+                 n, uniformTriangles, double(mesh.triangleCount()) / uniformTriangles);
+  }
+}
+
+}  // namespace
+}  // namespace mane
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  mane::printSummary();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,257 @@
+#include "subdiv/limit.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/ptexIndices.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+
+#include "subdiv/detail/osd_topology.hpp"
+
+namespace mane::subdiv {
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+
+// Control points are kept in double: second derivatives of deep patches are differences of
+// nearly equal points divided by the square of a small spacing, and float loses the
+// curvature there.
+struct Point3 {
+  glm::dvec3 p{0.0};
+  void Clear(void* = nullptr) { p = glm::dvec3(0.0); }
+  void AddWithWeight(const Point3& source, double weight) { p += weight * source.p; }
+};
+
+struct Point2 {
+  glm::dvec2 p{0.0};
+  void Clear(void* = nullptr) { p = glm::dvec2(0.0); }
+  void AddWithWeight(const Point2& source, double weight) { p += weight * source.p; }
+};
+
+// Gregory basis patches have 20 control points, regular B-spline patches 16.
+constexpr int kMaxPatchPoints = 20;
+
+}  // namespace
+
+struct LimitSurface::Impl {
+  Cage cage;
+  std::unique_ptr<Far::TopologyRefiner> refiner;
+  std::unique_ptr<const Far::PatchTable> patches;
+  std::unique_ptr<const Far::PatchMap> patchMap;
+  std::unique_ptr<const Far::PtexIndices> ptexIndices;
+  /// Refined vertices of levels 1..max from cage vertices (factorised), null without levels.
+  std::unique_ptr<const Far::StencilTableReal<double>> refinedStencils;
+  std::vector<Point3> points;  ///< cage, refined levels, local points: what patches index
+  std::vector<Point2> uvs;     ///< face-varying values of all levels, then local points
+  std::vector<PtexFace> ptexFaces;
+  std::vector<std::uint32_t> firstPtex;
+
+  std::size_t refinedEnd() const { return static_cast<std::size_t>(refiner->GetNumVerticesTotal()); }
+
+  void recomputePoints() {
+    const std::size_t cageCount = cage.positions.size();
+    for (std::size_t v = 0; v < cageCount; ++v) points[v].p = glm::dvec3(cage.positions[v]);
+    if (refinedStencils) refinedStencils->UpdateValues(points.data(), points.data() + cageCount);
+    if (const auto* local = patches->GetLocalPointStencilTable<double>())
+      local->UpdateValues(points.data(), points.data() + refinedEnd());
+  }
+
+  void computeUvs() {
+    uvs.assign(static_cast<std::size_t>(refiner->GetNumFVarValuesTotal(0)) +
+                   static_cast<std::size_t>(patches->GetNumLocalPointsFaceVarying(0)),
+               Point2{});
+    for (std::size_t t = 0; t < cage.uvs.size(); ++t) uvs[t].p = glm::dvec2(cage.uvs[t]);
+    const Far::PrimvarRefinerReal<double> primvars(*refiner);
+    Point2* source = uvs.data();
+    for (int level = 1; level <= refiner->GetMaxLevel(); ++level) {
+      Point2* destination = source + refiner->GetLevel(level - 1).GetNumFVarValues(0);
+      primvars.InterpolateFaceVarying(level, source, destination, 0);
+      source = destination;
+    }
+    if (const auto* local = patches->GetLocalPointFaceVaryingStencilTable<double>(0))
+      local->UpdateValues(uvs.data(), uvs.data() + refiner->GetNumFVarValuesTotal(0));
+  }
+
+  const Far::PatchTable::PatchHandle& findPatch(std::uint32_t face, double& u, double& v) const {
+    assert(face < ptexFaces.size());
+    u = std::clamp(u, 0.0, 1.0);
+    v = std::clamp(v, 0.0, 1.0);
+    const Far::PatchTable::PatchHandle* handle = patchMap->FindPatch(static_cast<int>(face), u, v);
+    assert(handle != nullptr && "every ptex face of a hole-free cage has patches");
+    return *handle;
+  }
+};
+
+LimitSurface::LimitSurface(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+LimitSurface::LimitSurface(LimitSurface&&) noexcept = default;
+LimitSurface& LimitSurface::operator=(LimitSurface&&) noexcept = default;
+LimitSurface::~LimitSurface() = default;
+
+Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSettings& settings) {
+  if (settings.maxIsolationLevel < 1 || settings.maxIsolationLevel > 10)
+    return fail("the limit surface's isolation level " + std::to_string(settings.maxIsolationLevel) +
+                " is outside 1..10");
+  if (auto valid = validateCage(cage); !valid) return std::unexpected(valid.error());
+  auto created = detail::createTopologyRefiner(cage);
+  if (!created) return std::unexpected(created.error());
+
+  auto impl = std::make_unique<Impl>();
+  impl->cage = cage;
+  impl->refiner = std::move(*created);
+  Far::TopologyRefiner& refiner = *impl->refiner;
+
+  Far::PatchTableFactory::Options options(static_cast<unsigned>(settings.maxIsolationLevel));
+  options.SetEndCapType(settings.endCap == EndCap::kGregory ? Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS
+                                                            : Far::PatchTableFactory::Options::ENDCAP_BSPLINE_BASIS);
+  options.SetPatchPrecision<double>();
+  options.SetFVarPatchPrecision<double>();
+  // Infinitely sharp creases and corners become exact (linear-boundary) patches instead of
+  // being isolated to the last level.
+  options.useInfSharpPatch = true;
+  options.generateVaryingTables = false;
+  options.generateFVarTables = cage.hasUvs();
+  // Smooth face-varying patches that follow kUvInterpolation, not the legacy bilinear ones.
+  options.generateFVarLegacyLinearPatches = false;
+  // The refiner must isolate what the patch table expects (PITFALLS.md).
+  refiner.RefineAdaptive(options.GetRefineAdaptiveOptions());
+  impl->patches.reset(Far::PatchTableFactory::Create(refiner, options));
+  if (!impl->patches) return fail("OpenSubdiv could not build a patch table for the cage");
+  impl->patchMap = std::make_unique<Far::PatchMap>(*impl->patches);
+  impl->ptexIndices = std::make_unique<Far::PtexIndices>(refiner);
+
+  if (refiner.GetMaxLevel() > 0) {
+    Far::StencilTableFactoryReal<double>::Options stencilOptions;
+    stencilOptions.generateIntermediateLevels = true;
+    stencilOptions.factorizeIntermediateLevels = true;
+    stencilOptions.generateControlVerts = false;
+    stencilOptions.generateOffsets = true;
+    stencilOptions.maxLevel = static_cast<unsigned>(refiner.GetMaxLevel());
+    impl->refinedStencils.reset(Far::StencilTableFactoryReal<double>::Create(refiner, stencilOptions));
+    if (!impl->refinedStencils) return fail("OpenSubdiv could not build the refinement stencils");
+  }
+  impl->points.resize(impl->refinedEnd() + static_cast<std::size_t>(impl->patches->GetNumLocalPoints()));
+  impl->recomputePoints();
+  if (cage.hasUvs()) impl->computeUvs();
+
+  const Far::TopologyLevel& base = refiner.GetLevel(0);
+  impl->firstPtex.resize(cage.faceSizes.size());
+  for (int face = 0; face < base.GetNumFaces(); ++face) {
+    impl->firstPtex[face] = static_cast<std::uint32_t>(impl->ptexIndices->GetFaceId(face));
+    const int size = base.GetFaceVertices(face).size();
+    if (size == 4)
+      impl->ptexFaces.push_back({static_cast<std::uint32_t>(face), -1});
+    else
+      for (int j = 0; j < size; ++j) impl->ptexFaces.push_back({static_cast<std::uint32_t>(face), j});
+  }
+  if (impl->ptexFaces.size() != static_cast<std::size_t>(impl->ptexIndices->GetNumFaces()))
+    return fail("OpenSubdiv numbers " + std::to_string(impl->ptexIndices->GetNumFaces()) +
+                " ptex faces where the cage has " + std::to_string(impl->ptexFaces.size()));
+  return LimitSurface(std::move(impl));
+}
+
+Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositions) {
+  if (cagePositions.size() != impl_->cage.positions.size())
+    return fail("the deformed cage has " + std::to_string(cagePositions.size()) + " vertices; the limit surface has " +
+                std::to_string(impl_->cage.positions.size()));
+  for (std::size_t v = 0; v < cagePositions.size(); ++v) {
+    const glm::vec3& p = cagePositions[v];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      return fail("deformed cage vertex " + std::to_string(v) + " has a non-finite position");
+  }
+  std::copy(cagePositions.begin(), cagePositions.end(), impl_->cage.positions.begin());
+  impl_->recomputePoints();
+  return {};
+}
+
+LimitSample LimitSurface::evaluate(std::uint32_t ptexFace, double u, double v) const {
+  const auto& handle = impl_->findPatch(ptexFace, u, v);
+  double w[6][kMaxPatchPoints];
+  impl_->patches->EvaluateBasis(handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
+  const Far::ConstIndexArray cvs = impl_->patches->GetPatchVertices(handle);
+  glm::dvec3 sums[6] = {};
+  for (int i = 0; i < cvs.size(); ++i) {
+    const glm::dvec3& point = impl_->points[static_cast<std::size_t>(cvs[i])].p;
+    for (int d = 0; d < 6; ++d) sums[d] += w[d][i] * point;
+  }
+  LimitSample sample;
+  sample.position = glm::vec3(sums[0]);
+  sample.du = glm::vec3(sums[1]);
+  sample.dv = glm::vec3(sums[2]);
+  sample.duu = glm::vec3(sums[3]);
+  sample.duv = glm::vec3(sums[4]);
+  sample.dvv = glm::vec3(sums[5]);
+  const glm::dvec3 normal = glm::cross(sums[1], sums[2]);
+  const double length = glm::length(normal);
+  sample.normal = length > 0.0 ? glm::vec3(normal / length) : glm::vec3(0.0f);
+  sample.curvature = curvatureFromDerivatives(sums[1], sums[2], sums[3], sums[4], sums[5]);
+  if (hasUvs()) sample.uv = evaluateUv(ptexFace, u, v);
+  return sample;
+}
+
+glm::dvec3 LimitSurface::evaluatePosition(std::uint32_t ptexFace, double u, double v) const {
+  const auto& handle = impl_->findPatch(ptexFace, u, v);
+  double w[kMaxPatchPoints];
+  impl_->patches->EvaluateBasis(handle, u, v, w);
+  const Far::ConstIndexArray cvs = impl_->patches->GetPatchVertices(handle);
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < cvs.size(); ++i) sum += w[i] * impl_->points[static_cast<std::size_t>(cvs[i])].p;
+  return sum;
+}
+
+glm::vec2 LimitSurface::evaluateUv(std::uint32_t ptexFace, double u, double v) const {
+  if (!hasUvs()) return glm::vec2(0.0f);
+  const auto& handle = impl_->findPatch(ptexFace, u, v);
+  double w[kMaxPatchPoints];
+  impl_->patches->EvaluateBasisFaceVarying(handle, u, v, w, nullptr, nullptr, nullptr, nullptr, nullptr, 0);
+  const Far::ConstIndexArray values = impl_->patches->GetPatchFVarValues(handle, 0);
+  glm::dvec2 sum(0.0);
+  for (int i = 0; i < values.size(); ++i) sum += w[i] * impl_->uvs[static_cast<std::size_t>(values[i])].p;
+  return glm::vec2(sum);
+}
+
+std::uint32_t LimitSurface::ptexFaceCount() const {
+  return static_cast<std::uint32_t>(impl_->ptexFaces.size());
+}
+
+PtexFace LimitSurface::ptexFace(std::uint32_t ptexFace) const {
+  return impl_->ptexFaces.at(ptexFace);
+}
+
+std::uint32_t LimitSurface::firstPtexFace(std::uint32_t cageFace) const {
+  return impl_->firstPtex.at(cageFace);
+}
+
+PtexAdjacency LimitSurface::ptexAdjacency(std::uint32_t ptexFace) const {
+  const PtexFace& face = impl_->ptexFaces.at(ptexFace);
+  PtexAdjacency adjacency;
+  impl_->ptexIndices->GetAdjacency(*impl_->refiner, static_cast<int>(face.cageFace), std::max(face.subFace, 0),
+                                   adjacency.faces.data(), adjacency.edges.data());
+  return adjacency;
+}
+
+const Cage& LimitSurface::cage() const {
+  return impl_->cage;
+}
+
+bool LimitSurface::hasUvs() const {
+  return impl_->cage.hasUvs();
+}
+
+std::size_t LimitSurface::patchCount() const {
+  return static_cast<std::size_t>(impl_->patches->GetNumPatchesTotal());
+}
+
+std::size_t LimitSurface::controlPointCount() const {
+  return impl_->points.size();
+}
+
+}  // namespace mane::subdiv

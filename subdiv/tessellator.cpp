@@ -1,0 +1,327 @@
+#include "subdiv/tessellator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+
+#include "subdiv/detail/ptex_sides.hpp"
+
+namespace mane::subdiv {
+namespace {
+
+using detail::kGrid;
+
+/// A limit point seen by the camera.
+struct ProjectedPoint {
+  glm::dvec3 world{0.0};
+  glm::dvec2 pixel{0.0};
+  bool inFront = false;  ///< w > 0: the pixel position means something
+  unsigned outside = 0;  ///< bits: left, right, below, above, behind
+};
+
+/// A quadtree leaf: grid square [i0, i0+size] × [j0, j0+size] of a ptex face.
+struct Cell {
+  std::uint32_t face = 0;
+  std::int64_t i0 = 0, j0 = 0, size = 0;
+};
+
+/// A grid point of a ptex face, as the triangulation meets it.
+struct GridPoint {
+  std::int64_t i = 0, j = 0;
+};
+
+}  // namespace
+
+struct AdaptiveTessellator::Impl {
+  const LimitSurface* surface = nullptr;
+  TessellationSettings settings;
+  detail::PtexSides sides;
+  std::int64_t smallestCell = 4;
+  TessellationStatistics statistics;
+
+  // Per frame.
+  glm::dmat4 viewProjection{1.0};
+  glm::dvec2 viewport{1.0};
+  std::vector<Cell> cells;
+  std::vector<std::size_t> firstCellOfFace;
+  std::vector<std::vector<std::int64_t>> linePoints;                 ///< sorted parameters of cell corners on each line
+  std::vector<std::pair<std::int64_t, std::int64_t>> rows, columns;  ///< one face's cell corners: (j, i), (i, j)
+  std::vector<GridPoint> polygon;
+  // Naming: limit points (one per location) and vertices (one per location and UV side).
+  struct Location {
+    std::uint32_t face;
+    GridPoint point;
+    std::uint32_t firstVertex;
+  };
+  struct VertexSource {
+    std::uint32_t location;
+    std::uint32_t face;
+    GridPoint point;
+  };
+  std::unordered_map<std::uint64_t, std::uint32_t> locationIndex;
+  std::unordered_map<std::uint64_t, std::uint32_t> vertexIndex;
+  std::vector<Location> locations;
+  std::vector<VertexSource> vertices;
+
+  Impl(const LimitSurface& limit, const TessellationSettings& chosen)
+      : surface(&limit), settings(chosen), sides(limit.cage()) {
+    smallestCell = kGrid >> settings.maxDepth;
+  }
+
+  ProjectedPoint project(const glm::dvec3& world) const {
+    ProjectedPoint point;
+    point.world = world;
+    const glm::dvec4 clip = viewProjection * glm::dvec4(world, 1.0);
+    point.outside = (clip.x < -clip.w ? 1u : 0u) | (clip.x > clip.w ? 2u : 0u) | (clip.y < -clip.w ? 4u : 0u) |
+                    (clip.y > clip.w ? 8u : 0u) | (clip.w <= 0.0 ? 16u : 0u);
+    point.inFront = clip.w > 0.0;
+    if (point.inFront) point.pixel = (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * viewport;
+    return point;
+  }
+
+  ProjectedPoint evaluate(std::uint32_t face, std::int64_t i, std::int64_t j) {
+    ++statistics.positionEvaluations;
+    return project(surface->evaluatePosition(face, double(i) / double(kGrid), double(j) / double(kGrid)));
+  }
+
+  /// Pixels between the limit point `middle` and the midpoint of the straight segment a–b;
+  /// 0 when any of them is behind the camera (invisible, and its pixel is meaningless).
+  double chordError(const ProjectedPoint& a, const ProjectedPoint& b, const ProjectedPoint& middle) const {
+    if (!a.inFront || !b.inFront || !middle.inFront) return 0.0;
+    const ProjectedPoint chord = project(0.5 * (a.world + b.world));
+    return chord.inFront ? glm::length(chord.pixel - middle.pixel) : 0.0;
+  }
+
+  // Corners 0..3 at (i0, j0), (i1, j0), (i1, j1), (i0, j1).
+  void refine(std::uint32_t face, std::int64_t i0, std::int64_t j0, std::int64_t size, const ProjectedPoint (&c)[4]) {
+    const std::int64_t h = size / 2;
+    const ProjectedPoint bottom = evaluate(face, i0 + h, j0);
+    const ProjectedPoint right = evaluate(face, i0 + size, j0 + h);
+    const ProjectedPoint top = evaluate(face, i0 + h, j0 + size);
+    const ProjectedPoint left = evaluate(face, i0, j0 + h);
+    const ProjectedPoint centre = evaluate(face, i0 + h, j0 + h);
+    bool split = size > smallestCell;
+    if (split) {
+      // Nothing to refine where all samples lie beyond one side of the view.
+      const unsigned outsideAll = c[0].outside & c[1].outside & c[2].outside & c[3].outside & bottom.outside &
+                                  right.outside & top.outside & left.outside & centre.outside;
+      const double error =
+          std::max({chordError(c[0], c[1], bottom), chordError(c[1], c[2], right), chordError(c[2], c[3], top),
+                    chordError(c[3], c[0], left), chordError(c[0], c[2], centre), chordError(c[1], c[3], centre),
+                    chordError(bottom, top, centre), chordError(left, right, centre)});
+      split = outsideAll == 0 && error > double(settings.maxPixelError);
+    }
+    if (!split) {
+      cells.push_back({face, i0, j0, size});
+      return;
+    }
+    refine(face, i0, j0, h, {c[0], bottom, centre, left});
+    refine(face, i0 + h, j0, h, {bottom, c[1], right, centre});
+    refine(face, i0 + h, j0 + h, h, {centre, right, c[2], top});
+    refine(face, i0, j0 + h, h, {left, centre, top, c[3]});
+  }
+
+  void buildCells() {
+    cells.clear();
+    firstCellOfFace.clear();
+    for (std::uint32_t face = 0; face < surface->ptexFaceCount(); ++face) {
+      firstCellOfFace.push_back(cells.size());
+      const ProjectedPoint corners[4] = {evaluate(face, 0, 0), evaluate(face, kGrid, 0), evaluate(face, kGrid, kGrid),
+                                         evaluate(face, 0, kGrid)};
+      refine(face, 0, 0, kGrid, corners);
+    }
+    firstCellOfFace.push_back(cells.size());
+    statistics.cells = cells.size();
+  }
+
+  /// Collects the corners of cells on every line (face boundary), from all faces.
+  void collectLinePoints() {
+    linePoints.resize(sides.lineCount());
+    for (auto& points : linePoints) points.clear();
+    for (const Cell& cell : cells) {
+      const std::int64_t i1 = cell.i0 + cell.size, j1 = cell.j0 + cell.size;
+      const auto add = [&](int side, std::int64_t from, std::int64_t to) {
+        const detail::SideOnLine& s = sides.side(cell.face, side);
+        linePoints[s.line].push_back(s.toLine(from));
+        linePoints[s.line].push_back(s.toLine(to));
+      };
+      if (cell.j0 == 0) add(0, cell.i0, i1);
+      if (i1 == kGrid) add(1, cell.j0, j1);
+      if (j1 == kGrid) add(2, cell.i0, i1);
+      if (cell.i0 == 0) add(3, cell.j0, j1);
+    }
+    for (auto& points : linePoints) {
+      std::sort(points.begin(), points.end());
+      points.erase(std::unique(points.begin(), points.end()), points.end());
+    }
+  }
+
+  /// Appends the points strictly between `from` and `to` on a side of a cell, in that order.
+  /// `fixed` is the coordinate that does not vary (j for horizontal sides, i for vertical).
+  void appendBetween(std::uint32_t face, bool horizontal, std::int64_t fixed, std::int64_t from, std::int64_t to) {
+    const std::int64_t low = std::min(from, to), high = std::max(from, to);
+    const std::size_t start = polygon.size();
+    const auto push = [&](std::int64_t varying) {
+      polygon.push_back(horizontal ? GridPoint{varying, fixed} : GridPoint{fixed, varying});
+    };
+    const bool onBoundary = fixed == 0 || fixed == kGrid;
+    if (onBoundary) {
+      const int side = horizontal ? (fixed == 0 ? 0 : 2) : (fixed == 0 ? 3 : 1);
+      const detail::SideOnLine& s = sides.side(face, side);
+      const std::int64_t a = s.toLine(low), b = s.toLine(high);
+      const auto& points = linePoints[s.line];
+      auto first = std::upper_bound(points.begin(), points.end(), std::min(a, b));
+      auto last = std::lower_bound(points.begin(), points.end(), std::max(a, b));
+      for (auto it = first; it < last; ++it) push(s.fromLine(*it));
+      // Line order follows the line; make it ascending in the face coordinate first.
+      if (s.scale < 0) std::reverse(polygon.begin() + std::ptrdiff_t(start), polygon.end());
+    } else {
+      const auto& list = horizontal ? rows : columns;
+      auto first = std::upper_bound(list.begin(), list.end(), std::pair{fixed, low});
+      auto last = std::lower_bound(list.begin(), list.end(), std::pair{fixed, high});
+      for (auto it = first; it < last; ++it) push(it->second);
+    }
+    if (from > to) std::reverse(polygon.begin() + std::ptrdiff_t(start), polygon.end());
+  }
+
+  std::uint32_t vertexFor(std::uint32_t face, GridPoint point) {
+    const detail::PointName name = sides.name(face, point.i, point.j);
+    const auto [location, newLocation] = locationIndex.try_emplace(name.location, std::uint32_t(locations.size()));
+    if (newLocation) locations.push_back({face, point, std::uint32_t(vertices.size())});
+    const std::uint64_t key = (std::uint64_t(location->second) << 32) | name.uvTag;
+    const auto [vertex, newVertex] = vertexIndex.try_emplace(key, std::uint32_t(vertices.size()));
+    if (newVertex) vertices.push_back({location->second, face, point});
+    return vertex->second;
+  }
+
+  void emitTriangle(std::uint32_t face, GridPoint a, GridPoint b, GridPoint c, TessellatedMesh& mesh) {
+    for (const GridPoint& p : {a, b, c}) {
+      mesh.indices.push_back(vertexFor(face, p));
+      if (settings.keepPtexCoordinates)
+        mesh.cornerPtexCoordinates.emplace_back(double(p.i) / double(kGrid), double(p.j) / double(kGrid));
+    }
+    if (settings.keepPtexCoordinates) mesh.trianglePtexFaces.push_back(face);
+  }
+
+  void triangulateFace(std::uint32_t face, TessellatedMesh& mesh) {
+    rows.clear();
+    columns.clear();
+    for (std::size_t c = firstCellOfFace[face]; c < firstCellOfFace[face + 1]; ++c) {
+      const Cell& cell = cells[c];
+      for (std::int64_t dj : {std::int64_t(0), cell.size})
+        for (std::int64_t di : {std::int64_t(0), cell.size}) {
+          rows.emplace_back(cell.j0 + dj, cell.i0 + di);
+          columns.emplace_back(cell.i0 + di, cell.j0 + dj);
+        }
+    }
+    for (auto* list : {&rows, &columns}) {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    for (std::size_t c = firstCellOfFace[face]; c < firstCellOfFace[face + 1]; ++c) {
+      const Cell& cell = cells[c];
+      const std::int64_t i0 = cell.i0, j0 = cell.j0, i1 = i0 + cell.size, j1 = j0 + cell.size;
+      // The cell's boundary, counter-clockwise in (u, v), with its neighbours' extra points.
+      polygon.clear();
+      polygon.push_back({i0, j0});
+      appendBetween(face, true, j0, i0, i1);
+      polygon.push_back({i1, j0});
+      appendBetween(face, false, i1, j0, j1);
+      polygon.push_back({i1, j1});
+      appendBetween(face, true, j1, i1, i0);
+      polygon.push_back({i0, j1});
+      appendBetween(face, false, i0, j1, j0);
+      if (polygon.size() == 4) {
+        emitTriangle(face, polygon[0], polygon[1], polygon[2], mesh);
+        emitTriangle(face, polygon[0], polygon[2], polygon[3], mesh);
+        continue;
+      }
+      const GridPoint centre{i0 + cell.size / 2, j0 + cell.size / 2};
+      for (std::size_t k = 0; k < polygon.size(); ++k)
+        emitTriangle(face, centre, polygon[k], polygon[(k + 1) % polygon.size()], mesh);
+    }
+  }
+
+  void evaluateVertices(TessellatedMesh& mesh) {
+    const std::size_t count = vertices.size();
+    const bool uvs = surface->hasUvs();
+    mesh.positions.resize(count);
+    mesh.normals.resize(count);
+    mesh.meanCurvature.resize(count);
+    mesh.weldedVertex.resize(count);
+    mesh.uvs.resize(uvs ? count : 0);
+    const auto toUv = [](std::int64_t coordinate) { return double(coordinate) / double(kGrid); };
+    for (const Location& location : locations) {
+      const LimitSample sample = surface->evaluate(location.face, toUv(location.point.i), toUv(location.point.j));
+      const std::uint32_t v = location.firstVertex;
+      mesh.positions[v] = sample.position;
+      mesh.normals[v] = sample.normal;
+      mesh.meanCurvature[v] = sample.curvature.mean;
+      if (uvs) mesh.uvs[v] = sample.uv;
+    }
+    // The other sides of UV seams: the same limit point, their own face's UVs.
+    for (std::uint32_t v = 0; v < count; ++v) {
+      const VertexSource& source = vertices[v];
+      const std::uint32_t first = locations[source.location].firstVertex;
+      mesh.weldedVertex[v] = first;
+      if (first == v) continue;
+      mesh.positions[v] = mesh.positions[first];
+      mesh.normals[v] = mesh.normals[first];
+      mesh.meanCurvature[v] = mesh.meanCurvature[first];
+      if (uvs) mesh.uvs[v] = surface->evaluateUv(source.face, toUv(source.point.i), toUv(source.point.j));
+    }
+    statistics.limitPoints = locations.size();
+  }
+
+  void tessellate(const ScreenView& view, TessellatedMesh& mesh) {
+    statistics = {};
+    viewProjection = glm::dmat4(view.viewProjection);
+    viewport = glm::dvec2(view.viewportSize);
+    buildCells();
+    collectLinePoints();
+    locationIndex.clear();
+    vertexIndex.clear();
+    locations.clear();
+    vertices.clear();
+    mesh.indices.clear();
+    mesh.trianglePtexFaces.clear();
+    mesh.cornerPtexCoordinates.clear();
+    for (std::uint32_t face = 0; face < surface->ptexFaceCount(); ++face) triangulateFace(face, mesh);
+    evaluateVertices(mesh);
+  }
+};
+
+Result<AdaptiveTessellator> AdaptiveTessellator::create(const LimitSurface& surface,
+                                                        const TessellationSettings& settings) {
+  if (!std::isfinite(settings.maxPixelError) || !(settings.maxPixelError > 0.0f))
+    return fail("the tessellation's pixel error target must be a positive number, not " +
+                std::to_string(settings.maxPixelError));
+  if (settings.maxDepth < 1 || settings.maxDepth > detail::kMaxDepth)
+    return fail("the tessellation depth " + std::to_string(settings.maxDepth) + " is outside 1.." +
+                std::to_string(detail::kMaxDepth));
+  return AdaptiveTessellator(std::make_unique<Impl>(surface, settings));
+}
+
+AdaptiveTessellator::AdaptiveTessellator(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+AdaptiveTessellator::AdaptiveTessellator(AdaptiveTessellator&&) noexcept = default;
+AdaptiveTessellator& AdaptiveTessellator::operator=(AdaptiveTessellator&&) noexcept = default;
+AdaptiveTessellator::~AdaptiveTessellator() = default;
+
+void AdaptiveTessellator::tessellate(const ScreenView& view, TessellatedMesh& mesh) {
+  impl_->tessellate(view, mesh);
+}
+
+const TessellationStatistics& AdaptiveTessellator::statistics() const {
+  return impl_->statistics;
+}
+
+const TessellationSettings& AdaptiveTessellator::settings() const {
+  return impl_->settings;
+}
+
+}  // namespace mane::subdiv

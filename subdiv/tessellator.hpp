@@ -1,0 +1,94 @@
+#pragma once
+// View-dependent tessellation of a limit surface (Bunnell, "Adaptive Tessellation of
+// Subdivision Surfaces with Displacement Mapping", GPU Gems 2, ch. 7): every ptex face is
+// split as a quadtree until, for each side, diagonal and midline of a cell, the straight
+// segment's midpoint and the limit surface's midpoint project less than a target number of
+// pixels apart.
+//
+// No cracks: a point on a side shared by two cells or two faces has one name (a cage vertex,
+// a parameter along a cage edge or an n-gon spoke, or a grid point inside a face), so both
+// sides use the same vertex. A cell whose neighbour was split further takes the neighbour's
+// points on their common side into its own triangulation (a fan around its centre), so the
+// mesh has no T-junctions either: every interior edge has exactly two triangles.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "subdiv/limit.hpp"
+
+namespace mane::subdiv {
+
+/// The camera the error is measured for.
+struct ScreenView {
+  /// World (the cage's space) → clip space; visible points have |x|, |y| ≤ w and w > 0.
+  glm::mat4 viewProjection{1.0f};
+  glm::vec2 viewportSize{1280.0f, 720.0f};  ///< pixels
+};
+
+struct TessellationSettings {
+  /// The largest allowed projected distance, in pixels, between a cell's straight side (or
+  /// diagonal or midline) and the limit surface at its midpoint.
+  float maxPixelError = 1.0f;
+  /// The most times a ptex face side is halved (1..10): at most 2^maxDepth segments.
+  int maxDepth = 10;
+  /// Keep, per triangle, its ptex face and the ptex (u, v) of its corners (for tests and
+  /// texture-space tools); off for rendering.
+  bool keepPtexCoordinates = false;
+};
+
+/// A triangle mesh of the limit surface, counter-clockwise seen from outside.
+struct TessellatedMesh {
+  std::vector<glm::vec3> positions;    ///< metres
+  std::vector<glm::vec3> normals;      ///< unit, from the limit surface's ∂u × ∂v
+  std::vector<glm::vec2> uvs;          ///< the cage's UVs; empty when it has none
+  std::vector<float> meanCurvature;    ///< 1/metre, positive where convex (LimitSample)
+  std::vector<std::uint32_t> indices;  ///< 3 per triangle
+  /// Per vertex, the first vertex at the same limit point: itself except where a UV seam
+  /// splits a point into one vertex per side (with identical positions and normals).
+  std::vector<std::uint32_t> weldedVertex;
+  /// With keepPtexCoordinates: per triangle its ptex face, per triangle corner its (u, v).
+  std::vector<std::uint32_t> trianglePtexFaces;
+  std::vector<glm::vec2> cornerPtexCoordinates;
+
+  [[nodiscard]] std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+/// What the last tessellate call did.
+struct TessellationStatistics {
+  std::size_t cells = 0;  ///< quadtree leaves
+  std::size_t positionEvaluations = 0;
+  std::size_t limitPoints = 0;  ///< distinct limit points (vertices before UV seams)
+};
+
+class AdaptiveTessellator {
+public:
+  /// Prepares the side tables of `surface`'s ptex faces. The tessellator keeps a pointer to
+  /// `surface`, which must outlive it and stay where it is (not be moved); moving its cage
+  /// (updatePositions) needs no new tessellator. Errors: a target that is not a positive
+  /// finite number, a depth outside 1..10.
+  [[nodiscard]] static Result<AdaptiveTessellator> create(const LimitSurface& surface,
+                                                          const TessellationSettings& settings = {});
+
+  AdaptiveTessellator(AdaptiveTessellator&&) noexcept;
+  AdaptiveTessellator& operator=(AdaptiveTessellator&&) noexcept;
+  ~AdaptiveTessellator();
+
+  /// Tessellates the surface as it is now for `view` into `mesh`, reusing its storage (call
+  /// once per frame when the camera or the cage moves). Deterministic: the same surface and
+  /// view give the same mesh, vertex order included.
+  void tessellate(const ScreenView& view, TessellatedMesh& mesh);
+
+  [[nodiscard]] const TessellationStatistics& statistics() const;
+  [[nodiscard]] const TessellationSettings& settings() const;
+
+private:
+  struct Impl;
+  explicit AdaptiveTessellator(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mane::subdiv

@@ -1,0 +1,234 @@
+// View-dependent tessellation of the limit surface.
+//
+// Oracles: (1) topology: on a closed cage every edge of a crack-free mesh without
+// T-junctions has exactly two triangles, and a closed genus-0 surface has V − E + F = 2;
+// (2) the screen-space error, measured independently here: for points sampled along every
+// output edge, the pixel distance between the straight edge and the limit surface at the same
+// ptex parameter (a point of the surface, so an upper bound of the distance to it).
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <set>
+#include <utility>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "subdiv/cage_obj.hpp"
+#include "subdiv/tessellator.hpp"
+#include "tests/scenes/test_support.hpp"
+#include "tests/subdiv/test_cages.hpp"
+
+namespace mane::subdiv {
+namespace {
+
+constexpr glm::vec2 kViewport{1280.0f, 720.0f};
+
+/// A camera on the +z side of `centre` at `distance`, looking at it (40° vertical field).
+ScreenView viewFrom(glm::vec3 centre, float distance) {
+  const glm::mat4 projection = glm::perspective(glm::radians(40.0f), kViewport.x / kViewport.y, 0.01f, 100.0f);
+  const glm::vec3 eye = centre + glm::normalize(glm::vec3(0.3f, 0.5f, 1.0f)) * distance;
+  return {projection * glm::lookAt(eye, centre, glm::vec3(0, 1, 0)), kViewport};
+}
+
+struct EdgeCounts {
+  std::size_t edges = 0, vertices = 0, notTwo = 0;
+};
+
+/// Undirected edges of the welded mesh (UV seams joined) and how many lack two triangles.
+EdgeCounts countEdges(const TessellatedMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  std::set<std::uint32_t> used;
+  for (std::size_t t = 0; t < mesh.indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = mesh.weldedVertex[mesh.indices[t + k]];
+      const std::uint32_t b = mesh.weldedVertex[mesh.indices[t + (k + 1) % 3]];
+      ++uses[std::minmax(a, b)];
+      used.insert(a);
+    }
+  EdgeCounts counts{uses.size(), used.size(), 0};
+  for (const auto& [edge, count] : uses) counts.notTwo += count != 2 ? 1 : 0;
+  return counts;
+}
+
+bool isClosed(const Cage& cage) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  std::uint32_t offset = 0;
+  for (std::uint32_t size : cage.faceSizes) {
+    for (std::uint32_t k = 0; k < size; ++k)
+      ++uses[std::minmax(cage.faceVertices[offset + k], cage.faceVertices[offset + (k + 1) % size])];
+    offset += size;
+  }
+  return std::all_of(uses.begin(), uses.end(), [](const auto& entry) { return entry.second == 2; });
+}
+
+glm::dvec2 toPixels(const ScreenView& view, const glm::dvec3& p) {
+  const glm::dvec4 clip = glm::dmat4(view.viewProjection) * glm::dvec4(p, 1.0);
+  return (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * glm::dvec2(view.viewportSize);
+}
+
+/// The largest pixel distance between output edges and the surface, 8 samples per edge.
+double worstEdgeError(const LimitSurface& surface, const TessellatedMesh& mesh, const ScreenView& view) {
+  double worst = 0.0;
+  for (std::size_t t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = 3 * t + std::size_t(k), b = 3 * t + std::size_t(k + 1) % 3;
+      const glm::dvec3 pa(mesh.positions[mesh.indices[a]]), pb(mesh.positions[mesh.indices[b]]);
+      const glm::dvec2 ua(mesh.cornerPtexCoordinates[a]), ub(mesh.cornerPtexCoordinates[b]);
+      for (int s = 1; s < 8; ++s) {
+        const double f = s / 8.0;
+        const glm::dvec2 uv = glm::mix(ua, ub, f);
+        const glm::dvec3 onSurface = surface.evaluatePosition(mesh.trianglePtexFaces[t], uv.x, uv.y);
+        worst = std::max(worst, glm::length(toPixels(view, glm::mix(pa, pb, f)) - toPixels(view, onSurface)));
+      }
+    }
+  return worst;
+}
+
+/// A surface and its tessellator, which points at the surface: the surface lives on the
+/// heap so that the pair can move.
+struct Tessellated {
+  std::unique_ptr<LimitSurface> surfaceStorage;
+  AdaptiveTessellator tessellator;
+  LimitSurface& surface;
+};
+
+Tessellated prepare(const Cage& cage, TessellationSettings settings = {}) {
+  auto surface = LimitSurface::create(cage);
+  if (!surface) throw std::runtime_error(surface.error().message);
+  auto stored = std::make_unique<LimitSurface>(std::move(*surface));
+  auto tessellator = AdaptiveTessellator::create(*stored, settings);
+  if (!tessellator) throw std::runtime_error(tessellator.error().message);
+  LimitSurface& reference = *stored;
+  return {std::move(stored), std::move(*tessellator), reference};
+}
+
+TEST(AdaptiveTessellation, ClosedCagesAreWatertightAtEveryDistance) {
+  const Cage cages[] = {testing::unitCube(), testing::uvSphere(12, 6, 1.0f)};
+  for (const Cage& cage : cages) {
+    auto surface = LimitSurface::create(cage);
+    ASSERT_TRUE(surface.has_value());
+    auto tessellator = AdaptiveTessellator::create(*surface);
+    ASSERT_TRUE(tessellator.has_value());
+    std::size_t previousTriangles = 0;
+    for (float distance : {40.0f, 8.0f, 2.5f}) {  // far, mid, near (the near view clips the surface)
+      TessellatedMesh mesh;
+      tessellator->tessellate(viewFrom(glm::vec3(0.0f), distance), mesh);
+      const EdgeCounts counts = countEdges(mesh);
+      EXPECT_EQ(counts.notTwo, 0u) << "distance " << distance;
+      // Euler characteristic of a sphere: V − E + F = 2.
+      EXPECT_EQ(std::int64_t(counts.vertices) - std::int64_t(counts.edges) + std::int64_t(mesh.triangleCount()), 2)
+          << "distance " << distance;
+      EXPECT_GT(mesh.triangleCount(), previousTriangles) << "nearer needs more triangles";
+      previousTriangles = mesh.triangleCount();
+      for (std::size_t v = 0; v < mesh.positions.size(); ++v) ASSERT_NEAR(glm::length(mesh.normals[v]), 1.0f, 1e-5f);
+    }
+  }
+}
+
+TEST(AdaptiveTessellation, EdgesStayWithinTheTargetOnScreen) {
+  TessellationSettings settings;
+  settings.keepPtexCoordinates = true;
+  const Cage cages[] = {testing::unitCube(), testing::uvSphere(12, 6, 1.0f)};
+  for (const Cage& cage : cages)
+    for (float target : {1.0f, 4.0f}) {
+      settings.maxPixelError = target;
+      Tessellated t = prepare(cage, settings);
+      for (float distance : {30.0f, 6.0f}) {  // the whole object in view
+        const ScreenView view = viewFrom(glm::vec3(0.0f), distance);
+        TessellatedMesh mesh;
+        t.tessellator.tessellate(view, mesh);
+        EXPECT_LE(worstEdgeError(t.surface, mesh, view), 1.1 * target)
+            << "target " << target << " distance " << distance << ", " << mesh.triangleCount() << " triangles";
+      }
+    }
+}
+
+TEST(AdaptiveTessellation, IsDeterministicAndFollowsADeformingCage) {
+  const Cage cage = testing::uvSphere(10, 6, 1.0f);
+  Tessellated t = prepare(cage);
+  const ScreenView view = viewFrom(glm::vec3(0.0f), 5.0f);
+  TessellatedMesh first, second;
+  t.tessellator.tessellate(view, first);
+  t.tessellator.tessellate(view, second);
+  EXPECT_EQ(first.indices, second.indices);
+  EXPECT_EQ(first.positions, second.positions);
+
+  // Stretch the cage along x: the next frame's vertices lie on the stretched surface.
+  std::vector<glm::vec3> stretched = cage.positions;
+  for (glm::vec3& p : stretched) p.x *= 1.5f;
+  ASSERT_TRUE(t.surface.updatePositions(stretched).has_value());
+  TessellatedMesh moved;
+  t.tessellator.tessellate(view, moved);
+  ASSERT_FALSE(moved.positions.empty());
+  // Affine invariance: same topology of the surface, x scaled.
+  float widthBefore = 0.0f, widthAfter = 0.0f;
+  for (const glm::vec3& p : first.positions) widthBefore = std::max(widthBefore, std::abs(p.x));
+  for (const glm::vec3& p : moved.positions) widthAfter = std::max(widthAfter, std::abs(p.x));
+  EXPECT_NEAR(widthAfter / widthBefore, 1.5f, 0.02f);
+  EXPECT_EQ(countEdges(moved).notTwo, 0u);
+}
+
+TEST(AdaptiveTessellation, UvSeamsSplitVerticesButNotTheSurface) {
+  MANE_RESOLVE_OR_SKIP(file, "subdiv/opensubdiv/catmark_cube.obj");
+  auto cage = loadCageObj(file);
+  ASSERT_TRUE(cage.has_value()) << cage.error().message;
+  Tessellated t = prepare(*cage);
+  TessellatedMesh mesh;
+  t.tessellator.tessellate(viewFrom(glm::vec3(0.0f), 6.0f), mesh);
+  ASSERT_EQ(mesh.uvs.size(), mesh.positions.size());
+  std::size_t split = 0;
+  for (std::uint32_t v = 0; v < mesh.positions.size(); ++v) {
+    const std::uint32_t welded = mesh.weldedVertex[v];
+    if (welded == v) continue;
+    ++split;
+    EXPECT_EQ(mesh.positions[v], mesh.positions[welded]);
+  }
+  EXPECT_GT(split, 0u) << "the cube's unfolded UVs have seams";
+  EXPECT_EQ(countEdges(mesh).notTwo, 0u);
+}
+
+TEST(AdaptiveTessellation, RejectsBadSettings) {
+  auto surface = LimitSurface::create(testing::unitCube());
+  ASSERT_TRUE(surface.has_value());
+  EXPECT_FALSE(AdaptiveTessellator::create(*surface, {.maxPixelError = 0.0f}).has_value());
+  EXPECT_FALSE(AdaptiveTessellator::create(*surface, {.maxPixelError = NAN}).has_value());
+  EXPECT_FALSE(AdaptiveTessellator::create(*surface, {.maxDepth = 11}).has_value());
+}
+
+TEST(AdaptiveTessellation, EveryCatmarkRegressionShapeBuildsAndTessellates) {
+  for (const char* name : {"catmark_bishop.obj", "catmark_cube.obj", "catmark_pawn.obj", "catmark_pyramid.obj",
+                           "catmark_rook.obj", "catmark_tent.obj", "catmark_torus.obj", "catmark_torus_creases0.obj"}) {
+    MANE_RESOLVE_OR_SKIP(file, std::string("subdiv/opensubdiv/") + name);
+    auto cage = loadCageObj(file);
+    ASSERT_TRUE(cage.has_value()) << cage.error().message;
+    auto surface = LimitSurface::create(*cage);
+    ASSERT_TRUE(surface.has_value()) << name << ": " << surface.error().message;
+    auto tessellator = AdaptiveTessellator::create(*surface);
+    ASSERT_TRUE(tessellator.has_value());
+    glm::vec3 low(1e30f), high(-1e30f);
+    for (const glm::vec3& p : cage->positions) {
+      low = glm::min(low, p);
+      high = glm::max(high, p);
+    }
+    const float size = glm::length(high - low);
+    for (float distance : {4.0f * size, 1.2f * size}) {
+      TessellatedMesh mesh;
+      tessellator->tessellate(viewFrom(0.5f * (low + high), distance), mesh);
+      ASSERT_GT(mesh.triangleCount(), 0u) << name;
+      for (const glm::vec3& p : mesh.positions)
+        ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+      for (const glm::vec2& uv : mesh.uvs) ASSERT_TRUE(std::isfinite(uv.x) && std::isfinite(uv.y));
+      if (isClosed(*cage)) {
+        EXPECT_EQ(countEdges(mesh).notTwo, 0u) << name << " at distance " << distance;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mane::subdiv
