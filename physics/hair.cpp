@@ -122,8 +122,33 @@ Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> st
   }
   system.faultParticle_.assign(strands.size(), kNoFault);
   system.faultStep_.assign(strands.size(), 0);
+  system.layOutBlockConstants();
   system.placeAtRest(headTransform);
   return system;
+}
+
+void HairSystem::layOutBlockConstants() {
+  constexpr std::size_t W = detail::kBlockLanes;
+  const std::size_t blocks = (strands_.size() + W - 1) / W;
+  blockConstants_.clear();
+  blockConstantsAt_.assign(blocks + 1, 0);
+  for (std::size_t k = 0; k < blocks; ++k) {
+    const std::span<const GuideStrand> block(strands_.data() + k * W, std::min(W, strands_.size() - k * W));
+    std::size_t rows = 0;
+    for (const GuideStrand& strand : block) rows = std::max<std::size_t>(rows, strand.particleCount);
+    const std::size_t at = blockConstants_.size(), n = rows * W;
+    blockConstantsAt_[k] = at;
+    blockConstants_.resize(at + 3 * n, 0.0f);  // rows past a strand's end: no mass, length 0
+    float* lanes = blockConstants_.data() + at;
+    for (std::size_t b = 0; b < block.size(); ++b)
+      for (std::size_t i = 0; i < block[b].particleCount; ++i) {
+        const std::size_t from = block[b].firstParticle + i;
+        lanes[i * W + b] = particles_.inverseMasses[from];
+        lanes[n + i * W + b] = segmentLengths_[from];
+        lanes[2 * n + i * W + b] = restDistances_[from];
+      }
+  }
+  blockConstantsAt_[blocks] = blockConstants_.size();
 }
 
 void HairSystem::placeAtRest(const glm::mat4& headTransform) {

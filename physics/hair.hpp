@@ -214,6 +214,8 @@ private:
 
   static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side
   void placeAtRest(const glm::mat4& headTransform);
+  // Fills blockConstants_ from the strands (at creation: they never change).
+  void layOutBlockConstants();
   [[nodiscard]] Error faultError() const;
 
   SolverSettings settings_;
@@ -239,6 +241,11 @@ private:
   std::optional<WindField> wind_;  // none: no wind
   bool vectorise_ = true;
   std::vector<std::vector<float>> scratch_;  // per worker: lane storage of the AVX2 path
+  // The AVX2 path's constants per block of detail::kBlockLanes strands, lane by lane: inverse
+  // masses, segment lengths, reaches (3 arrays of rows × kBlockLanes floats) for block k from
+  // blockConstants_[blockConstantsAt_[k]] on.
+  std::vector<float> blockConstants_;
+  std::vector<std::size_t> blockConstantsAt_;
 };
 
 }  // namespace mane::physics

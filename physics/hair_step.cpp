@@ -7,6 +7,7 @@
 #include "physics/constraints.hpp"
 #include "physics/detail/hair_math.hpp"
 #include "physics/detail/collision_lanes.hpp"
+#include "physics/detail/lane_transfer.hpp"
 #include "physics/detail/strand_lanes.hpp"
 #include "physics/hair.hpp"
 
@@ -260,8 +261,9 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
   }
 }
 
-// The AVX2 path. The strands of the block are copied into lane-by-lane scratch storage (so a
-// register holds one coordinate of 8 strands), stepped with the kernels of
+// The AVX2 path. The strands' positions are copied into lane-by-lane scratch storage (so a
+// register holds one coordinate of 8 strands; detail/lane_transfer.hpp), their constants are
+// laid out that way once at creation (layOutBlockConstants), stepped with the kernels of
 // detail/strand_lanes.hpp — the same operations per strand and in the same order as
 // simulateStrandBlock — and copied back. The collision push runs 8 particles at a time
 // (detail/collision_lanes.hpp, bit for bit collidePoint); tether repairs and the velocity clamp
@@ -271,32 +273,30 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
                                           std::vector<float>& scratch) {
 #if MANE_STRAND_LANES_AVX2
   constexpr std::size_t W = detail::kBlockLanes;
-  std::size_t longest = 0;
-  for (std::size_t b = 0; b < lanes; ++b)
-    longest = std::max<std::size_t>(longest, strands_[firstStrand + b].particleCount);
+  // The block's constants are laid out once (layOutBlockConstants); positions are copied in.
+  const std::size_t blockIndex = firstStrand / W;
+  const std::size_t longest = (blockConstantsAt_[blockIndex + 1] - blockConstantsAt_[blockIndex]) / (3 * W);
   const std::size_t n = longest * W;
-  scratch.resize(9 * n + W);
+  const float* w = blockConstants_.data() + blockConstantsAt_[blockIndex];
+  const float *segment = w + n, *reach = w + 2 * n;
+  scratch.resize(6 * n + W);
   float* base = scratch.data();
   float *x = base, *y = base + n, *z = base + 2 * n, *px = base + 3 * n, *py = base + 4 * n, *pz = base + 5 * n;
-  float *w = base + 6 * n, *segment = base + 7 * n, *reach = base + 8 * n;
+  detail::LaneStrands where{};
   std::int32_t count[W] = {};
   glm::vec3 rootFrom[W], rootTravel[W];
-  std::fill(w, w + 3 * n, 0.0f);
   for (std::size_t b = 0; b < lanes; ++b) {
     const GuideStrand& strand = strands_[firstStrand + b];
-    const std::size_t first = strand.firstParticle;
+    where.first[b] = strand.firstParticle;
+    where.count[b] = strand.particleCount;
     count[b] = static_cast<std::int32_t>(strand.particleCount);
     rootMotion(firstStrand + b, rootFrom[b], rootTravel[b]);
-    for (std::size_t i = 0; i < strand.particleCount; ++i) {
-      const std::size_t at = i * W + b;
-      const glm::vec3 p = particles_.positions[first + i], q = particles_.previousPositions[first + i];
-      x[at] = p.x, y[at] = p.y, z[at] = p.z, px[at] = q.x, py[at] = q.y, pz[at] = q.z;
-      w[at] = particles_.inverseMasses[first + i];
-      segment[at] = segmentLengths_[first + i];
-      reach[at] = restDistances_[first + i];
-    }
   }
   const std::size_t groups = (lanes + detail::kSimdWidth - 1) / detail::kSimdWidth;
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "positions are read as packed xyz floats");
+  float* positions = &particles_.positions.data()->x;
+  float* previous = &particles_.previousPositions.data()->x;
+  detail::loadLanePositions(where, longest, groups, positions, previous, base);
   const detail::StrandLanes block{x, y, z, px, py, pz, w, segment, reach, count, longest, groups};
   const auto get = [&](const float* cx, const float* cy, const float* cz, std::size_t at) {
     return glm::vec3(cx[at], cy[at], cz[at]);
@@ -376,14 +376,7 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
     }
   }
 
-  for (std::size_t b = 0; b < lanes; ++b) {
-    const GuideStrand& strand = strands_[firstStrand + b];
-    for (std::size_t i = 0; i < strand.particleCount; ++i) {
-      const std::size_t at = i * W + b;
-      particles_.positions[strand.firstParticle + i] = get(x, y, z, at);
-      particles_.previousPositions[strand.firstParticle + i] = get(px, py, pz, at);
-    }
-  }
+  detail::storeLanePositions(where, longest, groups, base, positions, previous);
 #else
   (void)scratch;
   for (std::size_t s = firstStrand; s < firstStrand + lanes; s += kStrandLanes)

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "physics/colliders.hpp"
+#include "physics/detail/lane_transfer.hpp"
 #include "physics/detail/strand_lanes.hpp"
 #include "physics/groom_generator.hpp"
 #include "physics/sdf.hpp"
@@ -242,6 +243,51 @@ TEST(HairSimd, LaneKernelsMatchTheScalarFunctionsBitForBit) {
     detail::tethersAvx2(lanes(data[1]));
     ASSERT_EQ(std::memcmp(data[0].data(), data[1].data(), data[0].size() * sizeof(float)), 0) << "round " << round;
   }
+#endif
+}
+
+TEST(HairSimd, LaneTransferPlacesEveryCoordinateWhereTheLaneLayoutSays) {
+  // detail/lane_transfer.hpp against the layout's definition (component c of particle i of lane
+  // b at c[i * kBlockLanes + b]): strands of 8 to 27 particles (whole 8 × 8 tiles and tails),
+  // lanes without a strand, one lane group left out; then back. Copies only: tolerance 0.
+  if (!detail::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2; the scalar path is used";
+#if MANE_STRAND_LANES_AVX2
+  constexpr std::size_t W = detail::kBlockLanes, kRows = 27, kGroups = 3;
+  detail::LaneStrands where{};
+  std::vector<float> positions, previous;
+  SplitMix64 random(9);
+  for (std::size_t b = 0; b < W; ++b) {
+    const std::size_t count = b % 5 == 4 ? 0 : (b == 2 ? kRows : 8 + (b * 7) % (kRows - 8));
+    where.first[b] = static_cast<std::uint32_t>(positions.size() / 3);
+    where.count[b] = static_cast<std::uint32_t>(count);
+    for (std::size_t k = 0; k < 3 * count; ++k) {
+      positions.push_back(random.nextFloat(-1.0f, 1.0f));
+      previous.push_back(random.nextFloat(-1.0f, 1.0f));
+    }
+  }
+  const std::size_t n = kRows * W;
+  std::vector<float> lanes(6 * n, 7.0f);
+  detail::loadLanePositions(where, kRows, kGroups, positions.data(), previous.data(), lanes.data());
+  for (std::size_t b = 0; b < kGroups * detail::kSimdWidth; ++b)
+    for (std::size_t i = 0; i < kRows; ++i)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const bool inside = i < where.count[b];
+        const std::size_t from = 3 * (where.first[b] + i) + c, at = i * W + b;
+        ASSERT_EQ(lanes[c * n + at], inside ? positions[from] : 0.0f) << "lane " << b << ", particle " << i;
+        ASSERT_EQ(lanes[(3 + c) * n + at], inside ? previous[from] : 0.0f) << "lane " << b << ", particle " << i;
+      }
+  for (std::size_t b = kGroups * detail::kSimdWidth; b < W; ++b)
+    for (std::size_t i = 0; i < kRows; ++i)
+      for (std::size_t c = 0; c < 6; ++c) ASSERT_EQ(lanes[c * n + i * W + b], 7.0f) << "lane " << b << " was written";
+  std::vector<float> positionsBack(positions.size(), 0.0f), previousBack(previous.size(), 0.0f);
+  detail::storeLanePositions(where, kRows, kGroups, lanes.data(), positionsBack.data(), previousBack.data());
+  // Back where they came from, for the lanes of the groups that were loaded; nothing else written.
+  std::vector<float> positionsExpected(positions.size(), 0.0f), previousExpected(previous.size(), 0.0f);
+  for (std::size_t b = 0; b < kGroups * detail::kSimdWidth; ++b)
+    for (std::size_t k = 3 * where.first[b]; k < 3 * (where.first[b] + where.count[b]); ++k)
+      positionsExpected[k] = positions[k], previousExpected[k] = previous[k];
+  EXPECT_EQ(positionsBack, positionsExpected);
+  EXPECT_EQ(previousBack, previousExpected);
 #endif
 }
 
