@@ -1,0 +1,300 @@
+#include "render/passes/fur_pass.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <string>
+#include <unordered_map>
+
+#include "render/descriptors.hpp"
+
+namespace mane::render {
+namespace {
+
+// std140 mirror of FurUniforms in shaders/fur_common.glsl.
+struct FurUniforms {
+  glm::mat4 model;
+  glm::mat4 normalMatrix;
+  glm::mat4 viewProjection;
+  glm::vec4 eye;
+  glm::vec4 lightDirection;
+  glm::vec4 lightRadiance;
+  glm::vec4 ambient;
+  glm::vec4 shells;  // x: h_b, y: N, z: Kajiya-Kay exponent, w: specular strength
+  glm::vec4 lay;     // x: cos, y: sin of the lay angle
+  std::array<float, 4 * 17> thresholds;
+};
+static_assert((kMaxFurLayers + 1) <= 4 * 17, "shaders/fur_common.glsl holds I(0 … 64)");
+static_assert(sizeof(FurUniforms) == 3 * 64 + 6 * 16 + 17 * 16);
+
+// The mesh as both passes read it (shaders/fur_fin.vert: 8 floats per vertex).
+struct FurVertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+static_assert(sizeof(FurVertex) == 8 * sizeof(float));
+
+constexpr std::uint32_t kVerticesPerFin = 6;
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
+  return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+Pipeline makeShellPipeline(const Device& device, const FurPassSettings& settings,
+                           const vk::raii::DescriptorSetLayout& layout) {
+  using Format = vk::Format;
+  return makeGraphicsPipeline(
+      device,
+      GraphicsPipelineSettings{
+          .vertexShader = "fur_shell.vert",
+          .fragmentShader = "fur_shell.frag",
+          .vertexBindings = {{.binding = 0, .stride = sizeof(FurVertex), .inputRate = vk::VertexInputRate::eVertex}},
+          .vertexAttributes =
+              {{.location = 0, .binding = 0, .format = Format::eR32G32B32Sfloat, .offset = 0},
+               {.location = 1, .binding = 0, .format = Format::eR32G32B32Sfloat, .offset = offsetof(FurVertex, normal)},
+               {.location = 2, .binding = 0, .format = Format::eR32G32Sfloat, .offset = offsetof(FurVertex, uv)}},
+          .colorFormats = {settings.colorFormat},
+          .depthFormat = settings.depthFormat,
+          .depthTest = true,
+          .depthWrite = true,
+          .samples = settings.samples,
+          .setLayouts = {*layout},
+          .constants = {static_cast<std::uint32_t>(settings.coverage)}});
+}
+
+Pipeline makeFinPipeline(const Device& device, const FurPassSettings& settings,
+                         const vk::raii::DescriptorSetLayout& layout) {
+  return makeGraphicsPipeline(device,
+                              GraphicsPipelineSettings{.vertexShader = "fur_fin.vert",
+                                                       .fragmentShader = "fur_fin.frag",
+                                                       .colorFormats = {settings.colorFormat},
+                                                       .depthFormat = settings.depthFormat,
+                                                       .depthTest = true,
+                                                       .depthWrite = true,
+                                                       .samples = settings.samples,
+                                                       .setLayouts = {*layout},
+                                                       .constants = {static_cast<std::uint32_t>(settings.coverage)}});
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Silhouette edges
+
+namespace {
+
+// Vertices split at uv seams share a position: edges are matched by position so that a seam is
+// not taken for a boundary.
+std::vector<std::uint32_t> weldByPosition(std::span<const glm::vec3> positions) {
+  struct Hash {
+    std::size_t operator()(const glm::vec3& p) const {
+      const glm::vec3 positiveZeros = p + glm::vec3(0.0f);  // −0 + 0 = +0: equal values, equal bits
+      std::array<std::uint32_t, 3> bits{};
+      std::memcpy(bits.data(), &positiveZeros, sizeof(positiveZeros));
+      return (std::size_t(bits[0]) * 73856093u) ^ (std::size_t(bits[1]) * 19349663u) ^
+             (std::size_t(bits[2]) * 83492791u);
+    }
+  };
+  std::unordered_map<glm::vec3, std::uint32_t, Hash> first;
+  std::vector<std::uint32_t> canonical(positions.size());
+  for (std::uint32_t i = 0; i < positions.size(); ++i) canonical[i] = first.try_emplace(positions[i], i).first->second;
+  return canonical;
+}
+
+}  // namespace
+
+Result<MeshEdges> MeshEdges::build(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices) {
+  if (indices.size() % 3 != 0)
+    return fail("fur mesh edges: " + std::to_string(indices.size()) + " indices, not a multiple of 3");
+  struct Faces {
+    std::uint32_t count = 0;
+    std::uint32_t a = 0, b = 0;  // the first face's vertices (their uvs texture the fin)
+    std::array<glm::vec3, 2> normals{};
+  };
+  for (std::size_t t = 0; t < indices.size(); ++t)
+    if (indices[t] >= positions.size())
+      return fail("fur mesh edges: triangle " + std::to_string(t / 3) + " names vertex " + std::to_string(indices[t]) +
+                  " of " + std::to_string(positions.size()));
+  const std::vector<std::uint32_t> canonical = weldByPosition(positions);
+  std::unordered_map<std::uint64_t, Faces> faces;
+  std::vector<std::uint64_t> order;  // first appearance: a deterministic edge order
+  for (std::size_t t = 0; t < indices.size(); t += 3) {
+    const std::array<std::uint32_t, 3> v{indices[t], indices[t + 1], indices[t + 2]};
+    const glm::vec3 cross = glm::cross(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]]);
+    const float length = glm::length(cross);
+    if (!(length > 0.0f)) continue;  // degenerate: no normal, no silhouette
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+      const std::uint64_t key = edgeKey(canonical[a], canonical[b]);
+      Faces& entry = faces[key];
+      if (entry.count == 0) {
+        order.push_back(key);
+        entry.a = a;
+        entry.b = b;
+      }
+      if (entry.count < 2) entry.normals[entry.count] = cross / length;
+      ++entry.count;
+    }
+  }
+  MeshEdges result;
+  result.edges_.reserve(order.size());
+  for (const std::uint64_t key : order) {
+    const Faces& entry = faces[key];
+    if (entry.count > 2) continue;
+    Edge edge;
+    edge.a = entry.a;
+    edge.b = entry.b;
+    edge.midpoint = 0.5f * (positions[edge.a] + positions[edge.b]);
+    edge.normalA = entry.normals[0];
+    edge.boundary = entry.count == 1;
+    edge.normalB = edge.boundary ? entry.normals[0] : entry.normals[1];
+    result.edges_.push_back(edge);
+  }
+  return result;
+}
+
+void MeshEdges::findSilhouette(const glm::vec4& eye, std::vector<glm::uvec2>& out) const {
+  out.clear();
+  const glm::vec3 eyePoint(eye);
+  for (const Edge& edge : edges_) {
+    const glm::vec3 toEye = eyePoint - eye.w * edge.midpoint;
+    if (edge.boundary || glm::dot(edge.normalA, toEye) * glm::dot(edge.normalB, toEye) <= 0.0f)
+      out.emplace_back(edge.a, edge.b);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The pass
+
+Result<std::unique_ptr<FurPass>> FurPass::create(const Device& device, const FurPassSettings& settings,
+                                                 const TextureData& photo, const FurShellSettings& shells) {
+  if (settings.depthFormat == vk::Format::eUndefined)
+    return fail("fur pass: a depth format is required (the shells composite by depth testing)");
+  auto model = FurShellModel::fromPhoto(photo, shells);
+  if (!model) return fail("fur pass: " + model.error().message);
+  try {
+    return std::unique_ptr<FurPass>(new FurPass(device, settings, photo, *model));
+  } catch (const vk::SystemError& error) {
+    return fail(std::string("fur pass: Vulkan error while creating it: ") + error.what());
+  }
+}
+
+FurPass::FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model)
+    : device_(&device), settings_(settings), model_(model) {
+  using Stage = vk::ShaderStageFlagBits;
+  using Type = vk::DescriptorType;
+  photo_ = Image::texture(device, photo.width, photo.height,
+                          photo.rgba.first(std::size_t(photo.width) * photo.height * 4), vk::Format::eR8G8B8A8Srgb);
+  sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
+  setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment},
+                                      {Type::eCombinedImageSampler, Stage::eFragment},
+                                      {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eStorageBuffer, Stage::eVertex}});
+  shellPipeline_ = makeShellPipeline(device, settings, setLayout_);
+  if (settings.fins) finPipeline_ = makeFinPipeline(device, settings, setLayout_);
+  pool_ = makeDescriptorPool(device, 1,
+                             {{Type::eUniformBuffer, 1}, {Type::eCombinedImageSampler, 1}, {Type::eStorageBuffer, 2}});
+  set_ = allocateSet(device, pool_, setLayout_);
+  uniforms_ = Buffer(device, sizeof(FurUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
+                     vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  writeUniformBuffer(device, set_, 0, uniforms_);
+  writeSampledImage(device, set_, 1, photo_, sampler_);
+}
+
+Result<void> FurPass::setMesh(const MeshData& mesh) {
+  const std::size_t count = mesh.positions.size();
+  if (count == 0 || mesh.indices.empty()) return fail("fur mesh: no vertices or no triangles");
+  if (mesh.normals.size() != count || mesh.uvs.size() != count)
+    return fail("fur mesh: needs one normal and one uv per position (" + std::to_string(count) + " positions, " +
+                std::to_string(mesh.normals.size()) + " normals, " + std::to_string(mesh.uvs.size()) + " uvs)");
+  auto edges = MeshEdges::build(mesh.positions, mesh.indices);
+  if (!edges) return fail(edges.error().message);
+  std::vector<FurVertex> vertices(count);
+  for (std::size_t i = 0; i < count; ++i) vertices[i] = {mesh.positions[i], mesh.normals[i], mesh.uvs[i]};
+  try {
+    vertices_ = Buffer::withData(*device_, std::as_bytes(std::span(vertices)),
+                                 vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
+    indices_ = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer);
+    // Room for a fin on every edge: the most a view can ask for, so the buffer never grows.
+    finEdges_ = Buffer(*device_, std::max<std::size_t>(edges->edges().size(), 1) * sizeof(glm::uvec2),
+                       vk::BufferUsageFlagBits::eStorageBuffer,
+                       vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  } catch (const vk::SystemError& error) {
+    return fail(std::string("fur mesh: Vulkan error while uploading it: ") + error.what());
+  }
+  writeStorageBuffer(*device_, set_, 2, vertices_);
+  writeStorageBuffer(*device_, set_, 3, finEdges_);
+  indexCount_ = static_cast<std::uint32_t>(mesh.indices.size());
+  edges_ = std::move(*edges);
+  fins_.clear();
+  fins_.reserve(edges_.edges().size());
+  finCount_ = 0;
+  return {};
+}
+
+Result<void> FurPass::setShells(std::uint32_t layers, float thickness) {
+  auto model = FurShellModel::create(model_.range(), layers, thickness);
+  if (!model) return fail(model.error().message);
+  model_ = *model;
+  return {};
+}
+
+Result<void> FurPass::update(const FurView& view) {
+  if (view.extent.width == 0 || view.extent.height == 0) return fail("fur view: the extent is empty");
+  if (!finite(view.model) || !finite(view.viewProjection) || std::abs(glm::determinant(view.model)) == 0.0f)
+    return fail("fur view: the model matrix is singular or a matrix is not finite");
+  FurUniforms uniforms{};
+  uniforms.model = view.model;
+  uniforms.normalMatrix = glm::mat4(glm::transpose(glm::inverse(glm::mat3(view.model))));
+  uniforms.viewProjection = view.viewProjection;
+  uniforms.eye = view.eye;
+  uniforms.lightDirection = glm::vec4(glm::normalize(view.light.direction), 0.0f);
+  uniforms.lightRadiance = glm::vec4(view.light.color * view.light.intensity, 0.0f);
+  uniforms.ambient = glm::vec4(view.ambient, 0.0f);
+  uniforms.shells =
+      glm::vec4(model_.thickness(), float(model_.layers()), view.look.specularExponent, view.look.specularStrength);
+  uniforms.lay = glm::vec4(std::cos(view.look.layAngle), std::sin(view.look.layAngle), 0.0f, 0.0f);
+  const std::vector<float> thresholds = model_.thresholds();
+  std::copy(thresholds.begin(), thresholds.end(), uniforms.thresholds.begin());
+  std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
+
+  finCount_ = 0;
+  if (settings_.fins && indexCount_ > 0) {
+    // The eye in object space, where the edges' face normals are.
+    const glm::vec4 eye = glm::inverse(view.model) * view.eye;
+    edges_.findSilhouette(eye, fins_);
+    std::memcpy(finEdges_.mapped().data(), fins_.data(), fins_.size() * sizeof(glm::uvec2));
+    finCount_ = static_cast<std::uint32_t>(fins_.size());
+  }
+  extent_ = view.extent;
+  drawnLayers_ = model_.layers();
+  updated_ = true;
+  return {};
+}
+
+void FurPass::draw(const vk::raii::CommandBuffer& commands) const {
+  if (indexCount_ == 0 || !updated_) return;
+  setViewportAndScissor(commands, extent_);
+  const vk::PipelineLayout layout = *shellPipeline_.layout;
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *shellPipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*set_}, {});
+  commands.bindVertexBuffers(0, {*vertices_.buffer()}, {vk::DeviceSize{0}});
+  commands.bindIndexBuffer(*indices_.buffer(), 0, vk::IndexType::eUint32);
+  commands.drawIndexed(indexCount_, drawnLayers_, 0, 0, 0);
+  if (finCount_ == 0) return;
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *finPipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *finPipeline_.layout, 0, {*set_}, {});
+  commands.draw(finCount_ * kVerticesPerFin, 1, 0, 0);
+}
+
+}  // namespace mane::render

@@ -1,0 +1,181 @@
+#pragma once
+// Shell-and-fin fur from one photograph (issue 7): Ukaji et al.'s shells (render/luts/fur_shells.hpp,
+// the seed document 003) with Lengyel, Praun, Finkelstein & Hoppe's fins ("Real-time fur over
+// arbitrary surfaces", I3D 2001) and Kajiya-Kay lighting. Shaders: shaders/fur_common.glsl,
+// fur_shell.{vert,frag}, fur_fin.{vert,frag}.
+//
+// Memory. The photo is uploaded once, as an sRGB texture with mips; the mesh once (one buffer
+// used both as vertex buffer and, for the fins, as a storage buffer). Per frame only a uniform
+// block (the thresholds I(0 … 64) whatever N is: Ukaji et al. §3.3) and the fin edge list change.
+// GPU memory therefore does not depend on the layer count N.
+//
+// Shells. One instanced draw of the mesh, instance i = layer N − i (the skin first: its depth
+// then hides what lies behind the body), each vertex pushed out along its world normal to
+// h_b·(1 − n/N) above the skin (eq. 3). A shell keeps the pixels its FurCoverage says and
+// discards the rest; kept fragments are opaque and write depth, so the layers composite
+// correctly in any order, with no sorting and no blending. Layer N (the skin) keeps every pixel:
+// it is the body the fur grows on. Back faces are not culled (meshes come with either winding).
+//
+// Fins. Lengyel et al. draw fins on the edges near the silhouette, where shells seen edge-on
+// leave gaps. Here a fin stands on every edge whose two faces turn opposite ways to the eye,
+// (n₁·v)(n₂·v) ≤ 0 with v from the edge's midpoint to the eye (object space, face normals from
+// the positions), and on boundary edges (one face). They are found on the CPU per frame
+// (MeshEdges::findSilhouette: deterministic, a few ms for the 69k-triangle bunny), written as
+// vertex-index pairs to a host-visible buffer sized for every edge of the mesh, and drawn as one
+// non-indexed draw of 6 vertices per fin that reads the mesh buffer (vertex pulling). A fin goes
+// from the skin to the top shell along the vertex normals, textured from the photo by the same
+// luminance → height map as the shells (shaders/fur_fin.frag).
+//
+// Lighting (shaders/fur_common.glsl): Kajiya & Kay 1989 diffuse and specular for fibres along
+// the normal tilted by FurLook::layAngle (averaged over four azimuths), normalised so that light
+// along the normal gives back the photo's colour; a half-Lambert term of the normal darkens the
+// side of the body away from the light; one directional light plus ambient.
+//
+// Frames in flight: one. update() writes the uniform block and the fin buffer that the draw
+// reads; call it only when no earlier draw is still running (the Renderer waits for each frame).
+//
+// Units: metres, radians.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/frame.hpp"
+#include "render/luts/fur_shells.hpp"
+#include "render/pipelines.hpp"
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+/// Which pixels of the photo a shell shows.
+enum class FurCoverage : std::uint32_t {
+  /// Ukaji et al. as written: layer n shows I(n) ≤ I < I(n−1), each pixel in exactly one shell,
+  /// the one where its fur ends. Seen from above: the photo; from the side: floating specks.
+  kBands = 0,
+  /// Layer n shows I ≥ I(n): every pixel whose fur reaches at least that high, i.e. each pixel
+  /// is a column of fur from the skin to its height (Lengyel's shells are cross-sections of a
+  /// volume of hair). Same view from above; no gaps between shells from the side.
+  kStrands = 1,
+};
+
+/// What the pass draws into and how.
+struct FurPassSettings {
+  vk::Format colorFormat = vk::Format::eR16G16B16A16Sfloat;
+  vk::Format depthFormat = vk::Format::eD32Sfloat;  ///< required: the shells composite by depth
+  vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
+  FurCoverage coverage = FurCoverage::kStrands;
+  bool fins = true;
+};
+
+/// Appearance constants beyond the photo.
+struct FurLook {
+  float layAngle = 0.6f;           ///< radians between the fur and the normal (Kajiya-Kay tangent)
+  float specularExponent = 40.0f;  ///< Kajiya-Kay p
+  float specularStrength = 0.08f;  ///< scales the specular term, × light radiance
+};
+
+/// One furred object as seen this frame.
+struct FurView {
+  glm::mat4 model{1.0f};           ///< object → world, metres
+  glm::mat4 viewProjection{1.0f};  ///< world → clip (Vulkan, depth 0..1)
+  /// World eye: w = 1 a position (perspective); w = 0 the unit direction towards the viewer
+  /// (orthographic).
+  glm::vec4 eye{0.0f, 0.0f, 1.0f, 1.0f};
+  vk::Extent2D extent{};
+  DirectionalLight light;
+  glm::vec3 ambient{0.03f};
+  FurLook look;
+};
+
+/// The edges of a triangle mesh with the normals of their faces, for finding silhouettes.
+class MeshEdges {
+public:
+  struct Edge {
+    std::uint32_t a = 0, b = 0;  ///< vertex indices, as in the edge's first face
+    glm::vec3 midpoint{0.0f};
+    glm::vec3 normalA{0.0f};  ///< unit normal of the first face
+    glm::vec3 normalB{0.0f};  ///< of the second; equal to normalA on a boundary edge
+    bool boundary = false;    ///< only one face
+  };
+
+  /// Edges of `indices` (a triangle list) with two faces, or one (boundary); edges of three or
+  /// more faces (non-manifold) and degenerate triangles are left out. Vertices at the same
+  /// position are one vertex here, so uv seams are not boundaries. Errors: an index out of
+  /// range or a count not a multiple of 3.
+  [[nodiscard]] static Result<MeshEdges> build(std::span<const glm::vec3> positions,
+                                               std::span<const std::uint32_t> indices);
+
+  /// Appends to `out` the vertex pairs of the silhouette edges seen from `eye` (object space; w
+  /// as FurView::eye): (n_A·v)(n_B·v) ≤ 0, v = eye − w·midpoint, and boundary edges. Clears `out`
+  /// first; allocates only when it grows.
+  void findSilhouette(const glm::vec4& eye, std::vector<glm::uvec2>& out) const;
+
+  [[nodiscard]] std::span<const Edge> edges() const { return edges_; }
+
+private:
+  std::vector<Edge> edges_;
+};
+
+class FurPass {
+public:
+  /// Uploads `photo` (8-bit sRGB) and builds the pipelines. Errors: a photo the shell model
+  /// refuses (FurShellModel::fromPhoto), no depth format, or a Vulkan failure.
+  [[nodiscard]] static Result<std::unique_ptr<FurPass>> create(const Device& device, const FurPassSettings& settings,
+                                                               const TextureData& photo,
+                                                               const FurShellSettings& shells = {});
+
+  FurPass(const FurPass&) = delete;
+  FurPass& operator=(const FurPass&) = delete;
+
+  /// Uploads the mesh the fur grows on (object space; normals and uvs required); replaces the
+  /// previous one. Errors (nothing changed): missing normals or uvs, bad indices.
+  [[nodiscard]] Result<void> setMesh(const MeshData& mesh);
+
+  /// Changes N and h_b (same photo, same I_min and I_max); no GPU memory changes. Errors as
+  /// FurShellModel::create.
+  [[nodiscard]] Result<void> setShells(std::uint32_t layers, float thickness);
+
+  /// Writes the view, the light and the thresholds, and finds this frame's fins. Errors: an
+  /// empty extent or a non-finite matrix.
+  [[nodiscard]] Result<void> update(const FurView& view);
+
+  /// Records the shells and fins inside a dynamic rendering scope with FurPassSettings' formats
+  /// (viewport and scissor set to the view's extent). Nothing before setMesh and update.
+  void draw(const vk::raii::CommandBuffer& commands) const;
+
+  [[nodiscard]] const FurShellModel& model() const { return model_; }
+  /// Fins drawn by the next draw (set by update).
+  [[nodiscard]] std::uint32_t finCount() const { return finCount_; }
+  /// The vertex pairs of those fins.
+  [[nodiscard]] std::span<const glm::uvec2> fins() const { return fins_; }
+
+private:
+  FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model);
+
+  const Device* device_;
+  FurPassSettings settings_;
+  FurShellModel model_;
+  vk::Extent2D extent_{};
+  Image photo_;
+  vk::raii::Sampler sampler_{nullptr};
+  vk::raii::DescriptorSetLayout setLayout_{nullptr};
+  Pipeline shellPipeline_;
+  Pipeline finPipeline_;
+  vk::raii::DescriptorPool pool_{nullptr};
+  vk::raii::DescriptorSet set_{nullptr};
+  Buffer uniforms_;
+  Buffer vertices_;  ///< 8 floats per vertex: position, normal, uv
+  Buffer indices_;
+  Buffer finEdges_;  ///< uvec2 per edge of the mesh, host-visible
+  std::uint32_t indexCount_ = 0;
+  MeshEdges edges_;
+  std::vector<glm::uvec2> fins_;
+  std::uint32_t finCount_ = 0;
+  std::uint32_t drawnLayers_ = 0;  ///< N as of the last update
+  bool updated_ = false;
+};
+
+}  // namespace mane::render

@@ -1,0 +1,74 @@
+// Shared by the fur shell and fin shaders (render/passes/fur_pass.hpp): the pass's uniform
+// block, the photo, the shell thresholds of Ukaji et al. (render/luts/fur_shells.hpp) and
+// Kajiya-Kay lighting along the fur.
+
+// Which pixels a shell shows (FurCoverage): 0 bands, 1 strands.
+layout(constant_id = 0) const uint kCoverage = 1u;
+
+// std140 mirror of FurUniforms in render/passes/fur_pass.cpp.
+layout(set = 0, binding = 0) uniform FurUniforms {
+  mat4 model;           // object → world
+  mat4 normalMatrix;    // inverse transpose of model's linear part (upper 3×3 used)
+  mat4 viewProjection;  // world → clip
+  vec4 eye;             // world; w = 1 a point (perspective), w = 0 the direction towards the viewer
+  vec4 lightDirection;  // xyz: unit, towards the light
+  vec4 lightRadiance;   // rgb
+  vec4 ambient;         // rgb
+  vec4 shells;          // x: h_b (metres), y: N, z: Kajiya-Kay exponent, w: specular strength
+  vec4 lay;             // x: cos, y: sin of the fur's tilt away from the normal
+  vec4 thresholds[17];  // I(0 … 64), four to a vec4
+} fur;
+
+layout(set = 0, binding = 1) uniform sampler2D photo;  // sRGB: sampled values are linear
+
+// Rec. 709 relative luminance of linear RGB, as photoLuminance on the CPU.
+float luminance(vec3 rgb) {
+  return dot(rgb, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// I(n), eq. 4 of Ukaji et al., as FurShellModel::threshold computed it.
+float threshold(uint n) {
+  return fur.thresholds[n / 4u][n % 4u];
+}
+
+uint layerCount() {
+  return uint(fur.shells.y + 0.5);
+}
+
+vec3 towardEye(vec3 world) {
+  return normalize(fur.eye.xyz - fur.eye.w * world);
+}
+
+// Kajiya & Kay 1989 for fibres along t: diffuse sin(t, l); specular
+// (sin(t,l)·sin(t,e) − (t·l)(t·e))^p, largest where e lies on the cone of mirror directions of l
+// about t (t·e = −t·l). Returned as (diffuse, specular).
+vec2 kajiyaKay(vec3 t, vec3 l, vec3 e) {
+  float tl = dot(t, l);
+  float te = dot(t, e);
+  float sinTl = sqrt(max(1.0 - tl * tl, 0.0));
+  float sinTe = sqrt(max(1.0 - te * te, 0.0));
+  return vec2(sinTl, pow(max(sinTl * sinTe - tl * te, 0.0), fur.shells.z));
+}
+
+// Radiance of fur of colour `albedo` growing from a surface of normal `n`. Real hairs lean away
+// from the normal: the fur direction is the normal tilted by the lay angle, averaged over four
+// azimuths (a fibre straight along n would be black under a light along n, which the photo,
+// taken lit from above, contradicts). The diffuse term is divided by its value for light along
+// n, so the photo's own colour comes back under the light it was taken in; the fur's body shades
+// it as it turns away from the light (half-Lambert wrap: fur scatters light past the terminator).
+vec3 shadeFur(vec3 albedo, vec3 n, vec3 world) {
+  vec3 l = fur.lightDirection.xyz;
+  vec3 e = towardEye(world);
+  vec3 b1 = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1, 0, 0)) : cross(n, vec3(0, 1, 0)));
+  vec3 b2 = cross(n, b1);
+  vec2 sum = vec2(0.0);
+  for (int k = 0; k < 4; ++k) {
+    vec3 b = (k == 0) ? b1 : (k == 1) ? b2 : (k == 2) ? -b1 : -b2;
+    sum += kajiyaKay(fur.lay.x * n + fur.lay.y * b, l, e);
+  }
+  sum *= 0.25;
+  float diffuseUnderTopLight = max(fur.lay.y, 1e-3);  // sin(t, n) of every tilted fibre
+  float body = clamp(0.5 * dot(n, l) + 0.5, 0.0, 1.0);
+  vec3 light = fur.lightRadiance.rgb * body;
+  return albedo * (fur.ambient.rgb + light * (sum.x / diffuseUnderTopLight)) + light * fur.shells.w * sum.y;
+}

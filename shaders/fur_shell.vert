@@ -1,0 +1,29 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// One shell per instance (render/passes/fur_pass.hpp): the mesh pushed out along its normal to
+// the height of its layer. Instance 0 is layer N (the skin), drawn first so that its depth hides
+// what lies behind the body; instance N − 1 is layer 1, the top.
+#include "fur_common.glsl"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+
+layout(location = 0) out vec3 outWorld;
+layout(location = 1) out vec3 outNormal;
+layout(location = 2) out vec2 outUv;
+layout(location = 3) flat out uint outLayer;
+
+void main() {
+  uint layers = layerCount();
+  uint layer = layers - uint(gl_InstanceIndex);
+  // Layer n lies h_b·n/N below the fur's top (Ukaji et al. eq. 3), so h_b·(1 − n/N) above the skin.
+  float height = fur.shells.x * (1.0 - float(layer) / float(layers));
+  vec3 normal = normalize(mat3(fur.normalMatrix) * inNormal);
+  vec3 world = (fur.model * vec4(inPosition, 1.0)).xyz + normal * height;
+  outWorld = world;
+  outNormal = normal;
+  outUv = inUv;
+  outLayer = layer;
+  gl_Position = fur.viewProjection * vec4(world, 1.0);
+}
