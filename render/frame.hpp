@@ -80,6 +80,8 @@ enum class TranslucencyMethod : std::uint32_t {
   kVoxelLut = 2,
 };
 
+/// Dynamic meshes (cloth) are left out of the depth map (their bounds change every frame): give
+/// them a material without translucency.
 struct TranslucencyParameters {
   TranslucencyMethod method = TranslucencyMethod::kNone;
   /// σ per RGB channel, 1/metre, for materials other than skin.
@@ -134,6 +136,35 @@ struct DirectionalLight {
   float intensity = 1.0f;                 ///< irradiance scale at normal incidence
 };
 
+/// How the post chain maps HDR colour to display values (render/passes/post_chain.hpp).
+enum class ToneMapping : std::uint32_t {
+  kLinear = 0,    ///< colour × gain, clamped to [0, 1]: the simple scale
+  kReinhard = 1,  ///< Reinhard et al. 2002, eq. 3: L_d = L/(1 + L) on the scaled luminance, colour × L_d/L
+};
+
+/// HDR post-processing of a frame, after NVIDIA's "Timbury" demo (seed 004): a soft glow, automatic
+/// gain control and tone mapping. The defaults keep the plain path: colour × FrameInput::exposure,
+/// clamped, no glow, no extra passes.
+struct PostSettings {
+  ToneMapping toneMapping = ToneMapping::kLinear;
+  /// Automatic gain control: gain = exposure · key / L̄ with L̄ the log-average luminance of a tiny
+  /// copy of the frame, adapted over time; off: gain = exposure.
+  bool autoGain = false;
+  /// a, the display value the log-average luminance maps to (Reinhard et al. 2002, §3.1: 0.18 for
+  /// a normal key, 0.09 low, 0.36 or 0.72 high). > 0.
+  float key = 0.18f;
+  /// Share of the blurred image in the displayed colour, 0..1 (the seed mixes about half and half);
+  /// 0 skips the glow passes.
+  float glowStrength = 0.0f;
+  /// τ, seconds: the adaptation's time constant; each frame L̄ moves 1 − exp(−Δt/τ) of the way (in
+  /// log luminance) towards this frame's value. 0 follows the frame at once. ≥ 0.
+  float adaptationSeconds = 0.5f;
+  /// Δt, seconds since the previous frame. ≥ 0.
+  float frameSeconds = 1.0f / 30.0f;
+  /// Snap L̄ to this frame's value (a cut); the first frame with auto gain always snaps.
+  bool resetAdaptation = false;
+};
+
 /// What changes every frame.
 struct FrameInput {
   Camera camera;
@@ -141,7 +172,8 @@ struct FrameInput {
   std::vector<MeshInstance> instances;
   glm::vec3 ambient{0.03f};  ///< linear RGB added to every lit surface
   glm::vec3 background{0.02f, 0.022f, 0.028f};
-  float exposure = 1.0f;  ///< linear scale before the sRGB encode
+  float exposure = 1.0f;  ///< linear scale before the tone map and the sRGB encode (× the auto gain where on)
+  PostSettings post;
 };
 
 /// GPU time of each pass of one frame, in milliseconds, in the order the passes ran.

@@ -18,8 +18,9 @@ Renderer::Renderer(const Device& device, const RendererSettings& settings, std::
       target_(device, {.extent = settings.extent, .samples = sampleCount(settings.msaaSamples)}),
       shadows_(std::move(shadows)),
       surfaces_(device, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
-      output_(device, target_),
-      timer_(device, 8) {}
+      post_(device, target_.hdr()),
+      output_(device, target_, post_),
+      timer_(device, 16) {}
 
 Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const RendererSettings& settings) {
   if (settings.extent.width == 0 || settings.extent.height == 0)
@@ -274,15 +275,34 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   timer_.end(commands);
 
   transition(commands, target_.hdr(), Layout::eColorAttachmentOptimal, Layout::eShaderReadOnlyOptimal,
-             Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eFragmentShader,
-             Access::eShaderSampledRead);
+             Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite,
+             Stage::eFragmentShader | Stage::eComputeShader, Access::eShaderSampledRead);
+  recordPost(commands, frame);
   transition(commands, target_.output(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
              Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
   timer_.begin(commands, "output");
-  output_.record(commands, target_, frame.exposure);
+  output_.record(commands, target_, frame.exposure, frame.post);
   timer_.end(commands);
   transition(commands, target_.output(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
              Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
+}
+
+void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameInput& frame) {
+  if (!PostChain::runs(frame.post)) return;  // the default: the output pass alone, as before the post chain
+  timer_.begin(commands, "post downsample");
+  post_.recordDownsample(commands);
+  timer_.end(commands);
+  if (frame.post.autoGain) {
+    timer_.begin(commands, "auto gain");
+    post_.recordAutoGain(commands, frame.post, frame.exposure);
+    timer_.end(commands);
+  }
+  if (frame.post.glowStrength > 0.0f) {
+    timer_.begin(commands, "glow");
+    post_.recordGlow(commands);
+    timer_.end(commands);
+  }
+  post_.recordHandOff(commands);
 }
 
 Result<void> Renderer::updateMesh(std::size_t mesh, std::span<const glm::vec3> positions,
@@ -311,6 +331,7 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
       if (instance.material == skin.material && !diffusionMeshes_[instance.mesh])
         return fail("instance " + std::to_string(i) + ": texture-space skin needs a static mesh with uvs and normals");
   }
+  if (auto valid = validate(frame.post); !valid) return std::unexpected(valid.error());
   if (auto prepared = surfaces_.prepareThickness(frame); !prepared) return std::unexpected(prepared.error());
   try {
     device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) { record(commands, frame); });

@@ -1,8 +1,9 @@
 #pragma once
 // Runs the passes of a frame into an offscreen RenderTarget: the grooms' strand interpolation
 // (compute), their shadow maps from the first light, their per-vertex shading (compute), the
-// texture-space diffusion of skin that asks for it, then surfaces and hair ribbons into HDR colour, then the output
-// pass to 8-bit sRGB. Reads the result back for PNG files, or leaves it for a window to blit into its swapchain.
+// texture-space diffusion of skin that asks for it, then surfaces and hair ribbons into HDR colour, then the post
+// chain where FrameInput::post asks for it (glow, auto gain) and the output pass (tone map) to 8-bit sRGB. Reads the
+// result back for PNG files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "render/passes/hair_shadows.hpp"
 #include "render/passes/skin_diffusion.hpp"
 #include "render/passes/output_pass.hpp"
+#include "render/passes/post_chain.hpp"
 #include "render/passes/strand_interpolation.hpp"
 #include "render/passes/surface_pass.hpp"
 #include "render/render_target.hpp"
@@ -61,6 +63,8 @@ public:
   std::vector<PassTiming> lastTimings() const { return timer_.results(); }
 
   const RenderTarget& target() const { return target_; }
+  /// The HDR post chain: its glow, its auto gain state (render/passes/post_chain.hpp).
+  const PostChain& post() const { return post_; }
   const Device& device() const { return *device_; }
 
 private:
@@ -68,6 +72,9 @@ private:
 
   /// The diffusion passes of the scene's texture-space skin materials.
   Result<void> setTextureSpaceSkins(const StaticScene& scene);
+
+  /// The post chain's compute passes that `frame.post` asks for, timed; none by default.
+  void recordPost(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
 
   /// Points every pass that receives hair shadows at the current maps.
   void refreshShadowDescriptors();
@@ -97,6 +104,7 @@ private:
   std::vector<std::optional<SkinDiffusionMesh>> diffusionMeshes_;  // per scene mesh: static, with uvs and normals
   std::vector<std::unique_ptr<MarschnerLut>> luts_;                // per HairLook, baked when a groom needs it
   std::vector<HairGroom> hair_;
+  PostChain post_;
   OutputPass output_;
   GpuTimer timer_;
 };

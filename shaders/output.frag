@@ -1,10 +1,40 @@
 #version 450
-// HDR scene colour → display: a linear exposure scale; the sRGB attachment encodes on write.
+// HDR scene colour → display (render/passes/output_pass.hpp): the glow mixed in, a gain (the
+// exposure, or the automatic gain the post chain left in its exposure state), then the tone map;
+// the sRGB attachment encodes on write. Each combination is its own pipeline (specialisation
+// constants): lavapipe would run both sides of a branch on a uniform. With the defaults (linear,
+// no auto gain, no glow) this is the plain exposure scale, clamped.
+
+#extension GL_GOOGLE_include_directive : require
+#include "post_common.glsl"
+
+layout(constant_id = 0) const int kToneMapping = 0;  // ToneMapping: 0 linear, 1 Reinhard
+layout(constant_id = 1) const bool kAutoGain = false;
+layout(constant_id = 2) const bool kGlow = false;
+
 layout(set = 0, binding = 0) uniform sampler2D hdrColor;
-layout(push_constant) uniform Output { float exposure; } settings;
+layout(set = 0, binding = 1) uniform sampler2D glow;  // the blurred downsampled copy
+layout(set = 0, binding = 2, std430) readonly buffer Exposure {
+  float adaptedLogLuminance;
+  float frameLogLuminance;
+  float gain;
+  uint frames;
+} state;
+
+layout(push_constant) uniform Output {
+  float exposure;
+  float glowStrength;  // the blurred image's share, 0..1
+  vec2 glowUvScale;    // frame uv → glow uv: size / (4 · downsampled size)
+} settings;
+
 layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  outColor = vec4(clamp(texture(hdrColor, inUv).rgb * settings.exposure, 0.0, 1.0), 1.0);
+  vec3 color = texture(hdrColor, inUv).rgb;
+  if (kGlow) color = mix(color, texture(glow, inUv * settings.glowUvScale).rgb, settings.glowStrength);
+  color *= kAutoGain ? state.gain : settings.exposure;
+  // Reinhard et al. 2002, eq. 3 on the luminance, the colour scaled by L_d / L: c / (1 + L).
+  if (kToneMapping == 1) color /= 1.0 + postLuminance(color);
+  outColor = vec4(clamp(color, 0.0, 1.0), 1.0);
 }

@@ -3,22 +3,69 @@
 #include "render/descriptors.hpp"
 
 namespace mane::render {
+namespace {
 
-OutputPass::OutputPass(const Device& device, const RenderTarget& target) {
-  layout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlagBits::eFragment}});
-  pipeline_ = makeGraphicsPipeline(
-      device, GraphicsPipelineSettings{.vertexShader = "fullscreen.vert",
-                                       .fragmentShader = "output.frag",
-                                       .colorFormats = {RenderTarget::kOutputFormat},
-                                       .setLayouts = {*layout_},
-                                       .pushConstants = {{vk::ShaderStageFlagBits::eFragment, 0, sizeof(float)}}});
-  sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eClampToEdge, 1.0f);
-  pool_ = makeDescriptorPool(device, 1, {{vk::DescriptorType::eCombinedImageSampler, 1}});
-  set_ = allocateSet(device, pool_, layout_);
-  writeSampledImage(device, set_, 0, target.hdr(), sampler_);
+// Push constants of shaders/output.frag.
+struct OutputConstants {
+  float exposure;
+  float glowStrength;
+  glm::vec2 glowUvScale;
+};
+
+bool glows(const PostSettings& post) {
+  return post.glowStrength > 0.0f;
 }
 
-void OutputPass::record(const vk::raii::CommandBuffer& commands, const RenderTarget& target, float exposure) const {
+std::size_t variantOf(const PostSettings& post) {
+  return 4 * std::size_t(post.toneMapping == ToneMapping::kReinhard) + 2 * std::size_t(post.autoGain) +
+         std::size_t(glows(post));
+}
+
+}  // namespace
+
+OutputPass::OutputPass(const Device& device, const RenderTarget& target, const PostChain& post)
+    : device_(&device), post_(&post) {
+  const vk::ShaderStageFlags fragment = vk::ShaderStageFlagBits::eFragment;
+  layout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, fragment},
+                                   {vk::DescriptorType::eCombinedImageSampler, fragment},
+                                   {vk::DescriptorType::eStorageBuffer, fragment}});
+  sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eClampToEdge, 1.0f);
+  pool_ = makeDescriptorPool(device, 1,
+                             {{vk::DescriptorType::eCombinedImageSampler, 2}, {vk::DescriptorType::eStorageBuffer, 1}});
+  set_ = allocateSet(device, pool_, layout_);
+  writeSampledImage(device, set_, 0, target.hdr(), sampler_);
+  // The glow stays in GENERAL layout (the post chain writes it as a storage image).
+  const vk::DescriptorImageInfo glow{
+      .sampler = *post.sampler(), .imageView = *post.glow().view(), .imageLayout = vk::ImageLayout::eGeneral};
+  device.device().updateDescriptorSets(
+      vk::WriteDescriptorSet{.dstSet = *set_,
+                             .dstBinding = 1,
+                             .descriptorCount = 1,
+                             .descriptorType = vk::DescriptorType::eCombinedImageSampler,
+                             .pImageInfo = &glow},
+      {});
+  writeStorageBuffer(device, set_, 2, post.exposureState());
+  pipelineFor(PostSettings{});
+}
+
+const Pipeline& OutputPass::pipelineFor(const PostSettings& post) {
+  Pipeline& pipeline = pipelines_[variantOf(post)];
+  if (*pipeline.pipeline) return pipeline;
+  pipeline = makeGraphicsPipeline(
+      *device_,
+      GraphicsPipelineSettings{
+          .vertexShader = "fullscreen.vert",
+          .fragmentShader = "output.frag",
+          .colorFormats = {RenderTarget::kOutputFormat},
+          .setLayouts = {*layout_},
+          .pushConstants = {{vk::ShaderStageFlagBits::eFragment, 0, sizeof(OutputConstants)}},
+          .constants = {std::uint32_t(post.toneMapping), std::uint32_t(post.autoGain), std::uint32_t(glows(post))}});
+  return pipeline;
+}
+
+void OutputPass::record(const vk::raii::CommandBuffer& commands, const RenderTarget& target, float exposure,
+                        const PostSettings& post) {
+  const Pipeline& pipeline = pipelineFor(post);
   const vk::RenderingAttachmentInfo color{.imageView = *target.output().view(),
                                           .imageLayout = vk::ImageLayout::eColorAttachmentOptimal,
                                           .loadOp = vk::AttachmentLoadOp::eDontCare,
@@ -28,9 +75,11 @@ void OutputPass::record(const vk::raii::CommandBuffer& commands, const RenderTar
                                             .colorAttachmentCount = 1,
                                             .pColorAttachments = &color});
   setViewportAndScissor(commands, target.extent());
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<float>(*pipeline_.layout, vk::ShaderStageFlagBits::eFragment, 0, exposure);
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline.layout, 0, {*set_}, {});
+  const OutputConstants constants{
+      .exposure = exposure, .glowStrength = post.glowStrength, .glowUvScale = post_->glowUvScale()};
+  commands.pushConstants<OutputConstants>(*pipeline.layout, vk::ShaderStageFlagBits::eFragment, 0, constants);
   commands.draw(3, 1, 0, 0);
   commands.endRendering();
 }

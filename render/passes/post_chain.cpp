@@ -1,0 +1,286 @@
+#include "render/passes/post_chain.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include <glm/gtc/packing.hpp>
+
+#include "render/descriptors.hpp"
+
+namespace mane::render {
+namespace {
+
+using Stage = vk::PipelineStageFlagBits2;
+using Access = vk::AccessFlagBits2;
+using Layout = vk::ImageLayout;
+
+constexpr std::uint32_t kWorkgroupSide = 8;  // local_size_x/y of the 2D post shaders
+
+// Push constants of shaders/post_blur.comp: w[k] = weights[k / 4][k % 4].
+struct BlurConstants {
+  float weights[12];
+};
+static_assert(kGlowMaxRadius < 12);
+
+// Push constants of shaders/post_adapt.comp.
+struct AdaptConstants {
+  float rate;
+  float key;
+  float exposure;
+};
+
+static_assert(sizeof(PostExposure) == 16);
+
+vk::Extent2D toExtent(glm::uvec2 size) {
+  return {size.x, size.y};
+}
+
+// A storage image (or, with a sampler, a combined image sampler) in GENERAL layout.
+void writeGeneralImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                       const Image& image, const vk::raii::Sampler* sampler = nullptr) {
+  const vk::DescriptorImageInfo info{
+      .sampler = sampler ? **sampler : vk::Sampler{}, .imageView = *image.view(), .imageLayout = Layout::eGeneral};
+  device.device().updateDescriptorSets(
+      vk::WriteDescriptorSet{
+          .dstSet = *set,
+          .dstBinding = binding,
+          .descriptorCount = 1,
+          .descriptorType = sampler ? vk::DescriptorType::eCombinedImageSampler : vk::DescriptorType::eStorageImage,
+          .pImageInfo = &info},
+      {});
+}
+
+// A pass's storage writes reach the next pass's reads; its reads finish before the next writes.
+void computeToCompute(const vk::raii::CommandBuffer& commands) {
+  const vk::MemoryBarrier2 barrier{.srcStageMask = Stage::eComputeShader,
+                                   .srcAccessMask = Access::eShaderStorageWrite,
+                                   .dstStageMask = Stage::eComputeShader,
+                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
+}
+
+// The half-float RGBA texels of `image` (GENERAL, written by compute shaders), widened.
+HdrImage readHalfImage(const Device& device, const Image& image) {
+  const vk::Extent2D extent = image.extent();
+  const std::size_t values = std::size_t(extent.width) * extent.height * 4;
+  const Buffer host(device, values * 2, vk::BufferUsageFlagBits::eTransferDst,
+                    vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    const vk::MemoryBarrier2 toCopy{.srcStageMask = Stage::eComputeShader,
+                                    .srcAccessMask = Access::eShaderStorageWrite,
+                                    .dstStageMask = Stage::eCopy,
+                                    .dstAccessMask = Access::eTransferRead};
+    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &toCopy});
+    commands.copyImageToBuffer(*image.image(), Layout::eGeneral, *host.buffer(),
+                               vk::BufferImageCopy{.imageSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
+                                                   .imageExtent = {extent.width, extent.height, 1}});
+    const vk::MemoryBarrier2 toHost{.srcStageMask = Stage::eCopy,
+                                    .srcAccessMask = Access::eTransferWrite,
+                                    .dstStageMask = Stage::eHost,
+                                    .dstAccessMask = Access::eHostRead};
+    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &toHost});
+  });
+  HdrImage result{extent.width, extent.height, std::vector<glm::vec4>(values / 4)};
+  for (std::size_t i = 0; i < values; ++i) {
+    std::uint16_t half;
+    std::memcpy(&half, host.mapped().data() + 2 * i, 2);
+    result.texels[i / 4][int(i % 4)] = glm::unpackHalf1x16(half);
+  }
+  return result;
+}
+
+Result<HdrImage> readOrFail(const Device& device, const Image& image, const char* what) {
+  try {
+    return readHalfImage(device, image);
+  } catch (const std::exception& error) {
+    return fail(std::string("post chain: reading the ") + what + " back failed: " + error.what());
+  }
+}
+
+}  // namespace
+
+Result<void> validate(const PostSettings& settings) {
+  const auto bad = [](const char* field, float value, const char* expected) {
+    return fail(std::string("post settings: ") + field + " is " + std::to_string(value) + ", expected " + expected);
+  };
+  if (settings.toneMapping != ToneMapping::kLinear && settings.toneMapping != ToneMapping::kReinhard)
+    return fail("post settings: unknown tone mapping " + std::to_string(std::uint32_t(settings.toneMapping)));
+  if (!(std::isfinite(settings.key) && settings.key > 0.0f)) return bad("key", settings.key, "a finite value > 0");
+  if (!(settings.glowStrength >= 0.0f && settings.glowStrength <= 1.0f))
+    return bad("glowStrength", settings.glowStrength, "a value from 0 to 1");
+  if (!(std::isfinite(settings.adaptationSeconds) && settings.adaptationSeconds >= 0.0f))
+    return bad("adaptationSeconds", settings.adaptationSeconds, "a finite time ≥ 0 s");
+  if (!(std::isfinite(settings.frameSeconds) && settings.frameSeconds >= 0.0f))
+    return bad("frameSeconds", settings.frameSeconds, "a finite time ≥ 0 s");
+  return {};
+}
+
+PostChain::PostChain(const Device& device, const Image& frame)
+    : device_(&device), frameSize_(frame.extent()), kernel_(glowKernel()) {
+  using Usage = vk::ImageUsageFlagBits;
+  const glm::uvec2 quarter = postQuarterSize({frameSize_.width, frameSize_.height});
+  const auto image = [&](glm::uvec2 size, vk::ImageUsageFlags usage) {
+    return Image(device, ImageSettings{.extent = toExtent(size), .format = kFormat, .usage = usage});
+  };
+  const vk::ImageUsageFlags common = Usage::eStorage | Usage::eTransferSrc | Usage::eTransferDst;
+  downsampled_ = image(quarter, common);
+  across_ = image(quarter, common);
+  glow_ = image(quarter, common | Usage::eSampled);
+  tiny_ = image(postTinySize(quarter), common);
+  exposure_ = Buffer(device, sizeof(PostExposure), vk::BufferUsageFlagBits::eStorageBuffer,
+                     vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  resetExposure();
+  sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eClampToEdge, 1.0f);
+
+  using ShaderStage = vk::ShaderStageFlagBits;
+  const vk::ShaderStageFlags compute = ShaderStage::eCompute;
+  const std::pair storage{vk::DescriptorType::eStorageImage, compute};
+  sampledLayout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, compute}, storage});
+  storageLayout_ = makeSetLayout(device, {storage, storage});
+  adaptLayout_ = makeSetLayout(device, {storage, {vk::DescriptorType::eStorageBuffer, compute}});
+
+  const auto radius = std::uint32_t(kernel_.size() - 1);
+  downsamplePipeline_ = makeComputePipeline(device, "post_downsample.comp", sampledLayout_);
+  for (std::uint32_t axis = 0; axis < 2; ++axis)
+    blurPipelines_[axis] =
+        makeComputePipeline(device, "post_blur.comp", storageLayout_, sizeof(BlurConstants), {radius, axis});
+  tinyPipeline_ = makeComputePipeline(device, "post_tiny.comp", storageLayout_, 0, {postTinyBlock(quarter)});
+  adaptPipeline_ = makeComputePipeline(device, "post_adapt.comp", adaptLayout_, sizeof(AdaptConstants));
+
+  pool_ = makeDescriptorPool(device, 6,
+                             {{vk::DescriptorType::eCombinedImageSampler, 1},
+                              {vk::DescriptorType::eStorageImage, 11},
+                              {vk::DescriptorType::eStorageBuffer, 1}});
+  downsampleSet_ = allocateSet(device, pool_, sampledLayout_);
+  writeSampledImage(device, downsampleSet_, 0, frame, sampler_);
+  writeGeneralImage(device, downsampleSet_, 1, downsampled_);
+  const auto pair = [&](const Image& source, const Image& destination) {
+    vk::raii::DescriptorSet set = allocateSet(device, pool_, storageLayout_);
+    writeGeneralImage(device, set, 0, source);
+    writeGeneralImage(device, set, 1, destination);
+    return set;
+  };
+  acrossSets_[0] = pair(downsampled_, across_);
+  acrossSets_[1] = pair(glow_, across_);
+  downSet_ = pair(across_, glow_);
+  tinySet_ = pair(downsampled_, tiny_);
+  adaptSet_ = allocateSet(device, pool_, adaptLayout_);
+  writeGeneralImage(device, adaptSet_, 0, tiny_);
+  writeStorageBuffer(device, adaptSet_, 1, exposure_);
+  initialiseImages();
+}
+
+// GENERAL from the start, and black: the output pass may sample the glow before any glow ran.
+void PostChain::initialiseImages() {
+  device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    for (const Image* image : {&downsampled_, &across_, &glow_, &tiny_}) {
+      transition(commands, *image, Layout::eUndefined, Layout::eGeneral, Stage::eNone, Access::eNone, Stage::eClear,
+                 Access::eTransferWrite);
+      commands.clearColorImage(*image->image(), Layout::eGeneral,
+                               vk::ClearColorValue(std::array{0.0f, 0.0f, 0.0f, 0.0f}),
+                               vk::ImageSubresourceRange{vk::ImageAspectFlagBits::eColor, 0, 1, 0, 1});
+    }
+    const vk::MemoryBarrier2 cleared{
+        .srcStageMask = Stage::eClear,
+        .srcAccessMask = Access::eTransferWrite,
+        .dstStageMask = Stage::eComputeShader | Stage::eFragmentShader,
+        .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite | Access::eShaderSampledRead};
+    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &cleared});
+  });
+}
+
+void PostChain::resetExposure() {
+  const PostExposure fresh{};
+  std::memcpy(exposure_.mapped().data(), &fresh, sizeof(fresh));
+}
+
+PostExposure PostChain::readExposure() const {
+  PostExposure state;
+  std::memcpy(&state, exposure_.mapped().data(), sizeof(state));
+  return state;
+}
+
+glm::vec2 PostChain::glowUvScale() const {
+  const vk::Extent2D quarter = glow_.extent();
+  return {float(frameSize_.width) / float(kPostDownsampleFactor * quarter.width),
+          float(frameSize_.height) / float(kPostDownsampleFactor * quarter.height)};
+}
+
+void PostChain::dispatch(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline,
+                         const vk::raii::DescriptorSet& set, vk::Extent2D size) const {
+  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline.layout, 0, {*set}, {});
+  commands.dispatch((size.width + kWorkgroupSide - 1) / kWorkgroupSide,
+                    (size.height + kWorkgroupSide - 1) / kWorkgroupSide, 1);
+}
+
+void PostChain::record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure) {
+  if (!runs(settings)) return;
+  recordDownsample(commands);
+  if (settings.autoGain) recordAutoGain(commands, settings, exposure);
+  if (settings.glowStrength > 0.0f) recordGlow(commands);
+  recordHandOff(commands);
+}
+
+void PostChain::recordDownsample(const vk::raii::CommandBuffer& commands) const {
+  // Last frame's readers of these images (the output pass, the blurs, the adaptation) finish
+  // before this frame overwrites them.
+  const vk::MemoryBarrier2 previousFrame{.srcStageMask = Stage::eComputeShader | Stage::eFragmentShader,
+                                         .srcAccessMask = Access::eShaderStorageWrite,
+                                         .dstStageMask = Stage::eComputeShader,
+                                         .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &previousFrame});
+  dispatch(commands, downsamplePipeline_, downsampleSet_, downsampled_.extent());
+  computeToCompute(commands);
+}
+
+void PostChain::recordAutoGain(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure) {
+  dispatch(commands, tinyPipeline_, tinySet_, tiny_.extent());
+  computeToCompute(commands);
+  const double rate =
+      settings.resetAdaptation ? 1.0 : adaptationRate(settings.frameSeconds, settings.adaptationSeconds);
+  const AdaptConstants constants{.rate = float(rate), .key = settings.key, .exposure = exposure};
+  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *adaptPipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *adaptPipeline_.layout, 0, {*adaptSet_}, {});
+  commands.pushConstants<AdaptConstants>(*adaptPipeline_.layout, vk::ShaderStageFlagBits::eCompute, 0, constants);
+  commands.dispatch(1, 1, 1);  // one workgroup: a fixed reduction order
+}
+
+void PostChain::recordGlow(const vk::raii::CommandBuffer& commands) const {
+  BlurConstants constants{};
+  for (std::size_t k = 0; k < kernel_.size(); ++k) constants.weights[k] = kernel_[k];
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const Pipeline& pipeline = blurPipelines_[axis];
+      commands.pushConstants<BlurConstants>(*pipeline.layout, vk::ShaderStageFlagBits::eCompute, 0, constants);
+      dispatch(commands, pipeline, axis == 0 ? acrossSets_[pass] : downSet_, glow_.extent());
+      const bool last = pass == 1 && axis == 1;  // recordHandOff's barrier follows it
+      if (!last) computeToCompute(commands);
+    }
+  }
+}
+
+void PostChain::recordHandOff(const vk::raii::CommandBuffer& commands) const {
+  const vk::MemoryBarrier2 toReaders{
+      .srcStageMask = Stage::eComputeShader,
+      .srcAccessMask = Access::eShaderStorageWrite,
+      .dstStageMask = Stage::eFragmentShader | Stage::eComputeShader | Stage::eHost,
+      .dstAccessMask = Access::eShaderSampledRead | Access::eShaderStorageRead | Access::eHostRead};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &toReaders});
+}
+
+Result<HdrImage> PostChain::readDownsampled() const {
+  return readOrFail(*device_, downsampled_, "downsampled copy");
+}
+
+Result<HdrImage> PostChain::readGlow() const {
+  return readOrFail(*device_, glow_, "glow");
+}
+
+Result<HdrImage> PostChain::readTiny() const {
+  return readOrFail(*device_, tiny_, "tiny image");
+}
+
+}  // namespace mane::render

@@ -1,0 +1,127 @@
+#pragma once
+// HDR post-processing before the output pass, after NVIDIA's "Timbury" demo (seed 004, Ryan Geiss
+// 2004): "draw the scene into a large fp16 texture, analyse its brightness, keep a copy and blur it
+// generously, mix the blurred and the sharp images to soften the picture, darken with the result
+// of the brightness analysis". Compute passes on small images, so the only full-size work is one
+// read of the frame here and the output pass (LAVAPIPE.md: each full-screen pass costs ≈ 20 ms at
+// 720p on 2 cores):
+//  1. Downsample (shaders/post_downsample.comp): the HDR frame to a copy 4× smaller per side, each
+//     texel the mean of a 4×4 block.
+//  2. Glow (shaders/post_blur.comp): four separable Gaussian blurs of the copy, along x, y, x, y (the
+//     seed's "pseudo-Gaussian, but fast"), with normalised weights; the output pass mixes the result
+//     with the sharp frame by PostSettings::glowStrength.
+//  3. Auto gain (shaders/post_tiny.comp, post_adapt.comp): the copy reduced to at most 64×64 texels,
+//     its log-average luminance L̄ = exp(mean(log(δ + L))) ([RSSF02] eq. 1) by one workgroup in a
+//     fixed order, and the adapted L̄ moved towards it by 1 − exp(−Δt/τ) in log luminance, kept in
+//     a small GPU buffer from frame to frame. The gain exposure · a / L̄ maps the adapted log-average
+//     to the key value a ([RSSF02] eq. 2); the output pass applies it and the tone map (Reinhard's
+//     L/(1 + L) or the linear scale, render/passes/output_pass.hpp).
+// The seed's AGC averaged luminance linearly and divided by it; the log-average is Reinhard's, which
+// the seed names as the better-balanced alternative (a few very bright pixels, like the sun, pull a
+// linear mean far more).
+//
+//   [RSSF02] Reinhard, Stark, Shirley & Ferwerda, "Photographic Tone Reproduction for Digital
+//            Images", SIGGRAPH 2002.
+//
+// The numbers (sizes, the kernel) and CPU references of every step: render/passes/post_reference.hpp.
+// Cost on lavapipe: bench/post_bench.cpp.
+
+#include <cstdint>
+#include <vector>
+
+#include "render/frame.hpp"
+#include "render/passes/post_reference.hpp"
+#include "render/pipelines.hpp"
+#include "render/resources.hpp"
+
+namespace mane::render {
+
+/// The auto gain's state, kept on the GPU between frames (std430 `Exposure` in
+/// shaders/post_adapt.comp).
+struct PostExposure {
+  float adaptedLogLuminance = 0.0f;  ///< log L̄_adapted, natural log of luminance
+  float frameLogLuminance = 0.0f;    ///< log L̄ of the last frame measured
+  float gain = 0.0f;                 ///< exposure · key / L̄_adapted: what the output pass multiplies by
+  std::uint32_t frames = 0;          ///< frames measured since creation or the last reset; 0: the next one snaps
+};
+
+/// An error naming the bad field: a key that is not positive and finite, a glow strength outside
+/// [0, 1], a negative or non-finite adaptation time or frame time, or an unknown tone mapping.
+[[nodiscard]] Result<void> validate(const PostSettings& settings);
+
+class PostChain {
+public:
+  static constexpr vk::Format kFormat = vk::Format::eR16G16B16A16Sfloat;
+
+  /// The images and pipelines for frames the size of `frame`, which the passes sample (in
+  /// SHADER_READ_ONLY layout when recorded); it must outlive the chain. Throws on a Vulkan failure.
+  PostChain(const Device& device, const Image& frame);
+
+  /// Whether `settings` needs any of the passes here (glow or auto gain); the defaults need none.
+  static bool runs(const PostSettings& settings) { return settings.glowStrength > 0.0f || settings.autoGain; }
+
+  /// The passes `settings` asks for, in order: downsample, auto gain, glow; then the barrier that
+  /// hands their results to the output pass's fragment shader. Outside rendering.
+  void record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
+  /// Step 1: the frame → the downsampled copy.
+  void recordDownsample(const vk::raii::CommandBuffer& commands) const;
+  /// Step 3, after recordDownsample: the tiny image, its log-average, the adaptation, the gain.
+  /// `exposure` multiplies the gain (exposure compensation). Next frame starts from the state this
+  /// leaves, so record it once per frame.
+  void recordAutoGain(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
+  /// Step 2, after recordDownsample: the four blurs into glow().
+  void recordGlow(const vk::raii::CommandBuffer& commands) const;
+  /// Makes the glow and the exposure state visible to fragment shaders (and the state to the host).
+  void recordHandOff(const vk::raii::CommandBuffer& commands) const;
+
+  /// The blurred copy, GENERAL layout; bilinear-sample it with sampler().
+  const Image& glow() const { return glow_; }
+  /// The auto gain's state (PostExposure), a storage buffer.
+  const Buffer& exposureState() const { return exposure_; }
+  /// Bilinear, clamped to the edge.
+  const vk::raii::Sampler& sampler() const { return sampler_; }
+  /// Scale from frame uv to glow() uv: the copy covers 4·its size pixels, a little more than the frame.
+  glm::vec2 glowUvScale() const;
+  /// The blur weights w[0…R] (glowKernel()).
+  const std::vector<float>& glowWeights() const { return kernel_; }
+
+  /// Read-backs for tests and tools; each waits for the GPU. Between frames.
+  [[nodiscard]] Result<HdrImage> readDownsampled() const;
+  [[nodiscard]] Result<HdrImage> readGlow() const;
+  [[nodiscard]] Result<HdrImage> readTiny() const;
+  PostExposure readExposure() const;
+  /// Forgets the adaptation: the next auto gain snaps to its frame. Between frames.
+  void resetExposure();
+
+private:
+  void dispatch(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline, const vk::raii::DescriptorSet& set,
+                vk::Extent2D size) const;
+  void initialiseImages();
+
+  const Device* device_;
+  vk::Extent2D frameSize_;
+  std::vector<float> kernel_;
+  // Every image stays in GENERAL layout: written as storage images, sampled by the output pass.
+  Image downsampled_;  ///< the frame, 4× smaller
+  Image across_;       ///< a blur along x
+  Image glow_;         ///< a blur along y: after the fourth, the glow
+  Image tiny_;         ///< at most 64×64
+  Buffer exposure_;    ///< PostExposure, host-visible so tests can read it
+  vk::raii::Sampler sampler_{nullptr};
+
+  vk::raii::DescriptorSetLayout sampledLayout_{nullptr};  ///< sampled source, storage destination
+  vk::raii::DescriptorSetLayout storageLayout_{nullptr};  ///< storage source, storage destination
+  vk::raii::DescriptorSetLayout adaptLayout_{nullptr};    ///< storage tiny image, storage buffer
+  Pipeline downsamplePipeline_;
+  Pipeline blurPipelines_[2];  ///< along x, along y
+  Pipeline tinyPipeline_;
+  Pipeline adaptPipeline_;
+  vk::raii::DescriptorPool pool_{nullptr};
+  vk::raii::DescriptorSet downsampleSet_{nullptr};
+  vk::raii::DescriptorSet acrossSets_[2]{vk::raii::DescriptorSet(nullptr), vk::raii::DescriptorSet(nullptr)};
+  vk::raii::DescriptorSet downSet_{nullptr};  ///< across → glow
+  vk::raii::DescriptorSet tinySet_{nullptr};
+  vk::raii::DescriptorSet adaptSet_{nullptr};
+};
+
+}  // namespace mane::render

@@ -1,0 +1,124 @@
+#include "render/passes/post_reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mane::render {
+namespace {
+
+std::uint32_t ceilDivide(std::uint32_t value, std::uint32_t divisor) {
+  return (value + divisor - 1) / divisor;
+}
+
+HdrImage blankImage(glm::uvec2 size) {
+  return {size.x, size.y, std::vector<glm::vec4>(std::size_t(size.x) * size.y)};
+}
+
+}  // namespace
+
+double luminance(glm::dvec3 rgb) {
+  return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+}
+
+glm::uvec2 postQuarterSize(glm::uvec2 frame) {
+  return {ceilDivide(frame.x, kPostDownsampleFactor), ceilDivide(frame.y, kPostDownsampleFactor)};
+}
+
+std::uint32_t postTinyBlock(glm::uvec2 quarter) {
+  return std::max(1u, ceilDivide(std::max(quarter.x, quarter.y), kPostTinyMaxSize));
+}
+
+glm::uvec2 postTinySize(glm::uvec2 quarter) {
+  const std::uint32_t block = postTinyBlock(quarter);
+  return {ceilDivide(quarter.x, block), ceilDivide(quarter.y, block)};
+}
+
+std::vector<float> glowKernel(float sigma) {
+  const int radius = std::clamp(int(std::ceil(3.0 * sigma)), 0, kGlowMaxRadius);
+  std::vector<double> weights(std::size_t(radius) + 1);
+  double total = 0.0;
+  for (int k = 0; k <= radius; ++k) {
+    weights[k] = std::exp(-0.5 * double(k) * k / (double(sigma) * sigma));
+    total += k == 0 ? weights[k] : 2.0 * weights[k];
+  }
+  std::vector<float> kernel(weights.size());
+  for (std::size_t k = 0; k < weights.size(); ++k) kernel[k] = float(weights[k] / total);
+  return kernel;
+}
+
+HdrImage downsampleForPost(const HdrImage& frame) {
+  HdrImage quarter = blankImage(postQuarterSize({frame.width, frame.height}));
+  const std::uint32_t factor = kPostDownsampleFactor;
+  for (std::uint32_t y = 0; y < quarter.height; ++y)
+    for (std::uint32_t x = 0; x < quarter.width; ++x) {
+      glm::dvec4 sum(0.0);
+      for (std::uint32_t dy = 0; dy < factor; ++dy)
+        for (std::uint32_t dx = 0; dx < factor; ++dx)
+          sum += glm::dvec4(
+              frame.at(std::min(factor * x + dx, frame.width - 1), std::min(factor * y + dy, frame.height - 1)));
+      quarter.texels[std::size_t(y) * quarter.width + x] = glm::vec4(sum / double(factor * factor));
+    }
+  return quarter;
+}
+
+HdrImage blurAlong(const HdrImage& image, std::span<const float> kernel, int axis) {
+  HdrImage blurred = blankImage({image.width, image.height});
+  const int radius = int(kernel.size()) - 1;
+  const int last = axis == 0 ? int(image.width) - 1 : int(image.height) - 1;
+  for (std::uint32_t y = 0; y < image.height; ++y)
+    for (std::uint32_t x = 0; x < image.width; ++x) {
+      glm::dvec4 sum(0.0);
+      for (int k = -radius; k <= radius; ++k) {
+        const int along = std::clamp((axis == 0 ? int(x) : int(y)) + k, 0, last);
+        const glm::vec4& texel = axis == 0 ? image.at(std::uint32_t(along), y) : image.at(x, std::uint32_t(along));
+        sum += double(kernel[std::size_t(std::abs(k))]) * glm::dvec4(texel);
+      }
+      blurred.texels[std::size_t(y) * image.width + x] = glm::vec4(sum);
+    }
+  return blurred;
+}
+
+HdrImage glowReference(const HdrImage& frame, std::span<const float> kernel) {
+  HdrImage glow = downsampleForPost(frame);
+  for (int pass = 0; pass < 4; ++pass) glow = blurAlong(glow, kernel, pass % 2);
+  return glow;
+}
+
+HdrImage tinyForAutoGain(const HdrImage& quarter) {
+  const std::uint32_t block = postTinyBlock({quarter.width, quarter.height});
+  HdrImage tiny = blankImage(postTinySize({quarter.width, quarter.height}));
+  for (std::uint32_t y = 0; y < tiny.height; ++y)
+    for (std::uint32_t x = 0; x < tiny.width; ++x) {
+      glm::dvec4 sum(0.0);
+      double count = 0.0;
+      for (std::uint32_t qy = block * y; qy < std::min(block * (y + 1), quarter.height); ++qy)
+        for (std::uint32_t qx = block * x; qx < std::min(block * (x + 1), quarter.width); ++qx) {
+          sum += glm::dvec4(quarter.at(qx, qy));
+          count += 1.0;
+        }
+      tiny.texels[std::size_t(y) * tiny.width + x] = glm::vec4(sum / count);
+    }
+  return tiny;
+}
+
+double logAverageLuminance(const HdrImage& image) {
+  double sum = 0.0;
+  for (const glm::vec4& texel : image.texels) sum += std::log(kLogLuminanceDelta + luminance(glm::dvec3(texel)));
+  return std::exp(sum / double(image.texels.size()));
+}
+
+double adaptationRate(double frameSeconds, double adaptationSeconds) {
+  if (!(adaptationSeconds > 0.0)) return 1.0;
+  return 1.0 - std::exp(-std::max(frameSeconds, 0.0) / adaptationSeconds);
+}
+
+double adaptLogLuminance(double adaptedLog, double frameLog, double rate) {
+  return adaptedLog + rate * (frameLog - adaptedLog);
+}
+
+glm::dvec3 reinhard(glm::dvec3 rgb, double gain) {
+  const glm::dvec3 scaled = gain * rgb;
+  return scaled / (1.0 + luminance(scaled));
+}
+
+}  // namespace mane::render

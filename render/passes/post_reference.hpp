@@ -1,0 +1,79 @@
+#pragma once
+// The HDR post chain (render/passes/post_chain.hpp) as numbers, on the CPU: the sizes of its
+// images, the glow's blur kernel, and reference implementations of every step the GPU does, for
+// tests and tools. The shaders (shaders/post_*.comp, shaders/output.frag) follow this file.
+//
+//   [RSSF02] Reinhard, Stark, Shirley & Ferwerda, "Photographic Tone Reproduction for Digital
+//            Images", SIGGRAPH 2002.
+//   Seed 004, "Timbury" (Ryan Geiss, NVIDIA 2004): the frame drawn to fp16, downsampled, blurred
+//            x, y, x, y and mixed with the sharp image; automatic gain from a tiny copy.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace mane::render {
+
+/// The glow and the auto gain work on a copy of the frame this many times smaller per side.
+inline constexpr std::uint32_t kPostDownsampleFactor = 4;
+/// The auto gain's tiny image has at most this many texels per side.
+inline constexpr std::uint32_t kPostTinyMaxSize = 64;
+/// The glow blur reaches at most this many texels each side (kGlowRadius in shaders/post_blur.comp).
+inline constexpr int kGlowMaxRadius = 8;
+/// σ of each of the four glow blurs, in downsampled texels. Two blurs per axis compose to
+/// σ·√2 ≈ 3.5 texels ≈ 14 pixels of the full frame.
+inline constexpr float kGlowSigma = 2.5f;
+/// δ of the log-average, log(δ + L) ([RSSF02] eq. 1): keeps black pixels finite.
+inline constexpr double kLogLuminanceDelta = 1e-4;
+
+/// Linear RGBA texels, row after row.
+struct HdrImage {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<glm::vec4> texels;
+
+  const glm::vec4& at(std::uint32_t x, std::uint32_t y) const { return texels[std::size_t(y) * width + x]; }
+};
+
+/// Luminance of linear sRGB/Rec. 709 primaries (ITU-R BT.709 weights).
+double luminance(glm::dvec3 rgb);
+
+/// Texels per side of the downsampled copy: ⌈size / kPostDownsampleFactor⌉.
+glm::uvec2 postQuarterSize(glm::uvec2 frame);
+/// k: each tiny texel averages a k×k block of the downsampled copy, k = ⌈longest side / 64⌉.
+std::uint32_t postTinyBlock(glm::uvec2 quarter);
+/// Texels per side of the tiny image: ⌈quarter / k⌉ (≤ kPostTinyMaxSize).
+glm::uvec2 postTinySize(glm::uvec2 quarter);
+
+/// The glow's 1D Gaussian, w[k] for the offsets ±k, k = 0…R with R = ⌈3σ⌉ (at most
+/// kGlowMaxRadius), normalised so w[0] + 2·Σ_{k≥1} w[k] = 1: the blur keeps the image's energy.
+std::vector<float> glowKernel(float sigma = kGlowSigma);
+
+/// The downsampled copy: each texel the mean of a 4×4 block, rows and columns past the edge
+/// repeating the last ones (the GPU reads 4 bilinear taps, clamped to the edge). A box over the
+/// whole footprint counts every pixel exactly once, so no small highlight is lost before the glow.
+HdrImage downsampleForPost(const HdrImage& frame);
+/// One blur along x (axis 0) or y (axis 1) with `kernel` (glowKernel), clamped to the edge.
+HdrImage blurAlong(const HdrImage& image, std::span<const float> kernel, int axis);
+/// The glow: downsampleForPost, then blurs along x, y, x, y.
+HdrImage glowReference(const HdrImage& frame, std::span<const float> kernel);
+/// The auto gain's tiny image: each texel the mean of its k×k block (postTinyBlock) of the
+/// downsampled copy, over the texels inside it.
+HdrImage tinyForAutoGain(const HdrImage& quarter);
+/// L̄ = exp(mean(log(δ + L))) over the texels ([RSSF02] eq. 1).
+double logAverageLuminance(const HdrImage& image);
+
+/// The share of the way to its target the adapted luminance moves in a frame of `frameSeconds`
+/// with time constant `adaptationSeconds`: 1 − exp(−Δt/τ) (1 when τ = 0): exponential decay,
+/// independent of how the time is cut into frames.
+double adaptationRate(double frameSeconds, double adaptationSeconds);
+/// The next adapted log-luminance: log L̄_a + rate·(log L̄ − log L̄_a).
+double adaptLogLuminance(double adaptedLog, double frameLog, double rate);
+
+/// Reinhard's operator on a colour ([RSSF02] eq. 2–3): L = luminance(gain·rgb) and
+/// L_d = L/(1 + L); the colour keeps its chromaticity, scaled by L_d/L: gain·rgb/(1 + L).
+glm::dvec3 reinhard(glm::dvec3 rgb, double gain);
+
+}  // namespace mane::render
