@@ -122,46 +122,60 @@ bool skipWithoutHead(benchmark::State& state) {
   return true;
 }
 
+// Arguments: distance index, worker threads.
 void BM_AdaptiveFrame(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
   const subdiv::ScreenView view = viewAt(kDistances[state.range(0)]);
+  const auto threads = static_cast<unsigned>(state.range(1));
   subdiv::TessellatedMesh mesh;
   for (auto _ : state) {
-    head().tessellator->tessellate(view, mesh);
+    head().tessellator->tessellate(view, mesh, threads);
     benchmark::DoNotOptimize(mesh.indices.data());
   }
   state.SetLabel(kDistanceNames[state.range(0)]);
   state.counters["triangles"] = double(mesh.triangleCount());
   state.counters["cells"] = double(head().tessellator->statistics().cells);
 }
-BENCHMARK(BM_AdaptiveFrame)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AdaptiveFrame)
+    ->ArgsProduct({{0, 1, 2}, {1, 2}})
+    ->ArgNames({"view", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
+// Argument: worker threads.
 void BM_DeformingCageUpdate(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
+  const auto threads = static_cast<unsigned>(state.range(0));
   std::size_t frame = 0;
   for (auto _ : state) {
-    auto updated = head().surface->updatePositions(head().poses[frame++ % 2]);
+    auto updated = head().surface->updatePositions(head().poses[frame++ % 2], threads);
     benchmark::DoNotOptimize(updated);
   }
   state.counters["points"] = double(head().surface->controlPointCount());
 }
-BENCHMARK(BM_DeformingCageUpdate)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DeformingCageUpdate)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Arguments: distance index, worker threads.
 void BM_DeformAndTessellateFrame(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
   const subdiv::ScreenView view = viewAt(kDistances[state.range(0)]);
+  const auto threads = static_cast<unsigned>(state.range(1));
   subdiv::TessellatedMesh mesh;
   std::size_t frame = 0;
   for (auto _ : state) {
-    auto updated = head().surface->updatePositions(head().poses[frame++ % 2]);
+    auto updated = head().surface->updatePositions(head().poses[frame++ % 2], threads);
     benchmark::DoNotOptimize(updated);
-    head().tessellator->tessellate(view, mesh);
+    head().tessellator->tessellate(view, mesh, threads);
     benchmark::DoNotOptimize(mesh.indices.data());
   }
   state.SetLabel(kDistanceNames[state.range(0)]);
   state.counters["triangles"] = double(mesh.triangleCount());
 }
-BENCHMARK(BM_DeformAndTessellateFrame)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DeformAndTessellateFrame)
+    ->ArgsProduct({{1}, {1, 2}})
+    ->ArgNames({"view", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 glm::dvec2 toPixels(const subdiv::ScreenView& view, const glm::dvec3& p) {
   const glm::dvec4 clip = glm::dmat4(view.viewProjection) * glm::dvec4(p, 1.0);

@@ -191,6 +191,25 @@ Material parseMaterial(const Json& json, const std::string& path) {
   return material;
 }
 
+Subdivision parseSubdivision(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Subdivision subdivision;
+  subdivision.maxPixelError = fields.optional<float>("max_pixel_error", subdivision.maxPixelError);
+  require(subdivision.maxPixelError > 0.0f && subdivision.maxPixelError <= kMaxSubdivisionPixelError,
+          fields.child("max_pixel_error"),
+          "expected a pixel error in (0, " + std::to_string(int(kMaxSubdivisionPixelError)) + "]");
+  const std::string levels = std::to_string(kMinSubdivisionLevel) + ".." + std::to_string(kMaxSubdivisionLevel);
+  subdivision.isolation = fields.optional<int>("isolation", subdivision.isolation);
+  require(subdivision.isolation >= kMinSubdivisionLevel && subdivision.isolation <= kMaxSubdivisionLevel,
+          fields.child("isolation"), "expected an isolation level in " + levels);
+  subdivision.maxDepth = fields.optional<int>("max_depth", subdivision.maxDepth);
+  require(subdivision.maxDepth >= kMinSubdivisionLevel && subdivision.maxDepth <= kMaxSubdivisionLevel,
+          fields.child("max_depth"), "expected a depth in " + levels);
+  subdivision.capHoles = fields.optional<bool>("cap_holes", subdivision.capHoles);
+  fields.finish();
+  return subdivision;
+}
+
 MeshInstance parseMesh(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   MeshInstance mesh;
@@ -206,6 +225,9 @@ MeshInstance parseMesh(const Json& json, const std::string& path) {
   mesh.material = fields.optional<std::string>("material", "");
   if (const Json* transform = fields.take("transform")) {
     mesh.transform = parseTransform(*transform, fields.child("transform"));
+  }
+  if (const Json* subdivision = fields.take("subdivision")) {
+    mesh.subdivision = parseSubdivision(*subdivision, fields.child("subdivision"));
   }
   fields.finish();
   return mesh;

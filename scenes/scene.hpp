@@ -80,12 +80,34 @@ inline constexpr std::string_view kProceduralPrefix = "procedural:";
 /// unit sphere, the cube [−1, 1]³ with a hollow of radius 0.5, a torus of radii 1 and 0.4 around +Y.
 inline constexpr std::array<std::string_view, 3> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus"};
 
+/// Bounds of `Subdivision`'s fields (subdiv::LimitSurfaceSettings, subdiv::TessellationSettings).
+inline constexpr int kMinSubdivisionLevel = 1;
+inline constexpr int kMaxSubdivisionLevel = 10;
+inline constexpr float kMaxSubdivisionPixelError = 100.0f;
+
+/// Drawing a mesh as the Catmull-Clark limit surface of its triangles or polygons (the cage),
+/// tessellated once at load for the scene's camera and output size (scenes/subdivided_mesh.hpp).
+struct Subdivision {
+  /// Largest projected distance, pixels, between the drawn triangles and the limit surface.
+  float maxPixelError = 1.0f;
+  /// Feature-adaptive isolation around extraordinary vertices and creases, 1..10: each level
+  /// makes the end caps around them half as large and costs refined points at load.
+  int isolation = 2;
+  /// The most times a ptex face's side is halved, 1..10 (at most 4^maxDepth cells per face).
+  int maxDepth = 10;
+  /// Close the cage's holes first, one sharp-rimmed polygon per boundary loop
+  /// (`capBoundaryLoops`): for open cages that must be solid, e.g. for a voxel translucency table.
+  bool capHoles = false;
+};
+
 /// A mesh placed in the scene.
 struct MeshInstance {
   std::string name;      ///< unique within the scene; grooms attach to it by this name
   std::string source;    ///< asset name (.glb/.gltf/.obj) or "procedural:<kind>"
   std::string material;  ///< name of a `Material` in the scene
   Transform transform;
+  /// Draw the limit surface instead of the file's triangles; none: the triangles as they are.
+  std::optional<Subdivision> subdivision;
 
   [[nodiscard]] bool isProcedural() const { return source.starts_with(kProceduralPrefix); }
   /// "sphere" for "procedural:sphere"; empty for asset meshes.

@@ -1,11 +1,14 @@
 #include "scenes/scene_meshes.hpp"
 
+#include <cctype>
 #include <optional>
 #include <string_view>
 #include <utility>
 
 #include "scenes/obj_loader.hpp"
 #include "scenes/procedural.hpp"
+#include "scenes/subdivided_mesh.hpp"
+#include "subdiv/cage_obj.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -33,10 +36,10 @@ std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
   return std::nullopt;
 }
 
-}  // namespace
-
-Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver,
-                                 const std::filesystem::path& sceneDirectory) {
+/// The geometry of the entry, without its subdivision cage.
+Result<LoadedMesh> loadTriangles(const MeshInstance& instance, const AssetResolver& resolver,
+                                 const std::filesystem::path& sceneDirectory,
+                                 std::optional<std::filesystem::path>& file) {
   LoadedMesh loaded;
   if (instance.isProcedural()) {
     std::optional<Mesh> mesh = makeProceduralMesh(instance.proceduralKind());
@@ -56,6 +59,33 @@ Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolv
   auto mesh = loadMesh(*found->path);
   if (!mesh) return fail("mesh '" + instance.name + "': " + mesh.error().message);
   loaded.mesh = std::move(*mesh);
+  file = *found->path;
+  return loaded;
+}
+
+bool isObj(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".obj";
+}
+
+}  // namespace
+
+Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver,
+                                 const std::filesystem::path& sceneDirectory) {
+  std::optional<std::filesystem::path> file;
+  auto loaded = loadTriangles(instance, resolver, sceneDirectory, file);
+  if (!loaded || !instance.subdivision) return loaded;
+  if (file && isObj(*file)) {
+    // The OBJ's own polygons: quads stay quads, and `t crease` / `t corner` tags are kept.
+    auto cage = subdiv::loadCageObj(*file);
+    if (!cage) return fail("mesh '" + instance.name + "': subdivision cage: " + cage.error().message);
+    flipCageUvsToTopLeft(*cage);
+    loaded->cage = std::move(*cage);
+  } else {
+    loaded->cage = cageFromTriangles(loaded->mesh);
+  }
+  if (instance.subdivision->capHoles) capBoundaryLoops(*loaded->cage);
   return loaded;
 }
 

@@ -2,12 +2,15 @@
 // Turning a scene's mesh entries into geometry, with the procedural fallback that lets the
 // main job run without third-party assets.
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/mesh.hpp"
 #include "scenes/scene.hpp"
+#include "subdiv/cage.hpp"
 
 namespace mane::scenes {
 
@@ -22,6 +25,12 @@ struct LoadedMesh {
   /// For the user when the result is not what the scene asked for, e.g. "asset X missing:
   /// using a procedural sphere (...)"; empty otherwise. The caller prints it.
   std::string note;
+  /// With the entry's `subdivision`: the cage its limit surface is built from (an OBJ's own
+  /// polygons, creases and corners; otherwise the triangles welded by position), UVs in
+  /// `Mesh`'s convention. `mesh` stays the file's triangles until the World tessellates it.
+  std::optional<subdiv::Cage> cage;
+  /// After tessellation, the skin shader's 1/r per vertex of `mesh` (SubdividedMesh).
+  std::vector<float> limitInverseRadius;
 };
 
 /// Builds a "procedural:<kind>" entry, or resolves and loads the asset. An asset that is
@@ -29,7 +38,8 @@ struct LoadedMesh {
 /// `kFallbackSphereRadius` with a note. Errors are kept for what must not pass silently: a
 /// name the manifest does not list, a checksum mismatch, a file that does not parse.
 /// `sceneDirectory` anchors sources that are file paths rather than manifest names (see
-/// `AssetResolver::lookupForScene`).
+/// `AssetResolver::lookupForScene`). With a `subdivision`, also the cage (an OBJ that is no
+/// valid cage is an error naming its line).
 [[nodiscard]] Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolver& resolver,
                                                const std::filesystem::path& sceneDirectory = {});
 

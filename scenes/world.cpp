@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 
+#include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
@@ -13,6 +14,7 @@
 #include "scenes/groom_loader.hpp"
 #include "scenes/mesh_curvature.hpp"
 #include "scenes/scene_colliders.hpp"
+#include "scenes/subdivided_mesh.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -69,6 +71,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   World world;
   world.scene_ = std::move(scene);
   if (auto loaded = world.loadMeshes(resolver); !loaded) return std::unexpected(loaded.error());
+  if (auto subdivided = world.subdivideMeshes(); !subdivided) return std::unexpected(subdivided.error());
   if (settings.loadTextures) {
     if (auto loaded = world.loadMaterials(resolver); !loaded) return std::unexpected(loaded.error());
   } else {
@@ -92,6 +95,28 @@ Result<void> World::loadMeshes(const AssetResolver& resolver) {
     if (!loaded) return std::unexpected(loaded.error());
     if (!loaded->note.empty()) notes_.push_back(loaded->note);
     meshes_.push_back(std::move(*loaded));
+  }
+  return {};
+}
+
+Result<void> World::subdivideMeshes() {
+  const Camera& camera = scene_.camera;
+  const glm::vec2 viewport(float(scene_.output.width), float(scene_.output.height));
+  // The camera as the renderer sets it up (frameInput); the error is a length on screen, so
+  // the sign convention of clip-space y does not matter.
+  const glm::mat4 viewProjection = glm::perspective(glm::radians(camera.verticalFovDegrees), viewport.x / viewport.y,
+                                                    camera.nearPlane, camera.farPlane) *
+                                   glm::lookAt(camera.position, camera.target, camera.up);
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    LoadedMesh& loaded = meshes_[m];
+    const MeshInstance& instance = scene_.meshes[m];
+    if (!loaded.cage || !instance.subdivision) continue;
+    auto subdivided = tessellateForCamera(*loaded.cage, *instance.subdivision,
+                                          viewProjection * animatedMatrix(scene_, instance, 0.0f), viewport);
+    if (!subdivided) return fail("mesh '" + instance.name + "': subdivision: " + subdivided.error().message);
+    subdivided->mesh.name = loaded.mesh.name;
+    loaded.mesh = std::move(subdivided->mesh);
+    loaded.limitInverseRadius = std::move(subdivided->inverseRadius);
   }
   return {};
 }
@@ -135,6 +160,10 @@ Result<void> World::computeSkinCurvatures() {
     const Material* material = scene_.findMaterial(scene_.meshes[m].material);
     if (material == nullptr || material->kind != MaterialKind::skin) continue;
     const Mesh& mesh = meshes_[m].mesh;
+    if (!meshes_[m].limitInverseRadius.empty()) {  // subdivided: the limit surface's own curvature
+      meshCurvatures_[m] = meshes_[m].limitInverseRadius;
+      continue;
+    }
     auto curvature = computeVertexCurvature(mesh);
     if (!curvature) return fail("mesh " + scene_.meshes[m].name + ": curvature: " + curvature.error().message);
     auto inverseRadius = skinInverseRadius(mesh, *curvature);

@@ -94,6 +94,10 @@ private:
 
   World() = default;
   Result<void> loadMeshes(const AssetResolver& resolver);
+  /// Replaces the triangles of every mesh with a `subdivision` by its limit surface,
+  /// tessellated for the scene's camera and output size at time 0 (not again as the camera or
+  /// the mesh moves).
+  Result<void> subdivideMeshes();
   Result<void> loadMaterials(const AssetResolver& resolver);
   /// The curvature skin materials shade with, for every mesh drawn with one.
   Result<void> computeSkinCurvatures();

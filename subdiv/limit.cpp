@@ -15,21 +15,14 @@
 #include <opensubdiv/far/stencilTable.h>
 #include <opensubdiv/far/stencilTableFactory.h>
 
+#include "subdiv/detail/flat_stencils.hpp"
 #include "subdiv/detail/osd_topology.hpp"
+#include "subdiv/detail/parallel_ranges.hpp"
 
 namespace mane::subdiv {
 namespace {
 
 namespace Far = OpenSubdiv::Far;
-
-// Control points are kept in double: second derivatives of deep patches are differences of
-// nearly equal points divided by the square of a small spacing, and float loses the
-// curvature there.
-struct Point3 {
-  glm::dvec3 p{0.0};
-  void Clear(void* = nullptr) { p = glm::dvec3(0.0); }
-  void AddWithWeight(const Point3& source, double weight) { p += weight * source.p; }
-};
 
 struct Point2 {
   glm::dvec2 p{0.0};
@@ -40,6 +33,9 @@ struct Point2 {
 // Gregory basis patches have 20 control points, regular B-spline patches 16.
 constexpr int kMaxPatchPoints = 20;
 
+// Below this many stencils per worker a thread costs more than it saves.
+constexpr std::size_t kMinStencilsPerWorker = 16384;
+
 }  // namespace
 
 struct LimitSurface::Impl {
@@ -48,21 +44,31 @@ struct LimitSurface::Impl {
   std::unique_ptr<const Far::PatchTable> patches;
   std::unique_ptr<const Far::PatchMap> patchMap;
   std::unique_ptr<const Far::PtexIndices> ptexIndices;
-  /// Refined vertices of levels 1..max from cage vertices (factorised), null without levels.
-  std::unique_ptr<const Far::StencilTableReal<double>> refinedStencils;
-  std::vector<Point3> points;  ///< cage, refined levels, local points: what patches index
-  std::vector<Point2> uvs;     ///< face-varying values of all levels, then local points
+  /// Refined vertices of levels 1..max from cage vertices (factorised), empty without levels.
+  detail::FlatStencils refinedStencils;
+  /// Local (end cap) points from cage and refined vertices.
+  detail::FlatStencils localStencils;
+  /// Cage, refined levels, local points: what patches index. Control points are kept in
+  /// double: second derivatives of deep patches are differences of nearly equal points divided
+  /// by the square of a small spacing, and float loses the curvature there.
+  std::vector<glm::dvec3> points;
+  std::vector<Point2> uvs;  ///< face-varying values of all levels, then local points
   std::vector<PtexFace> ptexFaces;
   std::vector<std::uint32_t> firstPtex;
 
   std::size_t refinedEnd() const { return static_cast<std::size_t>(refiner->GetNumVerticesTotal()); }
 
-  void recomputePoints() {
+  // Refined points read cage points only and local points read cage and refined points, so
+  // each stage's destinations split freely among threads.
+  void recomputePoints(unsigned threads) {
     const std::size_t cageCount = cage.positions.size();
-    for (std::size_t v = 0; v < cageCount; ++v) points[v].p = glm::dvec3(cage.positions[v]);
-    if (refinedStencils) refinedStencils->UpdateValues(points.data(), points.data() + cageCount);
-    if (const auto* local = patches->GetLocalPointStencilTable<double>())
-      local->UpdateValues(points.data(), points.data() + refinedEnd());
+    for (std::size_t v = 0; v < cageCount; ++v) points[v] = glm::dvec3(cage.positions[v]);
+    for (const detail::FlatStencils* stencils : {&refinedStencils, &localStencils}) {
+      const std::size_t workers = detail::workerCount(stencils->size(), threads, kMinStencilsPerWorker);
+      detail::forEachRange(stencils->size(), workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+        stencils->apply(points, begin, end);
+      });
+    }
   }
 
   void computeUvs() {
@@ -135,11 +141,17 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
     stencilOptions.generateControlVerts = false;
     stencilOptions.generateOffsets = true;
     stencilOptions.maxLevel = static_cast<unsigned>(refiner.GetMaxLevel());
-    impl->refinedStencils.reset(Far::StencilTableFactoryReal<double>::Create(refiner, stencilOptions));
-    if (!impl->refinedStencils) return fail("OpenSubdiv could not build the refinement stencils");
+    const std::unique_ptr<const Far::StencilTableReal<double>> refined(
+        Far::StencilTableFactoryReal<double>::Create(refiner, stencilOptions));
+    if (!refined) return fail("OpenSubdiv could not build the refinement stencils");
+    impl->refinedStencils = detail::FlatStencils(*refined, cage.positions.size());
   }
+  if (const auto* local = impl->patches->GetLocalPointStencilTable<double>())
+    impl->localStencils = detail::FlatStencils(*local, impl->refinedEnd());
+  if (!impl->refinedStencils.readsOnlyEarlierPoints() || !impl->localStencils.readsOnlyEarlierPoints())
+    return fail("OpenSubdiv's stencils read points they also write; the parallel update cannot run them");
   impl->points.resize(impl->refinedEnd() + static_cast<std::size_t>(impl->patches->GetNumLocalPoints()));
-  impl->recomputePoints();
+  impl->recomputePoints(1);
   if (cage.hasUvs()) impl->computeUvs();
 
   const Far::TopologyLevel& base = refiner.GetLevel(0);
@@ -158,7 +170,7 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
   return LimitSurface(std::move(impl));
 }
 
-Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositions) {
+Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositions, unsigned threads) {
   if (cagePositions.size() != impl_->cage.positions.size())
     return fail("the deformed cage has " + std::to_string(cagePositions.size()) + " vertices; the limit surface has " +
                 std::to_string(impl_->cage.positions.size()));
@@ -168,7 +180,7 @@ Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositi
       return fail("deformed cage vertex " + std::to_string(v) + " has a non-finite position");
   }
   std::copy(cagePositions.begin(), cagePositions.end(), impl_->cage.positions.begin());
-  impl_->recomputePoints();
+  impl_->recomputePoints(threads);
   return {};
 }
 
@@ -179,7 +191,7 @@ LimitSample LimitSurface::evaluate(std::uint32_t ptexFace, double u, double v) c
   const Far::ConstIndexArray cvs = impl_->patches->GetPatchVertices(handle);
   glm::dvec3 sums[6] = {};
   for (int i = 0; i < cvs.size(); ++i) {
-    const glm::dvec3& point = impl_->points[static_cast<std::size_t>(cvs[i])].p;
+    const glm::dvec3& point = impl_->points[static_cast<std::size_t>(cvs[i])];
     for (int d = 0; d < 6; ++d) sums[d] += w[d][i] * point;
   }
   LimitSample sample;
@@ -203,7 +215,7 @@ glm::dvec3 LimitSurface::evaluatePosition(std::uint32_t ptexFace, double u, doub
   impl_->patches->EvaluateBasis(handle, u, v, w);
   const Far::ConstIndexArray cvs = impl_->patches->GetPatchVertices(handle);
   glm::dvec3 sum(0.0);
-  for (int i = 0; i < cvs.size(); ++i) sum += w[i] * impl_->points[static_cast<std::size_t>(cvs[i])].p;
+  for (int i = 0; i < cvs.size(); ++i) sum += w[i] * impl_->points[static_cast<std::size_t>(cvs[i])];
   return sum;
 }
 

@@ -86,8 +86,9 @@ public:
 
   /// Moves the cage's vertices (same count and order as the cage it was built from) and
   /// recomputes the refined and local points from the stencils; topology, patches and UVs
-  /// are kept. Errors: a wrong vertex count or a non-finite position.
-  [[nodiscard]] Result<void> updatePositions(std::span<const glm::vec3> cagePositions);
+  /// are kept. `threads` ≥ 1 workers (0 counts as 1) share the stencils; the points do not
+  /// depend on it, bit for bit. Errors: a wrong vertex count or a non-finite position.
+  [[nodiscard]] Result<void> updatePositions(std::span<const glm::vec3> cagePositions, unsigned threads = 1);
 
   /// Full evaluation at (u, v) ∈ [0,1]² of `ptexFace` (< ptexFaceCount(); u and v are
   /// clamped to the face).

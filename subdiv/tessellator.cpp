@@ -3,18 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 
+#include "subdiv/detail/flat_index_map.hpp"
+#include "subdiv/detail/parallel_ranges.hpp"
 #include "subdiv/detail/ptex_sides.hpp"
 
 namespace mane::subdiv {
 namespace {
 
 using detail::kGrid;
+
+// Below these a thread costs more than it saves (a face takes about a microsecond to refine
+// and triangulate, a limit point half that to evaluate).
+constexpr std::size_t kMinFacesPerWorker = 512;
+constexpr std::size_t kMinPointsPerWorker = 1024;
 
 /// A limit point seen by the camera.
 struct ProjectedPoint {
@@ -47,24 +53,41 @@ struct AdaptiveTessellator::Impl {
   // Per frame.
   glm::dmat4 viewProjection{1.0};
   glm::dvec2 viewport{1.0};
-  std::vector<Cell> cells;
+  std::vector<Cell> cells;  ///< all faces' leaves, face after face
   std::vector<std::size_t> firstCellOfFace;
-  std::vector<std::vector<std::int64_t>> linePoints;                 ///< sorted parameters of cell corners on each line
-  std::vector<std::pair<std::int64_t, std::int64_t>> rows, columns;  ///< one face's cell corners: (j, i), (i, j)
-  std::vector<GridPoint> polygon;
+  std::vector<std::vector<std::int64_t>> linePoints;  ///< sorted parameters of cell corners on each line
+  /// A triangle corner before it has a vertex number: its shared name and where it lies.
+  struct Corner {
+    detail::PointName name;
+    std::uint32_t face;
+    GridPoint point;
+  };
+  /// What one worker produces for its range of ptex faces, merged in range order.
+  struct Worker {
+    std::vector<Cell> cells;
+    std::size_t positionEvaluations = 0;
+    std::vector<std::pair<std::int64_t, std::int64_t>> rows, columns;  ///< one face's cell corners: (j, i), (i, j)
+    std::vector<GridPoint> polygon;
+    std::vector<Corner> corners;  ///< 3 per triangle
+  };
+  std::vector<Worker> workers;
+  std::vector<std::size_t> faceRangeBegin;  ///< per worker, its first ptex face
   // Naming: limit points (one per location) and vertices (one per location and UV side).
+  static constexpr std::uint32_t kNoVertex = 0xffffffffu;
   struct Location {
     std::uint32_t face;
     GridPoint point;
     std::uint32_t firstVertex;
+    std::uint32_t untaggedVertex;  ///< the vertex with UV tag 0 (most points have only it), or kNoVertex
   };
   struct VertexSource {
     std::uint32_t location;
     std::uint32_t face;
     GridPoint point;
   };
-  std::unordered_map<std::uint64_t, std::uint32_t> locationIndex;
-  std::unordered_map<std::uint64_t, std::uint32_t> vertexIndex;
+  detail::FlatIndexMap locationIndex;
+  detail::FlatIndexMap vertexIndex;           ///< (location, non-zero UV tag) → entry of taggedVertices
+  std::vector<std::uint32_t> taggedVertices;  ///< vertices on the far sides of UV seams
   std::vector<Location> locations;
   std::vector<VertexSource> vertices;
 
@@ -84,8 +107,8 @@ struct AdaptiveTessellator::Impl {
     return point;
   }
 
-  ProjectedPoint evaluate(std::uint32_t face, std::int64_t i, std::int64_t j) {
-    ++statistics.positionEvaluations;
+  ProjectedPoint evaluate(Worker& worker, std::uint32_t face, std::int64_t i, std::int64_t j) const {
+    ++worker.positionEvaluations;
     return project(surface->evaluatePosition(face, double(i) / double(kGrid), double(j) / double(kGrid)));
   }
 
@@ -98,13 +121,14 @@ struct AdaptiveTessellator::Impl {
   }
 
   // Corners 0..3 at (i0, j0), (i1, j0), (i1, j1), (i0, j1).
-  void refine(std::uint32_t face, std::int64_t i0, std::int64_t j0, std::int64_t size, const ProjectedPoint (&c)[4]) {
+  void refine(Worker& worker, std::uint32_t face, std::int64_t i0, std::int64_t j0, std::int64_t size,
+              const ProjectedPoint (&c)[4]) const {
     const std::int64_t h = size / 2;
-    const ProjectedPoint bottom = evaluate(face, i0 + h, j0);
-    const ProjectedPoint right = evaluate(face, i0 + size, j0 + h);
-    const ProjectedPoint top = evaluate(face, i0 + h, j0 + size);
-    const ProjectedPoint left = evaluate(face, i0, j0 + h);
-    const ProjectedPoint centre = evaluate(face, i0 + h, j0 + h);
+    const ProjectedPoint bottom = evaluate(worker, face, i0 + h, j0);
+    const ProjectedPoint right = evaluate(worker, face, i0 + size, j0 + h);
+    const ProjectedPoint top = evaluate(worker, face, i0 + h, j0 + size);
+    const ProjectedPoint left = evaluate(worker, face, i0, j0 + h);
+    const ProjectedPoint centre = evaluate(worker, face, i0 + h, j0 + h);
     bool split = size > smallestCell;
     if (split) {
       // Nothing to refine where all samples lie beyond one side of the view.
@@ -117,25 +141,34 @@ struct AdaptiveTessellator::Impl {
       split = outsideAll == 0 && error > double(settings.maxPixelError);
     }
     if (!split) {
-      cells.push_back({face, i0, j0, size});
+      worker.cells.push_back({face, i0, j0, size});
       return;
     }
-    refine(face, i0, j0, h, {c[0], bottom, centre, left});
-    refine(face, i0 + h, j0, h, {bottom, c[1], right, centre});
-    refine(face, i0 + h, j0 + h, h, {centre, right, c[2], top});
-    refine(face, i0, j0 + h, h, {left, centre, top, c[3]});
+    refine(worker, face, i0, j0, h, {c[0], bottom, centre, left});
+    refine(worker, face, i0 + h, j0, h, {bottom, c[1], right, centre});
+    refine(worker, face, i0 + h, j0 + h, h, {centre, right, c[2], top});
+    refine(worker, face, i0, j0 + h, h, {left, centre, top, c[3]});
   }
 
-  void buildCells() {
-    cells.clear();
-    firstCellOfFace.clear();
-    for (std::uint32_t face = 0; face < surface->ptexFaceCount(); ++face) {
-      firstCellOfFace.push_back(cells.size());
-      const ProjectedPoint corners[4] = {evaluate(face, 0, 0), evaluate(face, kGrid, 0), evaluate(face, kGrid, kGrid),
-                                         evaluate(face, 0, kGrid)};
-      refine(face, 0, 0, kGrid, corners);
+  void refineFaces(Worker& worker, std::size_t begin, std::size_t end) const {
+    worker.cells.clear();
+    worker.positionEvaluations = 0;
+    for (auto face = std::uint32_t(begin); face < end; ++face) {
+      const ProjectedPoint corners[4] = {evaluate(worker, face, 0, 0), evaluate(worker, face, kGrid, 0),
+                                         evaluate(worker, face, kGrid, kGrid), evaluate(worker, face, 0, kGrid)};
+      refine(worker, face, 0, 0, kGrid, corners);
     }
-    firstCellOfFace.push_back(cells.size());
+  }
+
+  /// Concatenates the workers' leaves in face order and indexes them by face.
+  void mergeCells() {
+    cells.clear();
+    for (const Worker& worker : workers) {
+      cells.insert(cells.end(), worker.cells.begin(), worker.cells.end());
+      statistics.positionEvaluations += worker.positionEvaluations;
+    }
+    firstCellOfFace.assign(surface->ptexFaceCount() + 1, cells.size());
+    for (std::size_t c = cells.size(); c-- > 0;) firstCellOfFace[cells[c].face] = c;
     statistics.cells = cells.size();
   }
 
@@ -163,7 +196,9 @@ struct AdaptiveTessellator::Impl {
 
   /// Appends the points strictly between `from` and `to` on a side of a cell, in that order.
   /// `fixed` is the coordinate that does not vary (j for horizontal sides, i for vertical).
-  void appendBetween(std::uint32_t face, bool horizontal, std::int64_t fixed, std::int64_t from, std::int64_t to) {
+  void appendBetween(Worker& worker, std::uint32_t face, bool horizontal, std::int64_t fixed, std::int64_t from,
+                     std::int64_t to) const {
+    std::vector<GridPoint>& polygon = worker.polygon;
     const std::int64_t low = std::min(from, to), high = std::max(from, to);
     const std::size_t start = polygon.size();
     const auto push = [&](std::int64_t varying) {
@@ -181,7 +216,7 @@ struct AdaptiveTessellator::Impl {
       // Line order follows the line; make it ascending in the face coordinate first.
       if (s.scale < 0) std::reverse(polygon.begin() + std::ptrdiff_t(start), polygon.end());
     } else {
-      const auto& list = horizontal ? rows : columns;
+      const auto& list = horizontal ? worker.rows : worker.columns;
       auto first = std::upper_bound(list.begin(), list.end(), std::pair{fixed, low});
       auto last = std::lower_bound(list.begin(), list.end(), std::pair{fixed, high});
       for (auto it = first; it < last; ++it) push(it->second);
@@ -189,26 +224,14 @@ struct AdaptiveTessellator::Impl {
     if (from > to) std::reverse(polygon.begin() + std::ptrdiff_t(start), polygon.end());
   }
 
-  std::uint32_t vertexFor(std::uint32_t face, GridPoint point) {
-    const detail::PointName name = sides.name(face, point.i, point.j);
-    const auto [location, newLocation] = locationIndex.try_emplace(name.location, std::uint32_t(locations.size()));
-    if (newLocation) locations.push_back({face, point, std::uint32_t(vertices.size())});
-    const std::uint64_t key = (std::uint64_t(location->second) << 32) | name.uvTag;
-    const auto [vertex, newVertex] = vertexIndex.try_emplace(key, std::uint32_t(vertices.size()));
-    if (newVertex) vertices.push_back({location->second, face, point});
-    return vertex->second;
+  void emitTriangle(Worker& worker, std::uint32_t face, GridPoint a, GridPoint b, GridPoint c) const {
+    for (const GridPoint& p : {a, b, c}) worker.corners.push_back({sides.name(face, p.i, p.j), face, p});
   }
 
-  void emitTriangle(std::uint32_t face, GridPoint a, GridPoint b, GridPoint c, TessellatedMesh& mesh) {
-    for (const GridPoint& p : {a, b, c}) {
-      mesh.indices.push_back(vertexFor(face, p));
-      if (settings.keepPtexCoordinates)
-        mesh.cornerPtexCoordinates.emplace_back(double(p.i) / double(kGrid), double(p.j) / double(kGrid));
-    }
-    if (settings.keepPtexCoordinates) mesh.trianglePtexFaces.push_back(face);
-  }
-
-  void triangulateFace(std::uint32_t face, TessellatedMesh& mesh) {
+  void triangulateFace(Worker& worker, std::uint32_t face) const {
+    auto& rows = worker.rows;
+    auto& columns = worker.columns;
+    auto& polygon = worker.polygon;
     rows.clear();
     columns.clear();
     for (std::size_t c = firstCellOfFace[face]; c < firstCellOfFace[face + 1]; ++c) {
@@ -229,25 +252,77 @@ struct AdaptiveTessellator::Impl {
       // The cell's boundary, counter-clockwise in (u, v), with its neighbours' extra points.
       polygon.clear();
       polygon.push_back({i0, j0});
-      appendBetween(face, true, j0, i0, i1);
+      appendBetween(worker, face, true, j0, i0, i1);
       polygon.push_back({i1, j0});
-      appendBetween(face, false, i1, j0, j1);
+      appendBetween(worker, face, false, i1, j0, j1);
       polygon.push_back({i1, j1});
-      appendBetween(face, true, j1, i1, i0);
+      appendBetween(worker, face, true, j1, i1, i0);
       polygon.push_back({i0, j1});
-      appendBetween(face, false, i0, j1, j0);
+      appendBetween(worker, face, false, i0, j1, j0);
       if (polygon.size() == 4) {
-        emitTriangle(face, polygon[0], polygon[1], polygon[2], mesh);
-        emitTriangle(face, polygon[0], polygon[2], polygon[3], mesh);
+        emitTriangle(worker, face, polygon[0], polygon[1], polygon[2]);
+        emitTriangle(worker, face, polygon[0], polygon[2], polygon[3]);
         continue;
       }
       const GridPoint centre{i0 + cell.size / 2, j0 + cell.size / 2};
       for (std::size_t k = 0; k < polygon.size(); ++k)
-        emitTriangle(face, centre, polygon[k], polygon[(k + 1) % polygon.size()], mesh);
+        emitTriangle(worker, face, centre, polygon[k], polygon[(k + 1) % polygon.size()]);
     }
   }
 
-  void evaluateVertices(TessellatedMesh& mesh) {
+  void triangulateFaces(Worker& worker, std::size_t begin, std::size_t end) const {
+    worker.corners.clear();
+    for (auto face = std::uint32_t(begin); face < end; ++face) triangulateFace(worker, face);
+  }
+
+  std::uint32_t vertexFor(const Corner& corner) {
+    const auto [location, newLocation] = locationIndex.insert(corner.name.location);
+    if (newLocation) locations.push_back({corner.face, corner.point, std::uint32_t(vertices.size()), kNoVertex});
+    if (corner.name.uvTag == 0) {  // no second lookup for the common case
+      std::uint32_t& untagged = locations[location].untaggedVertex;
+      if (untagged == kNoVertex) {
+        untagged = std::uint32_t(vertices.size());
+        vertices.push_back({location, corner.face, corner.point});
+      }
+      return untagged;
+    }
+    const std::uint64_t key = (std::uint64_t(location) << 32) | corner.name.uvTag;
+    const auto [slot, newSlot] = vertexIndex.insert(key);
+    if (newSlot) {
+      taggedVertices.push_back(std::uint32_t(vertices.size()));
+      vertices.push_back({location, corner.face, corner.point});
+    }
+    return taggedVertices[slot];
+  }
+
+  /// Numbers vertices in order of first use over all workers' corners, in face order: the
+  /// numbering a single thread gives.
+  void numberVertices(TessellatedMesh& mesh) {
+    std::size_t cornerCount = 0;
+    for (const Worker& worker : workers) cornerCount += worker.corners.size();
+    // About 1 limit point per 6 corners on a fine mesh; the maps grow if more come.
+    locationIndex.clear(cornerCount / 4);
+    vertexIndex.clear();
+    taggedVertices.clear();
+    locations.clear();
+    vertices.clear();
+    mesh.indices.resize(cornerCount);
+    mesh.trianglePtexFaces.clear();
+    mesh.cornerPtexCoordinates.clear();
+    std::size_t next = 0;
+    for (const Worker& worker : workers)
+      for (const Corner& corner : worker.corners) mesh.indices[next++] = vertexFor(corner);
+    if (!settings.keepPtexCoordinates) return;
+    for (const Worker& worker : workers)
+      for (std::size_t k = 0; k < worker.corners.size(); ++k) {
+        const Corner& corner = worker.corners[k];
+        mesh.cornerPtexCoordinates.emplace_back(double(corner.point.i) / double(kGrid),
+                                                double(corner.point.j) / double(kGrid));
+        if (k % 3 == 0) mesh.trianglePtexFaces.push_back(corner.face);
+      }
+  }
+
+  void evaluateVertices(TessellatedMesh& mesh, unsigned threads) {
     const std::size_t count = vertices.size();
     const bool uvs = surface->hasUvs();
     mesh.positions.resize(count);
@@ -256,43 +331,55 @@ struct AdaptiveTessellator::Impl {
     mesh.weldedVertex.resize(count);
     mesh.uvs.resize(uvs ? count : 0);
     const auto toUv = [](std::int64_t coordinate) { return double(coordinate) / double(kGrid); };
-    for (const Location& location : locations) {
-      const LimitSample sample = surface->evaluate(location.face, toUv(location.point.i), toUv(location.point.j));
-      const std::uint32_t v = location.firstVertex;
-      mesh.positions[v] = sample.position;
-      mesh.normals[v] = sample.normal;
-      mesh.meanCurvature[v] = sample.curvature.mean;
-      if (uvs) mesh.uvs[v] = sample.uv;
-    }
+    detail::forEachRange(locations.size(), detail::workerCount(locations.size(), threads, kMinPointsPerWorker),
+                         [&](std::size_t, std::size_t begin, std::size_t end) {
+                           for (std::size_t l = begin; l < end; ++l) {
+                             const Location& location = locations[l];
+                             const LimitSample sample =
+                                 surface->evaluate(location.face, toUv(location.point.i), toUv(location.point.j));
+                             const std::uint32_t v = location.firstVertex;
+                             mesh.positions[v] = sample.position;
+                             mesh.normals[v] = sample.normal;
+                             mesh.meanCurvature[v] = sample.curvature.mean;
+                             if (uvs) mesh.uvs[v] = sample.uv;
+                           }
+                         });
     // The other sides of UV seams: the same limit point, their own face's UVs.
-    for (std::uint32_t v = 0; v < count; ++v) {
-      const VertexSource& source = vertices[v];
-      const std::uint32_t first = locations[source.location].firstVertex;
-      mesh.weldedVertex[v] = first;
-      if (first == v) continue;
-      mesh.positions[v] = mesh.positions[first];
-      mesh.normals[v] = mesh.normals[first];
-      mesh.meanCurvature[v] = mesh.meanCurvature[first];
-      if (uvs) mesh.uvs[v] = surface->evaluateUv(source.face, toUv(source.point.i), toUv(source.point.j));
-    }
+    detail::forEachRange(count, detail::workerCount(count, threads, kMinPointsPerWorker),
+                         [&](std::size_t, std::size_t begin, std::size_t end) {
+                           for (std::size_t v = begin; v < end; ++v) {
+                             const VertexSource& source = vertices[v];
+                             const std::uint32_t first = locations[source.location].firstVertex;
+                             mesh.weldedVertex[v] = first;
+                             if (first == v) continue;
+                             mesh.positions[v] = mesh.positions[first];
+                             mesh.normals[v] = mesh.normals[first];
+                             mesh.meanCurvature[v] = mesh.meanCurvature[first];
+                             if (uvs)
+                               mesh.uvs[v] =
+                                   surface->evaluateUv(source.face, toUv(source.point.i), toUv(source.point.j));
+                           }
+                         });
     statistics.limitPoints = locations.size();
   }
 
-  void tessellate(const ScreenView& view, TessellatedMesh& mesh) {
+  void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
     statistics = {};
     viewProjection = glm::dmat4(view.viewProjection);
     viewport = glm::dvec2(view.viewportSize);
-    buildCells();
+    const std::size_t faces = surface->ptexFaceCount();
+    const std::size_t workerTotal = detail::workerCount(faces, threads, kMinFacesPerWorker);
+    workers.resize(workerTotal);
+    detail::forEachRange(faces, workerTotal, [&](std::size_t w, std::size_t begin, std::size_t end) {
+      refineFaces(workers[w], begin, end);
+    });
+    mergeCells();
     collectLinePoints();
-    locationIndex.clear();
-    vertexIndex.clear();
-    locations.clear();
-    vertices.clear();
-    mesh.indices.clear();
-    mesh.trianglePtexFaces.clear();
-    mesh.cornerPtexCoordinates.clear();
-    for (std::uint32_t face = 0; face < surface->ptexFaceCount(); ++face) triangulateFace(face, mesh);
-    evaluateVertices(mesh);
+    detail::forEachRange(faces, workerTotal, [&](std::size_t w, std::size_t begin, std::size_t end) {
+      triangulateFaces(workers[w], begin, end);
+    });
+    numberVertices(mesh);
+    evaluateVertices(mesh, threads);
   }
 };
 
@@ -312,8 +399,8 @@ AdaptiveTessellator::AdaptiveTessellator(AdaptiveTessellator&&) noexcept = defau
 AdaptiveTessellator& AdaptiveTessellator::operator=(AdaptiveTessellator&&) noexcept = default;
 AdaptiveTessellator::~AdaptiveTessellator() = default;
 
-void AdaptiveTessellator::tessellate(const ScreenView& view, TessellatedMesh& mesh) {
-  impl_->tessellate(view, mesh);
+void AdaptiveTessellator::tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
+  impl_->tessellate(view, mesh, threads);
 }
 
 const TessellationStatistics& AdaptiveTessellator::statistics() const {

@@ -78,9 +78,10 @@ public:
   ~AdaptiveTessellator();
 
   /// Tessellates the surface as it is now for `view` into `mesh`, reusing its storage (call
-  /// once per frame when the camera or the cage moves). Deterministic: the same surface and
-  /// view give the same mesh, vertex order included.
-  void tessellate(const ScreenView& view, TessellatedMesh& mesh);
+  /// once per frame when the camera or the cage moves). `threads` ≥ 1 workers (0 counts as 1)
+  /// share the ptex faces and limit points. Deterministic: the same surface and view give the
+  /// same mesh, vertex order included, bit for bit whatever `threads` is.
+  void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
 
   [[nodiscard]] const TessellationStatistics& statistics() const;
   [[nodiscard]] const TessellationSettings& settings() const;

@@ -1,0 +1,119 @@
+#include "scenes/subdivided_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <thread>
+#include <tuple>
+
+#include "subdiv/limit.hpp"
+#include "subdiv/tessellator.hpp"
+
+namespace mane::scenes {
+
+subdiv::Cage cageFromTriangles(const Mesh& mesh) {
+  subdiv::Cage cage;
+  std::map<std::tuple<float, float, float>, std::uint32_t> welded;
+  std::vector<std::uint32_t> remap;
+  remap.reserve(mesh.positions.size());
+  for (const glm::vec3& p : mesh.positions) {
+    const auto [it, inserted] = welded.try_emplace({p.x, p.y, p.z}, std::uint32_t(cage.positions.size()));
+    if (inserted) cage.positions.push_back(p);
+    remap.push_back(it->second);
+  }
+  const bool uvs = !mesh.uvs.empty();
+  if (uvs) cage.uvs = mesh.uvs;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::uint32_t a = remap[mesh.indices[t]], b = remap[mesh.indices[t + 1]], c = remap[mesh.indices[t + 2]];
+    if (a == b || b == c || a == c) continue;
+    cage.faceSizes.push_back(3);
+    cage.faceVertices.insert(cage.faceVertices.end(), {a, b, c});
+    if (uvs)
+      cage.faceUvIndices.insert(cage.faceUvIndices.end(), {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]});
+  }
+  return cage;
+}
+
+void flipCageUvsToTopLeft(subdiv::Cage& cage) {
+  for (glm::vec2& uv : cage.uvs) uv.y = 1.0f - uv.y;
+}
+
+std::size_t capBoundaryLoops(subdiv::Cage& cage) {
+  // OpenSubdiv's sharpness at which a crease is infinitely sharp.
+  constexpr float kInfinitelySharp = 10.0f;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  std::size_t offset = 0;
+  for (const std::uint32_t size : cage.faceSizes) {
+    for (std::uint32_t k = 0; k < size; ++k)
+      ++directed[{cage.faceVertices[offset + k], cage.faceVertices[offset + (k + 1) % size]}];
+    offset += size;
+  }
+  // A boundary edge a → b has no b → a; the cap runs b → a, so from b it goes on to a.
+  std::map<std::uint32_t, std::uint32_t> capNext;
+  std::map<std::uint32_t, int> outgoing;
+  for (const auto& [edge, count] : directed)
+    if (!directed.contains({edge.second, edge.first})) {
+      capNext[edge.second] = edge.first;
+      ++outgoing[edge.second];
+    }
+  std::size_t capped = 0;
+  std::map<std::uint32_t, bool> visited;
+  for (const auto& [start, unused] : capNext) {
+    if (visited[start]) continue;
+    std::vector<std::uint32_t> loop;
+    bool usable = true;
+    for (std::uint32_t v = start;;) {
+      visited[v] = true;
+      usable = usable && outgoing[v] == 1;
+      loop.push_back(v);
+      const auto next = capNext.find(v);
+      if (next == capNext.end()) {
+        usable = false;
+        break;
+      }
+      v = next->second;
+      if (v == start) break;
+      if (visited[v] || loop.size() > capNext.size()) {
+        usable = false;
+        break;
+      }
+    }
+    if (!usable || loop.size() < 3) continue;
+    cage.faceSizes.push_back(std::uint32_t(loop.size()));
+    cage.faceVertices.insert(cage.faceVertices.end(), loop.begin(), loop.end());
+    if (cage.hasUvs()) {
+      cage.uvs.emplace_back(0.0f);
+      cage.faceUvIndices.insert(cage.faceUvIndices.end(), loop.size(), std::uint32_t(cage.uvs.size() - 1));
+    }
+    for (std::size_t k = 0; k < loop.size(); ++k)
+      cage.creases.push_back({loop[k], loop[(k + 1) % loop.size()], kInfinitelySharp});
+    ++capped;
+  }
+  return capped;
+}
+
+Result<SubdividedMesh> tessellateForCamera(const subdiv::Cage& cage, const Subdivision& subdivision,
+                                           const glm::mat4& modelViewProjection, glm::vec2 viewport) {
+  auto surface = subdiv::LimitSurface::create(cage, {.maxIsolationLevel = subdivision.isolation});
+  if (!surface) return std::unexpected(surface.error());
+  auto tessellator = subdiv::AdaptiveTessellator::create(
+      *surface, {.maxPixelError = subdivision.maxPixelError, .maxDepth = subdivision.maxDepth});
+  if (!tessellator) return std::unexpected(tessellator.error());
+  subdiv::TessellatedMesh tessellated;
+  // Load time: use the machine; the mesh does not depend on the thread count.
+  tessellator->tessellate({modelViewProjection, viewport}, tessellated,
+                          std::max(1u, std::thread::hardware_concurrency()));
+
+  SubdividedMesh result;
+  result.cageFaces = cage.faceSizes.size();
+  result.ptexFaces = surface->ptexFaceCount();
+  result.mesh.positions = std::move(tessellated.positions);
+  result.mesh.normals = std::move(tessellated.normals);
+  result.mesh.uvs = std::move(tessellated.uvs);
+  result.mesh.indices = std::move(tessellated.indices);
+  result.inverseRadius.reserve(tessellated.meanCurvature.size());
+  for (const float h : tessellated.meanCurvature) result.inverseRadius.push_back(std::abs(h));
+  return result;
+}
+
+}  // namespace mane::scenes

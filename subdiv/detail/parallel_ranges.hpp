@@ -1,0 +1,53 @@
+#pragma once
+// Private to subdiv/: runs work over a fixed partition of [0, count) into contiguous ranges,
+// one per worker (DESIGN.md, "Determinism"). Callers make each item's arithmetic independent
+// of the partition and merge per-range outputs in range order, so results do not depend on
+// the thread count.
+
+#include <algorithm>
+#include <cstddef>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace mane::subdiv::detail {
+
+/// The workers `threads` asks for over `count` items: at least 1, at most one per
+/// `minimumPerWorker` items (a thread costs tens of microseconds to start).
+[[nodiscard]] inline std::size_t workerCount(std::size_t count, unsigned threads, std::size_t minimumPerWorker) {
+  const std::size_t useful = std::max<std::size_t>(1, count / std::max<std::size_t>(1, minimumPerWorker));
+  return std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, useful);
+}
+
+/// The first item of range `w` of `workers` over `count` items.
+[[nodiscard]] inline std::size_t rangeBegin(std::size_t count, std::size_t workers, std::size_t w) {
+  return count * w / workers;
+}
+
+/// Calls `work(range, begin, end)` for ranges 0..workers−1 of [0, count), the calling thread
+/// taking range 0 (and any that no new thread could be started for), and returns when all are done.
+template <typename Work>
+void forEachRange(std::size_t count, std::size_t workers, const Work& work) {
+  if (workers <= 1) {
+    work(std::size_t(0), std::size_t(0), count);
+    return;
+  }
+  std::vector<std::jthread> pool;
+  pool.reserve(workers - 1);
+  std::size_t inlineFrom = workers;
+  for (std::size_t w = 1; w < workers; ++w) {
+    try {
+      pool.emplace_back(
+          [&work, w, b = rangeBegin(count, workers, w), e = rangeBegin(count, workers, w + 1)] { work(w, b, e); });
+    } catch (const std::system_error&) {
+      inlineFrom = w;  // no more threads available: the calling thread runs the rest
+      break;
+    }
+  }
+  work(std::size_t(0), std::size_t(0), rangeBegin(count, workers, 1));
+  for (std::size_t w = inlineFrom; w < workers; ++w)
+    work(w, rangeBegin(count, workers, w), rangeBegin(count, workers, w + 1));
+  pool.clear();  // joins
+}
+
+}  // namespace mane::subdiv::detail
