@@ -8,7 +8,8 @@
 //   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular); scene:3 and 4:
 //   skin with texture-space diffusion at 1024² and 2048² (irradiance, 12 blurs, then the head);
 //   scene:5: pre-integrated skin with depth-map translucency (the light's depth map, then the
-//   head reading it).
+//   head reading it); scene:6: the same with the voxel thickness table (N = 32, built before
+//   the timed frames).
 //
 //   BM_TranslucentCube/method:0..2: scenes/translucent_cube.json at 1280×720, its cube drawn
 //   without translucency (the baseline), with the depth-map method and with the voxel table
@@ -68,7 +69,8 @@ void renderFrames(benchmark::State& state, const render::StaticScene& statics, c
 }
 
 // state.range(0): 0 draws nothing (the baseline), 1 the head as Lambert, 2 as skin, 3 and 4 as
-// texture-space skin (1024², 2048²), 5 skin with depth-map translucency. range(1): MSAA samples.
+// texture-space skin (1024², 2048²), 5 and 6 skin with translucency from the depth map and from
+// the voxel table (N = 32). range(1): MSAA samples.
 void BM_NaluFrame(benchmark::State& state) {
   static const scenes::World world = loadWorld("nalu.json");
   render::StaticScene statics = world.staticScene();
@@ -78,8 +80,9 @@ void BM_NaluFrame(benchmark::State& state) {
       material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
       material.skin.irradianceSize = state.range(0) == 3 ? 1024 : 2048;
     }
-    if (state.range(0) == 5 && material.shading == render::SurfaceShading::kSkin)
-      material.translucency.method = render::TranslucencyMethod::kDepthMap;
+    if (state.range(0) >= 5 && material.shading == render::SurfaceShading::kSkin)
+      material.translucency.method =
+          state.range(0) == 5 ? render::TranslucencyMethod::kDepthMap : render::TranslucencyMethod::kVoxelLut;
   }
   render::FrameInput frame = world.frameInput();
   if (state.range(0) == 0) frame.instances.clear();
@@ -93,6 +96,7 @@ BENCHMARK(BM_NaluFrame)
     ->Args({3, 1})
     ->Args({4, 1})
     ->Args({5, 1})
+    ->Args({6, 1})
     ->Args({1, 4})
     ->Args({2, 4})
     ->Unit(benchmark::kMillisecond)

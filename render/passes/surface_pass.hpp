@@ -140,7 +140,8 @@ private:
   static constexpr std::size_t kShadings = 3;
   static constexpr std::size_t kTranslucencyMethods = 3;
   static std::size_t pipelineFor(const GpuMaterial& material);
-  /// The table of `mesh` at `resolution`, or nullptr until prepareThickness built it.
+  /// The table of `mesh` at `material`'s voxel resolution; nullptr for other methods and until
+  /// prepareThickness built it.
   const Thickness* thicknessOf(const GpuMesh& mesh, const GpuMaterial& material) const;
 
   struct Formats {
