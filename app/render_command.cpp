@@ -86,7 +86,9 @@ void run(const RenderOptions& options) {
       if (auto advanced = world->advance(1.0 / options.fps, options.threads); !advanced)
         return failWith(advanced.error().message);
     if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
-    auto frameTimings = (*renderer)->render(world->frameInput());
+    render::FrameInput frameInput = world->frameInput();
+    frameInput.post.frameSeconds = float(1.0 / options.fps);
+    auto frameTimings = (*renderer)->render(frameInput);
     if (!frameTimings) return failWith(frameTimings.error().message);
     timings.push_back(*frameTimings);
     auto pixels = (*renderer)->readOutput();

@@ -58,7 +58,22 @@ struct InputState {
   OrbitCamera orbit;
   bool paused = false;
   bool stepOnce = false;
+  // Post-processing toggles over the scene's own settings: T Reinhard/linear, G glow, A auto gain.
+  bool flipToneMapping = false;
+  bool flipGlow = false;
+  bool flipAutoGain = false;
 };
+
+// The scene's post settings with the viewer's toggles applied.
+render::PostSettings toggled(render::PostSettings post, const InputState& input) {
+  if (input.flipToneMapping)
+    post.toneMapping = post.toneMapping == render::ToneMapping::kReinhard ? render::ToneMapping::kLinear
+                                                                          : render::ToneMapping::kReinhard;
+  // The seed's glow mixes about half and half; a scene with its own strength toggles to none.
+  if (input.flipGlow) post.glowStrength = post.glowStrength > 0.0f ? 0.0f : 0.4f;
+  if (input.flipAutoGain) post.autoGain = !post.autoGain;
+  return post;
+}
 
 void installCallbacks(GLFWwindow* window, InputState& input) {
   glfwSetWindowUserPointer(window, &input);
@@ -86,6 +101,9 @@ void installCallbacks(GLFWwindow* window, InputState& input) {
     if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
     if (key == GLFW_KEY_SPACE) state.paused = !state.paused;
     if (key == GLFW_KEY_N) state.stepOnce = true;
+    if (key == GLFW_KEY_T) state.flipToneMapping = !state.flipToneMapping;
+    if (key == GLFW_KEY_G) state.flipGlow = !state.flipGlow;
+    if (key == GLFW_KEY_A) state.flipAutoGain = !state.flipAutoGain;
   });
 }
 
@@ -131,6 +149,8 @@ void run(const ViewOptions& options) {
     render::FrameInput frameInput = world->frameInput();
     frameInput.camera.position = input.orbit.position();
     frameInput.camera.target = input.orbit.target;
+    frameInput.post = toggled(frameInput.post, input);
+    frameInput.post.frameSeconds = float(dt);
     if (auto rendered = (*renderer)->render(frameInput); !rendered) return failWith(rendered.error().message);
     if (auto presented = (*swapchain)->present((*renderer)->target().output()); !presented)
       return failWith(presented.error().message);

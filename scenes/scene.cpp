@@ -23,6 +23,7 @@ using detail::ObjectFields;
 using detail::parseCloth;
 using detail::parseGroom;
 using detail::parseHairShadows;
+using detail::parsePost;
 using detail::parseTransform;
 using detail::require;
 using Json = nlohmann::json;
@@ -362,6 +363,7 @@ Scene parseRoot(const Json& json) {
     scene.simulation = parseSimulation(*sim, "simulation");
   }
   if (const Json* shadows = fields.take("hair_shadows")) scene.hairShadows = parseHairShadows(*shadows, "hair_shadows");
+  if (const Json* post = fields.take("post")) scene.post = parsePost(*post, "post");
   fields.finish();
   checkReferences(scene);
   return scene;

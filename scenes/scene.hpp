@@ -266,6 +266,8 @@ struct Scene {
   HeadMotion headMotion;
   SimulationSettings simulation;
   render::HairShadowSettings hairShadows;  ///< opacity shadow maps at 512 × 512 unless the file says otherwise
+  /// Glow, auto gain and tone mapping (render::PostSettings); the frame's Δt is the caller's.
+  render::PostSettings post;
 
   [[nodiscard]] const Material* findMaterial(std::string_view name) const;
   [[nodiscard]] const MeshInstance* findMesh(std::string_view name) const;

@@ -254,4 +254,24 @@ render::HairShadowSettings parseHairShadows(const Json& json, const std::string&
   return shadows;
 }
 
+render::PostSettings parsePost(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  render::PostSettings post;
+  const std::string toneMapping = fields.optional<std::string>("tone_mapping", "linear");
+  require(toneMapping == "linear" || toneMapping == "reinhard", fields.child("tone_mapping"),
+          "expected \"linear\" or \"reinhard\", got \"" + toneMapping + "\"");
+  post.toneMapping = toneMapping == "reinhard" ? render::ToneMapping::kReinhard : render::ToneMapping::kLinear;
+  post.autoGain = fields.optional<bool>("auto_gain", post.autoGain);
+  post.key = fields.optional<float>("key", post.key);
+  post.glowStrength = fields.optional<float>("glow", post.glowStrength);
+  post.adaptationSeconds = fields.optional<float>("adaptation_seconds", post.adaptationSeconds);
+  fields.finish();
+  require(post.key > 0.0f && post.key <= 1.0f, fields.child("key"), "expected a key value in (0, 1]");
+  require(post.glowStrength >= 0.0f && post.glowStrength <= 1.0f, fields.child("glow"),
+          "expected a glow strength in [0, 1]");
+  require(post.adaptationSeconds >= 0.0f && post.adaptationSeconds <= 60.0f, fields.child("adaptation_seconds"),
+          "expected an adaptation time in [0, 60] seconds");
+  return post;
+}
+
 }  // namespace mane::scenes::detail

@@ -358,6 +358,7 @@ std::vector<World::DynamicMesh> World::dynamicMeshes() const {
 
 render::FrameInput World::frameInput() const {
   render::FrameInput frame;
+  frame.post = scene_.post;
   const Camera& camera = scene_.camera;
   frame.camera = render::Camera{.position = camera.position,
                                 .target = camera.target,

@@ -441,6 +441,35 @@ TEST(Scene, HairShadowErrorsNameTheField) {
   EXPECT_EQ(shadowError("true"), "dir/bad.json: hair_shadows: expected an object, got a boolean");
 }
 
+TEST(Scene, PostBlockSetsTheFramesToneMappingGainAndGlow) {
+  auto plain = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}})", "x.json");
+  ASSERT_TRUE(plain.has_value()) << plain.error().message;
+  EXPECT_EQ(plain->post.toneMapping, render::ToneMapping::kLinear);  // today's look unless asked
+  EXPECT_FALSE(plain->post.autoGain);
+  EXPECT_EQ(plain->post.glowStrength, 0.0f);
+  auto post = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                             "post": {"tone_mapping": "reinhard", "auto_gain": true, "key": 0.36, "glow": 0.5,
+                                      "adaptation_seconds": 2}})",
+                         "x.json");
+  ASSERT_TRUE(post.has_value()) << post.error().message;
+  EXPECT_EQ(post->post.toneMapping, render::ToneMapping::kReinhard);
+  EXPECT_TRUE(post->post.autoGain);
+  EXPECT_EQ(post->post.key, 0.36f);
+  EXPECT_EQ(post->post.glowStrength, 0.5f);
+  EXPECT_EQ(post->post.adaptationSeconds, 2.0f);
+
+  const auto postError = [](const std::string& block) {
+    return errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}, "post": )" + block + "}");
+  };
+  EXPECT_EQ(postError(R"({"tone_mapping": "aces"})"),
+            "dir/bad.json: post.tone_mapping: expected \"linear\" or \"reinhard\", got \"aces\"");
+  EXPECT_EQ(postError(R"({"key": 0})"), "dir/bad.json: post.key: expected a key value in (0, 1]");
+  EXPECT_EQ(postError(R"({"glow": 1.5})"), "dir/bad.json: post.glow: expected a glow strength in [0, 1]");
+  EXPECT_EQ(postError(R"({"adaptation_seconds": -1})"),
+            "dir/bad.json: post.adaptation_seconds: expected an adaptation time in [0, 60] seconds");
+  EXPECT_EQ(postError(R"({"auto_gain": 1})"), "dir/bad.json: post.auto_gain: expected true or false, got a number");
+}
+
 TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
   auto scene = loadScene(kScenes / "ponytail.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
