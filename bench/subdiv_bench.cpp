@@ -16,10 +16,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -27,6 +25,7 @@
 
 #include "scenes/assets.hpp"
 #include "scenes/gltf_loader.hpp"
+#include "scenes/subdivided_mesh.hpp"
 #include "subdiv/limit.hpp"
 #include "subdiv/tessellator.hpp"
 
@@ -49,30 +48,6 @@ struct Head {
   glm::vec3 centre{0.0f};
 };
 
-/// The glTF mesh as a cage: equal positions welded (the file splits vertices at UV seams),
-/// the file's per-vertex UVs as face-varying values, triangles that collapse dropped.
-subdiv::Cage cageFromMesh(const scenes::Mesh& mesh) {
-  subdiv::Cage cage;
-  std::map<std::tuple<float, float, float>, std::uint32_t> welded;
-  std::vector<std::uint32_t> remap;
-  for (const glm::vec3& p : mesh.positions) {
-    const auto [it, inserted] = welded.try_emplace({p.x, p.y, p.z}, std::uint32_t(cage.positions.size()));
-    if (inserted) cage.positions.push_back(p);
-    remap.push_back(it->second);
-  }
-  cage.uvs = mesh.uvs;
-  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const std::uint32_t a = remap[mesh.indices[t]], b = remap[mesh.indices[t + 1]], c = remap[mesh.indices[t + 2]];
-    if (a == b || b == c || a == c) continue;
-    cage.faceSizes.push_back(3);
-    cage.faceVertices.insert(cage.faceVertices.end(), {a, b, c});
-    if (!mesh.uvs.empty())
-      cage.faceUvIndices.insert(cage.faceUvIndices.end(), {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]});
-  }
-  if (mesh.uvs.empty()) cage.uvs.clear();
-  return cage;
-}
-
 Head loadHead() {
   Head head;
   auto resolver = scenes::AssetResolver::createDefault();
@@ -81,7 +56,7 @@ Head loadHead() {
   if (!found || !found->path) return {.problem = found ? found->missingReason : found.error().message};
   auto mesh = scenes::loadGltf(*found->path);
   if (!mesh) return {.problem = mesh.error().message};
-  head.cage = cageFromMesh(*mesh);
+  head.cage = scenes::cageFromTriangles(*mesh);
   head.centre = mesh->bounds().centre();
   // Isolation level 1: every vertex of a triangle cage is extraordinary after one step, so
   // each level multiplies the Gregory end caps' local points (and the update time).
