@@ -3,9 +3,10 @@
 //
 //   BM_OutputOnly: record, submit, wait: clear the HDR frame, then the output pass with the
 //     defaults (linear exposure, no glow, no auto gain) — the frame as it was before the chain.
-//   BM_PostChain/<glow>/<auto gain>/<tone map>: the same with the chain's passes that the
-//     arguments switch on (downsample, auto gain, four glow blurs) and the specialised output pass
-//     (tone map 1: Reinhard).
+//   BM_PostChain/<glow>/<auto gain>/<tone map>/<god rays>: the same with the chain's passes that
+//     the arguments switch on (downsample, auto gain, four glow blurs, god rays around a light at
+//     frame uv (0.5, 0.4): bright pass, polar transform, radial blur, inverse) and the specialised
+//     output pass (tone map 1: Reinhard).
 //
 // Counters, from GPU timestamps of the same frames (median of the iterations): each pass's
 // milliseconds, and `vs_output` = (post passes + output) / output: what the chain costs relative to
@@ -90,6 +91,11 @@ void frame(Shared& s, const PostSettings& settings) {
         s.post->recordGlow(commands);
         s.timer->end(commands);
       }
+      if (settings.godRays > 0.0f) {
+        s.timer->begin(commands, "god_rays");
+        s.post->recordGodRays(commands, settings, {0.5f, 0.4f});
+        s.timer->end(commands);
+      }
       s.post->recordHandOff(commands);
     }
     transition(commands, s.target->output(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
@@ -129,15 +135,18 @@ void BM_OutputOnly(benchmark::State& state) {
 void BM_PostChain(benchmark::State& state) {
   run(state, PostSettings{.toneMapping = state.range(2) ? ToneMapping::kReinhard : ToneMapping::kLinear,
                           .autoGain = state.range(1) != 0,
-                          .glowStrength = state.range(0) ? 0.5f : 0.0f});
+                          .glowStrength = state.range(0) ? 0.5f : 0.0f,
+                          .godRays = state.range(3) ? 0.5f : 0.0f});
 }
 
 BENCHMARK(BM_OutputOnly)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PostChain)
-    ->Args({1, 1, 1})
-    ->Args({0, 1, 1})
-    ->Args({1, 0, 0})
-    ->Args({0, 0, 1})
+    ->Args({1, 1, 1, 0})
+    ->Args({0, 1, 1, 0})
+    ->Args({1, 0, 0, 0})
+    ->Args({0, 0, 1, 0})
+    ->Args({0, 0, 0, 1})
+    ->Args({1, 1, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

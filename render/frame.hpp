@@ -163,6 +163,15 @@ struct PostSettings {
   float frameSeconds = 1.0f / 30.0f;
   /// Snap L̄ to this frame's value (a cut); the first frame with auto gain always snaps.
   bool resetAdaptation = false;
+  /// God rays (issue 8, item 4): strength of the light shafts added to the HDR colour, ≥ 0; 0 skips
+  /// their passes. They stream from the screen position of FrameInput::lights[0] (a directional
+  /// light, at infinity); none when there is no light or it is behind the camera or off-screen.
+  float godRays = 0.0f;
+  /// Luminance (linear HDR units, before the gain) above which a texel emits rays; below it, and
+  /// anything dark, occludes. ≥ 0.
+  float godRayThreshold = 1.0f;
+  /// Per-tap decay of the radial blur along each ray, in (0, 1]: lower gives shorter shafts.
+  float godRayDecay = 0.96f;
 };
 
 /// What changes every frame.

@@ -302,6 +302,15 @@ void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameIn
     post_.recordGlow(commands);
     timer_.end(commands);
   }
+  // God rays stream from the first light's screen position; none when it is off screen or behind.
+  const std::optional<glm::vec2> light = frame.post.godRays > 0.0f && !frame.lights.empty()
+                                             ? godRayLightUv(frame.camera, frame.lights[0].direction, target_.aspect())
+                                             : std::nullopt;
+  if (light) {
+    timer_.begin(commands, "god rays");
+    post_.recordGodRays(commands, frame.post, *light);
+    timer_.end(commands);
+  }
   post_.recordHandOff(commands);
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // HDR colour → the 8-bit sRGB output image (shaders/output.frag): the post chain's glow mixed in
-// (render/passes/post_chain.hpp), a gain — FrameInput::exposure, or the automatic gain — and a tone
-// map: the linear scale, clamped, or Reinhard's L/(1 + L) (Reinhard et al. 2002, eq. 3); the sRGB
-// attachment applies the transfer curve. Each combination of tone map, auto gain and glow is its
-// own specialised pipeline, made the first time a frame asks for it; the default one (linear, no
-// auto gain, no glow: the plain exposure scale) is made up front.
+// and its god rays added (render/passes/post_chain.hpp), a gain — FrameInput::exposure, or the automatic gain — and a
+// tone map: the linear scale, clamped, or Reinhard's L/(1 + L) (Reinhard et al. 2002, eq. 3); the sRGB attachment
+// applies the transfer curve. Each combination of tone map, auto gain and glow is its own specialised pipeline, made
+// the first time a frame asks for it; the default one (linear, no auto gain, no glow, no god rays: the plain exposure
+// scale) is made up front.
 
 #include <array>
 
@@ -21,18 +21,19 @@ public:
   OutputPass(const Device& device, const RenderTarget& target, const PostChain& post);
 
   /// Reads target.hdr() (in SHADER_READ_ONLY layout) and, as `post` asks, the post chain's results
-  /// (recorded before, this frame), and writes target.output() (in COLOR_ATTACHMENT layout).
+  /// (recorded before, this frame; god rays only where the chain recorded them), and writes target.output() (in
+  /// COLOR_ATTACHMENT layout).
   void record(const vk::raii::CommandBuffer& commands, const RenderTarget& target, float exposure,
               const PostSettings& post);
 
 private:
-  const Pipeline& pipelineFor(const PostSettings& post);
+  const Pipeline& pipelineFor(const PostSettings& post, bool godRays);
 
   const Device* device_;
   const PostChain* post_;
   vk::raii::DescriptorSetLayout layout_{nullptr};
-  /// [tone mapping][auto gain][glow]
-  std::array<Pipeline, 8> pipelines_;
+  /// [tone mapping][auto gain][glow][god rays]
+  std::array<Pipeline, 16> pipelines_;
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};

@@ -33,6 +33,12 @@ struct AdaptConstants {
 
 static_assert(sizeof(PostExposure) == 16);
 
+// Push constants of shaders/post_ray_blur.comp: w[k] = weights[k / 4][k % 4].
+struct RayBlurConstants {
+  float weights[32];
+};
+static_assert(kGodRayTaps <= 32);
+
 vk::Extent2D toExtent(glm::uvec2 size) {
   return {size.x, size.y};
 }
@@ -114,7 +120,22 @@ Result<void> validate(const PostSettings& settings) {
     return bad("adaptationSeconds", settings.adaptationSeconds, "a finite time ≥ 0 s");
   if (!(std::isfinite(settings.frameSeconds) && settings.frameSeconds >= 0.0f))
     return bad("frameSeconds", settings.frameSeconds, "a finite time ≥ 0 s");
+  if (!(std::isfinite(settings.godRays) && settings.godRays >= 0.0f))
+    return bad("godRays", settings.godRays, "a finite strength ≥ 0");
+  if (!(std::isfinite(settings.godRayThreshold) && settings.godRayThreshold >= 0.0f))
+    return bad("godRayThreshold", settings.godRayThreshold, "a finite luminance ≥ 0");
+  if (!(settings.godRayDecay > 0.0f && settings.godRayDecay <= 1.0f))
+    return bad("godRayDecay", settings.godRayDecay, "a value in (0, 1]");
   return {};
+}
+
+std::optional<glm::vec2> godRayLightUv(const Camera& camera, glm::vec3 direction, float aspect) {
+  // A point at infinity: w = 0 before the projection, so only the direction counts.
+  const glm::vec4 clip = camera.projection(aspect) * camera.view() * glm::vec4(direction, 0.0f);
+  if (!(clip.w > 0.0f)) return std::nullopt;
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  if (!(std::abs(ndc.x) <= 1.0f && std::abs(ndc.y) <= 1.0f)) return std::nullopt;
+  return 0.5f * ndc + 0.5f;
 }
 
 PostChain::PostChain(const Device& device, const Image& frame)
@@ -129,6 +150,10 @@ PostChain::PostChain(const Device& device, const Image& frame)
   across_ = image(quarter, common);
   glow_ = image(quarter, common | Usage::eSampled);
   tiny_ = image(postTinySize(quarter), common);
+  rayBright_ = image(quarter, common);
+  polar_ = image(godRayPolarSize(quarter), common);
+  polarBlurred_ = image(godRayPolarSize(quarter), common);
+  godRays_ = image(quarter, common | Usage::eSampled);
   exposure_ = Buffer(device, sizeof(PostExposure), vk::BufferUsageFlagBits::eStorageBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   resetExposure();
@@ -148,10 +173,15 @@ PostChain::PostChain(const Device& device, const Image& frame)
         makeComputePipeline(device, "post_blur.comp", storageLayout_, sizeof(BlurConstants), {radius, axis});
   tinyPipeline_ = makeComputePipeline(device, "post_tiny.comp", storageLayout_, 0, {postTinyBlock(quarter)});
   adaptPipeline_ = makeComputePipeline(device, "post_adapt.comp", adaptLayout_, sizeof(AdaptConstants));
+  rayBrightPipeline_ = makeComputePipeline(device, "post_ray_bright.comp", storageLayout_, sizeof(float));
+  rayPolarPipeline_ = makeComputePipeline(device, "post_ray_polar.comp", storageLayout_, sizeof(glm::vec2));
+  rayBlurPipeline_ = makeComputePipeline(device, "post_ray_blur.comp", storageLayout_, sizeof(RayBlurConstants),
+                                         {std::uint32_t(kGodRayTaps), std::uint32_t(kGodRayStep)});
+  rayUnpolarPipeline_ = makeComputePipeline(device, "post_ray_unpolar.comp", storageLayout_, sizeof(glm::vec2));
 
-  pool_ = makeDescriptorPool(device, 6,
+  pool_ = makeDescriptorPool(device, 11,
                              {{vk::DescriptorType::eCombinedImageSampler, 1},
-                              {vk::DescriptorType::eStorageImage, 11},
+                              {vk::DescriptorType::eStorageImage, 21},
                               {vk::DescriptorType::eStorageBuffer, 1}});
   downsampleSet_ = allocateSet(device, pool_, sampledLayout_);
   writeSampledImage(device, downsampleSet_, 0, frame, sampler_);
@@ -169,13 +199,19 @@ PostChain::PostChain(const Device& device, const Image& frame)
   adaptSet_ = allocateSet(device, pool_, adaptLayout_);
   writeGeneralImage(device, adaptSet_, 0, tiny_);
   writeStorageBuffer(device, adaptSet_, 1, exposure_);
+  rayBrightSet_ = pair(downsampled_, rayBright_);
+  rayPolarSet_ = pair(rayBright_, polar_);
+  rayBlurSet_ = pair(polar_, polarBlurred_);
+  rayUnpolarSets_[0] = pair(polar_, godRays_);
+  rayUnpolarSets_[1] = pair(polarBlurred_, godRays_);
   initialiseImages();
 }
 
 // GENERAL from the start, and black: the output pass may sample the glow before any glow ran.
 void PostChain::initialiseImages() {
   device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-    for (const Image* image : {&downsampled_, &across_, &glow_, &tiny_}) {
+    for (const Image* image :
+         {&downsampled_, &across_, &glow_, &tiny_, &rayBright_, &polar_, &polarBlurred_, &godRays_}) {
       transition(commands, *image, Layout::eUndefined, Layout::eGeneral, Stage::eNone, Access::eNone, Stage::eClear,
                  Access::eTransferWrite);
       commands.clearColorImage(*image->image(), Layout::eGeneral,
@@ -208,6 +244,10 @@ glm::vec2 PostChain::glowUvScale() const {
           float(frameSize_.height) / float(kPostDownsampleFactor * quarter.height)};
 }
 
+glm::vec2 PostChain::godRayCentre(glm::vec2 lightUv) const {
+  return lightUv * glm::vec2(float(frameSize_.width), float(frameSize_.height)) / float(kPostDownsampleFactor);
+}
+
 void PostChain::dispatch(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline,
                          const vk::raii::DescriptorSet& set, vk::Extent2D size) const {
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline.pipeline);
@@ -216,15 +256,18 @@ void PostChain::dispatch(const vk::raii::CommandBuffer& commands, const Pipeline
                     (size.height + kWorkgroupSide - 1) / kWorkgroupSide, 1);
 }
 
-void PostChain::record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure) {
+void PostChain::record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure,
+                       std::optional<glm::vec2> godRayLight) {
   if (!runs(settings)) return;
   recordDownsample(commands);
   if (settings.autoGain) recordAutoGain(commands, settings, exposure);
   if (settings.glowStrength > 0.0f) recordGlow(commands);
+  if (settings.godRays > 0.0f && godRayLight) recordGodRays(commands, settings, *godRayLight);
   recordHandOff(commands);
 }
 
-void PostChain::recordDownsample(const vk::raii::CommandBuffer& commands) const {
+void PostChain::recordDownsample(const vk::raii::CommandBuffer& commands) {
+  godRaysRecorded_ = false;
   // Last frame's readers of these images (the output pass, the blurs, the adaptation) finish
   // before this frame overwrites them.
   const vk::MemoryBarrier2 previousFrame{.srcStageMask = Stage::eComputeShader | Stage::eFragmentShader,
@@ -262,6 +305,29 @@ void PostChain::recordGlow(const vk::raii::CommandBuffer& commands) const {
   }
 }
 
+void PostChain::recordGodRays(const vk::raii::CommandBuffer& commands, const PostSettings& settings, glm::vec2 lightUv,
+                              bool blur) {
+  const vk::ShaderStageFlags compute = vk::ShaderStageFlagBits::eCompute;
+  commands.pushConstants<float>(*rayBrightPipeline_.layout, compute, 0, settings.godRayThreshold);
+  dispatch(commands, rayBrightPipeline_, rayBrightSet_, rayBright_.extent());
+  computeToCompute(commands);
+  const glm::vec2 centre = godRayCentre(lightUv);
+  commands.pushConstants<glm::vec2>(*rayPolarPipeline_.layout, compute, 0, centre);
+  dispatch(commands, rayPolarPipeline_, rayPolarSet_, polar_.extent());
+  computeToCompute(commands);
+  if (blur) {
+    RayBlurConstants constants{};
+    const std::vector<float> weights = godRayWeights(settings.godRayDecay);
+    for (std::size_t k = 0; k < weights.size(); ++k) constants.weights[k] = weights[k];
+    commands.pushConstants<RayBlurConstants>(*rayBlurPipeline_.layout, compute, 0, constants);
+    dispatch(commands, rayBlurPipeline_, rayBlurSet_, polarBlurred_.extent());
+    computeToCompute(commands);
+  }
+  commands.pushConstants<glm::vec2>(*rayUnpolarPipeline_.layout, compute, 0, centre);
+  dispatch(commands, rayUnpolarPipeline_, rayUnpolarSets_[blur ? 1 : 0], godRays_.extent());
+  godRaysRecorded_ = true;
+}
+
 void PostChain::recordHandOff(const vk::raii::CommandBuffer& commands) const {
   const vk::MemoryBarrier2 toReaders{
       .srcStageMask = Stage::eComputeShader,
@@ -281,6 +347,18 @@ Result<HdrImage> PostChain::readGlow() const {
 
 Result<HdrImage> PostChain::readTiny() const {
   return readOrFail(*device_, tiny_, "tiny image");
+}
+
+Result<HdrImage> PostChain::readGodRayBright() const {
+  return readOrFail(*device_, rayBright_, "god rays' bright image");
+}
+
+Result<HdrImage> PostChain::readGodRayPolar() const {
+  return readOrFail(*device_, polar_, "god rays' polar image");
+}
+
+Result<HdrImage> PostChain::readGodRays() const {
+  return readOrFail(*device_, godRays_, "god rays");
 }
 
 }  // namespace mane::render

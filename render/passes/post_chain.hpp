@@ -16,6 +16,12 @@
 //     a small GPU buffer from frame to frame. The gain exposure · a / L̄ maps the adapted log-average
 //     to the key value a ([RSSF02] eq. 2); the output pass applies it and the tone map (Reinhard's
 //     L/(1 + L) or the linear scale, render/passes/output_pass.hpp).
+//  4. God rays (shaders/post_ray_*.comp; issue 8 item 4: "bright regions and occluders rendered to a
+//     buffer, converted to polar coordinates around the light's screen position, blurred along the
+//     radius, converted back and added"): the copy's texels above a luminance threshold (the rest,
+//     occluders, 0), a polar image around the light (one column per angle, one row per copy
+//     texel of radius), a blur down each column away from the light with decaying weights, and the
+//     inverse transform to the copy's grid; the output pass adds it × PostSettings::godRays.
 // The seed's AGC averaged luminance linearly and divided by it; the log-average is Reinhard's, which
 // the seed names as the better-balanced alternative (a few very bright pixels, like the sun, pull a
 // linear mean far more).
@@ -27,6 +33,7 @@
 // Cost on lavapipe: bench/post_bench.cpp.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "render/frame.hpp"
@@ -49,6 +56,10 @@ struct PostExposure {
 /// [0, 1], a negative or non-finite adaptation time or frame time, or an unknown tone mapping.
 [[nodiscard]] Result<void> validate(const PostSettings& settings);
 
+/// Where a directional light (`direction` towards it, world space) appears on screen, as frame uv
+/// (0..1, v downwards); none when it is behind the camera or outside the frame (no god rays then).
+std::optional<glm::vec2> godRayLightUv(const Camera& camera, glm::vec3 direction, float aspect);
+
 class PostChain {
 public:
   static constexpr vk::Format kFormat = vk::Format::eR16G16B16A16Sfloat;
@@ -57,25 +68,41 @@ public:
   /// SHADER_READ_ONLY layout when recorded); it must outlive the chain. Throws on a Vulkan failure.
   PostChain(const Device& device, const Image& frame);
 
-  /// Whether `settings` needs any of the passes here (glow or auto gain); the defaults need none.
-  static bool runs(const PostSettings& settings) { return settings.glowStrength > 0.0f || settings.autoGain; }
+  /// Whether `settings` needs any of the passes here (glow, auto gain or god rays); the defaults
+  /// need none.
+  static bool runs(const PostSettings& settings) {
+    return settings.glowStrength > 0.0f || settings.autoGain || settings.godRays > 0.0f;
+  }
 
-  /// The passes `settings` asks for, in order: downsample, auto gain, glow; then the barrier that
-  /// hands their results to the output pass's fragment shader. Outside rendering.
-  void record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
-  /// Step 1: the frame → the downsampled copy.
-  void recordDownsample(const vk::raii::CommandBuffer& commands) const;
+  /// The passes `settings` asks for, in order: downsample, auto gain, glow, god rays (when
+  /// `godRayLight`, the light's frame uv, is given); then the barrier that hands their results to
+  /// the output pass's fragment shader. Outside rendering.
+  void record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure,
+              std::optional<glm::vec2> godRayLight = std::nullopt);
+  /// Step 1: the frame → the downsampled copy. Starts a frame: no god rays until recordGodRays.
+  void recordDownsample(const vk::raii::CommandBuffer& commands);
   /// Step 3, after recordDownsample: the tiny image, its log-average, the adaptation, the gain.
   /// `exposure` multiplies the gain (exposure compensation). Next frame starts from the state this
   /// leaves, so record it once per frame.
   void recordAutoGain(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
   /// Step 2, after recordDownsample: the four blurs into glow().
   void recordGlow(const vk::raii::CommandBuffer& commands) const;
+  /// Step 4, after recordDownsample: god rays around `lightUv` (frame uv) into godRays(), with
+  /// settings.godRayThreshold and godRayDecay. `blur` false skips the radial blur: the bare polar
+  /// round trip, for tests. The output pass adds them this frame (godRaysRecorded()).
+  void recordGodRays(const vk::raii::CommandBuffer& commands, const PostSettings& settings, glm::vec2 lightUv,
+                     bool blur = true);
   /// Makes the glow and the exposure state visible to fragment shaders (and the state to the host).
   void recordHandOff(const vk::raii::CommandBuffer& commands) const;
 
   /// The blurred copy, GENERAL layout; bilinear-sample it with sampler().
   const Image& glow() const { return glow_; }
+  /// The god rays on the downsampled copy's grid, GENERAL layout; sampled like glow().
+  const Image& godRays() const { return godRays_; }
+  /// Whether recordGodRays ran since the last recordDownsample: the output pass adds godRays() only then.
+  bool godRaysRecorded() const { return godRaysRecorded_; }
+  /// The light in the downsampled copy's texel coordinates, for frame uv `lightUv`.
+  glm::vec2 godRayCentre(glm::vec2 lightUv) const;
   /// The auto gain's state (PostExposure), a storage buffer.
   const Buffer& exposureState() const { return exposure_; }
   /// Bilinear, clamped to the edge.
@@ -89,6 +116,9 @@ public:
   [[nodiscard]] Result<HdrImage> readDownsampled() const;
   [[nodiscard]] Result<HdrImage> readGlow() const;
   [[nodiscard]] Result<HdrImage> readTiny() const;
+  [[nodiscard]] Result<HdrImage> readGodRayBright() const;
+  [[nodiscard]] Result<HdrImage> readGodRayPolar() const;
+  [[nodiscard]] Result<HdrImage> readGodRays() const;
   PostExposure readExposure() const;
   /// Forgets the adaptation: the next auto gain snaps to its frame. Between frames.
   void resetExposure();
@@ -102,11 +132,16 @@ private:
   vk::Extent2D frameSize_;
   std::vector<float> kernel_;
   // Every image stays in GENERAL layout: written as storage images, sampled by the output pass.
-  Image downsampled_;  ///< the frame, 4× smaller
-  Image across_;       ///< a blur along x
-  Image glow_;         ///< a blur along y: after the fourth, the glow
-  Image tiny_;         ///< at most 64×64
-  Buffer exposure_;    ///< PostExposure, host-visible so tests can read it
+  Image downsampled_;   ///< the frame, 4× smaller
+  Image across_;        ///< a blur along x
+  Image glow_;          ///< a blur along y: after the fourth, the glow
+  Image tiny_;          ///< at most 64×64
+  Image rayBright_;     ///< god rays: the bright texels of the copy
+  Image polar_;         ///< their polar image, godRayPolarSize(copy)
+  Image polarBlurred_;  ///< blurred along the radius
+  Image godRays_;       ///< back on the copy's grid
+  bool godRaysRecorded_ = false;
+  Buffer exposure_;  ///< PostExposure, host-visible so tests can read it
   vk::raii::Sampler sampler_{nullptr};
 
   vk::raii::DescriptorSetLayout sampledLayout_{nullptr};  ///< sampled source, storage destination
@@ -116,12 +151,21 @@ private:
   Pipeline blurPipelines_[2];  ///< along x, along y
   Pipeline tinyPipeline_;
   Pipeline adaptPipeline_;
+  Pipeline rayBrightPipeline_;
+  Pipeline rayPolarPipeline_;
+  Pipeline rayBlurPipeline_;
+  Pipeline rayUnpolarPipeline_;
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet downsampleSet_{nullptr};
   vk::raii::DescriptorSet acrossSets_[2]{vk::raii::DescriptorSet(nullptr), vk::raii::DescriptorSet(nullptr)};
   vk::raii::DescriptorSet downSet_{nullptr};  ///< across → glow
   vk::raii::DescriptorSet tinySet_{nullptr};
   vk::raii::DescriptorSet adaptSet_{nullptr};
+  vk::raii::DescriptorSet rayBrightSet_{nullptr};
+  vk::raii::DescriptorSet rayPolarSet_{nullptr};
+  vk::raii::DescriptorSet rayBlurSet_{nullptr};
+  vk::raii::DescriptorSet rayUnpolarSets_[2]{vk::raii::DescriptorSet(nullptr),
+                                             vk::raii::DescriptorSet(nullptr)};  ///< from polar_, from polarBlurred_
 };
 
 }  // namespace mane::render

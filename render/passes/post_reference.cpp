@@ -14,6 +14,27 @@ HdrImage blankImage(glm::uvec2 size) {
   return {size.x, size.y, std::vector<glm::vec4>(std::size_t(size.x) * size.y)};
 }
 
+// Bilinear sample at continuous texel coordinates c (texel centres at i + ½); x wraps when `wrapX`,
+// else clamps; y clamps. As shaders/post_common.glsl's postBilinear.
+glm::dvec4 bilinear(const HdrImage& image, glm::dvec2 c, bool wrapX) {
+  const glm::dvec2 f = c - 0.5;
+  const glm::dvec2 base = glm::floor(f);
+  const glm::dvec2 t = f - base;
+  const auto column = [&](long x) {
+    const long w = long(image.width);
+    return wrapX ? std::uint32_t(((x % w) + w) % w) : std::uint32_t(std::clamp(x, 0L, w - 1));
+  };
+  const auto row = [&](long y) { return std::uint32_t(std::clamp(y, 0L, long(image.height) - 1)); };
+  const long x0 = long(base.x), y0 = long(base.y);
+  const glm::dvec4 top =
+      glm::mix(glm::dvec4(image.at(column(x0), row(y0))), glm::dvec4(image.at(column(x0 + 1), row(y0))), t.x);
+  const glm::dvec4 bottom =
+      glm::mix(glm::dvec4(image.at(column(x0), row(y0 + 1))), glm::dvec4(image.at(column(x0 + 1), row(y0 + 1))), t.x);
+  return glm::mix(top, bottom, t.y);
+}
+
+constexpr double kTwoPi = 6.283185307179586;
+
 }  // namespace
 
 double luminance(glm::dvec3 rgb) {
@@ -119,6 +140,76 @@ double adaptLogLuminance(double adaptedLog, double frameLog, double rate) {
 glm::dvec3 reinhard(glm::dvec3 rgb, double gain) {
   const glm::dvec3 scaled = gain * rgb;
   return scaled / (1.0 + luminance(scaled));
+}
+
+glm::uvec2 godRayPolarSize(glm::uvec2 quarter) {
+  const auto radii = std::uint32_t(std::ceil(glm::length(glm::dvec2(quarter)))) + 1;
+  const auto angles = std::uint32_t(std::ceil(3.141592653589793 * radii));
+  return {ceilDivide(angles, 8) * 8, radii};
+}
+
+HdrImage godRayBright(const HdrImage& quarter, float threshold) {
+  HdrImage bright = blankImage({quarter.width, quarter.height});
+  for (std::size_t i = 0; i < quarter.texels.size(); ++i) {
+    const glm::dvec3 rgb(quarter.texels[i]);
+    const double l = luminance(rgb);
+    const double share = l > 0.0 ? std::max(l - double(threshold), 0.0) / l : 0.0;
+    bright.texels[i] = glm::vec4(glm::vec3(rgb * share), 1.0f);
+  }
+  return bright;
+}
+
+HdrImage toPolar(const HdrImage& image, glm::vec2 centre, glm::uvec2 polarSize) {
+  HdrImage polar = blankImage(polarSize);
+  for (std::uint32_t j = 0; j < polarSize.y; ++j)
+    for (std::uint32_t i = 0; i < polarSize.x; ++i) {
+      const double theta = kTwoPi * (i + 0.5) / polarSize.x;
+      const glm::dvec2 at = glm::dvec2(centre) + double(j) * glm::dvec2(std::cos(theta), std::sin(theta));
+      polar.texels[std::size_t(j) * polarSize.x + i] = glm::vec4(bilinear(image, at, false));
+    }
+  return polar;
+}
+
+HdrImage fromPolar(const HdrImage& polar, glm::vec2 centre, glm::uvec2 size) {
+  HdrImage image = blankImage(size);
+  for (std::uint32_t y = 0; y < size.y; ++y)
+    for (std::uint32_t x = 0; x < size.x; ++x) {
+      const glm::dvec2 d = glm::dvec2(x + 0.5, y + 0.5) - glm::dvec2(centre);
+      double theta = std::atan2(d.y, d.x);
+      if (theta < 0.0) theta += kTwoPi;
+      const glm::dvec2 at(theta * polar.width / kTwoPi, glm::length(d) + 0.5);
+      image.texels[std::size_t(y) * size.x + x] = glm::vec4(bilinear(polar, at, true));
+    }
+  return image;
+}
+
+std::vector<float> godRayWeights(float decay) {
+  std::vector<double> weights(kGodRayTaps);
+  double total = 0.0;
+  for (int k = 0; k < kGodRayTaps; ++k) total += weights[k] = std::pow(double(decay), k);
+  std::vector<float> normalised(weights.size());
+  for (std::size_t k = 0; k < weights.size(); ++k) normalised[k] = float(weights[k] / total);
+  return normalised;
+}
+
+HdrImage radialBlur(const HdrImage& polar, std::span<const float> weights) {
+  HdrImage blurred = blankImage({polar.width, polar.height});
+  for (std::uint32_t j = 0; j < polar.height; ++j)
+    for (std::uint32_t i = 0; i < polar.width; ++i) {
+      glm::dvec4 sum(0.0);
+      for (std::size_t k = 0; k < weights.size(); ++k) {
+        const long from = std::max(long(j) - long(k) * kGodRayStep, 0L);
+        sum += double(weights[k]) * glm::dvec4(polar.at(i, std::uint32_t(from)));
+      }
+      blurred.texels[std::size_t(j) * polar.width + i] = glm::vec4(sum);
+    }
+  return blurred;
+}
+
+HdrImage godRaysReference(const HdrImage& quarter, glm::vec2 centre, float threshold, float decay) {
+  const glm::uvec2 size(quarter.width, quarter.height);
+  const HdrImage polar = toPolar(godRayBright(quarter, threshold), centre, godRayPolarSize(size));
+  return fromPolar(radialBlur(polar, godRayWeights(decay)), centre, size);
 }
 
 }  // namespace mane::render

@@ -76,4 +76,36 @@ double adaptLogLuminance(double adaptedLog, double frameLog, double rate);
 /// L_d = L/(1 + L); the colour keeps its chromaticity, scaled by L_d/L: gain·rgb/(1 + L).
 glm::dvec3 reinhard(glm::dvec3 rgb, double gain);
 
+// God rays (issue 8, item 4), on the downsampled copy: the bright texels (the rest occludes), a
+// polar image around the light, a blur along each ray away from the light, back to the copy's grid.
+// Positions on the copy are continuous texel coordinates, texel (x, y) covering [x, x+1]×[y, y+1];
+// the polar image's texel (i, j) is the angle θ = 2π(i + ½)/A at the radius r = j copy texels.
+
+/// Taps of the radial blur (kTaps in shaders/post_ray_blur.comp).
+inline constexpr int kGodRayTaps = 32;
+/// Polar texels between the blur's taps: the shafts reach kGodRayTaps · kGodRayStep = 64 copy
+/// texels (256 pixels) from each bright texel, fading by the decay per tap.
+inline constexpr int kGodRayStep = 2;
+
+/// The polar image of a copy `quarter` texels large: R = ⌈|quarter|⌉ + 1 radii, one per copy texel,
+/// enough for a light anywhere on screen; A = ⌈πR⌉ rounded up to a multiple of 8 angles, so
+/// neighbouring rays are at most 2 texels apart at the far corner (1 at half the distance).
+glm::uvec2 godRayPolarSize(glm::uvec2 quarter);
+/// rgb · max(L − threshold, 0)/L: texels brighter than the threshold keep their excess, the rest
+/// (occluders, dark sky) are 0.
+HdrImage godRayBright(const HdrImage& quarter, float threshold);
+/// The polar image around `centre` (copy texel coordinates): bilinear samples of `image` at
+/// centre + r(cos θ, sin θ), clamped to the edge.
+HdrImage toPolar(const HdrImage& image, glm::vec2 centre, glm::uvec2 polarSize);
+/// Back to an image `size` texels large: each texel centre's angle and radius around `centre`,
+/// sampled bilinearly from `polar`, wrapping in angle and clamped in radius.
+HdrImage fromPolar(const HdrImage& polar, glm::vec2 centre, glm::uvec2 size);
+/// w[k] ∝ decay^k, k < kGodRayTaps, normalised to sum 1.
+std::vector<float> godRayWeights(float decay);
+/// Along each ray (a column of the polar image): out(j) = Σ_k w[k] · in(max(j − k·kGodRayStep, 0)):
+/// light moves only outwards, away from the light, fading with the decay.
+HdrImage radialBlur(const HdrImage& polar, std::span<const float> weights);
+/// The whole: godRayBright, toPolar, radialBlur, fromPolar, on the downsampled copy.
+HdrImage godRaysReference(const HdrImage& quarter, glm::vec2 centre, float threshold, float decay);
+
 }  // namespace mane::render

@@ -5,11 +5,15 @@
 //  - the GPU log-average luminance equals the CPU's over the same tiny image (read back);
 //  - end to end through the Renderer: Reinhard on known HDR values through the 8-bit sRGB output,
 //    auto gain that brings a scene twice as bright to the same displayed luminance, adaptation
-//    whose per-frame gain change stays under the bound that τ and Δt set, the passes' timers.
+//    whose per-frame gain change stays under the bound that τ and Δt set, the passes' timers;
+//  - god rays: the GPU polar round trip returns the image away from the light, the radial blur of
+//    one bright texel spreads only along its ray, outwards, and god rays that are off (or whose
+//    light is behind the camera or off screen) leave the output bit-identical.
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <span>
@@ -242,6 +246,123 @@ TEST_F(PostChainTest, LogAverageIsDeterministic) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// God rays on the chain's downsampled copy
+
+// A smooth positive frame, 256×192, periods of 128 and 96 pixels (32 and 24 copy texels): bilinear
+// interpolation at ≤ 2 texel spacing loses at most h²/8·k²·amplitude ≈ 2 % of the amplitude per
+// transform, so the round trip is a fair test of the mapping rather than of the sampling.
+HdrImage smoothFrame() {
+  HdrImage frame = blank(256, 192);
+  for (std::uint32_t y = 0; y < frame.height; ++y)
+    for (std::uint32_t x = 0; x < frame.width; ++x) {
+      const float wave = std::sin(6.2831853f * x / 128.0f) * std::cos(6.2831853f * y / 96.0f);
+      frame.texels[std::size_t(y) * frame.width + x] = glm::vec4(1.0f + 0.5f * wave, 1.0f - 0.3f * wave, 1.0f, 1.0f);
+    }
+  return roundedToHalf(frame);
+}
+
+// Image → polar → back on the GPU (threshold 0 keeps every texel, no blur), against the
+// downsampled copy it started from, at every texel at least 2 texels from the light (closer, all
+// of a texel's rays meet at one point). Tolerance 0.04 (8 % of the 0.5 amplitude): two bilinear
+// resamplings of the waves (≈ 2 % each, above) plus half-float stores. And against the CPU
+// round trip of the same copy: 2·10⁻³ (the stores and float trigonometry).
+TEST_F(PostChainTest, PolarRoundTripReturnsTheImageAwayFromTheCentre) {
+  const HdrImage frame = smoothFrame();
+  const Image uploaded = uploadHdr(device(), frame);
+  PostChain chain(device(), uploaded);
+  const glm::vec2 lightUv(0.37f, 0.58f);
+  const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 0.0f};
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    chain.recordDownsample(commands);
+    chain.recordGodRays(commands, settings, lightUv, false);
+    chain.recordHandOff(commands);
+  });
+  auto quarter = chain.readDownsampled();
+  auto back = chain.readGodRays();
+  auto polar = chain.readGodRayPolar();
+  ASSERT_TRUE(quarter.has_value() && back.has_value() && polar.has_value());
+  const glm::uvec2 size(quarter->width, quarter->height);
+  ASSERT_EQ(glm::uvec2(polar->width, polar->height), godRayPolarSize(size));
+  const glm::vec2 centre = chain.godRayCentre(lightUv);
+  const HdrImage cpu = fromPolar(toPolar(godRayBright(*quarter, 0.0f), centre, godRayPolarSize(size)), centre, size);
+  double worst = 0.0, worstCpu = 0.0;
+  for (std::uint32_t y = 0; y < size.y; ++y)
+    for (std::uint32_t x = 0; x < size.x; ++x) {
+      if (glm::length(glm::vec2(x + 0.5f, y + 0.5f) - centre) < 2.0f) continue;
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, double(std::abs(back->at(x, y)[c] - quarter->at(x, y)[c])));
+        worstCpu = std::max(worstCpu, double(std::abs(back->at(x, y)[c] - cpu.at(x, y)[c])));
+      }
+    }
+  EXPECT_LT(worst, 0.04) << "round trip against the original";
+  EXPECT_LT(worstCpu, 2e-3) << "GPU against the CPU round trip";
+  std::printf("polar round trip: worst %.4f against the original, %.5f against the CPU\n", worst, worstCpu);
+}
+
+// Every texel of `rays` brighter than 10⁻³ of the brightest lies on the ray from `light` through
+// `source` and beyond `source`: at distance t along the ray, within 1 + 1.71·t/|source − light|
+// texels of it (the bright texel spans ±(√2/2 + 1) texels across the ray after the bilinear
+// polar sample, widening with the distance, plus one for the inverse sample) and no nearer the
+// light than 1.5 texels before the source. Returns how far out the rays reach.
+float checkOnRay(const HdrImage& rays, glm::vec2 light, glm::vec2 source) {
+  float brightest = 0.0f;
+  for (const glm::vec4& texel : rays.texels) brightest = std::max(brightest, texel.r);
+  EXPECT_GT(brightest, 0.0f);
+  const glm::vec2 along = glm::normalize(source - light);
+  const float sourceDistance = glm::length(source - light);
+  float reach = 0.0f;
+  for (std::uint32_t y = 0; y < rays.height; ++y)
+    for (std::uint32_t x = 0; x < rays.width; ++x) {
+      if (rays.at(x, y).r <= 1e-3f * brightest) continue;
+      const glm::vec2 d = glm::vec2(x + 0.5f, y + 0.5f) - light;
+      const float t = glm::dot(d, along);
+      const float across = std::abs(d.x * along.y - d.y * along.x);
+      EXPECT_LE(across, 1.0f + 1.71f * t / sourceDistance) << x << "," << y << " off the ray";
+      EXPECT_GE(t, sourceDistance - 1.5f) << x << "," << y << " towards the light";
+      reach = std::max(reach, t - sourceDistance);
+    }
+  return reach;
+}
+
+// One bright copy texel (a 4×4 block of 50 in a black frame), the light 26 texels away: the blur
+// carries it outwards along its ray only, on the GPU and in the CPU reference, and the two agree
+// (within 2 % of the peak: float trigonometry against double, half-float stores).
+TEST_F(PostChainTest, RadialBlurOfABrightTexelSpreadsOnlyAlongItsRayAwayFromTheLight) {
+  HdrImage frame = blank(256, 192);
+  const glm::uvec2 source(40, 30);
+  for (std::uint32_t dy = 0; dy < 4; ++dy)
+    for (std::uint32_t dx = 0; dx < 4; ++dx)
+      frame.texels[std::size_t(4 * source.y + dy) * frame.width + 4 * source.x + dx] = glm::vec4(50, 50, 50, 1);
+  const Image uploaded = uploadHdr(device(), frame);
+  PostChain chain(device(), uploaded);
+  const glm::vec2 lightUv(16.0f / 64.0f, 20.0f / 48.0f);
+  const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 1.0f, .godRayDecay = 0.96f};
+  run(chain, settings, 1.0f);
+  device().submitAndWait(
+      [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, 1.0f, lightUv); });
+  ASSERT_TRUE(chain.godRaysRecorded());
+  auto rays = chain.readGodRays();
+  auto quarter = chain.readDownsampled();
+  ASSERT_TRUE(rays.has_value() && quarter.has_value());
+  const glm::vec2 centre = chain.godRayCentre(lightUv);
+  const glm::vec2 sourceCentre = glm::vec2(source) + 0.5f;
+  const HdrImage cpu = godRaysReference(*quarter, centre, settings.godRayThreshold, settings.godRayDecay);
+  const float gpuReach = checkOnRay(*rays, centre, sourceCentre);
+  const float cpuReach = checkOnRay(cpu, centre, sourceCentre);
+  // Taps 2 polar texels apart, 32 of them: the shaft reaches ≈ 62 texels, cut by the frame's edge
+  // (here ≈ 30 texels along the ray).
+  EXPECT_GT(gpuReach, 20.0f);
+  EXPECT_NEAR(gpuReach, cpuReach, 1.5f);
+  float peak = 0.0f, worst = 0.0f;
+  for (std::size_t i = 0; i < cpu.texels.size(); ++i) {
+    peak = std::max(peak, cpu.texels[i].r);
+    worst = std::max(worst, std::abs(cpu.texels[i].r - rays->texels[i].r));
+  }
+  EXPECT_LT(worst, 0.02f * peak);
+  std::printf("single texel: reach %.1f texels, GPU vs CPU worst %.4f of peak %.4f\n", gpuReach, worst, peak);
+}
+
+// ---------------------------------------------------------------------------------------------
 // End to end through the Renderer
 
 // A Lambert quad filling about half the frame's height, in front of the background.
@@ -398,6 +519,58 @@ TEST_F(PostRendering, GlowSpreadsLightAcrossAnEdgeOnly) {
   EXPECT_GT(int(softened[outside]), int(edge[outside]) + 5) << "background beside the quad brightens";
 }
 
+// God rays off, or on with the light behind the camera or off screen: the output is bit-identical
+// to the plain path's (the same specialised pipeline, no extra pass). On, with the light behind
+// the quad in a bright sky: the sky beside the quad brightens along the rays, the quad's middle
+// does not (±1 code), and the pass is timed.
+TEST_F(PostRendering, GodRaysOffLeaveTheOutputBitIdentical) {
+  auto renderer = makeRenderer({64, 48}, true);
+  for (const PostSettings& base :
+       {PostSettings{},
+        PostSettings{
+            .toneMapping = ToneMapping::kReinhard, .autoGain = true, .glowStrength = 0.5f, .resetAdaptation = true}}) {
+    const std::vector<std::uint8_t> plain = draw(*renderer, litQuad(1.0f, base));  // light behind the camera
+    PostSettings rays = base;
+    rays.godRays = 2.0f;
+    rays.godRayThreshold = 0.0f;
+    std::vector<PassTiming> timings;
+    EXPECT_EQ(draw(*renderer, litQuad(1.0f, rays), &timings), plain) << "light behind the camera";
+    for (const PassTiming& timing : timings) EXPECT_NE(timing.pass, "god rays");
+    FrameInput offScreen = litQuad(1.0f, rays);
+    offScreen.lights.insert(offScreen.lights.begin(),
+                            DirectionalLight{.direction = glm::normalize(glm::vec3(3, 0, -1)), .intensity = 0.0f});
+    FrameInput offScreenPlain = offScreen;
+    offScreenPlain.post = base;
+    EXPECT_EQ(draw(*renderer, offScreen), draw(*renderer, offScreenPlain)) << "light off screen";
+  }
+  EXPECT_FALSE(godRayLightUv(Camera{.position = {0, 0, 6}}, glm::vec3(0, 0, 1), 4.0f / 3.0f).has_value());
+  const auto ahead = godRayLightUv(Camera{.position = {0, 0, 6}}, glm::vec3(0, 0, -1), 4.0f / 3.0f);
+  ASSERT_TRUE(ahead.has_value());
+  EXPECT_NEAR(ahead->x, 0.5f, 1e-5f);
+  EXPECT_NEAR(ahead->y, 0.5f, 1e-5f);
+
+  // The light straight ahead, behind the quad; a sky of 2 (above the threshold of 1), exposure 0.25.
+  FrameInput sky{.camera = {.position = {0, 0, 6}, .target = {0, 0, 0}},
+                 .lights = {DirectionalLight{.direction = {0, 0, -1}, .intensity = 0.0f},
+                            DirectionalLight{.direction = glm::normalize(glm::vec3(0.3f, 0.4f, 0.9f))}},
+                 .instances = {{.mesh = 0, .material = 0}},
+                 .background = glm::vec3(2.0f),
+                 .exposure = 0.25f};
+  const std::vector<std::uint8_t> dark = draw(*renderer, sky);
+  sky.post.godRays = 4.0f;
+  std::vector<PassTiming> timings;
+  const std::vector<std::uint8_t> lit = draw(*renderer, sky, &timings);
+  const std::size_t sideOfQuad = (std::size_t(24) * 64 + 8) * 4;
+  EXPECT_GT(int(lit[sideOfQuad]), int(dark[sideOfQuad]) + 5) << "the sky brightens along the rays";
+  // The quad's centre: the rays only run outwards from the light, which it hides.
+  const std::size_t quadCentre = (std::size_t(24) * 64 + 32) * 4;
+  EXPECT_NEAR(int(lit[quadCentre]), int(dark[quadCentre]), 1) << "no rays over the occluder's middle";
+  if (!timings.empty()) {
+    EXPECT_NE(std::find_if(timings.begin(), timings.end(), [](const PassTiming& t) { return t.pass == "god rays"; }),
+              timings.end());
+  }
+}
+
 TEST_F(PostRendering, PostPassesAreTimedOnlyWhenAskedFor) {
   auto renderer = makeRenderer({32, 32}, true);
   std::vector<PassTiming> timings;
@@ -425,6 +598,8 @@ TEST_F(PostRendering, RejectsBadSettingsByName) {
   EXPECT_NE(errorOf({.glowStrength = 1.5f}).find("glowStrength"), std::string::npos);
   EXPECT_NE(errorOf({.adaptationSeconds = -1.0f}).find("adaptationSeconds"), std::string::npos);
   EXPECT_NE(errorOf({.frameSeconds = NAN}).find("frameSeconds"), std::string::npos);
+  EXPECT_NE(errorOf({.godRays = -1.0f}).find("godRays"), std::string::npos);
+  EXPECT_NE(errorOf({.godRayDecay = 0.0f}).find("godRayDecay"), std::string::npos);
 }
 
 }  // namespace

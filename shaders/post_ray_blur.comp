@@ -1,0 +1,27 @@
+#version 450
+// God rays, step 3 (render/passes/post_chain.hpp): the blur along each ray of the polar image (a
+// vertical blur: one column per angle), towards the light: out(j) = Σ_k w[k] · in(max(j − k·step,
+// 0)) with w[k] ∝ decay^k, so light only moves outwards and fades (radialBlur in
+// render/passes/post_reference.hpp). Taps and step are specialisation constants: a fixed loop.
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(constant_id = 0) const int kTaps = 32;  // kGodRayTaps, ≤ 32
+layout(constant_id = 1) const int kStep = 2;   // kGodRayStep
+
+layout(set = 0, binding = 0, rgba16f) uniform readonly image2D polar;
+layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D blurred;
+
+// w[k] = weights[k / 4][k % 4] (godRayWeights).
+layout(push_constant) uniform Weights {
+  vec4 weights[8];
+} kernel;
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(texel, imageSize(polar)))) return;
+  vec4 sum = vec4(0.0);
+  for (int k = 0; k < kTaps; ++k)
+    sum += kernel.weights[k / 4][k % 4] * imageLoad(polar, ivec2(texel.x, max(texel.y - k * kStep, 0)));
+  imageStore(blurred, texel, sum);
+}
