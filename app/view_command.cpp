@@ -58,8 +58,10 @@ struct InputState {
   OrbitCamera orbit;
   bool paused = false;
   bool stepOnce = false;
-  // Post-processing toggles over the scene's own settings: T Reinhard/linear, G glow, A auto gain.
+  // Post-processing toggles over the scene's own settings: T Reinhard/linear, G glow, A auto gain,
+  // R god rays.
   bool flipToneMapping = false;
+  bool flipGodRays = false;
   bool flipGlow = false;
   bool flipAutoGain = false;
 };
@@ -72,6 +74,7 @@ render::PostSettings toggled(render::PostSettings post, const InputState& input)
   // The seed's glow mixes about half and half; a scene with its own strength toggles to none.
   if (input.flipGlow) post.glowStrength = post.glowStrength > 0.0f ? 0.0f : 0.4f;
   if (input.flipAutoGain) post.autoGain = !post.autoGain;
+  if (input.flipGodRays) post.godRays = post.godRays > 0.0f ? 0.0f : 1.0f;
   return post;
 }
 
@@ -104,6 +107,7 @@ void installCallbacks(GLFWwindow* window, InputState& input) {
     if (key == GLFW_KEY_T) state.flipToneMapping = !state.flipToneMapping;
     if (key == GLFW_KEY_G) state.flipGlow = !state.flipGlow;
     if (key == GLFW_KEY_A) state.flipAutoGain = !state.flipAutoGain;
+    if (key == GLFW_KEY_R) state.flipGodRays = !state.flipGodRays;
   });
 }
 

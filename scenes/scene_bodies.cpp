@@ -265,12 +265,15 @@ render::PostSettings parsePost(const Json& json, const std::string& path) {
   post.key = fields.optional<float>("key", post.key);
   post.glowStrength = fields.optional<float>("glow", post.glowStrength);
   post.adaptationSeconds = fields.optional<float>("adaptation_seconds", post.adaptationSeconds);
+  post.godRays = fields.optional<float>("god_rays", post.godRays);
   fields.finish();
   require(post.key > 0.0f && post.key <= 1.0f, fields.child("key"), "expected a key value in (0, 1]");
   require(post.glowStrength >= 0.0f && post.glowStrength <= 1.0f, fields.child("glow"),
           "expected a glow strength in [0, 1]");
   require(post.adaptationSeconds >= 0.0f && post.adaptationSeconds <= 60.0f, fields.child("adaptation_seconds"),
           "expected an adaptation time in [0, 60] seconds");
+  require(post.godRays >= 0.0f && post.godRays <= 10.0f, fields.child("god_rays"),
+          "expected a god-ray strength in [0, 10]");
   return post;
 }
 

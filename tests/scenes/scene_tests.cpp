@@ -449,7 +449,7 @@ TEST(Scene, PostBlockSetsTheFramesToneMappingGainAndGlow) {
   EXPECT_EQ(plain->post.glowStrength, 0.0f);
   auto post = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                              "post": {"tone_mapping": "reinhard", "auto_gain": true, "key": 0.36, "glow": 0.5,
-                                      "adaptation_seconds": 2}})",
+                                      "adaptation_seconds": 2, "god_rays": 1.5}})",
                          "x.json");
   ASSERT_TRUE(post.has_value()) << post.error().message;
   EXPECT_EQ(post->post.toneMapping, render::ToneMapping::kReinhard);
@@ -457,6 +457,7 @@ TEST(Scene, PostBlockSetsTheFramesToneMappingGainAndGlow) {
   EXPECT_EQ(post->post.key, 0.36f);
   EXPECT_EQ(post->post.glowStrength, 0.5f);
   EXPECT_EQ(post->post.adaptationSeconds, 2.0f);
+  EXPECT_EQ(post->post.godRays, 1.5f);
 
   const auto postError = [](const std::string& block) {
     return errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}, "post": )" + block + "}");
@@ -467,6 +468,7 @@ TEST(Scene, PostBlockSetsTheFramesToneMappingGainAndGlow) {
   EXPECT_EQ(postError(R"({"glow": 1.5})"), "dir/bad.json: post.glow: expected a glow strength in [0, 1]");
   EXPECT_EQ(postError(R"({"adaptation_seconds": -1})"),
             "dir/bad.json: post.adaptation_seconds: expected an adaptation time in [0, 60] seconds");
+  EXPECT_EQ(postError(R"({"god_rays": -0.5})"), "dir/bad.json: post.god_rays: expected a god-ray strength in [0, 10]");
   EXPECT_EQ(postError(R"({"auto_gain": 1})"), "dir/bad.json: post.auto_gain: expected true or false, got a number");
 }
 
