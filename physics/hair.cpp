@@ -351,15 +351,38 @@ void HairSystem::simulateStrands(std::atomic<std::size_t>& nextBlock, const Step
                                  std::vector<float>& scratch) {
   constexpr std::size_t kBlock = detail::kBlockLanes;
   const bool lanes = vectorised();
-  for (std::size_t first = nextBlock.fetch_add(kBlock); first < strands_.size(); first = nextBlock.fetch_add(kBlock)) {
-    const std::size_t end = std::min(first + kBlock, strands_.size());
+  // Each worker claims its next block before stepping this one, so the lane path can ask the
+  // memory for that block's particles and constants meanwhile (a step reads each of them once
+  // per block: without that it waits on memory at the start of every block).
+  std::size_t claimed = nextBlock.fetch_add(kBlock);
+  while (claimed < strands_.size()) {
+    const std::size_t first = claimed, end = std::min(first + kBlock, strands_.size());
+    claimed = nextBlock.fetch_add(kBlock);
     if (lanes) {
-      simulateStrandBlockLanes(first, end - first, plan, scratch);
+      simulateStrandBlockLanes(first, end - first, plan, scratch, claimed < strands_.size() ? claimed : kNoBlock);
       continue;
     }
     for (std::size_t s = first; s < end; s += kStrandLanes)
       simulateStrandBlock(s, std::min(kStrandLanes, end - s), plan);
   }
+}
+
+void HairSystem::prefetchBlock(std::size_t firstStrand, int part, int parts) const noexcept {
+  const std::size_t last = std::min(firstStrand + detail::kBlockLanes, strands_.size()) - 1;
+  const std::size_t from = strands_[firstStrand].firstParticle,
+                    to = strands_[last].firstParticle + strands_[last].particleCount;
+  const std::size_t block = firstStrand / detail::kBlockLanes;
+  const auto fetch = [&](const void* begin, const void* end) {
+    const auto b = reinterpret_cast<std::uintptr_t>(begin) & ~std::uintptr_t{63};
+    const auto e = reinterpret_cast<std::uintptr_t>(end);
+    const std::uintptr_t lines = (e - b + 63) / 64;
+    const std::uintptr_t lo = lines * static_cast<std::uintptr_t>(part) / static_cast<std::uintptr_t>(parts);
+    const std::uintptr_t hi = lines * static_cast<std::uintptr_t>(part + 1) / static_cast<std::uintptr_t>(parts);
+    for (std::uintptr_t l = lo; l < hi; ++l) __builtin_prefetch(reinterpret_cast<const void*>(b + 64 * l), 0, 3);
+  };
+  fetch(particles_.positions.data() + from, particles_.positions.data() + to);
+  fetch(particles_.previousPositions.data() + from, particles_.previousPositions.data() + to);
+  fetch(blockConstants_.data() + blockConstantsAt_[block], blockConstants_.data() + blockConstantsAt_[block + 1]);
 }
 
 std::uint64_t HairSystem::stateHash() const noexcept {

@@ -185,9 +185,11 @@ private:
   // `scratch`: the worker's lane storage for the AVX2 path, kept between frames.
   void simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan, std::vector<float>& scratch);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
-  // The AVX2 path: up to detail::kBlockLanes strands in lane-by-lane scratch storage.
+  // The AVX2 path: up to detail::kBlockLanes strands in lane-by-lane scratch storage; during the
+  // last step's constraint iterations it prefetches the block at strand `nextBlock` (kNoBlock:
+  // none).
   void simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
-                                std::vector<float>& scratch);
+                                std::vector<float>& scratch, std::size_t nextBlock);
 
   // The head's rigid pose at one fixed step: world = rotation · local + translation.
   struct HeadPose {
@@ -211,8 +213,16 @@ private:
   // The rest of settlePoint once the push left `x` beyond its tether: alternate projections.
   void settleTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& root, const glm::vec3& parent,
                     float reach) const noexcept;
+  // settleTether's last resort, where its rounds ended at `p`: x on the segment parent → p.
+  void bisectTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& p, const glm::vec3& root,
+                    const glm::vec3& parent, float reach) const noexcept;
 
-  static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side
+  // Asks the memory for part `part` of `parts` of the particles and lane constants of the block
+  // starting at strand `firstStrand` (the lane path's next block), spread so that the requests
+  // overlap the current block's work instead of queueing up at once.
+  void prefetchBlock(std::size_t firstStrand, int part, int parts) const noexcept;
+  static constexpr std::size_t kNoBlock = ~std::size_t{0};  // simulateStrandBlockLanes: no next block
+  static constexpr std::size_t kStrandLanes = 8;            // strands advanced side by side
   void placeAtRest(const glm::mat4& headTransform);
   // Fills blockConstants_ from the strands (at creation: they never change).
   void layOutBlockConstants();

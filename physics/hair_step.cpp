@@ -75,9 +75,15 @@ void HairSystem::settleTether(const HeadPose& pose, glm::vec3& x, const glm::vec
       return;
     }
   }
-  // They did not meet (a crease between colliders): the parent satisfies both conditions (it
-  // was settled first and its tether is shorter), so keep the farthest point found by bisection
-  // on the segment from the parent towards p for which both hold.
+  bisectTether(pose, x, p, root, parent, reach);
+}
+
+// The rounds did not meet (a crease between colliders): the parent satisfies both conditions (it
+// was settled first and its tether is shorter), so keep the farthest point found by bisection on
+// the segment from the parent towards p, the rounds' last point, for which both hold.
+void HairSystem::bisectTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& p, const glm::vec3& root,
+                              const glm::vec3& parent, float reach) const noexcept {
+  const float limit = (reach + kSettleSlack) * (reach + kSettleSlack);
   const auto clear = [&](const glm::vec3& q) {
     return !(distanceSquared(q, root) > limit) &&
            signedDistance(colliders_, toHeadLocal(pose.axes, pose.translation, q)) >=
@@ -265,12 +271,16 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
 // register holds one coordinate of 8 strands; detail/lane_transfer.hpp), their constants are
 // laid out that way once at creation (layOutBlockConstants), stepped with the kernels of
 // detail/strand_lanes.hpp — the same operations per strand and in the same order as
-// simulateStrandBlock — and copied back. The collision push runs 8 particles at a time
-// (detail/collision_lanes.hpp, bit for bit collidePoint); tether repairs and the velocity clamp
-// run per particle with the scalar path's code. Only without shape constraints and wind (see
+// simulateStrandBlock — and copied back. The collision pass (settlePoint for every particle)
+// runs in three sweeps over the block, with the same result: the pushes (each reads and writes
+// only its own particle), packed 8 to a register from the whole block (collideBlockAvx2); then
+// settleTether's rounds for those left beyond their tether, 8 at a time (they read only the
+// particle and its root; repairTethersAvx2); then, root to tip with the scalar path's code,
+// the few bisections, which read the parent's final position. The velocity clamp runs per
+// particle with the scalar path's code. Only without shape constraints and wind (see
 // vectorised()).
 void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
-                                          std::vector<float>& scratch) {
+                                          std::vector<float>& scratch, std::size_t nextBlock) {
 #if MANE_STRAND_LANES_AVX2
   constexpr std::size_t W = detail::kBlockLanes;
   // The block's constants are laid out once (layOutBlockConstants); positions are copied in.
@@ -279,8 +289,10 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
   const std::size_t n = longest * W;
   const float* w = blockConstants_.data() + blockConstantsAt_[blockIndex];
   const float *segment = w + n, *reach = w + 2 * n;
-  scratch.resize(6 * n + W);
+  scratch.resize(7 * n + W + detail::collideBlockStorage(longest));
   float* base = scratch.data();
+  float* unmetSlots = base + 6 * n + W;   // the tether repairs left to bisection
+  float* collisionWork = unmetSlots + n;  // collideBlockAvx2's lists
   float *x = base, *y = base + n, *z = base + 2 * n, *px = base + 3 * n, *py = base + 4 * n, *pz = base + 5 * n;
   detail::LaneStrands where{};
   std::int32_t count[W] = {};
@@ -322,7 +334,10 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
     }
     detail::integrateAvx2(block, keep, kick);
 
+    const bool prefetch = k == plan.substeps && nextBlock != kNoBlock;
+    if (prefetch && settings_.constraintIterations == 0) prefetchBlock(nextBlock, 0, 1);
     for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
+      if (prefetch) prefetchBlock(nextBlock, iteration, settings_.constraintIterations);
       detail::relaxDistancesAvx2(block);
       if (settings_.tethers) detail::tethersAvx2(block);
     }
@@ -336,19 +351,16 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
                                            &colliderCull_,
                                            {pose.axes, pose.translation},
                                            {before.axes, before.translation}};
-      for (std::size_t i = 1; i < longest; ++i)
-        for (std::size_t g = 0; g < groups; ++g) {
-          detail::collideLanesAvx2(contacts, block, g, i, colliders_.friction);
-          if (!settings_.tethers) continue;
-          for (unsigned beyond = detail::beyondTetherAvx2(block, g, i, kSettleSlack); beyond != 0;
-               beyond &= beyond - 1) {
-            const std::size_t b = g * detail::kSimdWidth + static_cast<std::size_t>(__builtin_ctz(beyond));
-            const std::size_t n = i * W + b;
-            glm::vec3 p = get(x, y, z, n);
-            settleTether(pose, p, get(x, y, z, b), get(x, y, z, n - W), reach[n]);
-            put(x, y, z, n, p);
-          }
+      detail::collideBlockAvx2(contacts, block, colliders_.friction, collisionWork);
+      if (settings_.tethers) {
+        const std::size_t unmet = detail::repairTethersAvx2(contacts, block, kSettleRounds, kSettleSlack, unmetSlots);
+        for (std::size_t u = 0; u < unmet; ++u) {  // ascending: each parent is final before its child
+          const auto n = static_cast<std::size_t>(unmetSlots[u]);
+          glm::vec3 settled;
+          bisectTether(pose, settled, get(x, y, z, n), get(x, y, z, n % W), get(x, y, z, n - W), reach[n]);
+          put(x, y, z, n, settled);
         }
+      }
     }
 
     if (clampSpeed)
@@ -378,7 +390,7 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
 
   detail::storeLanePositions(where, longest, groups, base, positions, previous);
 #else
-  (void)scratch;
+  (void)scratch, (void)nextBlock;
   for (std::size_t s = firstStrand; s < firstStrand + lanes; s += kStrandLanes)
     simulateStrandBlock(s, std::min(kStrandLanes, firstStrand + lanes - s), plan);
 #endif

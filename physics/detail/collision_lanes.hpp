@@ -2,17 +2,23 @@
 // Internal: the hair step's particle collisions for 8 particles at once (one AVX2 register per
 // coordinate), on the lane layout of strand_lanes.hpp. Not part of the public API.
 //
-// Bit-exactness: `collideLanesAvx2` performs, per lane, the IEEE operations of the scalar
-// HairSystem::collidePoint → collideParticle → SignedDistanceField::sampleWithGradient chain
-// (colliders.cpp, sdf.hpp), in the same order, so a lane ends with the bits the scalar code gives
-// that particle: the same cull tests, the same rounds, pushes, Newton steps and friction. Branches
-// become lane masks; a lane leaves a loop where the scalar code would break out of it, and its
-// values are then left untouched. The scalar code's cache of the last field sample only saves
-// work (it returns what sampling again returns); the lanes keep one too (FieldSamples). Field
-// samples gather their 8 node values per lane; lanes that do not sample read node 0 and discard
-// it, so no gather leaves the grid. tests/physics/hair_test.cpp checks the AVX2 step against
-// the scalar step bit for bit, with spheres, capsules, the field and friction.
+// Bit-exactness: `collidePointLanes` and `collideBlockAvx2` perform, per lane, the IEEE
+// operations of the scalar HairSystem::collidePoint → collideParticle →
+// SignedDistanceField::sampleWithGradient chain (colliders.cpp, sdf.hpp), in the same order, so a
+// lane ends with the bits the scalar code gives that particle: the same cull tests, the same
+// rounds, pushes, Newton steps and friction; `repairTethersAvx2` does the same for
+// HairSystem::settleTether's rounds. Branches become lane masks; a lane leaves a loop where the
+// scalar code would break out of it, and its values are then left untouched. Which lanes share a
+// register (the row's, or particles packed from anywhere in the block) changes nothing in any
+// lane. The scalar code's cache of the last field sample only saves work (it returns what
+// sampling again returns); the lanes keep one too (FieldSamples), which may also be handed a
+// sample taken earlier at the same position. Field samples gather their 8 node values per lane,
+// as 4 pairs of x-neighbours (8 bytes each); lanes that do not sample read nodes 0 and 1 and
+// discard them, so no gather leaves the grid.
+// tests/physics/hair_test.cpp checks the AVX2 step against the scalar step bit for bit, with
+// spheres, capsules, the field, friction and draped, taut strands.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -167,8 +173,20 @@ MANE_AVX2 inline Vec closestOnSegment(const glm::vec3& a, const glm::vec3& b, co
           add(splat(a.z), mul(splat(ab.z), t))};
 }
 
-MANE_AVX2 inline __m256 gatherNode(const float* values, __m256i at, int offset) noexcept {
-  return _mm256_i32gather_ps(values, _mm256_add_epi32(at, _mm256_set1_epi32(offset)), 4);
+// The node values at[lane] + offset and at[lane] + offset + 1 (neighbours along x, adjacent in
+// memory) of the 8 lanes: one 8-byte read per lane, two 4-lane gathers, instead of two 8-lane
+// gathers of 4 bytes.
+MANE_AVX2 inline void gatherNodePair(const float* values, __m256i at, int offset, __m256& first,
+                                     __m256& second) noexcept {
+  const __m256i index = _mm256_add_epi32(at, _mm256_set1_epi32(offset));
+  const auto* base = reinterpret_cast<const double*>(values);  // read as bytes by the gather
+  const __m256d zero = _mm256_setzero_pd(), all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  const __m256 low = _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, base, _mm256_castsi256_si128(index), all, 4));
+  const __m256 high =
+      _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, base, _mm256_extracti128_si256(index, 1), all, 4));
+  // low = a0 b0 a1 b1 | a2 b2 a3 b3, high = a4 b4 a5 b5 | a6 b6 a7 b7.
+  first = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(low, high, 0x88)), 0xD8));
+  second = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(low, high, 0xDD)), 0xD8));
 }
 
 // SignedDistanceField::sampleWithGradient for the lanes of `mask`; other lanes of `value` and
@@ -202,10 +220,11 @@ MANE_AVX2 inline void sampleField(const SignedDistanceField& field, const Vec& p
   const __m256i at = _mm256_add_epi32(_mm256_add_epi32(i, _mm256_mullo_epi32(j, _mm256_set1_epi32(sy))),
                                       _mm256_mullo_epi32(k, _mm256_set1_epi32(sz)));
   const float* v = field.values().data();
-  const __m256 v000 = gatherNode(v, at, 0), v100 = gatherNode(v, at, 1), v010 = gatherNode(v, at, sy),
-               v110 = gatherNode(v, at, 1 + sy);
-  const __m256 v001 = gatherNode(v, at, sz), v101 = gatherNode(v, at, 1 + sz), v011 = gatherNode(v, at, sy + sz),
-               v111 = gatherNode(v, at, 1 + sy + sz);
+  __m256 v000, v100, v010, v110, v001, v101, v011, v111;
+  gatherNodePair(v, at, 0, v000, v100);
+  gatherNodePair(v, at, sy, v010, v110);
+  gatherNodePair(v, at, sz, v001, v101);
+  gatherNodePair(v, at, sy + sz, v011, v111);
   const __m256 c00 = add(v000, mul(sub(v100, v000), fx)), c10 = add(v010, mul(sub(v110, v010), fx));
   const __m256 c01 = add(v001, mul(sub(v101, v001), fx)), c11 = add(v011, mul(sub(v111, v011), fx));
   const __m256 c0 = add(c00, mul(sub(c10, c00), fy)), c1 = add(c01, mul(sub(c11, c01), fy));
@@ -274,14 +293,25 @@ MANE_AVX2 inline void newtonToLevel(FieldSamples& samples, Vec& position, float 
   }
 }
 
-// collideParticle for the lanes of `mask` (positions and previous positions in the set's frame);
-// returns the lanes that touched anything.
-MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, const Vec& previous, float mu,
+// SignedDistanceField::mayBeBelow(p, thickness) for the lanes of `mask`.
+MANE_AVX2 inline __m256 fieldMayBeBelow(const SignedDistanceField& field, float thickness, const Vec& p,
                                         __m256 mask) noexcept {
+  if (!(thickness < field.contactLevel() - 1e-6f)) return mask;
+  const glm::vec3 lo = field.contactLower(), hi = field.contactUpper();
+  mask = both(mask, both(both(_mm256_cmp_ps(p.x, splat(lo.x), _CMP_GE_OQ), _mm256_cmp_ps(p.y, splat(lo.y), _CMP_GE_OQ)),
+                         _mm256_cmp_ps(p.z, splat(lo.z), _CMP_GE_OQ)));
+  return both(mask, both(both(_mm256_cmp_ps(p.x, splat(hi.x), _CMP_LE_OQ), _mm256_cmp_ps(p.y, splat(hi.y), _CMP_LE_OQ)),
+                         _mm256_cmp_ps(p.z, splat(hi.z), _CMP_LE_OQ)));
+}
+
+// collideParticle for the lanes of `mask` (positions and previous positions in the set's frame);
+// returns the lanes that touched anything. `samples` may already hold field samples (taken at
+// the lanes' current positions or anywhere else): they are reused where the position matches.
+MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, const Vec& previous, float mu,
+                                        __m256 mask, FieldSamples& samples) noexcept {
   const float thickness = set.thickness;
   __m256 touched = _mm256_setzero_ps();
   __m256 going = mask;
-  FieldSamples samples{set.sdf.get()};
   for (int round = 0; round < kCollisionRounds; ++round) {
     __m256 contact = _mm256_setzero_ps();
     for (const SphereCollider& s : set.spheres)
@@ -290,16 +320,7 @@ MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, c
       contact = either(contact, pushOutOfBall(position, previous, closestOnSegment(c.a, c.b, position),
                                               c.radius + thickness, mu, going));
     if (const SignedDistanceField* field = samples.field) {
-      __m256 testing = going;
-      if (thickness < field->contactLevel() - 1e-6f) {  // SignedDistanceField::mayBeBelow
-        const glm::vec3 lo = field->contactLower(), hi = field->contactUpper();
-        testing = both(testing, both(both(_mm256_cmp_ps(position.x, splat(lo.x), _CMP_GE_OQ),
-                                          _mm256_cmp_ps(position.y, splat(lo.y), _CMP_GE_OQ)),
-                                     _mm256_cmp_ps(position.z, splat(lo.z), _CMP_GE_OQ)));
-        testing = both(testing, both(both(_mm256_cmp_ps(position.x, splat(hi.x), _CMP_LE_OQ),
-                                          _mm256_cmp_ps(position.y, splat(hi.y), _CMP_LE_OQ)),
-                                     _mm256_cmp_ps(position.z, splat(hi.z), _CMP_LE_OQ)));
-      }
+      const __m256 testing = fieldMayBeBelow(*field, thickness, position, going);
       if (any(testing)) {
         samples.sample(position, testing);
         const __m256 level = splat(thickness);
@@ -329,31 +350,158 @@ MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, c
   return touched;
 }
 
-}  // namespace lanes
+MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, const Vec& previous, float mu,
+                                        __m256 mask) noexcept {
+  FieldSamples samples{set.sdf.get()};
+  return collideParticle(set, position, previous, mu, mask, samples);
+}
 
-/// HairSystem::collidePoint for the particles i of lane group g of `block` (world space) that
-/// are simulated (within their strand, inverse mass > 0): those that touch a collider move.
-/// Friction acts against the previous positions; `friction` 0 ignores them.
-MANE_AVX2 inline void collideLanesAvx2(const LaneColliders& c, const StrandLanes& block, std::size_t g, std::size_t i,
-                                       float friction) noexcept {
-  const std::size_t at = i * kBlockLanes + g * kSimdWidth;
-  float *x = block.x + at, *y = block.y + at, *z = block.z + at;
-  const float *px = block.px + at, *py = block.py + at, *pz = block.pz + at;
-  __m256 mask = _mm256_and_ps(laneMask(block, g, i),
-                              _mm256_cmp_ps(_mm256_loadu_ps(block.w + at), _mm256_setzero_ps(), _CMP_GT_OQ));
-  using namespace lanes;
-  const LanePose& pose = c.pose;
-  const glm::vec3 b = c.bounds->centre;
-  const glm::vec3 centre = pose.axes[0] * b.x + pose.axes[1] * b.y + pose.axes[2] * b.z + pose.translation;
-  const Vec world{_mm256_loadu_ps(x), _mm256_loadu_ps(y), _mm256_loadu_ps(z)};
-  const Vec offset = sub(world, splat(centre));
-  const float radius = c.bounds->radius;
-  mask = both(mask, _mm256_cmp_ps(dot(offset, offset), splat(radius * radius), _CMP_NGT_UQ));
-  if (!any(mask)) return;
-  Vec local = toLocal(pose, world);
+// Lanes of `mask` where a sphere or capsule of the set holds the position (pushOutOfBall's test).
+MANE_AVX2 inline __m256 insideShapes(const ColliderSet& set, const Vec& position, __m256 mask) noexcept {
+  __m256 inside = _mm256_setzero_ps();
+  for (const SphereCollider& s : set.spheres) {
+    const float reach = s.radius + set.thickness;
+    const Vec offset = sub(position, splat(s.centre));
+    inside = either(inside, _mm256_cmp_ps(dot(offset, offset), splat(reach * reach), _CMP_LT_OQ));
+  }
+  for (const CapsuleCollider& c : set.capsules) {
+    const float reach = c.radius + set.thickness;
+    const Vec offset = sub(position, closestOnSegment(c.a, c.b, position));
+    inside = either(inside, _mm256_cmp_ps(dot(offset, offset), splat(reach * reach), _CMP_LT_OQ));
+  }
+  return both(inside, mask);
+}
+
+// The lanes of `mask` for which collideParticle's first round can find a contact: a sphere or
+// capsule that holds the position (pushOutOfBall's test), or a field sample below the thickness.
+// Where no sphere or capsule holds it, none moves it, so the first round samples the field at
+// this very position: a lane left out touches nothing and keeps its position. The field samples
+// taken (at `position`) are left in `samples`.
+MANE_AVX2 inline __m256 mayTouch(const ColliderSet& set, const Vec& position, __m256 mask,
+                                 FieldSamples& samples) noexcept {
+  __m256 maybe = insideShapes(set, position, mask);
+  if (samples.field) {
+    const __m256 testing = butNot(fieldMayBeBelow(*samples.field, set.thickness, position, mask), maybe);
+    if (any(testing)) {
+      samples.sample(position, testing);
+      maybe = either(maybe, both(testing, _mm256_cmp_ps(samples.value, splat(set.thickness), _CMP_LT_OQ)));
+    }
+  }
+  return maybe;
+}
+
+// Lanes whose 32-bit slot (an int in float bits) is in range: the valid entries of a queue.
+MANE_AVX2 inline __m256 firstLanes(int count) noexcept {
+  return _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(count), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+}
+
+// Per 8-bit lane mask m, the lanes of m in ascending order, 4 bits each (lane 0 after them).
+inline constexpr auto kCompress = [] {
+  std::array<std::uint32_t, 256> table{};
+  for (unsigned m = 0; m < 256; ++m) {
+    unsigned k = 0;
+    for (unsigned lane = 0; lane < 8; ++lane)
+      if (m >> lane & 1u) table[m] |= lane << (4 * k++);
+  }
+  return table;
+}();
+
+// A first-in first-out queue of lanes: `C` floats per lane (component 0: the lane's slot in the
+// block, an int in float bits). Lanes come in 8 at a time under a mask, packed to the front
+// (an AVX2 "compress"), and leave 8 at a time: so work on a few scattered lanes runs on full
+// registers.
+// The permutation that moves the lanes of mask bits `m` to the front, in order.
+MANE_AVX2 inline __m256i compressOrder(unsigned m) noexcept {
+  return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(kCompress[m])),
+                                            _mm256_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28)),
+                          _mm256_set1_epi32(7));
+}
+
+template <int C>
+struct LaneQueue {
+  alignas(32) float v[C][2 * kSimdWidth] = {};
+  int count = 0;
+
+  MANE_AVX2 void push(const __m256 (&lane)[C], __m256 mask) noexcept {
+    const unsigned m = static_cast<unsigned>(_mm256_movemask_ps(mask));
+    if (m == 0) return;
+    const __m256i order = compressOrder(m);
+    for (int c = 0; c < C; ++c) _mm256_storeu_ps(v[c] + count, _mm256_permutevar8x32_ps(lane[c], order));
+    count += __builtin_popcount(m);
+  }
+  [[nodiscard]] MANE_AVX2 __m256 front(int c) const noexcept { return _mm256_load_ps(v[c]); }
+  // Drops the 8 front lanes (count ≥ 8).
+  MANE_AVX2 void pop() noexcept {
+    for (int c = 0; c < C; ++c) _mm256_store_ps(v[c], _mm256_loadu_ps(v[c] + kSimdWidth));
+    count -= static_cast<int>(kSimdWidth);
+  }
+  // The front lanes' slots; lanes past `count` read slot 0.
+  [[nodiscard]] MANE_AVX2 __m256i slots() const noexcept {
+    return _mm256_and_si256(_mm256_castps_si256(front(0)), _mm256_castps_si256(firstLanes(count)));
+  }
+};
+
+// The same for a list of any length in the caller's storage: C arrays, each with room for every
+// lane pushed plus kSimdWidth.
+template <int C>
+struct LaneList {
+  float* v[C];
+  int count = 0;
+
+  MANE_AVX2 void push(const __m256 (&lane)[C], __m256 mask) noexcept {
+    const unsigned m = static_cast<unsigned>(_mm256_movemask_ps(mask));
+    if (m == 0) return;
+    const __m256i order = compressOrder(m);
+    for (int c = 0; c < C; ++c) _mm256_storeu_ps(v[c] + count, _mm256_permutevar8x32_ps(lane[c], order));
+    count += __builtin_popcount(m);
+  }
+  [[nodiscard]] MANE_AVX2 __m256 at(int c, int from) const noexcept { return _mm256_loadu_ps(v[c] + from); }
+};
+
+// Asks the memory for the field nodes that sampleField reads at the lanes of `mask`.
+MANE_AVX2 inline void prefetchField(const SignedDistanceField& field, const Vec& p, __m256 mask) noexcept {
+  const glm::vec3 origin = field.origin();
+  const __m256 inverse = splat(field.inverseCellSize());
+  const glm::ivec3 dims = field.dimensions();
+  const auto cell = [&](__m256 coordinate, float lowest, int top) MANE_AVX2 {
+    const __m256 u = mul(sub(coordinate, splat(lowest)), inverse);
+    return _mm256_min_epi32(_mm256_cvttps_epi32(clampLanes(u, _mm256_setzero_ps(), splat(static_cast<float>(top - 1)))),
+                            _mm256_set1_epi32(top - 2));
+  };
+  const __m256i i = cell(p.x, origin.x, dims.x), j = cell(p.y, origin.y, dims.y), k = cell(p.z, origin.z, dims.z);
+  const int sy = dims.x, sz = dims.x * dims.y;
+  alignas(32) std::int32_t at[kSimdWidth];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at),
+                     _mm256_add_epi32(_mm256_add_epi32(i, _mm256_mullo_epi32(j, _mm256_set1_epi32(sy))),
+                                      _mm256_mullo_epi32(k, _mm256_set1_epi32(sz))));
+  const float* v = field.values().data();
+  for (unsigned m = static_cast<unsigned>(_mm256_movemask_ps(mask)); m != 0; m &= m - 1) {
+    const float* node = v + at[__builtin_ctz(m)];  // NaN lanes: an address never read
+    for (const int offset : {0, sy, sz, sy + sz}) __builtin_prefetch(node + offset);
+  }
+}
+
+MANE_AVX2 inline __m256 gatherLanes(const float* values, __m256i slots) noexcept {
+  return _mm256_i32gather_ps(values, slots, 4);
+}
+
+// Stores the lanes of `mask` of v at values[slot].
+MANE_AVX2 inline void scatterLanes(float* x, float* y, float* z, __m256i slots, const Vec& v, __m256 mask) noexcept {
+  alignas(32) std::int32_t at[kSimdWidth];
+  alignas(32) float vx[kSimdWidth], vy[kSimdWidth], vz[kSimdWidth];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at), slots);
+  _mm256_store_ps(vx, v.x), _mm256_store_ps(vy, v.y), _mm256_store_ps(vz, v.z);
+  for (unsigned m = static_cast<unsigned>(_mm256_movemask_ps(mask)); m != 0; m &= m - 1) {
+    const int b = __builtin_ctz(m);
+    x[at[b]] = vx[b], y[at[b]] = vy[b], z[at[b]] = vz[b];
+  }
+}
+
+// Lanes of `mask` whose body-frame position lies in one of the cull boxes.
+MANE_AVX2 inline __m256 inCullBoxes(const ColliderCull& cull, const Vec& local, __m256 mask) noexcept {
   __m256 inBox = _mm256_setzero_ps();
-  for (std::size_t box = 0; box < c.cull->lower.size(); ++box) {
-    const glm::vec3 lo = c.cull->lower[box], hi = c.cull->upper[box];
+  for (std::size_t box = 0; box < cull.lower.size(); ++box) {
+    const glm::vec3 lo = cull.lower[box], hi = cull.upper[box];
     const __m256 above =
         both(both(_mm256_cmp_ps(local.x, splat(lo.x), _CMP_GE_OQ), _mm256_cmp_ps(local.y, splat(lo.y), _CMP_GE_OQ)),
              _mm256_cmp_ps(local.z, splat(lo.z), _CMP_GE_OQ));
@@ -362,23 +510,118 @@ MANE_AVX2 inline void collideLanesAvx2(const LaneColliders& c, const StrandLanes
              _mm256_cmp_ps(local.z, splat(hi.z), _CMP_LE_OQ));
     inBox = either(inBox, both(above, below));
   }
-  mask = both(mask, inBox);
-  if (!any(mask)) return;
-  const Vec previousLocal =
-      friction > 0.0f ? toLocal(c.before, {_mm256_loadu_ps(px), _mm256_loadu_ps(py), _mm256_loadu_ps(pz)}) : local;
-  const __m256 touched = collideParticle(*c.set, local, previousLocal, friction, mask);
-  if (!any(touched)) return;
-  const Vec moved = pick(world, toWorld(pose, local), touched);
-  _mm256_storeu_ps(x, moved.x);
-  _mm256_storeu_ps(y, moved.y);
-  _mm256_storeu_ps(z, moved.z);
+  return both(mask, inBox);
 }
 
-/// Bit b set for each simulated particle i of lane group g of `block` that lies farther than
-/// its reach + `slack` from its root, as HairSystem::settlePoint tests (x − root, squared
-/// length left to right, against (reach + slack)²).
-MANE_AVX2 inline unsigned beyondTetherAvx2(const StrandLanes& block, std::size_t g, std::size_t i,
-                                           float slack) noexcept {
+// The world-space centre of the colliders' bounding ball in `pose`, as HairSystem::collidePoint.
+inline glm::vec3 boundsCentre(const LaneColliders& c) noexcept {
+  const LanePose& pose = c.pose;
+  const glm::vec3 b = c.bounds->centre;
+  return pose.axes[0] * b.x + pose.axes[1] * b.y + pose.axes[2] * b.z + pose.translation;
+}
+
+}  // namespace lanes
+
+/// HairSystem::collidePoint for 8 particles at once (world space): the lanes of `mask` that touch
+/// a collider move; friction against `previous` (in the pose before); returns the lanes that
+/// touched anything.
+MANE_AVX2 inline __m256 collidePointLanes(const LaneColliders& c, lanes::Vec& world, const lanes::Vec& previous,
+                                          __m256 mask, float friction) noexcept {
+  using namespace lanes;
+  const Vec offset = sub(world, splat(boundsCentre(c)));
+  const float radius = c.bounds->radius;
+  mask = both(mask, _mm256_cmp_ps(dot(offset, offset), splat(radius * radius), _CMP_NGT_UQ));
+  if (!any(mask)) return mask;
+  Vec local = toLocal(c.pose, world);
+  mask = inCullBoxes(*c.cull, local, mask);
+  if (!any(mask)) return mask;
+  const Vec previousLocal = friction > 0.0f ? toLocal(c.before, previous) : local;
+  const __m256 touched = collideParticle(*c.set, local, previousLocal, friction, mask);
+  if (any(touched)) world = pick(world, toWorld(c.pose, local), touched);
+  return touched;
+}
+
+/// Floats of working storage collideBlockAvx2 needs for a block of `rows` rows.
+constexpr std::size_t collideBlockStorage(std::size_t rows) noexcept {
+  return 4 * (rows * kBlockLanes + kSimdWidth);
+}
+
+/// HairSystem::collidePoint for every simulated particle (within its strand, inverse mass > 0,
+/// rows 1 … longest − 1) of `block` (world space): those that touch a collider move. Friction
+/// acts against the previous positions; `friction` 0 ignores them. `work`: collideBlockStorage
+/// (block.longest) floats.
+///
+/// One particle's push reads and writes only that particle, so the order does not matter, and
+/// the particles are not taken row by row (where on average 4.9 of 8 lanes were still in play
+/// after the culls) but packed into full registers in two stages: those that pass the bounding
+/// ball and the cull boxes are listed (and their field nodes prefetched), then screened
+/// (mayTouch: one field sample), and only those that can make contact (about half) run the
+/// whole of collideParticle, starting from the screen's sample. Every lane performs the same
+/// operations as the row-by-row version, bit for bit.
+MANE_AVX2 inline void collideBlockAvx2(const LaneColliders& c, const StrandLanes& block, float friction,
+                                       float* work) noexcept {
+  using namespace lanes;
+  const glm::vec3 centre = boundsCentre(c);
+  const float radius = c.bounds->radius;
+  const ColliderSet& set = *c.set;
+  const std::size_t room = block.longest * kBlockLanes + kSimdWidth;
+  LaneList<4> candidates{{work, work + room, work + 2 * room, work + 3 * room}};  // slot, body-frame position
+  for (std::size_t i = 1; i < block.longest; ++i)
+    for (std::size_t g = 0; g < block.groups; ++g) {
+      const std::size_t at = i * kBlockLanes + g * kSimdWidth;
+      __m256 mask =
+          both(laneMask(block, g, i), _mm256_cmp_ps(_mm256_loadu_ps(block.w + at), _mm256_setzero_ps(), _CMP_GT_OQ));
+      const Vec world{_mm256_loadu_ps(block.x + at), _mm256_loadu_ps(block.y + at), _mm256_loadu_ps(block.z + at)};
+      const Vec offset = sub(world, splat(centre));
+      mask = both(mask, _mm256_cmp_ps(dot(offset, offset), splat(radius * radius), _CMP_NGT_UQ));
+      if (!any(mask)) continue;
+      const Vec local = toLocal(c.pose, world);
+      mask = inCullBoxes(*c.cull, local, mask);
+      if (!any(mask)) continue;
+      const __m256 slot = _mm256_castsi256_ps(
+          _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(at)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+      candidates.push({slot, local.x, local.y, local.z}, mask);
+      if (set.sdf) prefetchField(*set.sdf, local, fieldMayBeBelow(*set.sdf, set.thickness, local, mask));
+    }
+
+  LaneQueue<9> contacts;  // slot, body-frame position, field value, gradient, sampled lanes
+  const auto resolve = [&]() MANE_AVX2 {
+    const __m256 mask = firstLanes(contacts.count);
+    const __m256i slots = contacts.slots();
+    FieldSamples samples{set.sdf.get()};
+    samples.at = {contacts.front(1), contacts.front(2), contacts.front(3)};
+    samples.value = contacts.front(4);
+    samples.gradient = {contacts.front(5), contacts.front(6), contacts.front(7)};
+    samples.held = both(contacts.front(8), mask);
+    Vec local = samples.at;
+    const Vec previousLocal = friction > 0.0f
+                                  ? toLocal(c.before, {gatherLanes(block.px, slots), gatherLanes(block.py, slots),
+                                                       gatherLanes(block.pz, slots)})
+                                  : local;
+    const __m256 touched = collideParticle(set, local, previousLocal, friction, mask, samples);
+    if (any(touched)) scatterLanes(block.x, block.y, block.z, slots, toWorld(c.pose, local), touched);
+  };
+  for (int from = 0; from < candidates.count; from += static_cast<int>(kSimdWidth)) {
+    FieldSamples samples{set.sdf.get()};
+    const Vec local{candidates.at(1, from), candidates.at(2, from), candidates.at(3, from)};
+    const __m256 maybe = mayTouch(set, local, firstLanes(candidates.count - from), samples);
+    const __m256 lane[9] = {
+        candidates.at(0, from), local.x,     local.y, local.z, samples.value, samples.gradient.x, samples.gradient.y,
+        samples.gradient.z,     samples.held};
+    contacts.push(lane, maybe);
+    if (contacts.count >= static_cast<int>(kSimdWidth)) {
+      resolve();
+      contacts.pop();
+    }
+  }
+  if (contacts.count > 0) resolve();
+}
+
+// Lanes of group g, row i of `block` holding a simulated particle farther than its reach +
+// `slack` from its root, as HairSystem::settlePoint tests (x − root, squared length left to
+// right, against (reach + slack)²).
+MANE_AVX2 inline __m256 beyondTetherLanes(const StrandLanes& block, std::size_t g, std::size_t i,
+                                          float slack) noexcept {
   using namespace lanes;
   const std::size_t at = i * kBlockLanes + g * kSimdWidth, root = g * kSimdWidth;
   const Vec d{sub(_mm256_loadu_ps(block.x + at), _mm256_loadu_ps(block.x + root)),
@@ -388,7 +631,68 @@ MANE_AVX2 inline unsigned beyondTetherAvx2(const StrandLanes& block, std::size_t
   const __m256 beyond = _mm256_cmp_ps(dot(d, d), mul(limit, limit), _CMP_GT_OQ);
   const __m256 simulated =
       both(laneMask(block, g, i), _mm256_cmp_ps(_mm256_loadu_ps(block.w + at), _mm256_setzero_ps(), _CMP_GT_OQ));
-  return static_cast<unsigned>(_mm256_movemask_ps(both(beyond, simulated)));
+  return both(beyond, simulated);
+}
+
+/// After collideBlockAvx2: the tether repair of HairSystem::settlePoint for every simulated
+/// particle of `block` that the push left beyond its reach + `slack` — HairSystem::settleTether's
+/// `rounds` alternating projections (onto the tether ball, then frictionless out of the
+/// colliders), 8 particles at a time. The rounds read only the particle and its root, so they
+/// run in any order; a particle whose rounds do not meet is left at the rounds' last point, and
+/// its slot goes to `unmet` (as a float: exact below 2²⁴), ascending, for the bisection, which
+/// needs its parent's final position and so runs afterwards, root to tip. Returns how many.
+MANE_AVX2 inline std::size_t repairTethersAvx2(const LaneColliders& c, const StrandLanes& block, int rounds,
+                                               float slack, float* unmet) noexcept {
+  using namespace lanes;
+  LaneQueue<1> beyond;  // slot
+  std::size_t unmetCount = 0;
+  const auto repair = [&]() MANE_AVX2 {
+    const __m256i slots = beyond.slots();
+    __m256 going = firstLanes(beyond.count);
+    const __m256i roots = _mm256_and_si256(slots, _mm256_set1_epi32(static_cast<int>(kBlockLanes - 1)));
+    const Vec root{gatherLanes(block.x, roots), gatherLanes(block.y, roots), gatherLanes(block.z, roots)};
+    Vec p{gatherLanes(block.x, slots), gatherLanes(block.y, slots), gatherLanes(block.z, slots)};
+    const __m256 reach = gatherLanes(block.reach, slots);
+    const __m256 limit = mul(add(reach, splat(slack)), add(reach, splat(slack)));
+    for (int round = 0; round < rounds; ++round) {
+      // projectTether(p, root, reach), operation for operation.
+      const Vec delta = sub(p, root);
+      const __m256 lengthSquared = dot(delta, delta);
+      const __m256 stretched = both(going, _mm256_cmp_ps(lengthSquared, mul(reach, reach), _CMP_GT_OQ));
+      if (any(stretched)) {
+        const __m256 ratio = div(reach, _mm256_sqrt_ps(lengthSquared));
+        p = pick(p,
+                 {add(root.x, mul(delta.x, ratio)), add(root.y, mul(delta.y, ratio)), add(root.z, mul(delta.z, ratio))},
+                 stretched);
+      }
+      const __m256 touched = collidePointLanes(c, p, p, going, 0.0f);
+      const Vec d = sub(p, root);
+      const __m256 done = butNot(going, both(touched, _mm256_cmp_ps(dot(d, d), limit, _CMP_GT_OQ)));
+      scatterLanes(block.x, block.y, block.z, slots, p, done);
+      going = butNot(going, done);
+      if (!any(going)) return;
+    }
+    scatterLanes(block.x, block.y, block.z, slots, p, going);
+    alignas(32) std::int32_t at[kSimdWidth];
+    _mm256_store_si256(reinterpret_cast<__m256i*>(at), slots);
+    for (unsigned m = static_cast<unsigned>(_mm256_movemask_ps(going)); m != 0; m &= m - 1)
+      unmet[unmetCount++] = static_cast<float>(at[__builtin_ctz(m)]);
+  };
+  for (std::size_t i = 1; i < block.longest; ++i)
+    for (std::size_t g = 0; g < block.groups; ++g) {
+      const __m256 mask = beyondTetherLanes(block, g, i, slack);
+      if (!any(mask)) continue;
+      const std::size_t at = i * kBlockLanes + g * kSimdWidth;
+      const __m256 slot = _mm256_castsi256_ps(
+          _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(at)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+      beyond.push({slot}, mask);
+      if (beyond.count >= static_cast<int>(kSimdWidth)) {
+        repair();
+        beyond.pop();
+      }
+    }
+  if (beyond.count > 0) repair();
+  return unmetCount;
 }
 
 #undef MANE_AVX2
