@@ -1,4 +1,5 @@
-// `mane render`: the scene rendered headless to PNG files, with each pass's GPU time.
+// `mane render`: the scene rendered headless to PNG files, with each pass's GPU time; with --mp4,
+// the frames also encoded into a video by ffmpeg.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -6,8 +7,10 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "app/commands.hpp"
+#include "app/mp4_encoding.hpp"
 #include "app/scene_loading.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
@@ -23,11 +26,14 @@ struct RenderOptions {
   double fps = 30.0;
   unsigned msaa = 4;
   unsigned threads = 2;
+  std::string mp4;  ///< empty: PNG frames only
 };
+
+constexpr const char* kFrameNumber = "%04d";
 
 std::string frameFileName(const std::string& scene, int frame) {
   char number[16];
-  std::snprintf(number, sizeof(number), "%04d", frame);
+  std::snprintf(number, sizeof(number), kFrameNumber, frame);
   return scene + "_" + number + ".png";
 }
 
@@ -58,16 +64,29 @@ void printTimingTable(const std::vector<std::vector<render::PassTiming>>& frames
 }
 
 void run(const RenderOptions& options) {
+  // Before any rendering: a missing encoder found after an hour of frames wastes the hour.
+  std::optional<std::filesystem::path> ffmpeg;
+  if (!options.mp4.empty()) {
+    ffmpeg = findOnPath("ffmpeg");
+    if (std::filesystem::is_directory(options.mp4))
+      return failWith("--mp4 " + options.mp4 + " is a folder; give the name of the MP4 file to write");
+    if (!ffmpeg)
+      return failWith(
+          "--mp4 needs the program ffmpeg, which is not on PATH (Debian/Ubuntu: sudo apt-get install "
+          "ffmpeg)");
+  }
+  std::optional<std::pair<std::uint32_t, std::uint32_t>> size;
+  if (!options.size.empty()) {
+    auto parsed = parseSize(options.size);
+    if (!parsed) return failWith(parsed.error().message);
+    size = *parsed;
+  }
   scenes::WorldSettings worldSettings;
   auto world = loadWorld(options.scene, worldSettings);
   if (!world) return failWith(world.error().message);
   std::uint32_t width = static_cast<std::uint32_t>(world->scene().output.width);
   std::uint32_t height = static_cast<std::uint32_t>(world->scene().output.height);
-  if (!options.size.empty()) {
-    auto size = parseSize(options.size);
-    if (!size) return failWith(size.error().message);
-    std::tie(width, height) = *size;
-  }
+  if (size) std::tie(width, height) = *size;
 
   auto device = render::Device::create(render::deviceSettingsFromEnvironment());
   if (!device) return failWith(device.error().message);
@@ -88,6 +107,9 @@ void run(const RenderOptions& options) {
     if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
     render::FrameInput frameInput = world->frameInput();
     frameInput.post.frameSeconds = float(1.0 / options.fps);
+    if (auto refined = refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
+        !refined)
+      return failWith(refined.error().message);
     auto frameTimings = (*renderer)->render(frameInput);
     if (!frameTimings) return failWith(frameTimings.error().message);
     timings.push_back(*frameTimings);
@@ -107,6 +129,18 @@ void run(const RenderOptions& options) {
   if (options.frames > 1)
     std::cout << "\nwrote " << options.frames << " frames to "
               << std::filesystem::absolute(outDir).lexically_normal().string() << "/" << stem << "_NNNN.png\n";
+  if (ffmpeg) {
+    const std::filesystem::path mp4 = std::filesystem::absolute(options.mp4).lexically_normal();
+    std::error_code error;
+    if (mp4.has_parent_path()) std::filesystem::create_directories(mp4.parent_path(), error);
+    std::string pattern;  // ffmpeg reads the file names as a printf pattern: a '%' of the name doubles
+    for (char c : stem) pattern += c == '%' ? std::string("%%") : std::string(1, c);
+    if (auto encoded =
+            encodeMp4(*ffmpeg, outDir / (pattern + "_" + kFrameNumber + ".png"), options.frames, options.fps, mp4);
+        !encoded)
+      return failWith(encoded.error().message);
+    std::cout << "wrote " << mp4.string() << " (H.264, " << options.frames << " frames at " << options.fps << " fps)\n";
+  }
   printTimingTable(timings);
   if (options.frames == 1)
     std::cout << "(one frame: its times include first-use shader compilation; --frames N gives steady-state "
@@ -134,6 +168,11 @@ void addRenderCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "Simulation threads (results do not depend on it)")
       ->check(CLI::Range(1u, 64u))
       ->capture_default_str();
+  command
+      ->add_option("--mp4", options->mp4,
+                   "Also encode the frames into this H.264 MP4 file at --fps (needs ffmpeg on PATH: sudo apt-get "
+                   "install ffmpeg)")
+      ->type_name("FILE");
   command->callback([options] { run(*options); });
 }
 

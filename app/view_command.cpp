@@ -1,6 +1,7 @@
 // `mane view`: the scene in a window (GLFW + Vulkan swapchain) with an orbit camera.
-// Mouse: left drag orbits, wheel zooms. Keys: Space pauses the simulation, N steps one frame
-// while paused, Esc quits. The window title shows the frame time.
+// Mouse: left drag orbits, wheel zooms. Keys (kKeyHelp): pause and step the simulation, switch
+// techniques and post effects, quit. The frame time and the toggles' states are drawn in the
+// image's top-left corner (render/passes/text_overlay.hpp) and the window title.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -10,11 +11,16 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "app/commands.hpp"
 #include "app/scene_loading.hpp"
+#include "render/passes/text_overlay.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
 #include "render/window.hpp"
@@ -28,7 +34,13 @@ struct ViewOptions {
   std::string screenshot;
   unsigned msaa = 1;
   unsigned threads = 2;
+  std::string press;  ///< keys pressed one per frame from the second frame on
 };
+
+constexpr const char* kKeyHelp =
+    "Keys: Space pause/run the simulation, N step one frame while paused, K skin pre-integrated / texture-space "
+    "diffusion, H hair shadows opacity / deep opacity maps, T tone map Reinhard / linear, G glow, A auto gain, "
+    "R god rays, F fur shells and fins / bare, O the on-screen text, Esc quit. Mouse: left drag orbits, wheel zooms.";
 
 // Spherical coordinates around the scene camera's target.
 struct OrbitCamera {
@@ -64,7 +76,84 @@ struct InputState {
   bool flipGodRays = false;
   bool flipGlow = false;
   bool flipAutoGain = false;
+  // Technique toggles over the scene's static settings (K skin diffusion, H hair shadow maps): they
+  // take a new Renderer::setScene, made when `techniquesChanged` is set.
+  bool flipSkinDiffusion = false;
+  bool flipHairShadows = false;
+  bool furShells = true;  // F: fur as shells and fins, or the bare body with its photo
+  bool techniquesChanged = false;
+  bool showOverlay = true;  // O
 };
+
+// What a key does; the window's key callback and --press both come here.
+void press(GLFWwindow* window, InputState& state, int key) {
+  switch (key) {
+    case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
+    case GLFW_KEY_SPACE: state.paused = !state.paused; break;
+    case GLFW_KEY_N: state.stepOnce = true; break;
+    case GLFW_KEY_T: state.flipToneMapping = !state.flipToneMapping; break;
+    case GLFW_KEY_G: state.flipGlow = !state.flipGlow; break;
+    case GLFW_KEY_A: state.flipAutoGain = !state.flipAutoGain; break;
+    case GLFW_KEY_R: state.flipGodRays = !state.flipGodRays; break;
+    case GLFW_KEY_K:
+      state.flipSkinDiffusion = !state.flipSkinDiffusion;
+      state.techniquesChanged = true;
+      break;
+    case GLFW_KEY_H:
+      state.flipHairShadows = !state.flipHairShadows;
+      state.techniquesChanged = true;
+      break;
+    case GLFW_KEY_O: state.showOverlay = !state.showOverlay; break;
+    case GLFW_KEY_F: state.furShells = !state.furShells; break;
+    default: break;
+  }
+}
+
+// The GLFW key of a character of --press: letters (either case) and space.
+std::optional<int> keyOf(char character) {
+  if (character >= 'a' && character <= 'z') return GLFW_KEY_A + (character - 'a');
+  if (character >= 'A' && character <= 'Z') return GLFW_KEY_A + (character - 'A');
+  if (character == ' ') return GLFW_KEY_SPACE;
+  return std::nullopt;
+}
+
+// The scene's static settings with the technique toggles applied: every skin material's diffusion
+// flipped (K), the hair shadows flipped between opacity shadow maps and deep opacity maps (H; a
+// scene without hair shadows gets opacity shadow maps).
+render::StaticScene withTechniques(render::StaticScene scene, const InputState& input) {
+  if (input.flipSkinDiffusion)
+    for (render::MaterialData& material : scene.materials)
+      if (material.shading == render::SurfaceShading::kSkin)
+        material.skin.diffusion = material.skin.diffusion == render::SkinDiffusion::kTextureSpace
+                                      ? render::SkinDiffusion::kPreintegrated
+                                      : render::SkinDiffusion::kTextureSpace;
+  if (input.flipHairShadows)
+    scene.hairShadows.mode = scene.hairShadows.mode == render::HairShadowMode::kOpacityShadowMap
+                                 ? render::HairShadowMode::kDeepOpacityMap
+                                 : render::HairShadowMode::kOpacityShadowMap;
+  return scene;
+}
+
+// The overlay's second line: each toggle's key and what it shows now, short.
+std::string techniqueLine(const render::StaticScene& scene, const render::FrameInput& frame) {
+  const render::PostSettings& post = frame.post;
+  std::string skin = "-";
+  for (const render::MaterialData& material : scene.materials)
+    if (material.shading == render::SurfaceShading::kSkin) {
+      skin = material.skin.diffusion == render::SkinDiffusion::kTextureSpace ? "TEXTURE" : "PRE";
+      break;
+    }
+  const char* shadows = scene.grooms.empty()                                                  ? "-"
+                        : scene.hairShadows.mode == render::HairShadowMode::kOpacityShadowMap ? "OSM"
+                        : scene.hairShadows.mode == render::HairShadowMode::kDeepOpacityMap   ? "DEEP"
+                                                                                              : "OFF";
+  const auto onOff = [](bool on) { return on ? "ON" : "OFF"; };
+  const std::string fur = scene.furs.empty() ? "-" : frame.furShells ? "SHELLS" : "BARE";
+  return "K SKIN " + skin + "  H SHADOWS " + shadows + "  F FUR " + fur + "  T " +
+         (post.toneMapping == render::ToneMapping::kReinhard ? "REINHARD" : "LINEAR") + "  G GLOW " +
+         onOff(post.glowStrength > 0.0f) + "  A GAIN " + onOff(post.autoGain) + "  R RAYS " +
+         onOff(post.godRays > 0.0f);
+}
 
 // The scene's post settings with the viewer's toggles applied.
 render::PostSettings toggled(render::PostSettings post, const InputState& input) {
@@ -99,19 +188,17 @@ void installCallbacks(GLFWwindow* window, InputState& input) {
     orbit.distance = std::max(orbit.distance * std::pow(0.9f, float(dy)), 0.01f);
   });
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
-    if (action != GLFW_PRESS) return;
-    auto& state = *static_cast<InputState*>(glfwGetWindowUserPointer(w));
-    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
-    if (key == GLFW_KEY_SPACE) state.paused = !state.paused;
-    if (key == GLFW_KEY_N) state.stepOnce = true;
-    if (key == GLFW_KEY_T) state.flipToneMapping = !state.flipToneMapping;
-    if (key == GLFW_KEY_G) state.flipGlow = !state.flipGlow;
-    if (key == GLFW_KEY_A) state.flipAutoGain = !state.flipAutoGain;
-    if (key == GLFW_KEY_R) state.flipGodRays = !state.flipGodRays;
+    if (action == GLFW_PRESS) press(w, *static_cast<InputState*>(glfwGetWindowUserPointer(w)), key);
   });
 }
 
 void run(const ViewOptions& options) {
+  std::vector<int> scripted;
+  for (char character : options.press) {
+    const auto key = keyOf(character);
+    if (!key) return failWith(std::string("--press: no key for '") + character + "' (letters and space only)");
+    scripted.push_back(*key);
+  }
   auto world = loadWorld(options.scene, {});
   if (!world) return failWith(world.error().message);
   const auto width = static_cast<std::uint32_t>(world->scene().output.width);
@@ -128,8 +215,10 @@ void run(const ViewOptions& options) {
   if (!swapchain) return failWith(swapchain.error().message);
   auto renderer = render::Renderer::create(**device, {.extent = {width, height}, .msaaSamples = options.msaa});
   if (!renderer) return failWith(renderer.error().message);
-  if (auto uploaded = (*renderer)->setScene(world->staticScene()); !uploaded) return failWith(uploaded.error().message);
+  render::StaticScene drawn = world->staticScene();
+  if (auto uploaded = (*renderer)->setScene(drawn); !uploaded) return failWith(uploaded.error().message);
   if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
+  std::cout << kKeyHelp << '\n';
 
   InputState input;
   input.orbit = OrbitCamera::from(world->frameInput().camera);
@@ -137,8 +226,20 @@ void run(const ViewOptions& options) {
 
   auto last = std::chrono::steady_clock::now();
   double smoothedMs = 0.0;
+  const render::TextOverlaySettings overlay{.scale = width >= 960 ? 2u : 1u};
   for (int frame = 0; !(*window)->shouldClose() && (options.frames == 0 || frame < options.frames); ++frame) {
     glfwPollEvents();
+    if (frame >= 1 && std::size_t(frame - 1) < scripted.size())
+      press((*window)->handle(), input, scripted[std::size_t(frame - 1)]);
+    if (input.techniquesChanged) {
+      // New passes and maps for the switched techniques; the frame in flight must not use the old ones.
+      input.techniquesChanged = false;
+      (*device)->device().waitIdle();
+      drawn = withTechniques(world->staticScene(), input);
+      if (auto uploaded = (*renderer)->setScene(drawn); !uploaded) return failWith(uploaded.error().message);
+      if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
+      std::cout << techniqueLine(drawn, world->frameInput()) << '\n';
+    }
     const auto now = std::chrono::steady_clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;
@@ -155,7 +256,28 @@ void run(const ViewOptions& options) {
     frameInput.camera.target = input.orbit.target;
     frameInput.post = toggled(frameInput.post, input);
     frameInput.post.frameSeconds = float(dt);
-    if (auto rendered = (*renderer)->render(frameInput); !rendered) return failWith(rendered.error().message);
+    frameInput.furShells = input.furShells;
+    // Subdivided meshes follow the camera (and their own motion), but not while the orbit is being
+    // dragged: a re-tessellation can rebuild a voxel translucency table (seconds).
+    if (!input.orbit.dragging)
+      if (auto refined = refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
+          !refined)
+        return failWith(refined.error().message);
+    auto rendered = (*renderer)->render(frameInput);
+    if (!rendered) return failWith(rendered.error().message);
+    if (input.showOverlay) {
+      const double gpuMs =
+          std::accumulate(rendered->begin(), rendered->end(), 0.0,
+                          [](double sum, const render::PassTiming& t) { return sum + t.milliseconds; });
+      char timing[96];
+      std::snprintf(timing, sizeof(timing), "%.1f MS/FRAME  GPU %.1f MS%s", smoothedMs, gpuMs,
+                    input.paused ? "  PAUSED" : "");
+      const std::vector<std::string> lines{timing, techniqueLine(drawn, frameInput)};
+      const render::TextLayout layout = render::layoutText(lines, overlay, {width, height});
+      (*device)->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+        render::recordTextOverlay(commands, (*renderer)->target().output(), layout, overlay);
+      });
+    }
     if (auto presented = (*swapchain)->present((*renderer)->target().output()); !presented)
       return failWith(presented.error().message);
     char title[160];
@@ -190,6 +312,10 @@ void addViewCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "Simulation threads")
       ->check(CLI::Range(1u, 64u))
       ->capture_default_str();
+  command->add_option("--press", options->press,
+                      "Keys pressed one per frame from the second frame on, as if typed (e.g. KH: texture-space "
+                      "skin, then deep opacity maps); for scripted runs");
+  command->footer(kKeyHelp);
   command->callback([options] { run(*options); });
 }
 

@@ -60,18 +60,6 @@ std::filesystem::path asset(const scenes::AssetResolver& resolver, const char* n
   return orExit(resolver.resolve(name), name);
 }
 
-// Box projection: each vertex takes the plane perpendicular to its normal's largest axis.
-void boxProjectUvs(scenes::Mesh& mesh) {
-  mesh.uvs.resize(mesh.positions.size());
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3 p = mesh.positions[i] * kUvPerMetre;
-    const glm::vec3 n = glm::abs(mesh.normals[i]);
-    mesh.uvs[i] = n.x >= n.y && n.x >= n.z ? glm::vec2(p.z, p.y)
-                  : n.y >= n.z             ? glm::vec2(p.x, p.z)
-                                           : glm::vec2(p.x, p.y);
-  }
-}
-
 struct Shared {
   std::unique_ptr<Device> device;
   std::unique_ptr<RenderTarget> target;
@@ -85,7 +73,7 @@ struct Shared {
     const scenes::AssetResolver resolver = orExit(scenes::AssetResolver::createDefault(), "asset resolver");
     bunny = orExit(scenes::loadObj(asset(resolver, "meshes/stanford-bunny.obj")), "bunny");
     if (bunny.normals.size() != bunny.positions.size()) scenes::computeSmoothNormals(bunny);
-    boxProjectUvs(bunny);
+    scenes::boxProjectUvs(bunny, kUvPerMetre);
     photo = orExit(scenes::loadImage(asset(resolver, "fur/chelsea_forehead_fur_crop_110x80.png")), "photo");
   }
 

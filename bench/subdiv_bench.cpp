@@ -9,6 +9,11 @@
 // same maximum pixel error. Errors are measured on every 16th ptex face (the same faces for
 // both), sampling each output edge at ¼, ½, ¾: the pixel distance between the straight edge
 // and the limit point at the same ptex parameter.
+//
+// BM_WorldRefineForCamera is the per-frame cost inside the World (scenes::World::
+// refineForCamera): the same head as a scene mesh with a `subdivision` block, turning as in
+// nalu.json, so every frame sees it from a new side and is tessellated again, plus the copy
+// into the mesh the renderer's replaceMesh reads.
 
 #include <benchmark/benchmark.h>
 
@@ -25,7 +30,9 @@
 
 #include "scenes/assets.hpp"
 #include "scenes/gltf_loader.hpp"
+#include "scenes/scene.hpp"
 #include "scenes/subdivided_mesh.hpp"
+#include "scenes/world.hpp"
 #include "subdiv/limit.hpp"
 #include "subdiv/tessellator.hpp"
 
@@ -151,6 +158,59 @@ BENCHMARK(BM_DeformAndTessellateFrame)
     ->ArgNames({"view", "threads"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// A nalu-like scene: the head (0.025 m per file unit) with isolation 1 as above, turning ±20° at
+// 0.25 Hz, no hair; the camera at the mid distance (30 units = 0.75 m) from the head's centre.
+std::unique_ptr<scenes::World> loadTurningHead() {
+  if (!head().problem.empty()) return nullptr;
+  const glm::vec3 centre = head().centre * 0.025f;
+  const std::string text = R"({"name": "turning head", "output": {"width": 1280, "height": 720},
+      "camera": {"position": [)" +
+                           std::to_string(centre.x) + ", " + std::to_string(centre.y) + ", " +
+                           std::to_string(centre.z + 0.75f) + R"(], "target": [)" + std::to_string(centre.x) + ", " +
+                           std::to_string(centre.y) + ", " + std::to_string(centre.z) +
+                           R"(], "fov_degrees": 40, "near": 0.01, "far": 10},
+      "meshes": [{"name": "head", "source": "head/LeePerrySmith/LeePerrySmith.glb", "transform": {"scale": 0.025},
+                  "subdivision": {"isolation": 1}}],
+      "animation": {"head": {"mesh": "head", "motion": "turn", "amplitude_degrees": 20, "frequency_hz": 0.25}}})";
+  auto scene = scenes::parseScene(text, "turning_head.json");
+  if (!scene) return nullptr;
+  auto resolver = scenes::AssetResolver::createDefault();
+  if (!resolver) return nullptr;
+  auto world = scenes::World::create(std::move(*scene), *resolver, {.loadTextures = false});
+  if (!world) return nullptr;
+  return std::make_unique<scenes::World>(std::move(*world));
+}
+
+// Argument: worker threads.
+void BM_WorldRefineForCamera(benchmark::State& state) {
+  if (skipWithoutHead(state)) return;
+  static const std::unique_ptr<scenes::World> world = loadTurningHead();
+  if (!world) {
+    state.SkipWithError("the turning-head scene did not load");
+    return;
+  }
+  const auto threads = static_cast<unsigned>(state.range(0));
+  const render::Camera camera = world->frameInput().camera;
+  std::size_t triangles = 0, changed = 0, frames = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto advanced = world->advance(1.0 / 60.0, 1);  // nothing simulated: the clock and the head
+    state.ResumeTiming();
+    auto refined = world->refineForCamera(camera, {1280, 720}, threads);
+    if (!advanced || !refined) {
+      state.SkipWithError("refineForCamera failed");
+      return;
+    }
+    changed += refined->size();
+    ++frames;
+    triangles = world->meshData(0).indices.size() / 3;
+  }
+  state.SetLabel("mid, turning");
+  state.counters["triangles"] = double(triangles);
+  state.counters["retessellated"] = double(changed) / double(std::max<std::size_t>(frames, 1));
+}
+BENCHMARK(BM_WorldRefineForCamera)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
 
 glm::dvec2 toPixels(const subdiv::ScreenView& view, const glm::dvec3& p) {
   const glm::dvec4 clip = glm::dmat4(view.viewProjection) * glm::dvec4(p, 1.0);

@@ -172,4 +172,30 @@ Result<std::vector<std::vector<glm::vec3>>> generateGroomOnMesh(const GroomSetti
   return strands;
 }
 
+Result<std::vector<std::vector<glm::vec3>>> generateGroomFromRoots(const GroomSettings& settings,
+                                                                   std::span<const glm::vec3> roots,
+                                                                   std::span<const glm::vec3> normals) {
+  GroomSettings checked = settings;
+  checked.strandCount = std::max<std::size_t>(roots.size(), 1);
+  if (auto valid = validateGroomSettings(checked); !valid) return std::unexpected(valid.error());
+  if (roots.empty()) return fail("Groom from roots: no roots.");
+  if (normals.size() != roots.size())
+    return fail("Groom from roots: " + std::to_string(normals.size()) + " normals for " + std::to_string(roots.size()) +
+                " roots.");
+  for (std::size_t r = 0; r < roots.size(); ++r) {
+    const glm::vec3& p = roots[r];
+    const glm::vec3& n = normals[r];
+    const float length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z) || !(std::abs(length - 1.0f) <= 1e-3f))
+      return fail("Groom from roots: root " + std::to_string(r) +
+                  " has a position that is not finite or a normal that is not of unit length.");
+  }
+  const auto [cosStep, sinStep] = helixStep(settings);
+  SplitMix64 rng(settings.seed);
+  std::vector<std::vector<glm::vec3>> strands(roots.size());
+  for (std::size_t r = 0; r < roots.size(); ++r)
+    strands[r] = growStrand(rng, settings, roots[r], normals[r], cosStep, sinStep);
+  return strands;
+}
+
 }  // namespace mane::physics

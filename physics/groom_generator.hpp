@@ -75,4 +75,14 @@ struct GroomSettings {
     const GroomSettings& settings, std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices,
     std::span<const std::uint32_t> scalpTriangles);
 
+/// Grows one guide strand from each of `roots` (head-local points, metres) along its unit
+/// `normals` entry: the length, jitter, curl and seed settings as for the other generators;
+/// `strandCount` and the sphere's settings are not used. For roots placed by the caller, e.g.
+/// on a subdivision surface's limit (scenes/limit_scalp.hpp). Fails, naming it, on settings out
+/// of range, no roots, counts that differ, or a root or normal that is not finite (or a normal
+/// not of unit length within 1e-3).
+[[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroomFromRoots(const GroomSettings& settings,
+                                                                                 std::span<const glm::vec3> roots,
+                                                                                 std::span<const glm::vec3> normals);
+
 }  // namespace mane::physics

@@ -39,6 +39,9 @@ struct MeshData {
 enum class SurfaceShading : std::uint32_t {
   kLambert = 0,  ///< diffuse only
   kSkin = 1,     ///< pre-integrated subsurface scattering + Kelemen/Szirmay-Kalos specular
+  /// Shell-and-fin fur grown from the albedo photo (render/passes/fur_pass.hpp) on the meshes
+  /// StaticScene::furs names; drawn as Lambert with the photo where FrameInput::furShells is off.
+  kFur = 2,
 };
 
 /// Which integration range the pre-integrated skin table uses (render/luts/preintegrated_skin.hpp).
@@ -91,6 +94,20 @@ struct TranslucencyParameters {
   int voxelResolution = 32;
 };
 
+/// Parameters of a fur material (render/passes/fur_pass.hpp, render/luts/fur_shells.hpp). The
+/// albedo texture is the photo the shells are made from; it must be present.
+struct FurParameters {
+  std::uint32_t layers = 15;  ///< N shells, 1 … 64 (Ukaji et al. use 15 on meshes)
+  float thickness = 0.004f;   ///< h_b, metres: the fur's height above the skin
+  bool fins = true;           ///< Lengyel's fins on silhouette edges
+  float layAngle = 0.6f;      ///< radians between a fibre and the fur direction (Kajiya-Kay)
+  float specularExponent = 40.0f;
+  float specularStrength = 0.08f;
+  /// Where the tips lean, world space, in units of `thickness`, projected on the surface per
+  /// vertex: (0, −0.5, 0) combs the fur down by half its height; zero stands it up.
+  glm::vec3 comb{0.0f};
+};
+
 /// A surface: albedo (sRGB texture times base colour) with an optional tangent-space normal map
 /// (OpenGL convention, +Y up in the map); skin adds a specular map (its red channel scales ρs).
 struct MaterialData {
@@ -101,6 +118,14 @@ struct MaterialData {
   SkinParameters skin;
   std::optional<TextureData> specularMap;
   TranslucencyParameters translucency;
+  FurParameters fur;  ///< kFur only
+};
+
+/// Fur growing on a mesh: the instances that draw `mesh` with `material` (a kFur material) are
+/// drawn by the fur pass. The mesh needs normals and uvs.
+struct FurSurfaceData {
+  std::size_t mesh = 0;
+  std::size_t material = 0;
 };
 
 /// Everything that stays the same from frame to frame; uploaded once.
@@ -109,6 +134,7 @@ struct StaticScene {
   std::vector<MaterialData> materials;
   std::vector<HairGroomData> grooms;  ///< drawn after the surfaces; guides via Renderer::updateHair
   HairShadowSettings hairShadows;
+  std::vector<FurSurfaceData> furs;
 };
 
 struct MeshInstance {
@@ -183,6 +209,8 @@ struct FrameInput {
   glm::vec3 background{0.02f, 0.022f, 0.028f};
   float exposure = 1.0f;  ///< linear scale before the tone map and the sRGB encode (× the auto gain where on)
   PostSettings post;
+  /// Fur materials as shells and fins; off: as Lambert surfaces textured with their photo.
+  bool furShells = true;
 };
 
 /// GPU time of each pass of one frame, in milliseconds, in the order the passes ran.

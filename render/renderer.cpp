@@ -42,23 +42,30 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
 
 namespace {
 
+// The contract of MeshData (frame.hpp), checked before anything reaches the GPU; `name` says
+// which mesh.
+Result<void> validateMesh(const MeshData& mesh, const std::string& name) {
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
+    return fail(name + ": " + std::to_string(mesh.normals.size()) + " normals for " +
+                std::to_string(mesh.positions.size()) + " positions");
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
+    return fail(name + ": " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(mesh.positions.size()) +
+                " positions");
+  if (!mesh.curvatures.empty() && mesh.curvatures.size() != mesh.positions.size())
+    return fail(name + ": " + std::to_string(mesh.curvatures.size()) + " curvatures for " +
+                std::to_string(mesh.positions.size()) + " positions");
+  if (mesh.indices.size() % 3 != 0) return fail(name + ": the index count is not a multiple of 3");
+  for (std::size_t i = 0; i < mesh.indices.size(); ++i)
+    if (mesh.indices[i] >= mesh.positions.size())
+      return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) + " but there are " +
+                  std::to_string(mesh.positions.size()) + " positions");
+  return {};
+}
+
 // The contract of MeshData and TextureData (frame.hpp), checked before anything reaches the GPU.
 Result<void> validateScene(const StaticScene& scene, const vk::PhysicalDeviceLimits& limits) {
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    const MeshData& mesh = scene.meshes[m];
-    const std::string name = "mesh " + std::to_string(m);
-    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
-      return fail(name + ": " + std::to_string(mesh.normals.size()) + " normals for " +
-                  std::to_string(mesh.positions.size()) + " positions");
-    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
-      return fail(name + ": " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(mesh.positions.size()) +
-                  " positions");
-    if (mesh.indices.size() % 3 != 0) return fail(name + ": the index count is not a multiple of 3");
-    for (std::size_t i = 0; i < mesh.indices.size(); ++i)
-      if (mesh.indices[i] >= mesh.positions.size())
-        return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) +
-                    " but there are " + std::to_string(mesh.positions.size()) + " positions");
-  }
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    if (auto valid = validateMesh(scene.meshes[m], "mesh " + std::to_string(m)); !valid) return valid;
   auto checkTexture = [&](const std::optional<TextureData>& texture, const std::string& name) -> Result<void> {
     if (!texture) return {};
     if (texture->width == 0 || texture->height == 0 ||
@@ -104,6 +111,17 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
                      .settings = groom.settings,
                      .strayFromGuides = stray});
   }
+  // The furs cast into the same maps, after the grooms; their pipelines follow the maps below.
+  auto furs = FurSurfaces::create(*device_, scene,
+                                  {.colorFormat = RenderTarget::kHdrFormat,
+                                   .depthFormat = RenderTarget::kDepthFormat,
+                                   .samples = target_.samples()},
+                                  *shadows_);
+  if (!furs) return std::unexpected(furs.error());
+  furs_ = std::move(*furs);
+  furShadowsBound_.assign(furs_.size(), false);
+  const std::vector<HairShadows::Groom> furCasters = furs_.shadowCasters();
+  shadowed.insert(shadowed.end(), furCasters.begin(), furCasters.end());
   if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
   // After the maps exist: the surfaces' pipelines are specialised for them.
   try {
@@ -178,6 +196,7 @@ void Renderer::refreshShadowDescriptors() {
   for (TextureSpaceSkin& skin : textureSpaceSkins_) skin.pass->refreshShadows();
   for (HairGroom& groom : hair_)
     if (groom.lighting) groom.lighting->refreshShadows();
+  furs_.refreshShadows();
 }
 
 Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions) {
@@ -219,16 +238,18 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
     groom.strands->record(commands);
     hair = true;
   }
-  if (hair) {
-    timer_.end(commands);
-    // The first light casts the hair shadows; without lights nothing is lit, any direction does.
+  if (hair) timer_.end(commands);
+  // The first light casts the hair and fur shadows; without lights nothing is lit, any direction does.
+  const bool fur = std::ranges::any_of(frame.instances, [&](const MeshInstance& i) { return furs_.draws(i, frame); });
+  if ((hair || fur) && shadows_->mapCount() > 0) {
     const glm::vec3 towardLight =
         frame.lights.empty() ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::normalize(frame.lights[0].direction);
-    if (shadows_->mapCount() > 0) {
-      timer_.begin(commands, "hair shadows");
-      shadows_->record(commands, towardLight);
-      timer_.end(commands);
-    }
+    timer_.begin(commands, "hair shadows");
+    shadows_->record(commands, towardLight);
+    timer_.end(commands);
+  }
+  furs_.setShadowUniforms(shadows_->uniforms());
+  if (hair) {
     timer_.begin(commands, "hair lighting");
     const glm::mat4 viewProjection = frame.camera.projection(target_.aspect()) * frame.camera.view();
     for (const HairGroom& groom : hair_)
@@ -261,6 +282,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   // Main pass: previous contents are discarded and cleared.
   target_.beginScene(commands, glm::vec4(frame.background, 1.0f));
   surfaces_.draw(commands, frame);
+  furs_.draw(commands);
   // Hair over the opaque surfaces, depth-tested against them (render/passes/hair_pass.hpp).
   if (hair) {
     timer_.end(commands);
@@ -314,6 +336,10 @@ void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameIn
   post_.recordHandOff(commands);
 }
 
+Result<void> Renderer::updateFurLeans(std::size_t fur, std::span<const glm::vec3> leans) {
+  return furs_.setLeans(fur, leans);
+}
+
 Result<void> Renderer::updateMesh(std::size_t mesh, std::span<const glm::vec3> positions,
                                   std::span<const glm::vec3> normals) {
   if (!surfaces_.isDynamic(mesh)) return fail("mesh " + std::to_string(mesh) + " is not a dynamic mesh of the scene");
@@ -322,6 +348,29 @@ Result<void> Renderer::updateMesh(std::size_t mesh, std::span<const glm::vec3> p
     return fail("mesh " + std::to_string(mesh) + " has " + std::to_string(count) + " vertices; got " +
                 std::to_string(positions.size()) + " positions and " + std::to_string(normals.size()) + " normals");
   surfaces_.updateVertices(mesh, positions, normals);
+  return {};
+}
+
+Result<void> Renderer::replaceMesh(std::size_t mesh, const MeshData& data) {
+  const std::string name = "mesh " + std::to_string(mesh);
+  if (!surfaces_.hasMesh(mesh)) return fail("replaceMesh: the scene has no " + name);
+  if (surfaces_.isDynamic(mesh))
+    return fail("replaceMesh: " + name + " is dynamic: its vertices change with updateMesh, its triangles stay");
+  if (data.dynamic) return fail("replaceMesh: the new " + name + " is marked dynamic; only static meshes are replaced");
+  if (auto valid = validateMesh(data, name); !valid) return valid;
+  // Texture-space skin draws its irradiance over its own copy of the mesh (setTextureSpaceSkins).
+  std::optional<SkinDiffusionMesh> diffusion;
+  if (mesh < diffusionMeshes_.size() && !data.uvs.empty() && !data.normals.empty()) {
+    auto uploaded = SkinDiffusionMesh::create(*device_, data);
+    if (!uploaded) return fail(name + ": " + uploaded.error().message);
+    diffusion = std::move(*uploaded);
+  }
+  try {
+    surfaces_.replaceMesh(mesh, data);
+  } catch (const std::exception& error) {
+    return fail("replaceMesh: uploading " + name + " failed: " + error.what());
+  }
+  if (mesh < diffusionMeshes_.size()) diffusionMeshes_[mesh] = std::move(diffusion);
   return {};
 }
 
@@ -339,9 +388,24 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
     for (const TextureSpaceSkin& skin : textureSpaceSkins_)
       if (instance.material == skin.material && !diffusionMeshes_[instance.mesh])
         return fail("instance " + std::to_string(i) + ": texture-space skin needs a static mesh with uvs and normals");
+    if (frame.furShells && surfaces_.isFur(instance) && !furs_.draws(instance, frame))
+      return fail("instance " + std::to_string(i) + " draws mesh " + std::to_string(instance.mesh) +
+                  " with a fur material, but the scene grows no fur (StaticScene::furs) on that pair");
   }
   if (auto valid = validate(frame.post); !valid) return std::unexpected(valid.error());
   if (auto prepared = surfaces_.prepareThickness(frame); !prepared) return std::unexpected(prepared.error());
+  if (auto updated = furs_.update(frame, target_.extent(), target_.aspect()); !updated)
+    return std::unexpected(updated.error());
+  // Drawn furs cast shadows from where they are now (their slots follow the grooms').
+  for (std::size_t f = 0; f < furs_.size(); ++f) {
+    if (!furs_.drawn(f)) continue;
+    if (auto bounded = shadows_->setBounds(hair_.size() + f, furs_.shadowBounds(f)); !bounded)
+      return std::unexpected(bounded.error());
+    if (!furShadowsBound_[f]) {
+      furShadowsBound_[f] = true;
+      refreshShadowDescriptors();  // the fur's slot now binds its map
+    }
+  }
   try {
     device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) { record(commands, frame); });
   } catch (const std::exception& error) {

@@ -1,9 +1,9 @@
 #pragma once
 // Runs the passes of a frame into an offscreen RenderTarget: the grooms' strand interpolation
 // (compute), their shadow maps from the first light, their per-vertex shading (compute), the
-// texture-space diffusion of skin that asks for it, then surfaces and hair ribbons into HDR colour, then the post
-// chain where FrameInput::post asks for it (glow, auto gain) and the output pass (tone map) to 8-bit sRGB. Reads the
-// result back for PNG files, or leaves it for a window to blit into its swapchain.
+// texture-space diffusion of skin that asks for it, then surfaces, fur (shells and fins) and hair ribbons into HDR
+// colour, then the post chain where FrameInput::post asks for it (glow, auto gain) and the output pass (tone map) to
+// 8-bit sRGB. Reads the result back for PNG files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/frame.hpp"
+#include "render/fur_surfaces.hpp"
 #include "render/hair_order.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/luts/marschner_lut.hpp"
@@ -43,12 +44,25 @@ public:
   /// one per vertex; takes effect from the next render.
   Result<void> updateMesh(std::size_t mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
 
+  /// Replaces static mesh `mesh` of the scene by `data`, whose vertex and index counts may
+  /// differ: a subdivision surface tessellated again as the camera moves
+  /// (scenes::World::refineForCamera); takes effect from the next render. What was derived
+  /// from the old triangles is dropped or redone: the surface pass's bounds and voxel thickness
+  /// tables (built again the next frame that draws them: seconds for a fine table) and the
+  /// texture-space skin's copy of the mesh. Errors: no such mesh, a dynamic mesh or `data`
+  /// (use updateMesh), data that breaks MeshData's contract, or an upload that fails.
+  Result<void> replaceMesh(std::size_t mesh, const MeshData& data);
+
   /// This frame's guide positions of groom `groom` of the scene (world space, metres: guide
   /// after guide, root first, as the groom's layout counts them); takes effect from the next
   /// render. Errors: no such groom, a count that does not match, a NaN or a collapsed guide frame.
   /// The groom's shadow map (StaticScene::hairShadows) bounds the guides, widened by how far
   /// the dense strands stray from them.
   Result<void> updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions);
+
+  /// Per-vertex leans of the fur of StaticScene::furs[fur] (world space, units of its thickness:
+  /// FurPass::setLeans), e.g. from simulated guides; takes effect from the next render.
+  Result<void> updateFurLeans(std::size_t fur, std::span<const glm::vec3> leans);
 
   /// Records every pass of `frame`; leaves target().output() in TRANSFER_SRC layout.
   void record(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
@@ -104,6 +118,8 @@ private:
   std::vector<std::optional<SkinDiffusionMesh>> diffusionMeshes_;  // per scene mesh: static, with uvs and normals
   std::vector<std::unique_ptr<MarschnerLut>> luts_;                // per HairLook, baked when a groom needs it
   std::vector<HairGroom> hair_;
+  FurSurfaces furs_;
+  std::vector<bool> furShadowsBound_;  // per fur: its shadow map has had bounds
   PostChain post_;
   OutputPass output_;
   GpuTimer timer_;

@@ -2,6 +2,7 @@
 
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace mane::scenes {
@@ -53,6 +54,17 @@ std::string validate(const Mesh& mesh) {
     }
   }
   return {};
+}
+
+void boxProjectUvs(Mesh& mesh, float uvPerUnit) {
+  mesh.uvs.resize(mesh.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3 p = mesh.positions[i] * uvPerUnit;
+    const glm::vec3 n = glm::abs(mesh.normals[i]);
+    mesh.uvs[i] = n.x >= n.y && n.x >= n.z ? glm::vec2(p.z, p.y)
+                  : n.y >= n.z             ? glm::vec2(p.x, p.z)
+                                           : glm::vec2(p.x, p.y);
+  }
 }
 
 }  // namespace mane::scenes

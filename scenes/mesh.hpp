@@ -46,6 +46,13 @@ struct Mesh {
 /// no triangle uses, or whose triangles are all degenerate, get +Y. Replaces `mesh.normals`.
 void computeSmoothNormals(Mesh& mesh);
 
+/// Texture coordinates for a mesh that has none: each vertex is projected on the coordinate
+/// plane across its normal's largest axis, uv = the other two coordinates × `uvPerUnit`. Seams
+/// where neighbouring vertices choose different planes stretch the texture over one triangle;
+/// fine for noise-like textures (fur photos), not for images. Needs `mesh.normals`; replaces
+/// `mesh.uvs`.
+void boxProjectUvs(Mesh& mesh, float uvPerUnit);
+
 /// Empty string when the invariants above hold, else a description of the first violation.
 [[nodiscard]] std::string validate(const Mesh& mesh);
 

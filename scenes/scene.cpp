@@ -11,9 +11,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "render/luts/solid_voxels.hpp"
 #include "scenes/detail/json_fields.hpp"
 #include "scenes/detail/scene_bodies.hpp"
+#include "scenes/detail/scene_materials.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -23,6 +23,7 @@ using detail::ObjectFields;
 using detail::parseCloth;
 using detail::parseGroom;
 using detail::parseHairShadows;
+using detail::parseMaterial;
 using detail::parsePost;
 using detail::parseTransform;
 using detail::require;
@@ -99,97 +100,6 @@ Light parseLight(const Json& json, const std::string& path) {
           "expected non-negative linear RGB");
   require(light.intensity >= 0.0f, fields.child("intensity"), "expected an intensity >= 0");
   return light;
-}
-
-// Skin shading parameters (render::SkinParameters).
-render::SkinParameters parseSkinParameters(const Json& json, const std::string& path) {
-  ObjectFields fields(json, path);
-  render::SkinParameters skin;
-  const std::string range = fields.optional<std::string>("range", "curvature");
-  require(range == "curvature" || range == "penner", fields.child("range"),
-          "expected \"curvature\" or \"penner\", got \"" + range + "\"");
-  skin.range = range == "penner" ? render::SkinIntegrationRange::kPenner : render::SkinIntegrationRange::kCurvature;
-  const std::string diffusion = fields.optional<std::string>("diffusion", "preintegrated");
-  require(diffusion == "preintegrated" || diffusion == "texture_space", fields.child("diffusion"),
-          "expected \"preintegrated\" or \"texture_space\", got \"" + diffusion + "\"");
-  skin.diffusion =
-      diffusion == "texture_space" ? render::SkinDiffusion::kTextureSpace : render::SkinDiffusion::kPreintegrated;
-  const int size = fields.optional<int>("irradiance_size", static_cast<int>(skin.irradianceSize));
-  require(size >= 64 && size <= 4096 && size % 8 == 0, fields.child("irradiance_size"),
-          "expected a multiple of 8 texels in 64..4096");
-  skin.irradianceSize = static_cast<std::uint32_t>(size);
-  skin.roughness = fields.optional<float>("roughness", skin.roughness);
-  skin.specularIntensity = fields.optional<float>("specular_intensity", skin.specularIntensity);
-  fields.finish();
-  require(skin.roughness > 0.0f && skin.roughness <= 1.0f, fields.child("roughness"),
-          "expected a Beckmann roughness in (0, 1]");
-  require(skin.specularIntensity >= 0.0f && skin.specularIntensity <= 10.0f, fields.child("specular_intensity"),
-          "expected a specular intensity in [0, 10]");
-  return skin;
-}
-
-render::TranslucencyMethod parseTranslucencyMethod(ObjectFields& fields) {
-  const std::string method = fields.required<std::string>("method");
-  if (method == "none") return render::TranslucencyMethod::kNone;
-  if (method == "depth_map") return render::TranslucencyMethod::kDepthMap;
-  if (method == "voxel_lut") return render::TranslucencyMethod::kVoxelLut;
-  throw FieldError{fields.child("method"), "expected \"none\", \"depth_map\" or \"voxel_lut\", got \"" + method + "\""};
-}
-
-// Light through the object (render::TranslucencyParameters). As with `skin` on a Lambert
-// material, a field the method or the material's kind would ignore is an error, not a no-op.
-render::TranslucencyParameters parseTranslucency(const Json& json, const std::string& path, MaterialKind kind) {
-  ObjectFields fields(json, path);
-  render::TranslucencyParameters translucency;
-  translucency.method = parseTranslucencyMethod(fields);
-  if (const Json* extinction = fields.take("extinction")) {
-    require(translucency.method != render::TranslucencyMethod::kNone, fields.child("extinction"),
-            "applies to methods \"depth_map\" and \"voxel_lut\" only");
-    require(kind != MaterialKind::skin, fields.child("extinction"),
-            "applies to materials other than \"skin\" (skin transmits its diffusion profile)");
-    translucency.extinction = detail::read<glm::vec3>(*extinction, fields.child("extinction"));
-    for (int c = 0; c < 3; ++c) {
-      require(translucency.extinction[c] >= 0.0f,
-              detail::indexPath(fields.child("extinction"), static_cast<std::size_t>(c)),
-              "expected an extinction >= 0 per metre");
-    }
-  }
-  if (const Json* resolution = fields.take("voxel_resolution")) {
-    require(translucency.method == render::TranslucencyMethod::kVoxelLut, fields.child("voxel_resolution"),
-            "applies to method \"voxel_lut\" only");
-    translucency.voxelResolution = detail::read<int>(*resolution, fields.child("voxel_resolution"));
-    require(translucency.voxelResolution >= render::SolidVoxels::kMinResolution &&
-                translucency.voxelResolution <= render::SolidVoxels::kMaxResolution,
-            fields.child("voxel_resolution"),
-            "expected a resolution in " + std::to_string(render::SolidVoxels::kMinResolution) + ".." +
-                std::to_string(render::SolidVoxels::kMaxResolution) + " cells per axis");
-  }
-  fields.finish();
-  return translucency;
-}
-
-Material parseMaterial(const Json& json, const std::string& path) {
-  ObjectFields fields(json, path);
-  Material material;
-  material.name = fields.required<std::string>("name");
-  require(!material.name.empty(), fields.child("name"), "expected a non-empty name");
-  const std::string kind = fields.optional<std::string>("kind", "lambert");
-  require(kind == "lambert" || kind == "skin", fields.child("kind"),
-          "expected \"lambert\" or \"skin\", got \"" + kind + "\"");
-  material.kind = kind == "skin" ? MaterialKind::skin : MaterialKind::lambert;
-  if (const Json* skin = fields.take("skin")) {
-    require(material.kind == MaterialKind::skin, fields.child("skin"), "applies to materials of kind \"skin\" only");
-    material.skin = parseSkinParameters(*skin, fields.child("skin"));
-  }
-  material.albedoTexture = fields.optional<std::string>("albedo_texture", "");
-  material.normalMap = fields.optional<std::string>("normal_map", "");
-  material.specularMap = fields.optional<std::string>("specular_map", "");
-  material.baseColour = fields.optional<glm::vec3>("base_colour", material.baseColour);
-  if (const Json* translucency = fields.take("translucency")) {
-    material.translucency = parseTranslucency(*translucency, fields.child("translucency"), material.kind);
-  }
-  fields.finish();
-  return material;
 }
 
 Subdivision parseSubdivision(const Json& json, const std::string& path) {
@@ -333,6 +243,8 @@ void checkReferences(const Scene& scene) {
             "no mesh named \"" + cloth.attachedMesh + "\" in meshes");
     require(cloth.material.empty() || scene.findMaterial(cloth.material), path + ".material",
             "no material named \"" + cloth.material + "\" in materials");
+    require(cloth.material.empty() || scene.findMaterial(cloth.material)->kind != MaterialKind::fur, path + ".material",
+            "fur grows on meshes, not on cloth (its shells need a mesh that does not deform)");
     checkColliderReferences(scene, cloth.colliders, path + ".colliders");
   }
   if (scene.headMotion.kind != HeadMotionKind::none) {

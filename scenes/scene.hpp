@@ -46,7 +46,17 @@ struct Light {
   float intensity = 1.0f;  ///< ≥ 0, unitless scale
 };
 
-enum class MaterialKind { lambert, skin };
+/// lambert: diffuse; skin: render::SurfaceShading::kSkin; fur: shells and fins grown from the
+/// albedo texture, a photo of fur (render::SurfaceShading::kFur), on the meshes drawn with it.
+enum class MaterialKind { lambert, skin, fur };
+
+/// Fur that moves: guide strands on the furred mesh, simulated with the scene's fixed step.
+struct FurMotion {
+  int guides = 1000;            ///< guide strands, 1..100000 (at most one per vertex)
+  float shapeStiffness = 0.5f;  ///< how firmly the guides keep their rest shape, [0, 1]
+  float damping = 0.05f;        ///< velocity fraction lost per step, [0, 1)
+  int iterations = 4;           ///< constraint sweeps per step, 1..100
+};
 
 /// A surface material; texture fields hold asset names (empty: none).
 struct Material {
@@ -57,6 +67,13 @@ struct Material {
   std::string specularMap;
   glm::vec3 baseColour{0.8f};   ///< linear RGB multiplier of the albedo texture, or the albedo
   render::SkinParameters skin;  ///< kind skin only
+  render::FurParameters fur;    ///< kind fur only
+  /// Kind fur: photo repeats per uv unit, higher for finer, denser fur; the World scales the
+  /// mesh's uvs by it. Meshes without uvs get a box projection in metres: repeats per metre.
+  float furUvScale = 1.0f;
+  /// Kind fur: simulated guide strands that bend the shells (scenes/fur_dynamics.hpp); none: the
+  /// fur stands as combed.
+  std::optional<FurMotion> furMotion;
   /// Light from the first light shining through the object (render::TranslucencyMethod); off by
   /// default. Extinction (1/metre) is for kinds other than skin, the voxel resolution for kVoxelLut.
   render::TranslucencyParameters translucency;
@@ -86,7 +103,8 @@ inline constexpr int kMaxSubdivisionLevel = 10;
 inline constexpr float kMaxSubdivisionPixelError = 100.0f;
 
 /// Drawing a mesh as the Catmull-Clark limit surface of its triangles or polygons (the cage),
-/// tessellated once at load for the scene's camera and output size (scenes/subdivided_mesh.hpp).
+/// tessellated at load for the scene's camera and output size and again for each new view
+/// (World::refineForCamera; scenes/subdivided_mesh.hpp).
 struct Subdivision {
   /// Largest projected distance, pixels, between the drawn triangles and the limit surface.
   float maxPixelError = 1.0f;

@@ -92,27 +92,50 @@ std::size_t capBoundaryLoops(subdiv::Cage& cage) {
   return capped;
 }
 
-Result<SubdividedMesh> tessellateForCamera(const subdiv::Cage& cage, const Subdivision& subdivision,
-                                           const glm::mat4& modelViewProjection, glm::vec2 viewport) {
+Result<std::unique_ptr<SubdividedSurface>> SubdividedSurface::create(const subdiv::Cage& cage,
+                                                                     const Subdivision& subdivision) {
   auto surface = subdiv::LimitSurface::create(cage, {.maxIsolationLevel = subdivision.isolation});
   if (!surface) return std::unexpected(surface.error());
+  std::unique_ptr<SubdividedSurface> result(new SubdividedSurface(std::move(*surface)));
   auto tessellator = subdiv::AdaptiveTessellator::create(
-      *surface, {.maxPixelError = subdivision.maxPixelError, .maxDepth = subdivision.maxDepth});
+      result->surface_, {.maxPixelError = subdivision.maxPixelError, .maxDepth = subdivision.maxDepth});
   if (!tessellator) return std::unexpected(tessellator.error());
-  subdiv::TessellatedMesh tessellated;
-  // Load time: use the machine; the mesh does not depend on the thread count.
-  tessellator->tessellate({modelViewProjection, viewport}, tessellated,
-                          std::max(1u, std::thread::hardware_concurrency()));
+  result->tessellator_ = std::make_unique<subdiv::AdaptiveTessellator>(std::move(*tessellator));
+  return result;
+}
 
+bool SubdividedSurface::tessellate(const glm::mat4& modelViewProjection, glm::vec2 viewport, Mesh& mesh,
+                                   std::vector<float>& inverseRadius, unsigned threads) {
+  if (tessellated_ && modelViewProjection == lastView_ && viewport == lastViewport_) return false;
+  tessellator_->tessellate({modelViewProjection, viewport}, scratch_, threads);
+  tessellated_ = true;
+  lastView_ = modelViewProjection;
+  lastViewport_ = viewport;
+  // A camera that moved a little often asks for the very same cells (the error is below the
+  // target either way): then the renderer need not upload anything.
+  if (scratch_.indices == mesh.indices && scratch_.positions == mesh.positions && scratch_.normals == mesh.normals &&
+      scratch_.uvs == mesh.uvs)
+    return false;
+  mesh.positions.assign(scratch_.positions.begin(), scratch_.positions.end());
+  mesh.normals.assign(scratch_.normals.begin(), scratch_.normals.end());
+  mesh.uvs.assign(scratch_.uvs.begin(), scratch_.uvs.end());
+  mesh.indices.assign(scratch_.indices.begin(), scratch_.indices.end());
+  inverseRadius.resize(scratch_.meanCurvature.size());
+  for (std::size_t v = 0; v < scratch_.meanCurvature.size(); ++v)
+    inverseRadius[v] = std::abs(scratch_.meanCurvature[v]);
+  return true;
+}
+
+Result<SubdividedMesh> tessellateForCamera(const subdiv::Cage& cage, const Subdivision& subdivision,
+                                           const glm::mat4& modelViewProjection, glm::vec2 viewport) {
+  auto surface = SubdividedSurface::create(cage, subdivision);
+  if (!surface) return std::unexpected(surface.error());
   SubdividedMesh result;
   result.cageFaces = cage.faceSizes.size();
-  result.ptexFaces = surface->ptexFaceCount();
-  result.mesh.positions = std::move(tessellated.positions);
-  result.mesh.normals = std::move(tessellated.normals);
-  result.mesh.uvs = std::move(tessellated.uvs);
-  result.mesh.indices = std::move(tessellated.indices);
-  result.inverseRadius.reserve(tessellated.meanCurvature.size());
-  for (const float h : tessellated.meanCurvature) result.inverseRadius.push_back(std::abs(h));
+  result.ptexFaces = (*surface)->limit().ptexFaceCount();
+  // Load time: use the machine; the mesh does not depend on the thread count.
+  (*surface)->tessellate(modelViewProjection, viewport, result.mesh, result.inverseRadius,
+                         std::max(1u, std::thread::hardware_concurrency()));
   return result;
 }
 

@@ -4,6 +4,7 @@
 // (Bunnell's screen-space error, subdiv/tessellator.hpp) into the triangles the renderer draws.
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -13,6 +14,8 @@
 #include "scenes/mesh.hpp"
 #include "scenes/scene.hpp"
 #include "subdiv/cage.hpp"
+#include "subdiv/limit.hpp"
+#include "subdiv/tessellator.hpp"
 
 namespace mane::scenes {
 
@@ -43,6 +46,46 @@ struct SubdividedMesh {
   std::vector<float> inverseRadius;
   std::size_t cageFaces = 0;
   std::size_t ptexFaces = 0;
+};
+
+/// A mesh's limit surface and its tessellator, built once from the cage and kept, so that the
+/// mesh can be tessellated again whenever the camera (or the mesh's placement) changes without
+/// refining the cage again. Neither copied nor moved (the tessellator points at the surface):
+/// held by `std::unique_ptr`.
+class SubdividedSurface {
+public:
+  /// Builds the limit surface of `cage` (isolation `subdivision.isolation`, Gregory end caps)
+  /// and its tessellator (`subdivision.maxPixelError`, `maxDepth`). Errors: what validateCage
+  /// or OpenSubdiv say about the cage.
+  [[nodiscard]] static Result<std::unique_ptr<SubdividedSurface>> create(const subdiv::Cage& cage,
+                                                                         const Subdivision& subdivision);
+
+  SubdividedSurface(const SubdividedSurface&) = delete;
+  SubdividedSurface& operator=(const SubdividedSurface&) = delete;
+
+  /// Tessellates the surface so that no triangle strays more than the target number of pixels
+  /// from it as seen through `modelViewProjection` (model units → clip space) on a
+  /// `viewport`-pixel image, and writes the result into `mesh` (positions, normals, UVs,
+  /// triangles; its name is kept) and `inverseRadius` (as SubdividedMesh's) when it differs
+  /// from what `mesh` holds. Returns whether they changed. The same view as the last call costs
+  /// nothing: the surface has not moved, so neither have the triangles. `threads` ≥ 1 workers
+  /// (0 counts as 1); the triangles do not depend on it.
+  bool tessellate(const glm::mat4& modelViewProjection, glm::vec2 viewport, Mesh& mesh,
+                  std::vector<float>& inverseRadius, unsigned threads);
+
+  [[nodiscard]] const subdiv::LimitSurface& limit() const { return surface_; }
+  /// What the last tessellation did (cells, evaluations).
+  [[nodiscard]] const subdiv::TessellationStatistics& statistics() const { return tessellator_->statistics(); }
+
+private:
+  explicit SubdividedSurface(subdiv::LimitSurface surface) : surface_(std::move(surface)) {}
+
+  subdiv::LimitSurface surface_;
+  std::unique_ptr<subdiv::AdaptiveTessellator> tessellator_;
+  subdiv::TessellatedMesh scratch_;  ///< reused storage of the last tessellation
+  bool tessellated_ = false;
+  glm::mat4 lastView_{0.0f};
+  glm::vec2 lastViewport_{0.0f};
 };
 
 /// Builds the limit surface of `cage` (isolation `subdivision.isolation`, Gregory end caps) and

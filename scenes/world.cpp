@@ -3,15 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <thread>
 
-#include <glm/ext/matrix_clip_space.hpp>
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 
 #include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
 #include "physics/interpolation.hpp"
 #include "scenes/groom_loader.hpp"
+#include "scenes/limit_scalp.hpp"
 #include "scenes/mesh_curvature.hpp"
 #include "scenes/scene_colliders.hpp"
 #include "scenes/subdivided_mesh.hpp"
@@ -72,6 +72,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   world.scene_ = std::move(scene);
   if (auto loaded = world.loadMeshes(resolver); !loaded) return std::unexpected(loaded.error());
   if (auto subdivided = world.subdivideMeshes(); !subdivided) return std::unexpected(subdivided.error());
+  world.prepareFurMeshes();
   if (settings.loadTextures) {
     if (auto loaded = world.loadMaterials(resolver); !loaded) return std::unexpected(loaded.error());
   } else {
@@ -82,6 +83,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   SceneColliders colliders(world.scene_, world.meshes_);
   if (auto loaded = world.loadGrooms(resolver, colliders); !loaded) return std::unexpected(loaded.error());
   if (auto loaded = world.loadCloths(resolver, colliders); !loaded) return std::unexpected(loaded.error());
+  if (auto loaded = world.loadFurDynamics(); !loaded) return std::unexpected(loaded.error());
   // Settling: 1/60 s frames with every body held where it is at time 0; the clock stays at 0.
   const int settleFrames = static_cast<int>(std::lround(world.scene_.simulation.settleSeconds * 60.0f));
   for (int frame = 0; frame < settleFrames; ++frame)
@@ -100,25 +102,117 @@ Result<void> World::loadMeshes(const AssetResolver& resolver) {
 }
 
 Result<void> World::subdivideMeshes() {
-  const Camera& camera = scene_.camera;
-  const glm::vec2 viewport(float(scene_.output.width), float(scene_.output.height));
-  // The camera as the renderer sets it up (frameInput); the error is a length on screen, so
-  // the sign convention of clip-space y does not matter.
-  const glm::mat4 viewProjection = glm::perspective(glm::radians(camera.verticalFovDegrees), viewport.x / viewport.y,
-                                                    camera.nearPlane, camera.farPlane) *
-                                   glm::lookAt(camera.position, camera.target, camera.up);
+  subdivided_.resize(meshes_.size());
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
-    LoadedMesh& loaded = meshes_[m];
+    const LoadedMesh& loaded = meshes_[m];
     const MeshInstance& instance = scene_.meshes[m];
     if (!loaded.cage || !instance.subdivision) continue;
-    auto subdivided = tessellateForCamera(*loaded.cage, *instance.subdivision,
-                                          viewProjection * animatedMatrix(scene_, instance, 0.0f), viewport);
-    if (!subdivided) return fail("mesh '" + instance.name + "': subdivision: " + subdivided.error().message);
-    subdivided->mesh.name = loaded.mesh.name;
-    loaded.mesh = std::move(subdivided->mesh);
-    loaded.limitInverseRadius = std::move(subdivided->inverseRadius);
+    auto surface = SubdividedSurface::create(*loaded.cage, *instance.subdivision);
+    if (!surface) return fail("mesh '" + instance.name + "': subdivision: " + surface.error().message);
+    subdivided_[m] = std::move(*surface);
+  }
+  // For the scene's camera and output size at time 0, as the renderer sets them up; load time:
+  // use the machine (the triangles do not depend on the thread count).
+  const auto refined = refineForCamera(frameInput().camera, glm::uvec2(scene_.output.width, scene_.output.height),
+                                       std::max(1u, std::thread::hardware_concurrency()));
+  if (!refined) return std::unexpected(refined.error());
+  return {};
+}
+
+Result<std::vector<std::size_t>> World::refineForCamera(const render::Camera& camera, glm::uvec2 size,
+                                                        unsigned threads) {
+  if (size.x == 0 || size.y == 0) return fail("refining for the camera: the image must be at least 1x1 pixels");
+  const glm::vec2 viewport(size);
+  const glm::mat4 viewProjection = camera.projection(viewport.x / viewport.y) * camera.view();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(viewProjection[c][r]))
+        return fail("refining for the camera: its position, target, up, field of view and planes give no projection");
+  std::vector<std::size_t> changed;
+  for (std::size_t m = 0; m < subdivided_.size(); ++m) {
+    if (!subdivided_[m]) continue;
+    const MeshInstance& instance = scene_.meshes[m];
+    const Material* material = scene_.findMaterial(instance.material);
+    // Fur keeps its load-time triangles: prepareFurMeshes remade their uvs for the fur once.
+    if (material != nullptr && material->kind == MaterialKind::fur) continue;
+    LoadedMesh& loaded = meshes_[m];
+    const glm::mat4 modelViewProjection = viewProjection * animatedMatrix(scene_, instance, float(time_));
+    if (!subdivided_[m]->tessellate(modelViewProjection, viewport, loaded.mesh, loaded.limitInverseRadius, threads))
+      continue;
+    // Skin shades with the limit surface's own curvature (computeSkinCurvatures).
+    if (m < meshCurvatures_.size() && material != nullptr && material->kind == MaterialKind::skin)
+      meshCurvatures_[m] = loaded.limitInverseRadius;
+    changed.push_back(m);
+  }
+  return changed;
+}
+
+render::MeshData World::meshData(std::size_t mesh) const {
+  const Mesh& geometry = meshes_.at(mesh).mesh;
+  return render::MeshData{.positions = geometry.positions,
+                          .normals = geometry.normals,
+                          .uvs = geometry.uvs,
+                          .indices = geometry.indices,
+                          .curvatures = meshCurvatures_.at(mesh)};
+}
+
+void World::prepareFurMeshes() {
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    const Material* material = scene_.findMaterial(scene_.meshes[m].material);
+    Mesh& mesh = meshes_[m].mesh;
+    if (material == nullptr || material->kind != MaterialKind::fur) continue;
+    if (mesh.uvs.empty()) {
+      // In metres on the placed mesh, so the material's uv_scale is photo repeats per metre.
+      boxProjectUvs(mesh, scene_.meshes[m].transform.scale * material->furUvScale);
+      notes_.push_back("mesh " + scene_.meshes[m].name + " has no uvs: its fur uses a box projection");
+    } else {
+      for (glm::vec2& uv : mesh.uvs) uv *= material->furUvScale;
+    }
+  }
+}
+
+std::vector<render::FurSurfaceData> World::furSurfaces() const {
+  std::vector<render::FurSurfaceData> result;
+  for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
+    // Fur without its photo (a missing asset, or textures not loaded) stays a plain surface.
+    if (scene_.materials[i].kind != MaterialKind::fur || !materials_[i].albedo) continue;
+    for (std::size_t m = 0; m < scene_.meshes.size(); ++m)
+      if (scene_.meshes[m].material == scene_.materials[i].name) result.push_back({.mesh = m, .material = i});
+  }
+  return result;
+}
+
+Result<void> World::loadFurDynamics() {
+  // Simulated whether or not the fur is drawn (`mane sim` loads no photos), so the state is the same.
+  const std::vector<render::FurSurfaceData> drawn = furSurfaces();
+  for (std::size_t m = 0; m < scene_.meshes.size(); ++m) {
+    const MeshInstance& instance = scene_.meshes[m];
+    const Material* found = scene_.findMaterial(instance.material);
+    if (found == nullptr || found->kind != MaterialKind::fur || !found->furMotion) continue;
+    const Material& material = *found;
+    const FurMotion& motion = *material.furMotion;
+    physics::SolverSettings solver;
+    solver.fixedStep = scene_.simulation.stepSeconds;
+    solver.maxSubstepsPerFrame = scene_.simulation.maxStepsPerFrame;
+    solver.damping = motion.damping;
+    solver.constraintIterations = motion.iterations;
+    solver.shapeStiffness = motion.shapeStiffness;
+    auto dynamics = FurDynamics::create(
+        meshes_[m].mesh, instance.transform.scale,
+        {.guides = motion.guides, .thickness = material.fur.thickness, .solver = solver}, bodyPlacement(instance, 0.0));
+    if (!dynamics)
+      return fail("mesh " + instance.name + ", material " + material.name + ": " + dynamics.error().message);
+    const auto index = std::ranges::find_if(drawn, [&](const render::FurSurfaceData& fur) { return fur.mesh == m; });
+    movingFurs_.push_back({.fur = std::size_t(index - drawn.begin()), .mesh = m, .dynamics = std::move(*dynamics)});
   }
   return {};
+}
+
+std::vector<World::FurLeans> World::furLeans() const {
+  std::vector<FurLeans> result;
+  for (const MovingFur& fur : movingFurs_)
+    if (fur.fur < furSurfaces().size()) result.push_back({fur.fur, fur.dynamics.leans()});
+  return result;
 }
 
 Result<void> World::loadMaterials(const AssetResolver& resolver) {
@@ -195,13 +289,29 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       settings.seed = 1 + sceneGroom;
       if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
       if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
-      const std::vector<std::uint32_t> scalp = scalpTriangles(mesh, groom.scalp);
-      if (scalp.empty())
-        return fail("groom " + groom.name + ": mesh " + meshIt->name +
-                    " has no scalp (no triangle in the groom's scalp region)");
-      auto generated = physics::generateGroomOnMesh(settings, metres, mesh.indices, scalp);
-      if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
-      guides = std::move(*generated);
+      if (subdivided_[meshIndex]) {
+        // Drawn as its limit surface: the roots sit on that surface itself, which every
+        // re-tessellation approximates, rather than on the triangles of the load-time view.
+        auto roots = sampleScalpOnLimitSurface(subdivided_[meshIndex]->limit(), groom.scalp, settings.strandCount,
+                                               settings.seed);
+        if (!roots) return fail("groom " + groom.name + ": mesh " + meshIt->name + ": " + roots.error().message);
+        std::vector<glm::vec3> points, normals;
+        for (const LimitRoot& root : *roots) {
+          points.push_back(root.position * scale);
+          normals.push_back(root.normal);
+        }
+        auto generated = physics::generateGroomFromRoots(settings, points, normals);
+        if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
+        guides = std::move(*generated);
+      } else {
+        const std::vector<std::uint32_t> scalp = scalpTriangles(mesh, groom.scalp);
+        if (scalp.empty())
+          return fail("groom " + groom.name + ": mesh " + meshIt->name +
+                      " has no scalp (no triangle in the groom's scalp region)");
+        auto generated = physics::generateGroomOnMesh(settings, metres, mesh.indices, scalp);
+        if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
+        guides = std::move(*generated);
+      }
     } else {
       // Like meshes: a missing asset is a note and the groom is skipped (all its files or
       // nothing); a file that does not parse is an error. Groom files hold strands in their head
@@ -306,6 +416,10 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
     if (auto advanced = cloths_[i].advance(bodyPlacement(scene_.meshes[clothBodies_[i]], time_), frameDt, threads);
         !advanced)
       return advanced;
+  for (MovingFur& fur : movingFurs_)
+    if (auto advanced = fur.dynamics.advance(bodyPlacement(scene_.meshes[fur.mesh], time_), frameDt, threads);
+        !advanced)
+      return fail("mesh " + scene_.meshes[fur.mesh].name + ": " + advanced.error().message);
   return {};
 }
 
@@ -324,6 +438,10 @@ render::StaticScene World::staticScene() const {
                                   .translucency = scene_.materials[i].translucency};
     if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);
     if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
+    if (scene_.materials[i].kind == MaterialKind::fur && material.albedo) {
+      material.shading = render::SurfaceShading::kFur;
+      material.fur = scene_.materials[i].fur;
+    }
     if (scene_.materials[i].kind == MaterialKind::skin) {
       material.shading = render::SurfaceShading::kSkin;
       material.skin = scene_.materials[i].skin;
@@ -341,6 +459,7 @@ render::StaticScene World::staticScene() const {
         render::HairGroomData{.layout = groom.dense->view(), .look = rendering.look, .settings = rendering.settings});
   }
   result.hairShadows = scene_.hairShadows;
+  result.furs = furSurfaces();
   // Cloth surfaces come after the scene's meshes, in world space, rewritten every frame.
   for (const SceneCloth& cloth : cloths_) {
     const Mesh& surface = cloth.surface();
@@ -392,6 +511,7 @@ std::uint64_t World::stateHash() const {
   physics::StateHasher hasher;
   for (const SimulatedGroom& groom : grooms_) hasher.addValue(groom.hair.stateHash());
   for (const SceneCloth& cloth : cloths_) hasher.addValue(cloth.cloth().stateHash());
+  for (const MovingFur& fur : movingFurs_) hasher.addValue(fur.dynamics.guides().stateHash());
   hasher.addValue(time_);
   return hasher.value();
 }

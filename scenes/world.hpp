@@ -4,20 +4,25 @@
 // plain data. The composition root: the only place physics, subdiv and render meet.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "common/error.hpp"
 #include "physics/hair.hpp"
 #include "render/frame.hpp"
 #include "scenes/assets.hpp"
+#include "scenes/fur_dynamics.hpp"
 #include "scenes/image.hpp"
 #include "scenes/scene_cloth.hpp"
 #include "scenes/render_groom_layout.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_meshes.hpp"
+#include "scenes/subdivided_mesh.hpp"
 
 namespace mane::scenes {
 
@@ -49,6 +54,20 @@ public:
   /// Camera, lights and mesh placements at the current time.
   render::FrameInput frameInput() const;
 
+  /// Tessellates every mesh with a `subdivision` again for `camera` on an image of `size`
+  /// pixels, with the mesh placed where it is at time() (the head turns): the limit surfaces and
+  /// tessellators built at load are kept, only the triangles are redone. Returns the meshes
+  /// (indices into staticScene().meshes) whose triangles changed: hand each one's meshData() to
+  /// Renderer::replaceMesh before rendering. Costs nothing for a mesh whose view (camera, size,
+  /// placement) is the one it was last tessellated for. Hair roots (on the limit surface) and
+  /// collider fields (built at load) do not change; meshes drawn with fur keep their load-time
+  /// triangles (their uvs are made for the fur once). `threads` ≥ 1 workers; the triangles do not
+  /// depend on it. Errors: a size of zero pixels or a camera that gives no projection.
+  Result<std::vector<std::size_t>> refineForCamera(const render::Camera& camera, glm::uvec2 size, unsigned threads = 1);
+  /// Mesh `mesh` of staticScene() (a scene mesh, not a cloth) as it is now: after
+  /// refineForCamera, the triangles to hand to Renderer::replaceMesh. A view into this world.
+  render::MeshData meshData(std::size_t mesh) const;
+
   /// A mesh of staticScene() whose vertices move every frame (cloth), with its current
   /// world-space positions and normals: hand them to Renderer::updateMesh before rendering.
   struct DynamicMesh {
@@ -66,9 +85,18 @@ public:
   };
   std::vector<HairGuides> hairGuides() const;
 
+  /// A fur of staticScene() (StaticScene::furs order) whose guides move, with this frame's
+  /// per-vertex leans: hand them to Renderer::updateFurLeans before rendering.
+  struct FurLeans {
+    std::size_t fur = 0;
+    std::span<const glm::vec3> leans;
+  };
+  std::vector<FurLeans> furLeans() const;
+
   const std::vector<SceneCloth>& cloths() const { return cloths_; }
 
-  /// Hash of every simulated state (grooms, then cloths, in scene order) and of the clock.
+  /// Hash of every simulated state (grooms, then cloths, then moving furs, in scene order) and of
+  /// the clock.
   std::uint64_t stateHash() const;
   std::size_t guideStrandCount() const;
   /// The simulated grooms, in scene order (skipped grooms are absent): positions in metres,
@@ -94,10 +122,17 @@ private:
 
   World() = default;
   Result<void> loadMeshes(const AssetResolver& resolver);
-  /// Replaces the triangles of every mesh with a `subdivision` by its limit surface,
-  /// tessellated for the scene's camera and output size at time 0 (not again as the camera or
-  /// the mesh moves).
+  /// Builds the limit surface and tessellator of every mesh with a `subdivision` (kept in
+  /// subdivided_) and replaces its triangles by the limit surface tessellated for the scene's
+  /// camera and output size at time 0 (refineForCamera does it again for other views).
   Result<void> subdivideMeshes();
+  /// The uvs of meshes drawn with a fur material scaled by its uv_scale; box-projected where the
+  /// mesh has none (the shells sample their photo by uv).
+  void prepareFurMeshes();
+  /// The fur pairs (mesh, material) the renderer draws: fur materials whose photo loaded.
+  std::vector<render::FurSurfaceData> furSurfaces() const;
+  /// Guide strands for the furs whose material asks for dynamics.
+  Result<void> loadFurDynamics();
   Result<void> loadMaterials(const AssetResolver& resolver);
   /// The curvature skin materials shade with, for every mesh drawn with one.
   Result<void> computeSkinCurvatures();
@@ -114,11 +149,19 @@ private:
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;
+  /// Per mesh: its limit surface and tessellator where it has a `subdivision`, else null.
+  std::vector<std::unique_ptr<SubdividedSurface>> subdivided_;
   /// Per mesh: 1/r per vertex (mesh units) where a skin material covers it, else empty.
   std::vector<std::vector<float>> meshCurvatures_;
   std::vector<LoadedMaterial> materials_;
   std::vector<SimulatedGroom> grooms_;
   std::vector<SceneCloth> cloths_;
+  struct MovingFur {
+    std::size_t fur = 0;   ///< index into furSurfaces(); its size when the fur is not drawn
+    std::size_t mesh = 0;  ///< index into scene_.meshes
+    FurDynamics dynamics;
+  };
+  std::vector<MovingFur> movingFurs_;
   std::vector<std::size_t> clothBodies_;  ///< per cloth: index into scene_.meshes
   std::vector<std::string> notes_;
   double time_ = 0.0;

@@ -2,8 +2,13 @@
 // block, the photo, the shell thresholds of Ukaji et al. (render/luts/fur_shells.hpp) and
 // Kajiya-Kay lighting along the fur.
 
+// The hair shadows the fur receives: constants 0 and 1, images from binding 5 (FurPass).
+#define HAIR_SHADOW_SET 0
+#define HAIR_SHADOW_BINDING 5
+#include "hair_shadows.glsl"
+
 // Which pixels a shell shows (FurCoverage): 0 bands, 1 strands.
-layout(constant_id = 0) const uint kCoverage = 1u;
+layout(constant_id = 2) const uint kCoverage = 1u;
 
 // std140 mirror of FurUniforms in render/passes/fur_pass.cpp.
 layout(set = 0, binding = 0) uniform FurUniforms {
@@ -15,8 +20,11 @@ layout(set = 0, binding = 0) uniform FurUniforms {
   vec4 lightRadiance;   // rgb
   vec4 ambient;         // rgb
   vec4 shells;          // x: h_b (metres), y: N, z: Kajiya-Kay exponent, w: specular strength
-  vec4 lay;             // x: cos, y: sin of the fur's tilt away from the normal
+  vec4 lay;             // x: cos, y: sin of the fur's tilt away from its direction
+  vec4 tint;            // rgb: multiplies the photo's colour
+  vec4 comb;            // xyz: world lean of the tips (units of h_b) before projection on the surface
   vec4 thresholds[17];  // I(0 … 64), four to a vec4
+  HairShadowUniforms shadows;
 } fur;
 
 layout(set = 0, binding = 1) uniform sampler2D photo;  // sRGB: sampled values are linear
@@ -29,6 +37,21 @@ float luminance(vec3 rgb) {
 // I(n), eq. 4 of Ukaji et al., as FurShellModel::threshold computed it.
 float threshold(uint n) {
   return fur.thresholds[n / 4u][n % 4u];
+}
+
+// The fur's lean at a vertex of world normal n: the comb on the tangent plane plus the vertex's
+// own (FurPass::setLeans), units of h_b.
+vec3 furLean(vec3 n, vec3 vertexLean) {
+  return fur.comb.xyz - dot(fur.comb.xyz, n) * n + vertexLean;
+}
+
+// A fibre's point at height fraction s (0 skin … 1 top): it leaves the skin along n and bends
+// towards the lean, p + h_b·(s·n + s²·lean); its direction there is n + 2s·lean.
+vec3 furOffset(vec3 n, vec3 lean, float s) {
+  return fur.shells.x * (s * n + s * s * lean);
+}
+vec3 furDirection(vec3 n, vec3 lean, float s) {
+  return normalize(n + 2.0 * s * lean);
 }
 
 uint layerCount() {
@@ -50,25 +73,26 @@ vec2 kajiyaKay(vec3 t, vec3 l, vec3 e) {
   return vec2(sinTl, pow(max(sinTl * sinTe - tl * te, 0.0), fur.shells.z));
 }
 
-// Radiance of fur of colour `albedo` growing from a surface of normal `n`. Real hairs lean away
-// from the normal: the fur direction is the normal tilted by the lay angle, averaged over four
+// Radiance of fur of colour `albedo` growing along `d` from a surface of normal `n`. Real hairs
+// lean away from that direction: the fibre is d tilted by the lay angle, averaged over four
 // azimuths (a fibre straight along n would be black under a light along n, which the photo,
 // taken lit from above, contradicts). The diffuse term is divided by its value for light along
 // n, so the photo's own colour comes back under the light it was taken in; the fur's body shades
 // it as it turns away from the light (half-Lambert wrap: fur scatters light past the terminator).
-vec3 shadeFur(vec3 albedo, vec3 n, vec3 world) {
+vec3 shadeFur(vec3 photoColour, vec3 n, vec3 d, vec3 world) {
+  vec3 albedo = photoColour * fur.tint.rgb;
   vec3 l = fur.lightDirection.xyz;
   vec3 e = towardEye(world);
-  vec3 b1 = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1, 0, 0)) : cross(n, vec3(0, 1, 0)));
-  vec3 b2 = cross(n, b1);
+  vec3 b1 = normalize(abs(d.x) < 0.9 ? cross(d, vec3(1, 0, 0)) : cross(d, vec3(0, 1, 0)));
+  vec3 b2 = cross(d, b1);
   vec2 sum = vec2(0.0);
   for (int k = 0; k < 4; ++k) {
     vec3 b = (k == 0) ? b1 : (k == 1) ? b2 : (k == 2) ? -b1 : -b2;
-    sum += kajiyaKay(fur.lay.x * n + fur.lay.y * b, l, e);
+    sum += kajiyaKay(fur.lay.x * d + fur.lay.y * b, l, e);
   }
   sum *= 0.25;
   float diffuseUnderTopLight = max(fur.lay.y, 1e-3);  // sin(t, n) of every tilted fibre
   float body = clamp(0.5 * dot(n, l) + 0.5, 0.0, 1.0);
-  vec3 light = fur.lightRadiance.rgb * body;
+  vec3 light = fur.lightRadiance.rgb * body * hairShadowTransmittance(fur.shadows, world);
   return albedo * (fur.ambient.rgb + light * (sum.x / diffuseUnderTopLight)) + light * fur.shells.w * sum.y;
 }

@@ -12,6 +12,7 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in float inHeight;
 layout(location = 4) flat in vec2 inAcross;
+layout(location = 5) in vec3 inDirection;
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -26,5 +27,5 @@ void main() {
   float iMax = threshold(0u);
   float required = iMax * pow(threshold(layers) / iMax, depthFraction);
   if (luminance(albedo) < required) discard;
-  outColor = vec4(shadeFur(albedo, normalize(inNormal), inWorld), 1.0);
+  outColor = vec4(shadeFur(albedo, normalize(inNormal), normalize(inDirection), inWorld), 1.0);
 }

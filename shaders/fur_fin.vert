@@ -13,12 +13,16 @@ layout(set = 0, binding = 2) readonly buffer MeshVertices {
 layout(set = 0, binding = 3) readonly buffer FinEdges {
   uvec2 finEdges[];
 };
+layout(set = 0, binding = 4) readonly buffer VertexLeans {
+  vec4 vertexLeans[];
+};
 
 layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outNormal;
 layout(location = 2) out vec2 outUv;
 layout(location = 3) out float outHeight;            // 0 at the skin … 1 at the top shell
 layout(location = 4) flat out vec2 outAcross;       // uv step across the edge
+layout(location = 5) out vec3 outDirection;
 
 vec3 meshVec3(uint vertex, uint offset) {
   uint base = vertex * 8u + offset;
@@ -38,12 +42,14 @@ void main() {
   uint vertex = corner.x < 0.5 ? edge.x : edge.y;
   vec3 normal = normalize(mat3(fur.normalMatrix) * meshVec3(vertex, 3u));
   uint layers = layerCount();
-  float top = fur.shells.x * (1.0 - 1.0 / float(layers));  // layer 1's height above the skin
-  vec3 world = (fur.model * vec4(meshVec3(vertex, 0u), 1.0)).xyz + normal * (corner.y * top);
+  float s = corner.y * (1.0 - 1.0 / float(layers));  // up to layer 1, the top shell
+  vec3 lean = furLean(normal, vertexLeans[vertex].xyz);
+  vec3 world = (fur.model * vec4(meshVec3(vertex, 0u), 1.0)).xyz + furOffset(normal, lean, s);
   vec2 uvAlong = meshUv(edge.y) - meshUv(edge.x);
   outWorld = world;
   outNormal = normal;
   outUv = meshUv(vertex);
+  outDirection = furDirection(normal, lean, s);
   outHeight = corner.y;
   outAcross = 0.5 * vec2(-uvAlong.y, uvAlong.x);
   gl_Position = fur.viewProjection * vec4(world, 1.0);

@@ -5,10 +5,15 @@
 // rest; kept fragments are opaque, so depth testing composites the layers in any order.
 #include "fur_common.glsl"
 
+// 1: the pipeline draws only the skin layer, which keeps every pixel: no discard in the shader,
+// so depth can be tested before it runs.
+layout(constant_id = 3) const uint kSkinLayer = 0u;
+
 layout(location = 0) in vec3 inWorld;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) flat in uint inLayer;
+layout(location = 4) in vec3 inDirection;
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -21,6 +26,6 @@ void main() {
   bool skin = inLayer == layers;
   bool aboveLower = intensity >= threshold(inLayer);
   bool belowUpper = kCoverage == 1u || inLayer == 1u || intensity < threshold(inLayer - 1u);
-  if (!skin && !(aboveLower && belowUpper)) discard;
-  outColor = vec4(shadeFur(albedo, normalize(inNormal), inWorld), 1.0);
+  if (kSkinLayer == 0u && !skin && !(aboveLower && belowUpper)) discard;
+  outColor = vec4(shadeFur(albedo, normalize(inNormal), normalize(inDirection), inWorld), 1.0);
 }

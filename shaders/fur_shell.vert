@@ -13,17 +13,25 @@ layout(location = 0) out vec3 outWorld;
 layout(location = 1) out vec3 outNormal;
 layout(location = 2) out vec2 outUv;
 layout(location = 3) flat out uint outLayer;
+layout(location = 4) out vec3 outDirection;
+
+// Per vertex, world space, units of h_b (FurPass::setLeans).
+layout(set = 0, binding = 4) readonly buffer VertexLeans {
+  vec4 vertexLeans[];
+};
 
 void main() {
   uint layers = layerCount();
   uint layer = layers - uint(gl_InstanceIndex);
-  // Layer n lies h_b·n/N below the fur's top (Ukaji et al. eq. 3), so h_b·(1 − n/N) above the skin.
-  float height = fur.shells.x * (1.0 - float(layer) / float(layers));
+  // Layer n lies h_b·n/N below the fur's top (Ukaji et al. eq. 3), so at s = 1 − n/N of h_b.
+  float s = 1.0 - float(layer) / float(layers);
   vec3 normal = normalize(mat3(fur.normalMatrix) * inNormal);
-  vec3 world = (fur.model * vec4(inPosition, 1.0)).xyz + normal * height;
+  vec3 lean = furLean(normal, vertexLeans[gl_VertexIndex].xyz);
+  vec3 world = (fur.model * vec4(inPosition, 1.0)).xyz + furOffset(normal, lean, s);
   outWorld = world;
   outNormal = normal;
   outUv = inUv;
   outLayer = layer;
+  outDirection = furDirection(normal, lean, s);
   gl_Position = fur.viewProjection * vec4(world, 1.0);
 }

@@ -194,6 +194,15 @@ LimitSample LimitSurface::evaluate(std::uint32_t ptexFace, double u, double v) c
     const glm::dvec3& point = impl_->points[static_cast<std::size_t>(cvs[i])];
     for (int d = 0; d < 6; ++d) sums[d] += w[d][i] * point;
   }
+  // OpenSubdiv (3.5) scales a patch's derivatives by 2^depth, the depth counting from the cage
+  // face; a non-quad face's ptex sub-face starts one level down, so its derivatives come out
+  // twice what they are per unit of the sub-face's own (u, v) (checked against finite
+  // differences in tests/subdiv/limit_test.cpp). Normals and curvature do not depend on the
+  // scale; Jacobians (areas) do.
+  if (impl_->patches->GetPatchParam(handle).NonQuadRoot()) {
+    for (int d = 1; d <= 2; ++d) sums[d] *= 0.5;
+    for (int d = 3; d <= 5; ++d) sums[d] *= 0.25;
+  }
   LimitSample sample;
   sample.position = glm::vec3(sums[0]);
   sample.du = glm::vec3(sums[1]);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -24,10 +26,16 @@ struct FurUniforms {
   glm::vec4 ambient;
   glm::vec4 shells;  // x: h_b, y: N, z: Kajiya-Kay exponent, w: specular strength
   glm::vec4 lay;     // x: cos, y: sin of the lay angle
+  glm::vec4 tint;    // rgb: multiplies the photo's colour
+  glm::vec4 comb;    // xyz: world lean of the fur's top, in units of h_b, before its projection on the surface
   std::array<float, 4 * 17> thresholds;
+  HairShadowUniforms shadows;
 };
 static_assert((kMaxFurLayers + 1) <= 4 * 17, "shaders/fur_common.glsl holds I(0 … 64)");
-static_assert(sizeof(FurUniforms) == 3 * 64 + 6 * 16 + 17 * 16);
+static_assert(sizeof(FurUniforms) == 3 * 64 + 8 * 16 + 17 * 16 + sizeof(HairShadowUniforms));
+
+// Binding of the first hair shadow image (shaders/fur_common.glsl); 2 × 4 of them.
+constexpr std::uint32_t kFirstShadowBinding = 5;
 
 // The mesh as both passes read it (shaders/fur_fin.vert: 8 floats per vertex).
 struct FurVertex {
@@ -50,8 +58,19 @@ std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
 }
 
+// Constants 0, 1: the hair shadow maps (shaders/hair_shadows.glsl); 2: the coverage; 3: whether
+// the pipeline draws the skin layer alone (shaders/fur_shell.frag).
+SpecializationConstants pipelineConstants(const FurPassSettings& settings, const SpecializationConstants& shadows,
+                                          bool skinLayer = false) {
+  SpecializationConstants constants = shadows;
+  constants.push_back(static_cast<std::uint32_t>(settings.coverage));
+  constants.push_back(skinLayer ? 1u : 0u);
+  return constants;
+}
+
 Pipeline makeShellPipeline(const Device& device, const FurPassSettings& settings,
-                           const vk::raii::DescriptorSetLayout& layout) {
+                           const vk::raii::DescriptorSetLayout& layout, const SpecializationConstants& shadows,
+                           bool skinLayer) {
   using Format = vk::Format;
   return makeGraphicsPipeline(
       device,
@@ -69,24 +88,28 @@ Pipeline makeShellPipeline(const Device& device, const FurPassSettings& settings
           .depthWrite = true,
           .samples = settings.samples,
           .setLayouts = {*layout},
-          .constants = {static_cast<std::uint32_t>(settings.coverage)}});
+          .constants = pipelineConstants(settings, shadows, skinLayer)});
 }
 
 Pipeline makeFinPipeline(const Device& device, const FurPassSettings& settings,
-                         const vk::raii::DescriptorSetLayout& layout) {
-  return makeGraphicsPipeline(device,
-                              GraphicsPipelineSettings{.vertexShader = "fur_fin.vert",
-                                                       .fragmentShader = "fur_fin.frag",
-                                                       .colorFormats = {settings.colorFormat},
-                                                       .depthFormat = settings.depthFormat,
-                                                       .depthTest = true,
-                                                       .depthWrite = true,
-                                                       .samples = settings.samples,
-                                                       .setLayouts = {*layout},
-                                                       .constants = {static_cast<std::uint32_t>(settings.coverage)}});
+                         const vk::raii::DescriptorSetLayout& layout, const SpecializationConstants& shadows) {
+  return makeGraphicsPipeline(device, GraphicsPipelineSettings{.vertexShader = "fur_fin.vert",
+                                                               .fragmentShader = "fur_fin.frag",
+                                                               .colorFormats = {settings.colorFormat},
+                                                               .depthFormat = settings.depthFormat,
+                                                               .depthTest = true,
+                                                               .depthWrite = true,
+                                                               .samples = settings.samples,
+                                                               .setLayouts = {*layout},
+                                                               .constants = pipelineConstants(settings, shadows)});
 }
 
 }  // namespace
+
+glm::vec3 furShadowTangent(const glm::vec3& normal) {
+  return glm::normalize(std::abs(normal.x) < 0.9f ? glm::cross(normal, glm::vec3(1.0f, 0.0f, 0.0f))
+                                                  : glm::cross(normal, glm::vec3(0.0f, 1.0f, 0.0f)));
+}
 
 // ---------------------------------------------------------------------------------------------
 // Silhouette edges
@@ -177,20 +200,28 @@ void MeshEdges::findSilhouette(const glm::vec4& eye, std::vector<glm::uvec2>& ou
 // The pass
 
 Result<std::unique_ptr<FurPass>> FurPass::create(const Device& device, const FurPassSettings& settings,
-                                                 const TextureData& photo, const FurShellSettings& shells) {
+                                                 const TextureData& photo, const FurShellSettings& shells,
+                                                 const HairShadows* shadows) {
   if (settings.depthFormat == vk::Format::eUndefined)
     return fail("fur pass: a depth format is required (the shells composite by depth testing)");
   auto model = FurShellModel::fromPhoto(photo, shells);
   if (!model) return fail("fur pass: " + model.error().message);
   try {
-    return std::unique_ptr<FurPass>(new FurPass(device, settings, photo, *model));
-  } catch (const vk::SystemError& error) {
+    return std::unique_ptr<FurPass>(new FurPass(device, settings, photo, *model, shadows));
+  } catch (const std::exception& error) {
     return fail(std::string("fur pass: Vulkan error while creating it: ") + error.what());
   }
 }
 
-FurPass::FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model)
-    : device_(&device), settings_(settings), model_(model) {
+FurPass::FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model,
+                 const HairShadows* shadows)
+    : device_(&device), shadows_(shadows), settings_(settings), model_(model) {
+  if (shadows_ == nullptr) {
+    auto empty = HairShadows::create(device);
+    if (!empty) throw std::runtime_error(empty.error().message);
+    ownShadows_ = std::move(*empty);
+    shadows_ = ownShadows_.get();
+  }
   using Stage = vk::ShaderStageFlagBits;
   using Type = vk::DescriptorType;
   photo_ = Image::texture(device, photo.width, photo.height,
@@ -199,16 +230,67 @@ FurPass::FurPass(const Device& device, const FurPassSettings& settings, const Te
   setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment},
                                       {Type::eCombinedImageSampler, Stage::eFragment},
                                       {Type::eStorageBuffer, Stage::eVertex},
-                                      {Type::eStorageBuffer, Stage::eVertex}});
-  shellPipeline_ = makeShellPipeline(device, settings, setLayout_);
-  if (settings.fins) finPipeline_ = makeFinPipeline(device, settings, setLayout_);
+                                      {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eCombinedImageSampler, Stage::eFragment},  // hair shadows: opacity × 4
+                                      {Type::eCombinedImageSampler, Stage::eFragment},
+                                      {Type::eCombinedImageSampler, Stage::eFragment},
+                                      {Type::eCombinedImageSampler, Stage::eFragment},
+                                      {Type::eCombinedImageSampler, Stage::eFragment},  // first depth × 4
+                                      {Type::eCombinedImageSampler, Stage::eFragment},
+                                      {Type::eCombinedImageSampler, Stage::eFragment},
+                                      {Type::eCombinedImageSampler, Stage::eFragment}});
+  static_assert(HairShadows::kBindings == 8);
+  buildPipelines();
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eUniformBuffer, 1}, {Type::eCombinedImageSampler, 1}, {Type::eStorageBuffer, 2}});
+                             {{Type::eUniformBuffer, 1},
+                              {Type::eCombinedImageSampler, 1 + HairShadows::kBindings},
+                              {Type::eStorageBuffer, 3}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(FurUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   writeUniformBuffer(device, set_, 0, uniforms_);
   writeSampledImage(device, set_, 1, photo_, sampler_);
+  shadows_->writeDescriptors(set_, kFirstShadowBinding);
+  std::memset(uniforms_.mapped().data(), 0, sizeof(FurUniforms));
+}
+
+void FurPass::buildPipelines() {
+  shadowConstants_ = shadows_->shaderConstants();
+  skinPipeline_ = makeShellPipeline(*device_, settings_, setLayout_, shadowConstants_, true);
+  shellPipeline_ = makeShellPipeline(*device_, settings_, setLayout_, shadowConstants_, false);
+  if (settings_.fins) finPipeline_ = makeFinPipeline(*device_, settings_, setLayout_, shadowConstants_);
+}
+
+void FurPass::refreshShadows() {
+  if (shadows_->shaderConstants() != shadowConstants_) buildPipelines();
+  shadows_->writeDescriptors(set_, kFirstShadowBinding);
+}
+
+void FurPass::setShadowUniforms(const HairShadowUniforms& uniforms) {
+  std::memcpy(uniforms_.mapped().data() + offsetof(FurUniforms, shadows), &uniforms, sizeof(uniforms));
+}
+
+void FurPass::writeShadowStrands(const glm::mat4& model, const glm::vec3& comb) {
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+  std::vector<glm::vec4> points(2 * meshPositions_.size());
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+  const float across = 0.5f * meanEdgeLength_ * glm::length(glm::vec3(model[0]));  // half a column, world
+  for (std::size_t v = 0; v < meshPositions_.size(); ++v) {
+    // As shaders/fur_shell.vert puts the top shell (s = 1): p + h_b·(n + lean); then tilted
+    // across the column (shadowStrands()).
+    const glm::vec3 normal = glm::normalize(normalMatrix * meshNormals_[v]);
+    const glm::vec3 lean = comb - glm::dot(comb, normal) * normal + vertexLeans_[v];
+    const glm::vec3 tangent = furShadowTangent(normal);
+    const glm::vec3 root = glm::vec3(model * glm::vec4(meshPositions_[v], 1.0f)) - across * tangent;
+    const glm::vec3 tip = root + model_.thickness() * (normal + lean) + 2.0f * across * tangent;
+    points[2 * v] = glm::vec4(root, 1.0f);
+    points[2 * v + 1] = glm::vec4(tip, 1.0f);
+    lo = glm::min(lo, glm::min(root, tip));
+    hi = glm::max(hi, glm::max(root, tip));
+  }
+  std::memcpy(shadowStrands_.mapped().data(), points.data(), points.size() * sizeof(glm::vec4));
+  shadowBounds_ = {.centre = 0.5f * (lo + hi), .radius = 0.5f * glm::length(hi - lo) * 1.001f + 1e-6f};
 }
 
 Result<void> FurPass::setMesh(const MeshData& mesh) {
@@ -221,6 +303,9 @@ Result<void> FurPass::setMesh(const MeshData& mesh) {
   if (!edges) return fail(edges.error().message);
   std::vector<FurVertex> vertices(count);
   for (std::size_t i = 0; i < count; ++i) vertices[i] = {mesh.positions[i], mesh.normals[i], mesh.uvs[i]};
+  double edgeSum = 0.0;
+  for (const MeshEdges::Edge& edge : edges->edges())
+    edgeSum += glm::distance(mesh.positions[edge.a], mesh.positions[edge.b]);
   try {
     vertices_ = Buffer::withData(*device_, std::as_bytes(std::span(vertices)),
                                  vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
@@ -229,16 +314,43 @@ Result<void> FurPass::setMesh(const MeshData& mesh) {
     finEdges_ = Buffer(*device_, std::max<std::size_t>(edges->edges().size(), 1) * sizeof(glm::uvec2),
                        vk::BufferUsageFlagBits::eStorageBuffer,
                        vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+    leans_ = Buffer(*device_, count * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer,
+                    vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+    std::memset(leans_.mapped().data(), 0, count * sizeof(glm::vec4));
+    shadowStrands_ = Buffer(*device_, 2 * count * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer,
+                            vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   } catch (const vk::SystemError& error) {
     return fail(std::string("fur mesh: Vulkan error while uploading it: ") + error.what());
   }
   writeStorageBuffer(*device_, set_, 2, vertices_);
   writeStorageBuffer(*device_, set_, 3, finEdges_);
+  writeStorageBuffer(*device_, set_, 4, leans_);
+  vertexCount_ = static_cast<std::uint32_t>(count);
+  meshPositions_.assign(mesh.positions.begin(), mesh.positions.end());
+  meshNormals_.assign(mesh.normals.begin(), mesh.normals.end());
+  vertexLeans_.assign(count, glm::vec3(0.0f));
+  meanEdgeLength_ = edges->edges().empty() ? 0.0f : float(edgeSum / double(edges->edges().size()));
+  writeShadowStrands(glm::mat4(1.0f), glm::vec3(0.0f));
   indexCount_ = static_cast<std::uint32_t>(mesh.indices.size());
   edges_ = std::move(*edges);
   fins_.clear();
   fins_.reserve(edges_.edges().size());
   finCount_ = 0;
+  return {};
+}
+
+Result<void> FurPass::setLeans(std::span<const glm::vec3> leans) {
+  if (leans.size() != vertexCount_)
+    return fail("fur leans: " + std::to_string(leans.size()) + " for a mesh of " + std::to_string(vertexCount_) +
+                " vertices");
+  std::vector<glm::vec4> padded(leans.size());
+  for (std::size_t i = 0; i < leans.size(); ++i) {
+    if (!std::isfinite(leans[i].x) || !std::isfinite(leans[i].y) || !std::isfinite(leans[i].z))
+      return fail("fur leans: vertex " + std::to_string(i) + "'s lean is not finite");
+    padded[i] = glm::vec4(leans[i], 0.0f);
+  }
+  vertexLeans_.assign(leans.begin(), leans.end());
+  std::memcpy(leans_.mapped().data(), padded.data(), padded.size() * sizeof(glm::vec4));
   return {};
 }
 
@@ -264,9 +376,13 @@ Result<void> FurPass::update(const FurView& view) {
   uniforms.shells =
       glm::vec4(model_.thickness(), float(model_.layers()), view.look.specularExponent, view.look.specularStrength);
   uniforms.lay = glm::vec4(std::cos(view.look.layAngle), std::sin(view.look.layAngle), 0.0f, 0.0f);
+  uniforms.tint = glm::vec4(view.look.tint, 1.0f);
+  uniforms.comb = glm::vec4(view.look.comb, 0.0f);
   const std::vector<float> thresholds = model_.thresholds();
   std::copy(thresholds.begin(), thresholds.end(), uniforms.thresholds.begin());
-  std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
+  // The shadows' part is setShadowUniforms'.
+  std::memcpy(uniforms_.mapped().data(), &uniforms, offsetof(FurUniforms, shadows));
+  if (vertexCount_ > 0) writeShadowStrands(view.model, view.look.comb);
 
   finCount_ = 0;
   if (settings_.fins && indexCount_ > 0) {
@@ -285,12 +401,18 @@ Result<void> FurPass::update(const FurView& view) {
 void FurPass::draw(const vk::raii::CommandBuffer& commands) const {
   if (indexCount_ == 0 || !updated_) return;
   setViewportAndScissor(commands, extent_);
-  const vk::PipelineLayout layout = *shellPipeline_.layout;
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *shellPipeline_.pipeline);
+  // The skin (instance 0) keeps every pixel: its own pipeline has no discard, so depth is tested
+  // before shading; then the shells, instances 1 … N − 1, which alpha-test.
+  const vk::PipelineLayout layout = *skinPipeline_.layout;
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *skinPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*set_}, {});
   commands.bindVertexBuffers(0, {*vertices_.buffer()}, {vk::DeviceSize{0}});
   commands.bindIndexBuffer(*indices_.buffer(), 0, vk::IndexType::eUint32);
-  commands.drawIndexed(indexCount_, drawnLayers_, 0, 0, 0);
+  commands.drawIndexed(indexCount_, 1, 0, 0, 0);
+  if (drawnLayers_ > 1) {
+    commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *shellPipeline_.pipeline);
+    commands.drawIndexed(indexCount_, drawnLayers_ - 1, 0, 0, 1);
+  }
   if (finCount_ == 0) return;
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *finPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *finPipeline_.layout, 0, {*set_}, {});

@@ -9,9 +9,13 @@
 // block (the thresholds I(0 … 64) whatever N is: Ukaji et al. §3.3) and the fin edge list change.
 // GPU memory therefore does not depend on the layer count N.
 //
-// Shells. One instanced draw of the mesh, instance i = layer N − i (the skin first: its depth
-// then hides what lies behind the body), each vertex pushed out along its world normal to
-// h_b·(1 − n/N) above the skin (eq. 3). A shell keeps the pixels its FurCoverage says and
+// Shells. Two draws of the mesh, instance i = layer N − i: the skin (instance 0) first, with a
+// pipeline that never discards (so lavapipe tests depth before shading), its depth then hiding
+// what lies behind the body; then the shells, instances 1 … N − 1, in one instanced draw that
+// alpha-tests. Each vertex is pushed out to s = 1 − n/N of h_b above the
+// skin (eq. 3): along its world normal n, bent towards its lean λ (a comb direction projected
+// on the surface, plus per-vertex leans from simulated guides: setLeans) as a fibre would,
+// p + h_b·(s·n + s²·λ). A shell keeps the pixels its FurCoverage says and
 // discards the rest; kept fragments are opaque and write depth, so the layers composite
 // correctly in any order, with no sorting and no blending. Layer N (the skin) keeps every pixel:
 // it is the body the fur grows on. Back faces are not culled (meshes come with either winding).
@@ -31,6 +35,13 @@
 // along the normal gives back the photo's colour; a half-Lambert term of the normal darkens the
 // side of the body away from the light; one directional light plus ambient.
 //
+// Shadows. The pass receives the frame's hair shadows (render/passes/hair_shadows.hpp: the opacity
+// maps of the first light) on the shells and fins, and casts its own: shadowStrands() holds one
+// two-point strand per vertex, from the skin to the fur's top (leans included), in world space,
+// rewritten by update(), for the renderer to register as a shadow caster. The fur then shadows
+// itself through the same map (the side of the body away from the light lies behind the fur
+// facing it) and shadows the hair and skin around it.
+//
 // Frames in flight: one. update() writes the uniform block and the fin buffer that the draw
 // reads; call it only when no earlier draw is still running (the Renderer waits for each frame).
 //
@@ -45,6 +56,7 @@
 
 #include "render/frame.hpp"
 #include "render/luts/fur_shells.hpp"
+#include "render/passes/hair_shadows.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -75,6 +87,10 @@ struct FurLook {
   float layAngle = 0.6f;           ///< radians between the fur and the normal (Kajiya-Kay tangent)
   float specularExponent = 40.0f;  ///< Kajiya-Kay p
   float specularStrength = 0.08f;  ///< scales the specular term, × light radiance
+  glm::vec3 tint{1.0f};            ///< linear RGB multiplying the photo's colour (a grey photo made green)
+  /// Where the fur's tips lean, world space, in units of h_b (e.g. (0, −0.5, 0): combed down by
+  /// half its height): projected on each vertex's tangent plane and added to its lean (setLeans).
+  glm::vec3 comb{0.0f};
 };
 
 /// One furred object as seen this frame.
@@ -119,13 +135,19 @@ private:
   std::vector<Edge> edges_;
 };
 
+/// The tangent the fur's shadow strands tilt along at a vertex of unit normal `normal`:
+/// normalize(n × x), or n × y where n is within 26° of x.
+[[nodiscard]] glm::vec3 furShadowTangent(const glm::vec3& normal);
+
 class FurPass {
 public:
-  /// Uploads `photo` (8-bit sRGB) and builds the pipelines. Errors: a photo the shell model
-  /// refuses (FurShellModel::fromPhoto), no depth format, or a Vulkan failure.
+  /// Uploads `photo` (8-bit sRGB) and builds the pipelines. `shadows` (which must outlive the
+  /// pass) are the hair shadows the fur receives; none: unshadowed. Errors: a photo the shell
+  /// model refuses (FurShellModel::fromPhoto), no depth format, or a Vulkan failure.
   [[nodiscard]] static Result<std::unique_ptr<FurPass>> create(const Device& device, const FurPassSettings& settings,
                                                                const TextureData& photo,
-                                                               const FurShellSettings& shells = {});
+                                                               const FurShellSettings& shells = {},
+                                                               const HairShadows* shadows = nullptr);
 
   FurPass(const FurPass&) = delete;
   FurPass& operator=(const FurPass&) = delete;
@@ -134,6 +156,12 @@ public:
   /// previous one. Errors (nothing changed): missing normals or uvs, bad indices.
   [[nodiscard]] Result<void> setMesh(const MeshData& mesh);
 
+  /// Per-vertex lean of the fur's tips (world space, in units of h_b, e.g. from simulated guide
+  /// strands), one per vertex of the mesh; zero after setMesh. A shell at height s·h_b sits at
+  /// p + h_b·(s·n + s²·lean): fibres leave the skin along the normal and bend towards the lean.
+  /// Takes effect at the next draw. Errors: a count that is not the mesh's, a non-finite value.
+  [[nodiscard]] Result<void> setLeans(std::span<const glm::vec3> leans);
+
   /// Changes N and h_b (same photo, same I_min and I_max); no GPU memory changes. Errors as
   /// FurShellModel::create.
   [[nodiscard]] Result<void> setShells(std::uint32_t layers, float thickness);
@@ -141,6 +169,27 @@ public:
   /// Writes the view, the light and the thresholds, and finds this frame's fins. Errors: an
   /// empty extent or a non-finite matrix.
   [[nodiscard]] Result<void> update(const FurView& view);
+
+  /// Re-reads the hair shadows' maps: their descriptors, and the pipelines when the number of
+  /// maps or their mode changed (after HairShadows::setGrooms, or a map's first bounds).
+  void refreshShadows();
+
+  /// The hair shadows' uniforms of this frame (HairShadows::uniforms after its record()), for
+  /// the next draw.
+  void setShadowUniforms(const HairShadowUniforms& uniforms);
+
+  /// The fur as a shadow caster: one strand of two points per mesh vertex, world space as of the
+  /// last update(); a host-visible storage buffer. A strand runs from the skin point to the top
+  /// of its fur, p + h_b·(n + lean), tilted across the column it stands for: both ends moved
+  /// half a mean edge (× the model's scale) along furShadowTangent(n), the root back, the tip
+  /// forward. Straight along n it would show the light overhead a dot, and cast nothing.
+  [[nodiscard]] OpacityShadowStrands shadowStrands() const {
+    return {.positions = &shadowStrands_, .strandCount = vertexCount_, .verticesPerStrand = 2};
+  }
+  /// Bounds of shadowStrands() as of the last update().
+  [[nodiscard]] const BoundingSphere& shadowBounds() const { return shadowBounds_; }
+  /// Mean edge length of the mesh, object space: the width a shadow strand stands for.
+  [[nodiscard]] float meanEdgeLength() const { return meanEdgeLength_; }
 
   /// Records the shells and fins inside a dynamic rendering scope with FurPassSettings' formats
   /// (viewport and scissor set to the view's extent). Nothing before setMesh and update.
@@ -153,23 +202,39 @@ public:
   [[nodiscard]] std::span<const glm::uvec2> fins() const { return fins_; }
 
 private:
-  FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model);
+  FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model,
+          const HairShadows* shadows);
+  void buildPipelines();
+  /// Writes shadowStrands_ and shadowBounds_ for this model matrix and comb.
+  void writeShadowStrands(const glm::mat4& model, const glm::vec3& comb);
 
   const Device* device_;
+  std::unique_ptr<HairShadows> ownShadows_;  ///< empty maps, when the caller gives none
+  const HairShadows* shadows_;
+  SpecializationConstants shadowConstants_;  ///< of the current pipelines
   FurPassSettings settings_;
   FurShellModel model_;
   vk::Extent2D extent_{};
   Image photo_;
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
-  Pipeline shellPipeline_;
+  Pipeline skinPipeline_;   ///< layer N alone, no discard
+  Pipeline shellPipeline_;  ///< layers N − 1 … 1, alpha-tested
   Pipeline finPipeline_;
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
   Buffer vertices_;  ///< 8 floats per vertex: position, normal, uv
   Buffer indices_;
-  Buffer finEdges_;  ///< uvec2 per edge of the mesh, host-visible
+  Buffer finEdges_;       ///< uvec2 per edge of the mesh, host-visible
+  Buffer leans_;          ///< vec4 per vertex, host-visible (setLeans)
+  Buffer shadowStrands_;  ///< two vec4 per vertex, host-visible
+  BoundingSphere shadowBounds_{};
+  float meanEdgeLength_ = 0.0f;
+  std::vector<glm::vec3> meshPositions_;  ///< object space, for the shadow strands
+  std::vector<glm::vec3> meshNormals_;
+  std::vector<glm::vec3> vertexLeans_;
+  std::uint32_t vertexCount_ = 0;
   std::uint32_t indexCount_ = 0;
   MeshEdges edges_;
   std::vector<glm::uvec2> fins_;

@@ -160,33 +160,7 @@ void SurfacePass::setScene(const StaticScene& scene) {
     return m.translucency.method == TranslucencyMethod::kVoxelLut;
   });
 
-  for (const MeshData& mesh : scene.meshes) {
-    std::vector<Vertex> vertices(mesh.positions.size());
-    for (std::size_t i = 0; i < vertices.size(); ++i)
-      vertices[i] =
-          Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
-                 mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i], mesh.curvatures.empty() ? 0.0f : mesh.curvatures[i]};
-    const auto bytes = std::as_bytes(std::span(vertices));
-    GpuMesh gpu{
-        .indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
-        .indexCount = static_cast<std::uint32_t>(mesh.indices.size()),
-        .vertexCount = vertices.size(),
-        .dynamic = mesh.dynamic};
-    if (mesh.dynamic) {
-      // Rewritten by the CPU between frames: host-visible, mapped for its lifetime.
-      gpu.vertices = Buffer(*device_, std::max<vk::DeviceSize>(bytes.size(), 4), vk::BufferUsageFlagBits::eVertexBuffer,
-                            vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
-      std::memcpy(gpu.vertices.mapped().data(), bytes.data(), bytes.size());
-    } else {
-      gpu.vertices = Buffer::withData(*device_, bytes, vk::BufferUsageFlagBits::eVertexBuffer);
-      if (auto sphere = boundingSphere(mesh.positions)) gpu.bounds = *sphere;
-      if (voxelTranslucency) {
-        gpu.positions.assign(mesh.positions.begin(), mesh.positions.end());
-        gpu.triangles.assign(mesh.indices.begin(), mesh.indices.end());
-      }
-    }
-    meshes_.push_back(std::move(gpu));
-  }
+  for (const MeshData& mesh : scene.meshes) meshes_.push_back(uploadMesh(mesh, voxelTranslucency));
 
   if (!scene.materials.empty()) {
     const auto count = static_cast<std::uint32_t>(scene.materials.size());
@@ -196,6 +170,42 @@ void SurfacePass::setScene(const StaticScene& scene) {
   }
   for (const MaterialData& material : scene.materials) materials_.push_back(uploadMaterial(material));
   buildPipelines();  // for the materials and the hair shadows' current maps
+}
+
+SurfacePass::GpuMesh SurfacePass::uploadMesh(const MeshData& mesh, bool keepTriangles) const {
+  std::vector<Vertex> vertices(mesh.positions.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    vertices[i] =
+        Vertex{mesh.positions[i], mesh.normals.empty() ? glm::vec3(0, 1, 0) : mesh.normals[i],
+               mesh.uvs.empty() ? glm::vec2(0) : mesh.uvs[i], mesh.curvatures.empty() ? 0.0f : mesh.curvatures[i]};
+  const auto bytes = std::as_bytes(std::span(vertices));
+  GpuMesh gpu{.indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
+              .indexCount = static_cast<std::uint32_t>(mesh.indices.size()),
+              .vertexCount = vertices.size(),
+              .dynamic = mesh.dynamic};
+  if (mesh.dynamic) {
+    // Rewritten by the CPU between frames: host-visible, mapped for its lifetime.
+    gpu.vertices = Buffer(*device_, std::max<vk::DeviceSize>(bytes.size(), 4), vk::BufferUsageFlagBits::eVertexBuffer,
+                          vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+    std::memcpy(gpu.vertices.mapped().data(), bytes.data(), bytes.size());
+  } else {
+    gpu.vertices = Buffer::withData(*device_, bytes, vk::BufferUsageFlagBits::eVertexBuffer);
+    if (auto sphere = boundingSphere(mesh.positions)) gpu.bounds = *sphere;
+    if (keepTriangles) {
+      gpu.positions.assign(mesh.positions.begin(), mesh.positions.end());
+      gpu.triangles.assign(mesh.indices.begin(), mesh.indices.end());
+    }
+  }
+  return gpu;
+}
+
+void SurfacePass::replaceMesh(std::size_t mesh, const MeshData& data) {
+  const bool voxelTranslucency = std::any_of(materials_.begin(), materials_.end(), [](const GpuMaterial& m) {
+    return m.translucency.method == TranslucencyMethod::kVoxelLut;
+  });
+  // The old buffers and tables are released here: the renderer waits for every frame, so no
+  // recorded command still reads them.
+  meshes_.at(mesh) = uploadMesh(data, voxelTranslucency);
 }
 
 SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& material) {
@@ -359,6 +369,7 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
   for (const MeshInstance& instance : frame.instances) {
     const GpuMesh& mesh = meshes_[instance.mesh];
     const GpuMaterial& material = materials_[instance.material];
+    if (material.shading == SurfaceShading::kFur && frame.furShells) continue;  // the fur pass draws its skin
     const Pipeline& pipeline = pipelines_[pipelineFor(material)];
     if (bound != &pipeline) commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
     bound = &pipeline;

@@ -58,6 +58,12 @@ public:
   /// only between frames (the renderer waits for each frame before returning).
   void updateVertices(std::size_t mesh, std::span<const glm::vec3> positions, std::span<const glm::vec3> normals);
   bool isDynamic(std::size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].dynamic; }
+  bool hasMesh(std::size_t mesh) const { return mesh < meshes_.size(); }
+  /// Replaces static mesh `mesh` by `data` (checked by the caller), whose vertex and index counts
+  /// may differ: a subdivision surface tessellated again for a new view. What was derived from
+  /// the old triangles goes with them: the bounds, and the thickness tables (the next
+  /// prepareThickness builds them again). Only between frames. Throws vk::SystemError on failure.
+  void replaceMesh(std::size_t mesh, const MeshData& data);
   std::size_t vertexCount(std::size_t mesh) const { return meshes_.at(mesh).vertexCount; }
 
   /// The diffused irradiance (render/passes/skin_diffusion.hpp) that texture-space skin
@@ -83,13 +89,19 @@ public:
   /// uniforms; call before recording the main pass, after HairShadows::record and recordLightDepth.
   void update(const FrameInput& frame, float aspect);
 
+  /// Whether `instance`'s material is a fur material (SurfaceShading::kFur).
+  bool isFur(const MeshInstance& instance) const {
+    return materials_.at(instance.material).shading == SurfaceShading::kFur;
+  }
+
   /// Whether `instance` names a mesh and a material of the current scene.
   bool canDraw(const MeshInstance& instance) const {
     return instance.mesh < meshes_.size() && instance.material < materials_.size();
   }
 
-  /// Draws every instance (Renderer::render has checked them with canDraw); call inside a dynamic rendering scope with
-  /// matching formats.
+  /// Draws every instance (Renderer::render has checked them with canDraw) but those with a fur material while
+  /// FrameInput::furShells is on (the fur pass draws them); call inside a dynamic rendering scope with matching
+  /// formats.
   void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
 
 private:
@@ -123,6 +135,9 @@ private:
     vk::raii::DescriptorSet descriptors{nullptr};
   };
 
+  /// Uploads `mesh`'s vertices and triangles; a static mesh keeps them on the CPU too when
+  /// `keepTriangles` (for the voxel thickness tables).
+  GpuMesh uploadMesh(const MeshData& mesh, bool keepTriangles) const;
   /// Uploads `material`'s textures and constants into a set of materialPool_.
   GpuMaterial uploadMaterial(const MaterialData& material);
   /// The table for `range`, baked on first use.

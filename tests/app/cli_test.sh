@@ -6,6 +6,53 @@ case=$2
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
+# CTest's SKIP_RETURN_CODE for these cases (tests/app/CMakeLists.txt).
+skip() { echo "SKIP: $*"; exit 77; }
+
+# Counts, in PNG $1's box x0 y0 x1 y1 (pixels, ends excluded), the pure white and the pure black
+# pixels: "WHITE BLACK". The overlay of `mane view` draws white text on a black panel
+# (render/passes/text_overlay.hpp); a rendered scene has neither over whole glyphs.
+overlay_pixels() {
+  python3 - "$@" <<'PY'
+import struct, sys, zlib
+path, x0, y0, x1, y1 = sys.argv[1], *map(int, sys.argv[2:6])
+data = open(path, "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+pos, idat = 8, b""
+while pos < len(data):
+    length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+    body = data[pos + 8:pos + 8 + length]
+    if kind == b"IHDR":
+        width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+        assert depth == 8 and colour in (2, 6), "only 8-bit RGB(A)"
+        channels = 4 if colour == 6 else 3
+    elif kind == b"IDAT":
+        idat += body
+    pos += 12 + length
+raw, stride, rows, previous = zlib.decompress(idat), width * channels, [], bytearray(width * channels)
+for y in range(height):
+    kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    for i in range(stride):
+        a = line[i - channels] if i >= channels else 0
+        b, c = previous[i], previous[i - channels] if i >= channels else 0
+        if kind == 1: line[i] = (line[i] + a) & 255
+        elif kind == 2: line[i] = (line[i] + b) & 255
+        elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
+        elif kind == 4:
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    rows.append(line)
+    previous = line
+white = black = 0
+for y in range(y0, min(y1, height)):
+    for x in range(x0, min(x1, width)):
+        r, g, b = rows[y][x * channels:x * channels + 3]
+        white += r == g == b == 255
+        black += r == g == b == 0
+print(white, black)
+PY
+}
 
 case $case in
   info-names-lavapipe)
@@ -65,6 +112,63 @@ case $case in
     # The lit head compresses to well over 20 kB; an empty frame of one colour to about 4 kB.
     size=$(stat -c %s "$scratch/view.png") || fail "no screenshot"
     [ "$size" -gt 20000 ] || fail "the screenshot looks blank ($size bytes)"
+    grep -q "^Keys: Space" "$scratch/log" || fail "no key list on start: $(cat "$scratch/log")"
+    # The frame time and the toggles, white on black, in the top-left corner (scale 2 at 1280x720:
+    # two lines of 14-pixel glyphs on a 40-pixel panel from (8, 8)).
+    if command -v python3 >/dev/null; then
+      read -r white black < <(overlay_pixels "$scratch/view.png" 8 8 408 48) || fail "cannot read the screenshot"
+      [ "$white" -gt 300 ] && [ "$black" -gt 2000 ] || fail "no overlay text: $white white, $black black pixels"
+    fi
+    ;;
+  view-technique-toggles)
+    # K (texture-space skin) and H (deep opacity maps) rebuild the renderer's scene mid-run; O then
+    # hides the overlay. Validation stays clean (MANE_VALIDATION=1) and the frame is still drawn.
+    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view --frames 5 --press KHO --screenshot "$scratch/view.png" \
+      >"$scratch/log" 2>&1 || fail "mane view failed: $(cat "$scratch/log")"
+    grep -q "K SKIN TEXTURE  H SHADOWS OSM" "$scratch/log" || fail "K did not switch the skin: $(cat "$scratch/log")"
+    grep -q "K SKIN TEXTURE  H SHADOWS DEEP" "$scratch/log" || fail "H did not switch the shadows: $(cat "$scratch/log")"
+    size=$(stat -c %s "$scratch/view.png") || fail "no screenshot"
+    [ "$size" -gt 20000 ] || fail "the screenshot looks blank ($size bytes)"
+    if command -v python3 >/dev/null; then
+      read -r white black < <(overlay_pixels "$scratch/view.png" 8 8 408 48) || fail "cannot read the screenshot"
+      [ "$white" -lt 20 ] || fail "O did not hide the overlay: $white white pixels"
+    fi
+    "$mane" view --press "K!" 2>"$scratch/err" >/dev/null && fail "--press accepted '!'"
+    grep -q "^mane: --press: no key for '!'" "$scratch/err" || fail "bad --press message: $(cat "$scratch/err")"
+    ;;
+  render-mp4)
+    # An H.264 MP4 of the frames at the render's frame rate, checked by ffprobe.
+    command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null || skip "ffmpeg or ffprobe is not installed"
+    "$mane" render scenes/cape.json --frames 4 --fps 24 --size 160x90 --msaa 1 --out "$scratch/out" \
+      --mp4 "$scratch/video/cape.mp4" >"$scratch/log" 2>&1 || fail "render failed: $(cat "$scratch/log")"
+    grep -q "wrote .*cape.mp4" "$scratch/log" || fail "no 'wrote' line for the MP4: $(cat "$scratch/log")"
+    probe=$(ffprobe -v error -count_frames -select_streams v:0 \
+      -show_entries stream=codec_name,width,height,r_frame_rate,nb_read_frames -of default=noprint_wrappers=1 \
+      "$scratch/video/cape.mp4") || fail "ffprobe cannot read the MP4"
+    for expected in codec_name=h264 width=160 height=90 r_frame_rate=24/1 nb_read_frames=4; do
+      grep -qx "$expected" <<<"$probe" || fail "expected $expected in: $probe"
+    done
+    # An odd size is padded to even (yuv420p), and a longer sequence left in --out is not picked up.
+    "$mane" render scenes/cape.json --frames 2 --size 161x91 --msaa 1 --out "$scratch/out" \
+      --mp4 "$scratch/odd.mp4" >"$scratch/log" 2>&1 || fail "odd-size render failed: $(cat "$scratch/log")"
+    probe=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=width,height,nb_read_frames \
+      -of default=noprint_wrappers=1 "$scratch/odd.mp4") || fail "ffprobe cannot read the odd-size MP4"
+    for expected in width=162 height=92 nb_read_frames=2; do
+      grep -qx "$expected" <<<"$probe" || fail "expected $expected in: $probe"
+    done
+    ;;
+  mp4-needs-ffmpeg)
+    # Without ffmpeg on PATH: one line naming the program, before any frame is rendered.
+    mkdir "$scratch/empty"
+    PATH="$scratch/empty" "$mane" render --mp4 "$scratch/a.mp4" --out "$scratch/out" 2>"$scratch/err" >/dev/null &&
+      fail "exit status 0 without ffmpeg"
+    [ "$(wc -l <"$scratch/err")" -eq 1 ] || fail "expected one line, got: $(cat "$scratch/err")"
+    grep -q "^mane: .*ffmpeg.*not on PATH.*apt-get install ffmpeg" "$scratch/err" || fail "message: $(cat "$scratch/err")"
+    [ ! -e "$scratch/out" ] || fail "frames were rendered before the check: $(ls "$scratch/out")"
+    # A folder is no MP4 file: refused as early, whether ffmpeg is there or not.
+    "$mane" render --mp4 "$scratch/empty" --out "$scratch/out" 2>"$scratch/err" >/dev/null && fail "a folder accepted"
+    grep -q "^mane: --mp4 .*empty is a folder" "$scratch/err" || fail "message: $(cat "$scratch/err")"
+    [ ! -e "$scratch/out" ] || fail "frames were rendered before the check: $(ls "$scratch/out")"
     ;;
   help-for-each-command)
     for command in info render sim view; do

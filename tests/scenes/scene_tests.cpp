@@ -197,7 +197,7 @@ TEST(Scene, SkinMaterialsTakeTheirParametersAndNameBadOnes) {
             "dir/bad.json: materials[0].skin.irradiance_size: expected a multiple of 8 texels in 64..4096");
 
   EXPECT_EQ(errorOf(prefix + R"("kind": "marble"}]})"),
-            "dir/bad.json: materials[0].kind: expected \"lambert\" or \"skin\", got \"marble\"");
+            "dir/bad.json: materials[0].kind: expected \"lambert\", \"skin\" or \"fur\", got \"marble\"");
   EXPECT_EQ(errorOf(prefix + R"("skin": {}}]})"),
             "dir/bad.json: materials[0].skin: applies to materials of kind \"skin\" only");
   EXPECT_EQ(errorOf(prefix + R"("kind": "skin", "skin": {"range": "wide"}}]})"),

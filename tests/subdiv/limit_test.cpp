@@ -330,5 +330,42 @@ TEST(LimitSurface, NGonSubFacesMeetWhereTheHeaderSays) {
   }
 }
 
+// Derivatives are per unit of the ptex face's own (u, v), on quads and on the sub-faces of
+// triangles and n-gons alike (OpenSubdiv scales a non-quad face's patches as if from the cage
+// face: evaluate undoes it), so |∂u × ∂v| is the area a unit of parameter covers. Oracle:
+// central differences of evaluatePosition with step h = 1e-4, exact to O(h²) ≈ 1e-8 relative
+// for first derivatives, O(h²)/h² noise ≈ 1e-8/1e-8 for second ones: 1e-5 and 1e-2 relative.
+// Every face of the cage of pentagon + 5 triangles above, and a cube's quads.
+TEST(LimitSurface, DerivativesArePerUnitOfThePtexFacesOwnParameters) {
+  Cage pyramid;
+  for (int i = 0; i < 5; ++i) {
+    const double angle = 2.0 * 3.14159265358979 * i / 5.0;
+    pyramid.positions.emplace_back(std::cos(angle), std::sin(angle), 0.0f);
+  }
+  pyramid.positions.emplace_back(0.0f, 0.0f, 1.0f);
+  pyramid.faceSizes = {5};
+  pyramid.faceVertices = {4, 3, 2, 1, 0};
+  for (std::uint32_t i = 0; i < 5; ++i) {
+    pyramid.faceSizes.push_back(3);
+    pyramid.faceVertices.insert(pyramid.faceVertices.end(), {i, (i + 1) % 5, 5});
+  }
+  for (const Cage& cage : {pyramid, unitCube()}) {
+    auto surface = LimitSurface::create(cage, {.maxIsolationLevel = 3});
+    ASSERT_TRUE(surface.has_value()) << surface.error().message;
+    constexpr double h = 1e-4;
+    for (std::uint32_t f = 0; f < surface->ptexFaceCount(); ++f)
+      for (const glm::dvec2 uv : {glm::dvec2(0.3, 0.6), glm::dvec2(0.7, 0.2)}) {
+        const LimitSample s = surface->evaluate(f, uv.x, uv.y);
+        const auto at = [&](double du, double dv) { return surface->evaluatePosition(f, uv.x + du, uv.y + dv); };
+        const glm::dvec3 du = (at(h, 0) - at(-h, 0)) / (2 * h), dv = (at(0, h) - at(0, -h)) / (2 * h);
+        const glm::dvec3 duu = (at(h, 0) - 2.0 * at(0, 0) + at(-h, 0)) / (h * h);
+        const double scale = glm::length(du);
+        EXPECT_LT(glm::length(glm::dvec3(s.du) - du), 1e-5 * scale) << "ptex face " << f;
+        EXPECT_LT(glm::length(glm::dvec3(s.dv) - dv), 1e-5 * scale) << "ptex face " << f;
+        EXPECT_LT(glm::length(glm::dvec3(s.duu) - duu), 1e-2 * std::max(glm::length(duu), scale)) << "ptex face " << f;
+      }
+  }
+}
+
 }  // namespace
 }  // namespace mane::subdiv

@@ -19,6 +19,7 @@
 #include "physics/sdf.hpp"
 #include "scenes/scene_meshes.hpp"
 #include "scenes/world.hpp"
+#include "subdiv/limit.hpp"
 #include "tests/scenes/test_support.hpp"
 
 namespace mane::scenes {
@@ -440,6 +441,54 @@ TEST(WorldColliders, CapeStaysOutsideTheBody) {
   Scene bare = copy;
   bare.cloths[0].colliders = {};
   EXPECT_LT(nearestCapsule(std::move(bare)), -0.01f) << "without colliders the cape should swing into the body";
+}
+
+// --- Subdivided bodies ------------------------------------------------------------------------
+
+// A mesh drawn as its Catmull-Clark limit surface collides as that surface too: the field is
+// built from the World's tessellation of the limit (issue 6, item 4), not from the cage. The
+// cage here is a smooth cube (corners ±1, scale 0.1 m), whose limit is a rounded blob well
+// inside it: a corner's limit point is (n²·v + 4·Σ edge neighbours + Σ diagonal neighbours) /
+// (n(n + 5)) with valence n = 3, i.e. ±0.5, 0.87 units (8.7 cm, tens of cells of a 48-node
+// field) from the cage's corner.
+// Oracle: the limit surface evaluated here with OpenSubdiv on a 9 × 9 grid of every ptex face.
+// There the field must read zero within half a cell (measured: 0.085 cells): the tessellation
+// strays at most a pixel of the scene's camera from the limit (about 0.7 mm here, a quarter of a
+// 2.7 mm cell), and trilinear sampling of a smooth surface's distance errs by far less than a
+// cell. At the cage's corners it must read at least 5 cells: a field of the cage would read 0.
+TEST(WorldColliders, ASubdividedMeshsFieldIsItsLimitSurface) {
+  testing::ScratchDir dir;
+  dir.write("cube.obj",
+            "v -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 -1\nv 1 -1 -1\n"
+            "f 1 2 4 3\nf 3 4 6 5\nf 5 6 8 7\nf 7 8 2 1\nf 2 8 6 4\nf 7 1 3 5\n");
+  const std::filesystem::path file = dir.write("cube.json", R"({"name": "blob", "output": {"width": 640, "height": 480},
+      "camera": {"position": [0, 0, 0.5], "target": [0, 0, 0], "near": 0.01, "far": 10},
+      "simulation": {"settle_seconds": 0},
+      "meshes": [{"name": "blob", "source": "cube.obj", "transform": {"scale": 0.1}, "subdivision": {"isolation": 3}}],
+      "grooms": [{"name": "hair", "source": "procedural", "attached_mesh": "blob", "strands": 16, "length": 0.05,
+                  "colliders": {"sdf": {"mesh": "blob", "resolution": 48}}}]})");
+  auto scene = loadScene(file);
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  auto loaded = loadSceneMesh(scene->meshes[0], testing::sharedResolver(), dir.path());
+  ASSERT_TRUE(loaded.has_value() && loaded->cage.has_value());
+  auto limit = subdiv::LimitSurface::create(*loaded->cage, {.maxIsolationLevel = 3});
+  ASSERT_TRUE(limit.has_value()) << limit.error().message;
+  auto world = createWorld(std::move(*scene), testing::sharedResolver());
+  ASSERT_TRUE(world);
+  ASSERT_TRUE(world->simulatedGroom(0).colliders().sdf);
+  const physics::SignedDistanceField& field = *world->simulatedGroom(0).colliders().sdf;
+
+  float worst = 0.0f;
+  for (std::uint32_t f = 0; f < limit->ptexFaceCount(); ++f)
+    for (int j = 0; j <= 8; ++j)
+      for (int i = 0; i <= 8; ++i) {
+        const glm::vec3 onLimit = glm::vec3(limit->evaluatePosition(f, i / 8.0, j / 8.0)) * 0.1f;  // body frame
+        worst = std::max(worst, std::abs(field.sample(onLimit)));
+      }
+  EXPECT_LT(worst, 0.5f * field.cellSize()) << "cell " << field.cellSize() << " m";
+  for (const glm::vec3& corner : loaded->cage->positions)
+    EXPECT_GT(field.sample(corner * 0.1f), 5.0f * field.cellSize()) << "the cage's corner is far outside its limit";
+  RecordProperty("worst_on_limit_in_cells", std::to_string(worst / field.cellSize()));
 }
 
 }  // namespace

@@ -37,13 +37,16 @@ TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   ASSERT_EQ(frame.lights.size(), copy.lights.size());
   // Scenes give the direction light travels; the renderer wants the direction to the light.
   EXPECT_EQ(frame.lights[0].direction, -copy.lights[0].direction);
-  ASSERT_EQ(frame.instances.size(), copy.meshes.size());
+  // The head and the furred bunny, then the two cloth fins.
+  ASSERT_EQ(copy.meshes.size(), 2u);
+  ASSERT_EQ(copy.cloths.size(), 2u);
+  ASSERT_EQ(frame.instances.size(), copy.meshes.size() + copy.cloths.size());
 
   const render::StaticScene statics = world->staticScene();
-  ASSERT_EQ(statics.meshes.size(), 1u);
+  ASSERT_EQ(statics.meshes.size(), 4u);
   EXPECT_EQ(statics.meshes[0].positions.size(), 9279u);  // LeePerrySmith, ../shared/assets/README.md
   EXPECT_EQ(statics.meshes[0].indices.size(), 3u * 17684u);
-  ASSERT_EQ(statics.materials.size(), 2u);  // the scene's skin, then the default material
+  ASSERT_EQ(statics.materials.size(), 4u);  // the scene's skin, fin and fur, then the default material
   EXPECT_EQ(frame.instances[0].material, 0u);
   ASSERT_TRUE(statics.materials[0].albedo.has_value());
   EXPECT_EQ(statics.materials[0].albedo->width, 1024u);
@@ -52,6 +55,13 @@ TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   EXPECT_EQ(statics.materials[0].shading, render::SurfaceShading::kSkin);
   EXPECT_TRUE(statics.materials[0].specularMap.has_value());
   EXPECT_EQ(statics.materials[1].shading, render::SurfaceShading::kLambert);
+  EXPECT_EQ(statics.materials[2].shading, render::SurfaceShading::kFur);
+  EXPECT_EQ(statics.materials[3].shading, render::SurfaceShading::kLambert);
+  ASSERT_EQ(statics.furs.size(), 1u);  // on the bunny, whose fur moves
+  EXPECT_EQ(statics.furs[0].mesh, 1u);
+  EXPECT_EQ(statics.meshes[1].positions.size(), 35947u);  // the Stanford bunny
+  ASSERT_EQ(world->furLeans().size(), 1u);
+  EXPECT_EQ(world->furLeans()[0].leans.size(), 35947u);
   ASSERT_EQ(statics.meshes[0].curvatures.size(), 9279u);
   for (const float inverseRadius : statics.meshes[0].curvatures) ASSERT_TRUE(inverseRadius >= 0.0f);
 }

@@ -1,0 +1,145 @@
+// The whole default frame (issue 8, "Performance"): scenes/nalu.json as `mane render` runs it —
+// World::advance (animation and simulation, 2 threads), the cloth and hair guides handed to the
+// renderer, then every pass with the scene's own post settings — at 1280×720 on the device mane
+// picks (lavapipe here). Each iteration is one frame of 1/30 s, timed by the wall clock; the
+// counters are medians over the iterations: frame_ms (the whole frame, and fps from it), sim_ms
+// (World::advance), gpu_ms (the passes' GPU times summed) and each pass's GPU time.
+//
+//   BM_NaluFrame/variant:0  the scene as shipped (4,095 strands, pre-integrated skin), 1× MSAA
+//   BM_NaluFrame/variant:1  the same at 4× MSAA (`mane render`'s default)
+//   BM_NaluFrame/variant:2  texture-space diffusion (1024² irradiance) instead of pre-integrated skin
+//   BM_NaluFrame/variant:3  deep opacity maps instead of opacity shadow maps
+//   BM_NaluFrame/variant:4  50,000 dense strands from the same guides
+//   BM_NaluFrame/variant:5  100,000 dense strands
+//   BM_NaluFrame/variant:6  the furry creature without its shells and fins (FrameInput::furShells
+//                           off: the bare mesh with the photo), to show what the fur costs
+//
+//   build/release/bench/mane_frame_bench --benchmark_counters_tabular=true
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "render/renderer.hpp"
+#include "scenes/world.hpp"
+
+namespace {
+
+using namespace mane;
+
+render::Device& device() {
+  static std::unique_ptr<render::Device> instance = [] {
+    auto created = render::Device::create(render::deviceSettingsFromEnvironment());
+    if (!created) {
+      std::fprintf(stderr, "frame bench: %s\n", created.error().message.c_str());
+      std::exit(1);
+    }
+    return std::move(*created);
+  }();
+  return *instance;
+}
+
+enum Variant : int { kShipped, kMsaa4, kTextureSpace, kDeepOpacity, kStrands50k, kStrands100k, kNoFurShells };
+
+Result<void> upload(const scenes::World& world, render::Renderer& renderer) {
+  for (const auto& mesh : world.dynamicMeshes())
+    if (auto updated = renderer.updateMesh(mesh.mesh, mesh.positions, mesh.normals); !updated) return updated;
+  for (const auto& hair : world.hairGuides())
+    if (auto updated = renderer.updateHair(hair.groom, hair.positions); !updated) return updated;
+  for (const auto& fur : world.furLeans())
+    if (auto updated = renderer.updateFurLeans(fur.fur, fur.leans); !updated) return updated;
+  return {};
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+void BM_NaluFrame(benchmark::State& state) {
+  const auto variant = static_cast<Variant>(state.range(0));
+  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
+  if (!scene) return state.SkipWithError(scene.error().message.c_str());
+  for (scenes::Groom& groom : scene->grooms) {
+    if (variant == kStrands50k) groom.rendering.denseStrands = 50'000;
+    if (variant == kStrands100k) groom.rendering.denseStrands = 100'000;
+  }
+  auto resolver = scenes::AssetResolver::createDefault();
+  if (!resolver) return state.SkipWithError(resolver.error().message.c_str());
+  auto world = scenes::World::create(std::move(*scene), *resolver);
+  if (!world) return state.SkipWithError(world.error().message.c_str());
+  // Fallbacks (a missing asset) change what is measured: say so beside the figures.
+  for (const std::string& note : world->notes()) std::fprintf(stderr, "note: %s\n", note.c_str());
+
+  render::StaticScene statics = world->staticScene();
+  for (render::MaterialData& material : statics.materials)
+    if (variant == kTextureSpace && material.shading == render::SurfaceShading::kSkin)
+      material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
+  if (variant == kDeepOpacity) statics.hairShadows.mode = render::HairShadowMode::kDeepOpacityMap;
+  auto renderer =
+      render::Renderer::create(device(), {.extent = {1280, 720}, .msaaSamples = variant == kMsaa4 ? 4u : 1u});
+  if (!renderer) return state.SkipWithError(renderer.error().message.c_str());
+  if (auto set = (*renderer)->setScene(statics); !set) return state.SkipWithError(set.error().message.c_str());
+
+  constexpr double kFrameSeconds = 1.0 / 30.0;
+  const auto frame = [&](std::vector<double>* simulationMs) -> Result<std::vector<render::PassTiming>> {
+    const auto start = std::chrono::steady_clock::now();
+    if (auto advanced = world->advance(kFrameSeconds, 2); !advanced) return std::unexpected(advanced.error());
+    if (simulationMs)
+      simulationMs->push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    if (auto uploaded = upload(*world, **renderer); !uploaded) return std::unexpected(uploaded.error());
+    render::FrameInput input = world->frameInput();
+    input.post.frameSeconds = float(kFrameSeconds);
+    if (variant == kNoFurShells) input.furShells = false;
+    return (*renderer)->render(input);
+  };
+  // Untimed: first-use work (pipeline compiles, the diffusion's first irradiance).
+  if (auto first = frame(nullptr); !first) return state.SkipWithError(first.error().message.c_str());
+
+  std::vector<double> frameMs, simulationMs, gpuMs;
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> passMs;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    auto timings = frame(&simulationMs);
+    if (!timings) return state.SkipWithError(timings.error().message.c_str());
+    frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    double total = 0.0;
+    for (const render::PassTiming& timing : *timings) {
+      if (!passMs.contains(timing.pass)) order.push_back(timing.pass);
+      passMs[timing.pass].push_back(timing.milliseconds);
+      total += timing.milliseconds;
+    }
+    gpuMs.push_back(total);
+  }
+  state.counters["frame_ms"] = median(frameMs);
+  state.counters["fps"] = 1000.0 / median(frameMs);
+  state.counters["sim_ms"] = median(simulationMs);
+  state.counters["gpu_ms"] = median(gpuMs);
+  for (const std::string& pass : order) {
+    std::string name = pass;
+    std::replace(name.begin(), name.end(), ' ', '_');
+    state.counters[name + "_ms"] = median(passMs[pass]);
+  }
+  std::size_t strands = 0;
+  for (const render::HairGroomData& groom : statics.grooms) strands += groom.layout.strands.size();
+  state.counters["strands"] = double(strands);
+  state.SetLabel(device().info().name);
+}
+
+BENCHMARK(BM_NaluFrame)
+    ->ArgName("variant")
+    ->DenseRange(kShipped, kNoFurShells)
+    ->Iterations(9)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
