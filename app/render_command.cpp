@@ -12,6 +12,7 @@
 #include "app/commands.hpp"
 #include "app/mp4_encoding.hpp"
 #include "app/scene_loading.hpp"
+#include "scenes/renderer_upload.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
 
@@ -104,10 +105,12 @@ void run(const RenderOptions& options) {
     if (frame > 0)
       if (auto advanced = world->advance(1.0 / options.fps, options.threads); !advanced)
         return failWith(advanced.error().message);
-    if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
+    if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
+      return failWith(uploaded.error().message);
     render::FrameInput frameInput = world->frameInput();
     frameInput.post.frameSeconds = float(1.0 / options.fps);
-    if (auto refined = refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
+    if (auto refined =
+            scenes::refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
         !refined)
       return failWith(refined.error().message);
     auto frameTimings = (*renderer)->render(frameInput);

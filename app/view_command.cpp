@@ -20,6 +20,7 @@
 
 #include "app/commands.hpp"
 #include "app/scene_loading.hpp"
+#include "scenes/renderer_upload.hpp"
 #include "render/passes/text_overlay.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
@@ -217,7 +218,8 @@ void run(const ViewOptions& options) {
   if (!renderer) return failWith(renderer.error().message);
   render::StaticScene drawn = world->staticScene();
   if (auto uploaded = (*renderer)->setScene(drawn); !uploaded) return failWith(uploaded.error().message);
-  if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
+  if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
+    return failWith(uploaded.error().message);
   std::cout << kKeyHelp << '\n';
 
   InputState input;
@@ -237,7 +239,8 @@ void run(const ViewOptions& options) {
       (*device)->device().waitIdle();
       drawn = withTechniques(world->staticScene(), input);
       if (auto uploaded = (*renderer)->setScene(drawn); !uploaded) return failWith(uploaded.error().message);
-      if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
+      if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
+        return failWith(uploaded.error().message);
       std::cout << techniqueLine(drawn, world->frameInput()) << '\n';
     }
     const auto now = std::chrono::steady_clock::now();
@@ -248,7 +251,8 @@ void run(const ViewOptions& options) {
       // Real time, capped so a slow frame (lavapipe) plays in slow motion rather than jumping.
       if (auto advanced = world->advance(std::min(dt, 1.0 / 30.0), options.threads); !advanced)
         return failWith(advanced.error().message);
-      if (auto uploaded = uploadDynamicMeshes(*world, **renderer); !uploaded) return failWith(uploaded.error().message);
+      if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
+        return failWith(uploaded.error().message);
       input.stepOnce = false;
     }
     render::FrameInput frameInput = world->frameInput();
@@ -260,7 +264,8 @@ void run(const ViewOptions& options) {
     // Subdivided meshes follow the camera (and their own motion), but not while the orbit is being
     // dragged: a re-tessellation can rebuild a voxel translucency table (seconds).
     if (!input.orbit.dragging)
-      if (auto refined = refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
+      if (auto refined =
+              scenes::refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
           !refined)
         return failWith(refined.error().message);
     auto rendered = (*renderer)->render(frameInput);

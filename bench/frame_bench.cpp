@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "render/renderer.hpp"
+#include "scenes/renderer_upload.hpp"
 #include "scenes/world.hpp"
 
 namespace {
@@ -46,16 +47,6 @@ render::Device& device() {
 }
 
 enum Variant : int { kShipped, kMsaa4, kTextureSpace, kDeepOpacity, kStrands50k, kStrands100k, kNoFurShells };
-
-Result<void> upload(const scenes::World& world, render::Renderer& renderer) {
-  for (const auto& mesh : world.dynamicMeshes())
-    if (auto updated = renderer.updateMesh(mesh.mesh, mesh.positions, mesh.normals); !updated) return updated;
-  for (const auto& hair : world.hairGuides())
-    if (auto updated = renderer.updateHair(hair.groom, hair.positions); !updated) return updated;
-  for (const auto& fur : world.furLeans())
-    if (auto updated = renderer.updateFurLeans(fur.fur, fur.leans); !updated) return updated;
-  return {};
-}
 
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
@@ -95,7 +86,8 @@ void BM_NaluFrame(benchmark::State& state) {
     if (simulationMs)
       simulationMs->push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    if (auto uploaded = upload(*world, **renderer); !uploaded) return std::unexpected(uploaded.error());
+    if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
+      return std::unexpected(uploaded.error());
     render::FrameInput input = world->frameInput();
     input.post.frameSeconds = float(kFrameSeconds);
     if (variant == kNoFurShells) input.furShells = false;

@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include "render/renderer.hpp"
+#include "scenes/renderer_upload.hpp"
 #include "scenes/world.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
@@ -88,18 +89,8 @@ TEST_P(EveryScene, LoadsAndRendersOneSmallFrameThatIsNotBlank) {
   ASSERT_TRUE(renderer.has_value()) << renderer.error().message;
   const render::StaticScene statics = world->staticScene();
   ASSERT_TRUE((*renderer)->setScene(statics).has_value());
-  for (const auto& mesh : world->dynamicMeshes()) {
-    auto updated = (*renderer)->updateMesh(mesh.mesh, mesh.positions, mesh.normals);
-    ASSERT_TRUE(updated.has_value()) << updated.error().message;
-  }
-  for (const auto& hair : world->hairGuides()) {
-    auto updated = (*renderer)->updateHair(hair.groom, hair.positions);
-    ASSERT_TRUE(updated.has_value()) << updated.error().message;
-  }
-  for (const auto& fur : world->furLeans()) {
-    auto updated = (*renderer)->updateFurLeans(fur.fur, fur.leans);
-    ASSERT_TRUE(updated.has_value()) << updated.error().message;
-  }
+  auto uploaded = uploadFrameState(*world, **renderer);
+  ASSERT_TRUE(uploaded.has_value()) << uploaded.error().message;
   const render::FrameInput frame = world->frameInput();
   ASSERT_FALSE(frame.instances.empty() && statics.grooms.empty()) << "the scene draws nothing";
   auto timings = (*renderer)->render(frame);
