@@ -106,6 +106,12 @@ struct FurParameters {
   /// Where the tips lean, world space, in units of `thickness`, projected on the surface per
   /// vertex: (0, −0.5, 0) combs the fur down by half its height; zero stands it up.
   glm::vec3 comb{0.0f};
+  /// The fur-direction field, in the mesh's model space: non-zero lays the photo along it instead
+  /// of by the mesh's uvs. At each vertex the field is projected on the surface, and the photo's
+  /// top-to-bottom axis follows it (render/passes/fur_pass.hpp, "Lay"); zero keeps the uvs.
+  glm::vec3 layDirection{0.0f};
+  /// With a layDirection: photo repeats per metre along the surface.
+  float layRepeatsPerMetre = 30.0f;
 };
 
 /// A surface: albedo (sRGB texture times base colour) with an optional tangent-space normal map

@@ -31,7 +31,9 @@ Result<FurSurfaces> FurSurfaces::create(const Device& device, const StaticScene&
                                      .specularExponent = fur.specularExponent,
                                      .specularStrength = fur.specularStrength,
                                      .tint = material.baseColor,
-                                     .comb = fur.comb},
+                                     .comb = fur.comb,
+                                     .layDirection = fur.layDirection,
+                                     .layRepeatsPerMetre = fur.layRepeatsPerMetre},
                             .pass = std::move(*pass)});
   }
   return result;

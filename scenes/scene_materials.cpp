@@ -86,6 +86,9 @@ void parseFur(const Json& json, const std::string& path, Material& material) {
   if (const Json* motion = fields.take("dynamics"))
     material.furMotion = parseFurMotion(*motion, fields.child("dynamics"));
   fur.comb = fields.optional<glm::vec3>("comb", fur.comb);
+  fur.layDirection = fields.optional<glm::vec3>("lay_direction", fur.layDirection);
+  require(std::isfinite(glm::length(fur.layDirection)), fields.child("lay_direction"), "expected a finite direction");
+  fur.layRepeatsPerMetre = material.furUvScale;
   require(std::isfinite(glm::length(fur.comb)) && glm::length(fur.comb) <= 2.0f, fields.child("comb"),
           "expected a lean of at most 2 fur heights");
   fields.finish();

@@ -20,7 +20,8 @@ layout(set = 0, binding = 0) uniform FurUniforms {
   vec4 lightRadiance;   // rgb
   vec4 ambient;         // rgb
   vec4 shells;          // x: h_b (metres), y: N, z: Kajiya-Kay exponent, w: specular strength
-  vec4 lay;             // x: cos, y: sin of the fur's tilt away from its direction
+  vec4 lay;             // x: cos, y: sin of the fur's tilt away from its direction, z: the model's scale
+  vec4 layField;        // xyz: the fur-direction field (model space), w: photo repeats per metre (0: by uvs)
   vec4 tint;            // rgb: multiplies the photo's colour
   vec4 comb;            // xyz: world lean of the tips (units of h_b) before projection on the surface
   vec4 thresholds[17];  // I(0 … 64), four to a vec4
@@ -52,6 +53,18 @@ vec3 furOffset(vec3 n, vec3 lean, float s) {
 }
 vec3 furDirection(vec3 n, vec3 lean, float s) {
   return normalize(n + 2.0 * s * lean);
+}
+
+// Where a vertex samples the photo (FurPass, "Lay"): its uv, or with a fur-direction field the
+// point's coordinates in the frame (n × f, f) of the field f projected on the surface.
+// `position` and `normal` in model space.
+vec2 photoCoordinates(vec2 uv, vec3 position, vec3 normal) {
+  if (fur.layField.w <= 0.0) return uv;
+  vec3 n = normalize(normal);
+  vec3 f = fur.layField.xyz - dot(fur.layField.xyz, n) * n;
+  if (dot(f, f) < 1e-6) f = abs(n.x) < 0.9 ? cross(n, vec3(1, 0, 0)) : cross(n, vec3(0, 1, 0));
+  f = normalize(f);
+  return vec2(dot(position, cross(n, f)), dot(position, f)) * (fur.layField.w * fur.lay.z);
 }
 
 uint layerCount() {

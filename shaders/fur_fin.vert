@@ -45,10 +45,11 @@ void main() {
   float s = corner.y * (1.0 - 1.0 / float(layers));  // up to layer 1, the top shell
   vec3 lean = furLean(normal, vertexLeans[vertex].xyz);
   vec3 world = (fur.model * vec4(meshVec3(vertex, 0u), 1.0)).xyz + furOffset(normal, lean, s);
-  vec2 uvAlong = meshUv(edge.y) - meshUv(edge.x);
+  vec2 uvAlong = photoCoordinates(meshUv(edge.y), meshVec3(edge.y, 0u), meshVec3(edge.y, 3u)) -
+                photoCoordinates(meshUv(edge.x), meshVec3(edge.x, 0u), meshVec3(edge.x, 3u));
   outWorld = world;
   outNormal = normal;
-  outUv = meshUv(vertex);
+  outUv = photoCoordinates(meshUv(vertex), meshVec3(vertex, 0u), meshVec3(vertex, 3u));
   outDirection = furDirection(normal, lean, s);
   outHeight = corner.y;
   outAcross = 0.5 * vec2(-uvAlong.y, uvAlong.x);

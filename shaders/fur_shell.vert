@@ -30,7 +30,7 @@ void main() {
   vec3 world = (fur.model * vec4(inPosition, 1.0)).xyz + furOffset(normal, lean, s);
   outWorld = world;
   outNormal = normal;
-  outUv = inUv;
+  outUv = photoCoordinates(inUv, inPosition, inNormal);
   outLayer = layer;
   outDirection = furDirection(normal, lean, s);
   gl_Position = fur.viewProjection * vec4(world, 1.0);

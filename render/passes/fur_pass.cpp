@@ -24,15 +24,16 @@ struct FurUniforms {
   glm::vec4 lightDirection;
   glm::vec4 lightRadiance;
   glm::vec4 ambient;
-  glm::vec4 shells;  // x: h_b, y: N, z: Kajiya-Kay exponent, w: specular strength
-  glm::vec4 lay;     // x: cos, y: sin of the lay angle
-  glm::vec4 tint;    // rgb: multiplies the photo's colour
-  glm::vec4 comb;    // xyz: world lean of the fur's top, in units of h_b, before its projection on the surface
+  glm::vec4 shells;    // x: h_b, y: N, z: Kajiya-Kay exponent, w: specular strength
+  glm::vec4 lay;       // x: cos, y: sin of the lay angle, z: the model's scale
+  glm::vec4 layField;  // xyz: the fur-direction field (model space), w: photo repeats per metre (0: by uvs)
+  glm::vec4 tint;      // rgb: multiplies the photo's colour
+  glm::vec4 comb;      // xyz: world lean of the fur's top, in units of h_b, before its projection on the surface
   std::array<float, 4 * 17> thresholds;
   HairShadowUniforms shadows;
 };
 static_assert((kMaxFurLayers + 1) <= 4 * 17, "shaders/fur_common.glsl holds I(0 … 64)");
-static_assert(sizeof(FurUniforms) == 3 * 64 + 8 * 16 + 17 * 16 + sizeof(HairShadowUniforms));
+static_assert(sizeof(FurUniforms) == 3 * 64 + 9 * 16 + 17 * 16 + sizeof(HairShadowUniforms));
 
 // Binding of the first hair shadow image (shaders/fur_common.glsl); 2 × 4 of them.
 constexpr std::uint32_t kFirstShadowBinding = 5;
@@ -375,7 +376,11 @@ Result<void> FurPass::update(const FurView& view) {
   uniforms.ambient = glm::vec4(view.ambient, 0.0f);
   uniforms.shells =
       glm::vec4(model_.thickness(), float(model_.layers()), view.look.specularExponent, view.look.specularStrength);
-  uniforms.lay = glm::vec4(std::cos(view.look.layAngle), std::sin(view.look.layAngle), 0.0f, 0.0f);
+  uniforms.lay = glm::vec4(std::cos(view.look.layAngle), std::sin(view.look.layAngle),
+                           glm::length(glm::vec3(view.model[0])), 0.0f);
+  const bool field = glm::length(view.look.layDirection) > 0.0f;
+  uniforms.layField =
+      field ? glm::vec4(glm::normalize(view.look.layDirection), view.look.layRepeatsPerMetre) : glm::vec4(0.0f);
   uniforms.tint = glm::vec4(view.look.tint, 1.0f);
   uniforms.comb = glm::vec4(view.look.comb, 0.0f);
   const std::vector<float> thresholds = model_.thresholds();

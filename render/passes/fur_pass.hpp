@@ -30,6 +30,14 @@
 // from the skin to the top shell along the vertex normals, textured from the photo by the same
 // luminance → height map as the shells (shaders/fur_fin.frag).
 //
+// Lay. By default the photo is sampled by the mesh's uvs, so the way its hairs lie follows the
+// uv layout. With a fur-direction field (FurLook::layDirection, model space) each vertex takes
+// its photo coordinates from a frame of its own instead: f, the field projected on the surface
+// (any tangent where the field runs along the normal), and b = n × f; the photo's coordinates
+// are (p·b, p·f) × repeats per metre × the model's scale, so the photo's top-to-bottom axis (and
+// the hairs drawn along it) follow the field over the whole surface, with no uv seams. Where the
+// field turns, the photo shears; that is the price of a projection without a parameterization.
+//
 // Lighting (shaders/fur_common.glsl): Kajiya & Kay 1989 diffuse and specular for fibres along
 // the normal tilted by FurLook::layAngle (averaged over four azimuths), normalised so that light
 // along the normal gives back the photo's colour; a half-Lambert term of the normal darkens the
@@ -91,6 +99,9 @@ struct FurLook {
   /// Where the fur's tips lean, world space, in units of h_b (e.g. (0, −0.5, 0): combed down by
   /// half its height): projected on each vertex's tangent plane and added to its lean (setLeans).
   glm::vec3 comb{0.0f};
+  /// The fur-direction field, model space; zero: the photo by the mesh's uvs ("Lay" above).
+  glm::vec3 layDirection{0.0f};
+  float layRepeatsPerMetre = 30.0f;  ///< with a layDirection: photo repeats per metre
 };
 
 /// One furred object as seen this frame.

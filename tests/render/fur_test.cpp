@@ -5,6 +5,7 @@
 //    and none beyond the fur's outer sphere; fins change only pixels at the silhouette;
 //  - leaning fur: combed fur moves the way it is combed and stays within its length; per-vertex
 //    leans equal to the comb's projection draw the same fur;
+//  - the fur-direction field: the photo laid along it matches the same coordinates given as uvs;
 //  - shadows: the fur's shadow strands run from skin to tip; in its own opacity map the fur
 //    darkens its far side and not its lit side;
 //  - colour: under white light without specular, every fur pixel's chromaticity lies within
@@ -318,6 +319,42 @@ TEST_F(FurPassTest, PerVertexLeansMatchTheCombTheyProject) {
   EXPECT_FALSE(pass->setLeans(std::span(leans).first(3)).has_value()) << "one lean per vertex";
   leans[5].y = std::nanf("");
   EXPECT_FALSE(pass->setLeans(leans).has_value()) << "a NaN lean";
+}
+
+// The fur-direction field (FurLook::layDirection): the shaders' photo coordinates equal the
+// CPU's for the same frames, (p·(n × f), p·f) × repeats per metre with f the field projected on
+// the surface: the sphere drawn with the field matches the sphere whose uvs are those
+// coordinates, drawn by its uvs (pixels may differ only where rounding flips the alpha test:
+// under 1 %). And it is not the uv mapping: without the field the image differs.
+TEST_F(FurPassTest, TheFurDirectionFieldLaysThePhotoAlongTheSurface) {
+  MANE_PHOTO_OR_SKIP(image);
+  auto pass = makePass(image, {});
+  ASSERT_TRUE(pass);
+  SphereMesh sphere = unitSphere(24, 48);
+  const glm::vec3 field(0.0f, -1.0f, 0.3f);
+  constexpr float kRepeats = 2.5f;
+  ASSERT_TRUE(pass->setMesh(sphere.data()).has_value());
+  const Pixels laid = render(*pass, sphereView({.layDirection = field, .layRepeatsPerMetre = kRepeats}));
+  const Pixels byUvs = render(*pass, sphereView({}));
+  const glm::vec3 d = glm::normalize(field);
+  for (std::size_t v = 0; v < sphere.positions.size(); ++v) {
+    const glm::vec3 n = glm::normalize(sphere.normals[v]);
+    glm::vec3 f = d - glm::dot(d, n) * n;
+    if (glm::dot(f, f) < 1e-6f)
+      f = std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0)) : glm::cross(n, glm::vec3(0, 1, 0));
+    f = glm::normalize(f);
+    const glm::vec3& p = sphere.positions[v];
+    sphere.uvs[v] = glm::vec2(glm::dot(p, glm::cross(n, f)), glm::dot(p, f)) * kRepeats;
+  }
+  ASSERT_TRUE(pass->setMesh(sphere.data()).has_value());
+  const Pixels reference = render(*pass, sphereView({}));
+  std::size_t differing = 0, differingFromUvs = 0;
+  for (std::size_t i = 0; i < laid.size(); ++i) {
+    differing += glm::any(glm::greaterThan(glm::abs(laid[i] - reference[i]), glm::vec4(2e-2f)));
+    differingFromUvs += glm::any(glm::greaterThan(glm::abs(laid[i] - byUvs[i]), glm::vec4(2e-2f)));
+  }
+  EXPECT_LT(double(differing), 0.01 * double(laid.size()));
+  EXPECT_GT(double(differingFromUvs), 0.05 * double(laid.size()));
 }
 
 // The fur as a shadow caster: one strand per vertex from the placed skin point p to the top of

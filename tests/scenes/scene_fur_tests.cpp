@@ -39,7 +39,8 @@ TEST(SceneFur, TakesTheRenderersDefaultsAndEveryField) {
   const Material full = materialOf(R"(, "kind": "fur", "albedo_texture": "fur/grass_CC0.png",
       "fur": {"layers": 32, "thickness": 0.01, "uv_scale": 20, "fins": false, "lay_degrees": 45,
               "specular_exponent": 80, "specular_strength": 0.2, "comb": [0, -0.5, 0],
-              "dynamics": {"guides": 500, "shape_stiffness": 0.7, "damping": 0.1, "iterations": 6}})");
+              "dynamics": {"guides": 500, "shape_stiffness": 0.7, "damping": 0.1, "iterations": 6},
+              "lay_direction": [1, 0, 0]})");
   EXPECT_EQ(full.fur.layers, 32u);
   EXPECT_FLOAT_EQ(full.fur.thickness, 0.01f);
   EXPECT_FLOAT_EQ(full.furUvScale, 20.0f);
@@ -48,6 +49,9 @@ TEST(SceneFur, TakesTheRenderersDefaultsAndEveryField) {
   EXPECT_FLOAT_EQ(full.fur.specularExponent, 80.0f);
   EXPECT_FLOAT_EQ(full.fur.specularStrength, 0.2f);
   EXPECT_EQ(full.fur.comb, glm::vec3(0.0f, -0.5f, 0.0f));
+  EXPECT_EQ(plain.fur.layDirection, glm::vec3(0.0f)) << "the photo by uvs unless a field is given";
+  EXPECT_EQ(full.fur.layDirection, glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_FLOAT_EQ(full.fur.layRepeatsPerMetre, 20.0f) << "uv_scale, per metre along the surface";
   EXPECT_FALSE(plain.furMotion.has_value()) << "fur stands still unless it asks for dynamics";
   ASSERT_TRUE(full.furMotion.has_value());
   EXPECT_EQ(full.furMotion->guides, 500);
