@@ -210,8 +210,9 @@ Result<void> World::loadFurDynamics() {
 
 std::vector<World::FurLeans> World::furLeans() const {
   std::vector<FurLeans> result;
+  const std::size_t drawn = furSurfaces().size();
   for (const MovingFur& fur : movingFurs_)
-    if (fur.fur < furSurfaces().size()) result.push_back({fur.fur, fur.dynamics.leans()});
+    if (fur.fur < drawn) result.push_back({fur.fur, fur.dynamics.leans()});
   return result;
 }
 
