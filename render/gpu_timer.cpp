@@ -46,7 +46,9 @@ std::vector<PassTiming> GpuTimer::results() const {
   for (std::size_t i = 0; i < passes_.size(); ++i) {
     // Counters narrower than 64 bits wrap; the masked difference is still the elapsed ticks.
     const std::uint64_t elapsed = (ticks[2 * i + 1] - ticks[2 * i]) & validMask_;
-    timings.push_back({passes_[i], double(elapsed) * nanosecondsPerTick * 1e-6});
+    const std::uint64_t start = (ticks[2 * i] - ticks[0]) & validMask_;
+    timings.push_back(
+        {passes_[i], double(elapsed) * nanosecondsPerTick * 1e-6, double(start) * nanosecondsPerTick * 1e-6});
   }
   return timings;
 }

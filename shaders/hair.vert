@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Camera-facing ribbons pulled from the dense-strand storage buffers (see render/passes/hair_pass.hpp).
-// gl_VertexIndex = 6 × segment + corner; segment = k × (Nd − 1) + i joins vertices i and i + 1 of
-// strand order[k], the k-th strand in drawing order (back to front).
+// Indexed: gl_VertexIndex = 2 × (k × Nd + i) + side is vertex i of strand order[k], the k-th
+// strand in drawing order (back to front), pushed to side 0 (−) or 1 (+). The index buffer joins
+// them into two triangles per segment, so each ribbon vertex is shaded once, not six times.
 #include "hair_uniforms.glsl"
 
 layout(set = 0, binding = 1, std430) readonly buffer Positions {
@@ -23,17 +24,11 @@ layout(set = 0, binding = 4, std430) readonly buffer DrawOrder {
 layout(location = 0) out vec3 outRadiance;
 layout(location = 1) out float outCoverage;  // true width / drawn width, ≤ 1
 
-// Two triangles per segment, counter-clockwise seen from the side s points to:
-// (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +).
-const uint kEnd[6] = uint[6](0u, 1u, 1u, 0u, 1u, 0u);
-const float kSide[6] = float[6](-1.0, -1.0, 1.0, -1.0, 1.0, 1.0);
-
 void main() {
   uint verticesPerStrand = hair.counts.y;
-  uint segment = uint(gl_VertexIndex) / 6u;
-  uint corner = uint(gl_VertexIndex) % 6u;
-  uint strand = order[segment / (verticesPerStrand - 1u)];
-  uint vertex = strand * verticesPerStrand + segment % (verticesPerStrand - 1u) + kEnd[corner];
+  uint ribbonPoint = uint(gl_VertexIndex) >> 1u;
+  float sideSign = (gl_VertexIndex & 1) == 0 ? -1.0 : 1.0;
+  uint vertex = order[ribbonPoint / verticesPerStrand] * verticesPerStrand + ribbonPoint % verticesPerStrand;
 
   vec4 point = positions[vertex];
   vec3 tangent = tangents[vertex].xyz;
@@ -56,7 +51,7 @@ void main() {
   float drawnHalfWidth = max(halfWidth, 0.5 * hair.groom.w / max(pixelsPerMetre, 1e-6));
   outCoverage = halfWidth / drawnHalfWidth;
 
-  vec3 world = point.xyz + side * (kSide[corner] * drawnHalfWidth);
+  vec3 world = point.xyz + side * (sideSign * drawnHalfWidth);
   outRadiance = radiance[vertex].rgb;
   gl_Position = hair.viewProjection * vec4(world, 1.0);
 }

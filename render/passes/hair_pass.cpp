@@ -44,6 +44,22 @@ Result<void> validate(const HairGroomSettings& groom) {
   return {};
 }
 
+// Two triangles per segment over the ribbon vertices 2 × (k × Nd + i) + side of the vertex shader,
+// counter-clockwise seen from the side s points to: (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +).
+// The count fits 32 bits (setStrands checks), and so does every index, as 2·Nd ≤ 6·(Nd − 1).
+Buffer ribbonIndices(const Device& device, std::uint32_t strands, std::uint32_t verticesPerStrand) {
+  std::vector<std::uint32_t> indices;
+  indices.reserve(std::size_t(strands) * (verticesPerStrand - 1) * 6);
+  for (std::uint32_t k = 0; k < strands; ++k)
+    for (std::uint32_t i = 0; i + 1 < verticesPerStrand; ++i) {
+      const std::uint32_t minus = 2 * (k * verticesPerStrand + i), plus = minus + 1;
+      const std::uint32_t nextMinus = minus + 2, nextPlus = minus + 3;
+      indices.insert(indices.end(), {minus, nextMinus, nextPlus, minus, nextPlus, plus});
+    }
+  if (indices.empty()) indices.push_back(0);  // a zero-sized buffer is not allowed
+  return Buffer::withData(device, std::as_bytes(std::span(indices)), vk::BufferUsageFlagBits::eIndexBuffer);
+}
+
 }  // namespace
 
 Result<std::unique_ptr<HairPass>> HairPass::create(const Device& device, const HairPassSettings& settings) {
@@ -85,11 +101,11 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
     return fail("hair strands: the position, tangent or radiance buffer is null");
   if (strands.verticesPerStrand < 2)
     return fail("hair strands: need at least 2 vertices per strand, got " + std::to_string(strands.verticesPerStrand));
-  const std::uint64_t vertices = std::uint64_t(strands.strandCount) * (strands.verticesPerStrand - 1) * 6;
-  if (vertices > std::numeric_limits<std::uint32_t>::max())
+  const std::uint64_t indices = std::uint64_t(strands.strandCount) * (strands.verticesPerStrand - 1) * 6;
+  if (indices > std::numeric_limits<std::uint32_t>::max())
     return fail("hair strands: " + std::to_string(strands.strandCount) + " strands × " +
-                std::to_string(strands.verticesPerStrand) + " vertices need " + std::to_string(vertices) +
-                " ribbon vertices, more than one draw can count (2^32 − 1)");
+                std::to_string(strands.verticesPerStrand) + " vertices need " + std::to_string(indices) +
+                " ribbon indices, more than one draw can count (2^32 − 1)");
 
   const std::array buffers{vk::DescriptorBufferInfo{.buffer = strands.positions, .offset = 0, .range = VK_WHOLE_SIZE},
                            vk::DescriptorBufferInfo{.buffer = strands.tangents, .offset = 0, .range = VK_WHOLE_SIZE},
@@ -107,8 +123,9 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   auto* order = reinterpret_cast<std::uint32_t*>(order_.mapped().data());
   for (std::uint32_t s = 0; s < strands.strandCount; ++s) order[s] = s;
   writeStorageBuffer(*device_, set_, 4, order_);
+  indices_ = ribbonIndices(*device_, strands.strandCount, strands.verticesPerStrand);
   strandCount_ = strands.strandCount;
-  vertexCount_ = static_cast<std::uint32_t>(vertices);
+  indexCount_ = static_cast<std::uint32_t>(indices);
   verticesPerStrand_ = strands.verticesPerStrand;
   // Keep the uniforms of an earlier update in step (counts.y is Nd).
   std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts) + sizeof(std::uint32_t), &verticesPerStrand_,
@@ -156,11 +173,12 @@ Result<void> HairPass::update(const FrameInput& frame, vk::Extent2D extent, cons
 }
 
 void HairPass::draw(const vk::raii::CommandBuffer& commands) const {
-  if (vertexCount_ == 0 || extent_.width == 0) return;
+  if (indexCount_ == 0 || extent_.width == 0) return;
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 0, {*set_}, {});
   setViewportAndScissor(commands, extent_);
-  commands.draw(vertexCount_, 1, 0, 0);
+  commands.bindIndexBuffer(*indices_.buffer(), 0, vk::IndexType::eUint32);
+  commands.drawIndexed(indexCount_, 1, 0, 0, 0);
 }
 
 }  // namespace mane::render

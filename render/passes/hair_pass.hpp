@@ -9,12 +9,14 @@
 // HairLightingPass::radiance()), strand-major, Nd vertices per strand. Any buffers with
 // STORAGE_BUFFER usage in that layout work (tests make their own).
 //
-// Ribbon expansion (vertex pulling). One draw of strands × (Nd − 1) × 6 vertices and no vertex
-// buffers: the vertex shader finds its segment and corner from gl_VertexIndex, reads the end
-// point's position and tangent, and pushes it sideways along s = normalize(t × ωe) (ωe: towards
-// the eye), perpendicular to the strand and to the view, by half the strand width. Both segments
-// that share a vertex compute the same offset there, so the ribbon has no cracks at the joints.
-// The width is metres (HairGroomSettings::width, tapered linearly to tipWidthScale at t = 1).
+// Ribbon expansion (vertex pulling). One indexed draw of two triangles per segment and no vertex
+// buffers: the vertex shader finds its strand vertex and side from the index (2 per strand vertex,
+// so lavapipe's vertex cache shades each once where a plain draw of 6 corners per segment shaded
+// every strand vertex 12 times), reads its position and tangent, and pushes it sideways along
+// s = normalize(t × ωe) (ωe: towards the eye), perpendicular to the strand and to the view, by half
+// the strand width. Both segments that share a vertex compute the same offset there, so the ribbon
+// has no cracks at the joints. The width is metres (HairGroomSettings::width, tapered linearly to
+// tipWidthScale at t = 1).
 //
 // Anti-aliasing: MSAA plus coverage-scaled alpha, not alpha-to-coverage.
 //  - A ribbon narrower than minimumPixelWidth on screen (measured by projecting the half-width
@@ -101,7 +103,7 @@ public:
   HairPass& operator=(const HairPass&) = delete;
 
   /// Points the pass at `strands`. Errors (nothing changed): null buffers, fewer than 2
-  /// vertices per strand, or more ribbon vertices than one draw can count (2³² − 1).
+  /// vertices per strand, or more ribbon indices than one draw can count (2³² − 1).
   [[nodiscard]] Result<void> setStrands(const HairStrands& strands);
 
   /// The order to draw the strands in, first to last: a permutation of 0..strandCount − 1
@@ -124,8 +126,8 @@ public:
   /// reads (StrandInterpolationPass::record's and HairLightingPass::record's barriers do that).
   void draw(const vk::raii::CommandBuffer& commands) const;
 
-  /// Vertices of the ribbon draw: strands × (Nd − 1) × 6.
-  [[nodiscard]] std::uint32_t ribbonVertexCount() const { return vertexCount_; }
+  /// Indices of the ribbon draw: strands × (Nd − 1) × 6, three per triangle.
+  [[nodiscard]] std::uint32_t ribbonIndexCount() const { return indexCount_; }
 
 private:
   HairPass(const Device& device, const HairPassSettings& settings);
@@ -137,9 +139,10 @@ private:
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
-  Buffer order_;  ///< uint per strand, host-visible
+  Buffer order_;    ///< uint per strand, host-visible
+  Buffer indices_;  ///< two triangles per segment over the 2 × strands × Nd ribbon vertices
   std::uint32_t strandCount_ = 0;
-  std::uint32_t vertexCount_ = 0;
+  std::uint32_t indexCount_ = 0;
   std::uint32_t verticesPerStrand_ = 0;
 };
 
