@@ -186,6 +186,9 @@ HeadMotion parseHeadMotion(const Json& json, const std::string& path) {
               "expected times in strictly increasing order");
       motion.keyframes.push_back(frame);
     }
+    motion.loop = fields.optional<bool>("loop", false);
+    require(!motion.loop || motion.keyframes.size() >= 2, fields.child("loop"),
+            "expected at least two keyframes to loop over");
   }
   fields.finish();
   return motion;
@@ -306,6 +309,8 @@ Keyframe HeadMotion::poseAt(float timeSeconds) const {
       break;
     case HeadMotionKind::keyframes: {
       if (keyframes.empty()) break;
+      const float first = keyframes.front().timeSeconds, last = keyframes.back().timeSeconds;
+      if (loop && timeSeconds > last) timeSeconds = first + std::fmod(timeSeconds - first, last - first);
       if (timeSeconds <= keyframes.front().timeSeconds) return keyframes.front();
       if (timeSeconds >= keyframes.back().timeSeconds) return keyframes.back();
       const auto next = std::upper_bound(keyframes.begin(), keyframes.end(), timeSeconds,

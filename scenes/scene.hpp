@@ -174,6 +174,9 @@ inline constexpr int kMaxGuideStrands = 1'000'000;
 /// Most dense strands a groom may be drawn with (64 bytes each on the GPU, plus their vertices).
 inline constexpr int kMaxDenseStrands = 1'000'000;
 
+/// Most vertices a dense strand may be drawn with (render::DenseStrandLayout's limit).
+inline constexpr int kMaxDenseStrandVertices = 4096;
+
 /// How a groom is drawn (render/hair_data.hpp): its Marschner preset, its ribbons and how many
 /// dense strands are interpolated from its guides.
 struct GroomRendering {
@@ -182,6 +185,9 @@ struct GroomRendering {
   render::HairGroomSettings settings{.width = 4e-4f};
   /// Dense strands, 1..kMaxDenseStrands; 0: 4,095, or one per guide where there are more guides.
   int denseStrands = 0;
+  /// Vertices along each dense strand, 2..kMaxDenseStrandVertices, resampled from its guide; 0:
+  /// the guides' own count.
+  int verticesPerStrand = 0;
 };
 
 /// Hair or fur on a mesh.
@@ -251,6 +257,9 @@ struct HeadMotion {
   float amplitudeDegrees = 0.0f;    ///< turn / nod / shake
   float frequencyHz = 0.0f;         ///< turn / nod / shake, ≥ 0
   std::vector<Keyframe> keyframes;  ///< keyframes: strictly increasing times
+  /// keyframes: after the last, start again from the first (time wraps over first..last); else
+  /// the last pose is held.
+  bool loop = false;
 
   /// The motion's pose at `timeSeconds` (rotation degrees XYZ, translation metres), to be
   /// composed as T(mesh) · T(motion) · R(motion) · R(mesh) · S(mesh) — see `animatedMatrix`.

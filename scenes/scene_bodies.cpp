@@ -118,9 +118,14 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   settings.shadowExtinction = fields.optional<float>("shadow_extinction", settings.shadowExtinction);
   const Json* strands = fields.take("strands");
   if (strands) rendering.denseStrands = detail::read<int>(*strands, fields.child("strands"));
+  const Json* vertices = fields.take("vertices_per_strand");
+  if (vertices) rendering.verticesPerStrand = detail::read<int>(*vertices, fields.child("vertices_per_strand"));
   fields.finish();
   require(!strands || (rendering.denseStrands >= 1 && rendering.denseStrands <= kMaxDenseStrands),
           fields.child("strands"), "expected a dense strand count in 1.." + std::to_string(kMaxDenseStrands));
+  require(!vertices || (rendering.verticesPerStrand >= 2 && rendering.verticesPerStrand <= kMaxDenseStrandVertices),
+          fields.child("vertices_per_strand"),
+          "expected 2.." + std::to_string(kMaxDenseStrandVertices) + " vertices per strand");
   require(settings.width > 0.0f && settings.width <= 0.01f, fields.child("width"),
           "expected a root width in (0, 0.01] metres");
   require(settings.tipWidthScale >= 0.0f && settings.tipWidthScale <= 1.0f, fields.child("tip_width_scale"),

@@ -351,7 +351,8 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
     const std::size_t denseStrands = groom.rendering.denseStrands > 0
                                          ? static_cast<std::size_t>(groom.rendering.denseStrands)
                                          : std::max(kDefaultDenseStrands, guides.size());
-    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom, denseGroom(guides, denseStrands)});
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom,
+                                     denseGroom(guides, denseStrands, groom.rendering.verticesPerStrand)});
     if (!grooms_.back().dense)
       notes_.push_back("groom " + groom.name + ": guides of different lengths: simulated, not drawn");
   }
@@ -359,9 +360,10 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
 }
 
 std::optional<RenderGroomLayout> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
-                                                   std::size_t strandCount) {
+                                                   std::size_t strandCount, int verticesPerStrand) {
   physics::DenseGroomSettings settings;
   settings.strandCount = strandCount;
+  settings.verticesPerStrand = static_cast<std::size_t>(verticesPerStrand);
   auto layout = physics::buildDenseGroomLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
   return renderLayoutOf(*layout);

@@ -143,9 +143,10 @@ private:
   glm::mat4 bodyPlacement(const MeshInstance& mesh, double time) const;
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
-  /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts), or none.
+  /// `strandCount` dense strands of `verticesPerStrand` vertices (0: the guides' count) drawn for
+  /// `guides` (rest shape, equal point counts), or none.
   static std::optional<RenderGroomLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,
-                                                     std::size_t strandCount);
+                                                     std::size_t strandCount, int verticesPerStrand);
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;

@@ -267,6 +267,7 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
   EXPECT_EQ(rendering.settings.minimumPixelWidth, defaults.minimumPixelWidth);
   EXPECT_EQ(rendering.settings.shadowExtinction, defaults.shadowExtinction);
   EXPECT_EQ(rendering.denseStrands, 0);
+  EXPECT_EQ(rendering.verticesPerStrand, 0);
   EXPECT_EQ(scene->hairShadows.mode, render::HairShadowMode::kOpacityShadowMap);
   EXPECT_EQ(scene->hairShadows.resolution, 512u);
 }
@@ -274,7 +275,8 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
 TEST(Scene, GroomRenderBlockSetsEveryField) {
   auto scene = parseScene(groomScene(R"(, "source": "procedural",
       "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
-                 "min_pixel_width": 0.25, "shadow_extinction": 3.5, "strands": 1000000})"),
+                 "min_pixel_width": 0.25, "shadow_extinction": 3.5, "strands": 1000000,
+                 "vertices_per_strand": 4096})"),
                           "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering& rendering = scene->grooms[0].rendering;
@@ -285,6 +287,7 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_FLOAT_EQ(rendering.settings.minimumPixelWidth, 0.25f);
   EXPECT_FLOAT_EQ(rendering.settings.shadowExtinction, 3.5f);
   EXPECT_EQ(rendering.denseStrands, 1'000'000);
+  EXPECT_EQ(rendering.verticesPerStrand, 4096);
   // The closed ends of the ranges are accepted.
   EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural",
       "render": {"look": "blonde", "width": 0.01, "tip_width_scale": 0, "opacity": 0.001, "strands": 1})")),
@@ -351,6 +354,10 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
     EXPECT_EQ(renderError(std::string(R"({"strands": )") + strands + "}"),
               "dir/bad.json: grooms[0].render.strands: expected a dense strand count in 1..1000000")
         << strands;
+  for (const char* vertices : {"0", "1", "4097"})
+    EXPECT_EQ(renderError(std::string(R"({"vertices_per_strand": )") + vertices + "}"),
+              "dir/bad.json: grooms[0].render.vertices_per_strand: expected 2..4096 vertices per strand")
+        << vertices;
   EXPECT_EQ(renderError(R"({"strands": 2.5})"),
             "dir/bad.json: grooms[0].render.strands: expected an integer, got a fraction");
   const std::string typo = renderError(R"({"colour": "blonde"})");
@@ -578,6 +585,34 @@ TEST(HeadMotion, KeyframesInterpolateLinearlyAndHoldAtTheEnds) {
       "animation": {"head": {"mesh": "head", "motion": "keyframes", "keyframes": [
         {"time": 2}, {"time": 1}]}}})")
                 .find("animation.head.keyframes[1].time: expected times in strictly increasing"),
+            std::string::npos);
+}
+
+// A looping sequence starts again from its first key after its last: time wraps over first..last.
+TEST(HeadMotion, LoopingKeyframesWrapOverFirstToLast) {
+  const char* keys = R"([{"time": 1, "rotation_degrees": [0, 0, 0]}, {"time": 3, "rotation_degrees": [0, 40, 0]}])";
+  auto scene = parseScene(std::string(R"({"name": "k", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+    "meshes": [{"name": "head", "source": "procedural:sphere"}],
+    "animation": {"head": {"mesh": "head", "motion": "keyframes", "loop": true, "keyframes": )") +
+                              keys + "}}}",
+                          "k.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const HeadMotion& motion = scene->headMotion;
+  EXPECT_TRUE(motion.loop);
+  EXPECT_EQ(motion.poseAt(0.5f).rotationDegrees.y, 0.0f);            // before the first: held
+  EXPECT_NEAR(motion.poseAt(3.5f).rotationDegrees.y, 10.0f, 1e-4f);  // 1.5 s into the period of 2 s
+  EXPECT_NEAR(motion.poseAt(8.0f).rotationDegrees.y, 20.0f, 1e-4f);  // 3 periods on, halfway
+  // One key has nothing to loop over; a periodic motion has no keys to loop.
+  EXPECT_NE(errorOf(R"({"name": "k", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+      "meshes": [{"name": "head", "source": "procedural:sphere"}],
+      "animation": {"head": {"mesh": "head", "motion": "keyframes", "loop": true, "keyframes": [{"time": 2}]}}})")
+                .find("animation.head.loop: expected at least two keyframes to loop over"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"name": "k", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+      "meshes": [{"name": "head", "source": "procedural:sphere"}],
+      "animation": {"head": {"mesh": "head", "motion": "turn", "amplitude_degrees": 20, "frequency_hz": 1,
+                             "loop": true}}})")
+                .find("animation.head.loop"),
             std::string::npos);
 }
 

@@ -64,6 +64,11 @@ TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   EXPECT_EQ(world->furLeans()[0].leans.size(), 35947u);
   ASSERT_EQ(statics.meshes[0].curvatures.size(), 9279u);
   for (const float inverseRadius : statics.meshes[0].curvatures) ASSERT_TRUE(inverseRadius >= 0.0f);
+  // The original Nalu demo's hair: 4,095 strands of 30 vertices, 122,850 in all, from 16-point guides.
+  ASSERT_EQ(statics.grooms.size(), 1u);
+  EXPECT_EQ(statics.grooms[0].layout.strands.size(), 4095u);
+  EXPECT_EQ(statics.grooms[0].layout.vertexCount, 30u);
+  EXPECT_EQ(statics.grooms[0].layout.guideVertexCount, 16u);
 }
 
 TEST(World, AdvancingMovesTheHeadAndTheHair) {
@@ -88,6 +93,16 @@ TEST(World, AdvancingMovesTheHeadAndTheHair) {
   const std::uint64_t hashBefore = world->stateHash();
   ASSERT_TRUE(world->advance(0.5, 1).has_value());
   EXPECT_NE(world->frameInput().instances[0].model, before) << "the nalu head turns";
+  // Its sequence (6 s, looping) turns it to 20° at 1.5 s and shakes it from 4 s to 4.75 s.
+  const HeadMotion& motion = world->scene().headMotion;
+  EXPECT_NEAR(motion.poseAt(1.5f).rotationDegrees.y, 20.0f, 1e-4f);
+  EXPECT_NEAR(motion.poseAt(7.5f).rotationDegrees.y, 20.0f, 1e-4f);
+  float swings = 0.0f;  // 14 + 3 × 28 + 14 = 112 degrees of yaw in 0.75 s, 149°/s on average
+  for (int k = 0; k < 5; ++k) {
+    const float t = 4.0f + 0.15f * float(k);
+    swings += std::abs(motion.poseAt(t + 0.15f).rotationDegrees.y - motion.poseAt(t).rotationDegrees.y);
+  }
+  EXPECT_NEAR(swings, 112.0f, 1e-3f);
   EXPECT_NE(world->stateHash(), hashBefore);
   // The procedural guides are as long in the world as the scene says (0.35 m ± the generator's
   // 10 % jitter), whatever the head mesh's scale (0.025 here), and tethers keep them from
