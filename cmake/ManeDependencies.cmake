@@ -9,6 +9,7 @@ find_package(tinyobjloader CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
 find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 find_package(CURL REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)
 
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 

@@ -121,6 +121,18 @@ Subdivision parseSubdivision(const Json& json, const std::string& path) {
   return subdivision;
 }
 
+MeshSimplification parseSimplification(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  MeshSimplification simplify;
+  simplify.triangles = fields.required<int>("triangles");
+  require(simplify.triangles >= 1, fields.child("triangles"), "expected at least 1 triangle");
+  simplify.maxRelativeError = fields.optional<float>("max_error", simplify.maxRelativeError);
+  require(simplify.maxRelativeError > 0.0f && simplify.maxRelativeError <= 1.0f, fields.child("max_error"),
+          "expected an error in (0, 1] of the mesh's extent");
+  fields.finish();
+  return simplify;
+}
+
 MeshInstance parseMesh(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   MeshInstance mesh;
@@ -139,6 +151,11 @@ MeshInstance parseMesh(const Json& json, const std::string& path) {
   }
   if (const Json* subdivision = fields.take("subdivision")) {
     mesh.subdivision = parseSubdivision(*subdivision, fields.child("subdivision"));
+  }
+  if (const Json* simplify = fields.take("simplify")) {
+    require(!mesh.subdivision, fields.child("simplify"),
+            "a subdivided mesh is drawn from its limit surface: simplify its cage instead");
+    mesh.simplify = parseSimplification(*simplify, fields.child("simplify"));
   }
   fields.finish();
   return mesh;

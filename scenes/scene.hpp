@@ -118,6 +118,12 @@ struct Subdivision {
   bool capHoles = false;
 };
 
+/// Drawing a mesh with fewer triangles (scenes/mesh_simplify.hpp), for one drawn small on screen.
+struct MeshSimplification {
+  int triangles = 0;               ///< at most this many, ≥ 1
+  float maxRelativeError = 0.01f;  ///< deviation allowed, fraction of the mesh's extent, (0, 1]
+};
+
 /// A mesh placed in the scene.
 struct MeshInstance {
   std::string name;      ///< unique within the scene; grooms attach to it by this name
@@ -126,6 +132,8 @@ struct MeshInstance {
   Transform transform;
   /// Draw the limit surface instead of the file's triangles; none: the triangles as they are.
   std::optional<Subdivision> subdivision;
+  /// Simplify the triangles at load (not with `subdivision`); none: as they are.
+  std::optional<MeshSimplification> simplify;
 
   [[nodiscard]] bool isProcedural() const { return source.starts_with(kProceduralPrefix); }
   /// "sphere" for "procedural:sphere"; empty for asset meshes.

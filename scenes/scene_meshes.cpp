@@ -5,6 +5,7 @@
 #include <string_view>
 #include <utility>
 
+#include "scenes/mesh_simplify.hpp"
 #include "scenes/obj_loader.hpp"
 #include "scenes/procedural.hpp"
 #include "scenes/subdivided_mesh.hpp"
@@ -75,6 +76,12 @@ Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolv
                                  const std::filesystem::path& sceneDirectory) {
   std::optional<std::filesystem::path> file;
   auto loaded = loadTriangles(instance, resolver, sceneDirectory, file);
+  if (loaded && instance.simplify) {
+    auto simplified = simplifyMesh(loaded->mesh, {.targetTriangles = std::size_t(instance.simplify->triangles),
+                                                  .maxRelativeError = instance.simplify->maxRelativeError});
+    if (!simplified) return fail("mesh '" + instance.name + "': " + simplified.error().message);
+    loaded->mesh = std::move(simplified->mesh);
+  }
   if (!loaded || !instance.subdivision) return loaded;
   if (file && isObj(*file)) {
     // The OBJ's own polygons: quads stay quads, and `t crease` / `t corner` tags are kept.

@@ -9,7 +9,7 @@ packages=(
   libvulkan-dev vulkan-tools mesa-vulkan-drivers vulkan-validationlayers
   glslang-tools glslang-dev spirv-tools
   libglfw3-dev xvfb xauth
-  libosd-dev
+  libosd-dev libmeshoptimizer-dev
   libtinygltf-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev libcli11-dev libssl-dev libcurl4-openssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libbullet-dev
   curl

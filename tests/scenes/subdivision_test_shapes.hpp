@@ -38,7 +38,9 @@ inline std::string quadSphereObj(int segments, int rings) {
 
 /// Directed edges whose reverse no triangle has, comparing corners by position (UV seams split
 /// vertices, not the surface): 0 for a closed, consistently wound mesh without T-junctions.
-inline std::size_t unmatchedEdges(const render::MeshData& mesh) {
+/// Any mesh with `positions` and `indices`: render::MeshData, scenes::Mesh.
+template <typename TriangleMesh>
+std::size_t unmatchedEdges(const TriangleMesh& mesh) {
   using Point = std::tuple<float, float, float>;
   const auto at = [&](std::uint32_t v) {
     const auto& p = mesh.positions[v];
