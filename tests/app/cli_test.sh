@@ -96,6 +96,12 @@ case $case in
       fail "render failed: $(cat "$scratch/log")"
     [ "$(ls "$scratch"/out/cape_000[0-2].png | wc -l)" -eq 3 ] || fail "expected 3 frames: $(ls "$scratch/out")"
     grep -q "^surfaces " "$scratch/log" || fail "no timing table"
+    # The span from the first pass's begin to the last one's end holds every pass: it is at least
+    # as long as the longest one (medians do not add up, so no sum).
+    awk '/^pass / { table = 1; next } table && /^all passes / { span = $3; next }
+         table && $(NF-1) + 0 > longest { longest = $(NF-1) + 0 }
+         END { exit !(span + 0 > 0 && span + 0.01 >= longest) }' "$scratch/log" ||
+      fail "the span of all passes is missing or shorter than a pass: $(cat "$scratch/log")"
     ;;
   bad-scene-one-line-error)
     printf '{ "name": "broken", "camera": { "fov_degrees": "wide" } ' >"$scratch/broken.json"
