@@ -128,7 +128,7 @@ void BM_NaluFrame(benchmark::State& state) {
     for (const render::PassTiming& timing : *timings) {
       const double end = timing.startMilliseconds + timing.milliseconds;
       frameEnd = std::max(frameEnd, end);
-      std::string pass = timing.pass;
+      const std::string& pass = timing.pass;
       if (pass == "surfaces" || pass == "hair") {
         if (mainBegin < 0.0) mainBegin = timing.startMilliseconds;
         mainEnd = std::max(mainEnd, end);

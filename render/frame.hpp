@@ -225,8 +225,8 @@ struct PassTiming {
   double milliseconds = 0.0;
   /// When the pass began, after the frame's first timestamp. On lavapipe the gaps between passes
   /// are not idle: it rasterizes a render pass's draws when the pass ends, and their cost can fall
-  /// between one timer's end and the next one's begin, so a pass's true share is end − begin of
-  /// the whole span, not the sum of its timers.
+  /// between one timer's end and the next one's begin. What a group of passes costs is the span
+  /// from the first one's begin to the last one's end, not the sum of their timers.
   double startMilliseconds = 0.0;
 };
 
