@@ -1,17 +1,17 @@
 // `mane view`: the scene in a window (GLFW + Vulkan swapchain) with an orbit camera.
-// Mouse: left drag orbits, wheel zooms. Keys (kKeyHelp): pause and step the simulation, switch
-// techniques and post effects, quit. The frame time and the toggles' states are drawn in the
-// image's top-left corner (render/passes/text_overlay.hpp) and the window title.
+// Mouse: left drag orbits, right drag turns the key light, wheel zooms. Keys (kKeyHelp): pause and
+// step the simulation, turn the key light, switch techniques and post effects, quit. The frame time and the toggles'
+// states are drawn in the image's top-left corner (render/passes/text_overlay.hpp) and the window title.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,7 +41,9 @@ struct ViewOptions {
 constexpr const char* kKeyHelp =
     "Keys: Space pause/run the simulation, N step one frame while paused, K skin pre-integrated / texture-space "
     "diffusion, H hair shadows opacity / deep opacity maps, T tone map Reinhard / linear, G glow, A auto gain, "
-    "R god rays, F fur shells and fins / bare, O the on-screen text, Esc quit. Mouse: left drag orbits, wheel zooms.";
+    "R god rays, F fur shells and fins / bare, O the on-screen text, J / L turn the key light left / right 15 degrees, "
+    "I / M raise / lower it 10 degrees, Esc quit. Mouse: left drag orbits, right drag turns the key light, wheel "
+    "zooms.";
 
 // Spherical coordinates around the scene camera's target.
 struct OrbitCamera {
@@ -67,8 +69,39 @@ struct OrbitCamera {
   }
 };
 
+// The key light (the scene's first, which casts the hair shadows and the god rays) turned about the
+// vertical and raised or lowered from where the scene put it. Keys turn it in whole steps and the
+// right mouse button continuously; both add to the same angles.
+struct LightControl {
+  static constexpr float kYawStep = glm::radians(15.0f);
+  static constexpr float kPitchStep = glm::radians(10.0f);
+  static constexpr float kMaxElevation = glm::radians(85.0f);
+  float yaw = 0.0f;    ///< radians about +Y, added to the light's azimuth
+  float pitch = 0.0f;  ///< radians added to its elevation
+  bool dragging = false;
+
+  /// `towardLight` (a unit vector) with the turn applied; its elevation stays within ±85°. The
+  /// same arithmetic with no turn, so that turning back restores the light bit for bit.
+  glm::vec3 apply(glm::vec3 towardLight) const {
+    const glm::vec3 d = glm::normalize(towardLight);
+    const float azimuth = std::atan2(d.x, d.z) + yaw;
+    const float elevation = glm::clamp(std::asin(glm::clamp(d.y, -1.0f, 1.0f)) + pitch, -kMaxElevation, kMaxElevation);
+    return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+  }
+};
+
+// "LIGHT AZ <degrees> EL <degrees>" of a direction towards the light: azimuth from +Z towards +X.
+std::string lightLine(glm::vec3 towardLight) {
+  char line[64];
+  std::snprintf(line, sizeof(line), "LIGHT AZ %.0f EL %.0f", glm::degrees(std::atan2(towardLight.x, towardLight.z)),
+                glm::degrees(std::asin(glm::clamp(towardLight.y, -1.0f, 1.0f))));
+  return line;
+}
+
 struct InputState {
   OrbitCamera orbit;
+  LightControl light;
+  bool lightChanged = false;  ///< print the new angles once
   bool paused = false;
   bool stepOnce = false;
   // Post-processing toggles over the scene's own settings: T Reinhard/linear, G glow, A auto gain,
@@ -106,6 +139,16 @@ void press(GLFWwindow* window, InputState& state, int key) {
       break;
     case GLFW_KEY_O: state.showOverlay = !state.showOverlay; break;
     case GLFW_KEY_F: state.furShells = !state.furShells; break;
+    case GLFW_KEY_J:
+    case GLFW_KEY_L:
+      state.light.yaw += (key == GLFW_KEY_L ? 1.0f : -1.0f) * LightControl::kYawStep;
+      state.lightChanged = true;
+      break;
+    case GLFW_KEY_I:
+    case GLFW_KEY_M:
+      state.light.pitch += (key == GLFW_KEY_I ? 1.0f : -1.0f) * LightControl::kPitchStep;
+      state.lightChanged = true;
+      break;
     default: break;
   }
 }
@@ -173,13 +216,20 @@ void installCallbacks(GLFWwindow* window, InputState& input) {
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
     auto& state = *static_cast<InputState*>(glfwGetWindowUserPointer(w));
     if (button == GLFW_MOUSE_BUTTON_LEFT) state.orbit.dragging = action == GLFW_PRESS;
+    if (button == GLFW_MOUSE_BUTTON_RIGHT) state.light.dragging = action == GLFW_PRESS;
     glfwGetCursorPos(w, &state.orbit.lastX, &state.orbit.lastY);
   });
   glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
-    auto& orbit = static_cast<InputState*>(glfwGetWindowUserPointer(w))->orbit;
+    auto& state = *static_cast<InputState*>(glfwGetWindowUserPointer(w));
+    OrbitCamera& orbit = state.orbit;
     if (orbit.dragging) {
       orbit.yaw -= float(x - orbit.lastX) * 0.01f;
       orbit.pitch = glm::clamp(orbit.pitch + float(y - orbit.lastY) * 0.01f, -1.5f, 1.5f);
+    }
+    if (state.light.dragging) {
+      state.light.yaw += float(x - orbit.lastX) * 0.01f;
+      state.light.pitch -= float(y - orbit.lastY) * 0.01f;
+      state.lightChanged = true;
     }
     orbit.lastX = x;
     orbit.lastY = y;
@@ -261,6 +311,11 @@ void run(const ViewOptions& options) {
     frameInput.post = toggled(frameInput.post, input);
     frameInput.post.frameSeconds = float(dt);
     frameInput.furShells = input.furShells;
+    if (!frameInput.lights.empty()) {
+      frameInput.lights[0].direction = input.light.apply(frameInput.lights[0].direction);
+      if (input.lightChanged) std::cout << lightLine(frameInput.lights[0].direction) << '\n';
+    }
+    input.lightChanged = false;
     // Subdivided meshes follow the camera (and their own motion), but not while the orbit is being
     // dragged: a re-tessellation can rebuild a voxel translucency table (seconds).
     if (!input.orbit.dragging)
@@ -271,11 +326,12 @@ void run(const ViewOptions& options) {
     auto rendered = (*renderer)->render(frameInput);
     if (!rendered) return failWith(rendered.error().message);
     if (input.showOverlay) {
-      const double gpuMs =
-          std::accumulate(rendered->begin(), rendered->end(), 0.0,
-                          [](double sum, const render::PassTiming& t) { return sum + t.milliseconds; });
-      char timing[96];
-      std::snprintf(timing, sizeof(timing), "%.1f MS/FRAME  GPU %.1f MS%s", smoothedMs, gpuMs,
+      // From the first pass's begin to the last one's end (render::PassTiming).
+      double gpuMs = 0.0;
+      for (const render::PassTiming& t : *rendered) gpuMs = std::max(gpuMs, t.startMilliseconds + t.milliseconds);
+      const std::string light = frameInput.lights.empty() ? "" : "  " + lightLine(frameInput.lights[0].direction);
+      char timing[128];
+      std::snprintf(timing, sizeof(timing), "%.1f MS/FRAME  GPU %.1f MS%s%s", smoothedMs, gpuMs, light.c_str(),
                     input.paused ? "  PAUSED" : "");
       const std::vector<std::string> lines{timing, techniqueLine(drawn, frameInput)};
       const render::TextLayout layout = render::layoutText(lines, overlay, {width, height});

@@ -126,6 +126,27 @@ case $case in
       [ "$white" -gt 300 ] && [ "$black" -gt 2000 ] || fail "no overlay text: $white white, $black black pixels"
     fi
     ;;
+  view-light-control)
+    # J / L turn the key light about the vertical by 15 degrees, I / M raise and lower it by 10. The
+    # torus scene is static (no simulation, no auto gain), so its frames depend on the light alone:
+    # four turns change the image, and four turns back restore it byte for byte. O hides the
+    # overlay, whose frame time differs from run to run. The printed angles follow the keys.
+    for presses in O OLLLL OLLLLJJJJ OIIIIIIIIII; do
+      xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view scenes/torus.json --frames 12 --press "$presses" \
+        --screenshot "$scratch/$presses.png" >"$scratch/$presses.log" 2>&1 ||
+        fail "mane view --press $presses failed: $(cat "$scratch/$presses.log")"
+    done
+    cmp -s "$scratch/O.png" "$scratch/OLLLL.png" && fail "turning the light 60 degrees changed nothing"
+    cmp -s "$scratch/O.png" "$scratch/OLLLLJJJJ.png" || fail "turning the light back did not restore the image"
+    # torus.json's key light comes from (0.35, 0.15, -1) (the scene gives (-0.35, -0.15, 1), the way
+    # it travels): azimuth atan2(0.35, -1) = 160.7 degrees, elevation asin(0.15 / 1.0706) = 8.1.
+    grep -q "^LIGHT AZ 176 EL 8$" "$scratch/OLLLL.log" || fail "L: $(grep LIGHT "$scratch/OLLLL.log")"
+    grep -q "^LIGHT AZ -139 EL 8$" "$scratch/OLLLL.log" || fail "4 L: $(grep LIGHT "$scratch/OLLLL.log")"
+    grep -q "^LIGHT AZ 161 EL 8$" "$scratch/OLLLLJJJJ.log" || fail "back: $(grep LIGHT "$scratch/OLLLLJJJJ.log")"
+    # Ten raises would reach 108 degrees: the elevation stops at 85.
+    [ "$(grep -c "^LIGHT AZ 161 EL 85$" "$scratch/OIIIIIIIIII.log")" -ge 2 ] ||
+      fail "the elevation is not held at 85: $(grep LIGHT "$scratch/OIIIIIIIIII.log")"
+    ;;
   view-technique-toggles)
     # K (texture-space skin) and H (deep opacity maps) rebuild the renderer's scene mid-run; O then
     # hides the overlay. Validation stays clean (MANE_VALIDATION=1) and the frame is still drawn.
