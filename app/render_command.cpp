@@ -64,11 +64,11 @@ void printTimingTable(const std::vector<std::vector<render::PassTiming>>& frames
     if (!frame.empty()) samples[span].push_back(end);
   }
   if (samples.contains(span)) order.push_back(span);
-  std::printf("%-12s %10s %10s\n", "pass", "median ms", "worst ms");
+  std::printf("%-18s %10s %10s\n", "pass", "median ms", "worst ms");
   for (const auto& pass : order) {
     auto& values = samples[pass];
     std::sort(values.begin(), values.end());
-    std::printf("%-12s %10.2f %10.2f\n", pass.c_str(), values[values.size() / 2], values.back());
+    std::printf("%-18s %10.2f %10.2f\n", pass.c_str(), values[values.size() / 2], values.back());
   }
 }
 
