@@ -13,6 +13,10 @@ glm::vec3 cross(const glm::vec3& a, const glm::vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
+float dot(const glm::vec3& a, const glm::vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
 glm::vec3 normalized(const glm::vec3& v) {
   return v / std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
 }
@@ -61,13 +65,20 @@ Result<void> validateGroomSettings(const GroomSettings& settings) {
     return bad("curlRadius", "a non-negative number of metres");
   if (!(std::abs(settings.curlAnglePerSegment) <= 1.5708f))
     return bad("curlAnglePerSegment", "within [-pi/2, pi/2] radians");
+  if (!(std::isfinite(settings.comb.x) && std::isfinite(settings.comb.y) && std::isfinite(settings.comb.z)))
+    return bad("comb", "finite");
   return {};
 }
 
-// One strand from `root` along the unit `normal`: length jittered, optionally a helix whose
-// per-segment rotation is (cosStep, sinStep), starting at a random phase.
+// One strand from `root` along the unit `scalpNormal`, combed (GroomSettings::comb): length
+// jittered, optionally a helix whose per-segment rotation is (cosStep, sinStep), starting at a
+// random phase.
 std::vector<glm::vec3> growStrand(SplitMix64& rng, const GroomSettings& settings, const glm::vec3& root,
-                                  const glm::vec3& normal, float cosStep, float sinStep) {
+                                  const glm::vec3& scalpNormal, float cosStep, float sinStep) {
+  // n + c_t: its component along n is 1, so the strand always leaves the scalp outwards. Without
+  // a comb the normal as given, bit for bit.
+  const glm::vec3 along = settings.comb - dot(settings.comb, scalpNormal) * scalpNormal;
+  const glm::vec3 normal = settings.comb == glm::vec3(0.0f) ? scalpNormal : normalized(scalpNormal + along);
   const float length = settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
   const float spacing = length / static_cast<float>(settings.particlesPerStrand - 1);
 

@@ -58,11 +58,15 @@ struct GroomSettings {
   float curlRadius = 0.0f;  ///< helix radius, m; 0 gives straight strands
   /// Helix turn per segment, radians (|angle| ≤ π/2); used when curlRadius > 0.
   float curlAnglePerSegment = 0.5f;
+  /// Combing, head-local: each strand grows along n + c_t instead of its scalp normal n, where c_t
+  /// is the part of `comb` along the scalp (c − (c·n)n). Its length sets how far the strands lean
+  /// over: 1 tilts them 45° from the normal where the comb lies along the scalp. Zero: no combing.
+  glm::vec3 comb{0.0f};
 };
 
 /// Generates guide strands (head-local points, root first, on the scalp) for `settings`.
-/// Each strand grows along the scalp normal at its root; curls wind around that axis and
-/// start at the root. Fails with a message naming the field when a setting is out of range.
+/// Each strand grows along the scalp normal at its root, combed (GroomSettings::comb); curls wind
+/// around that axis and start at the root. Fails with a message naming the field when a setting is out of range.
 [[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings);
 
 /// Generates guide strands rooted on a region of a triangle mesh (the scalp): roots spread by

@@ -216,6 +216,7 @@ struct Groom {
   int strandCount = 0;              ///< procedural only: guide strands to grow (0: generator default)
   float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
   ScalpRegion scalp;                ///< procedural only
+  glm::vec3 comb{0.0f};             ///< procedural only: physics::GroomSettings::comb, body frame
   /// Files only: negate the points' z on load. TressFX's Maya exporter can write z inverted (for
   /// left-handed renderers); the TressFX ponytail's strands sit on its head only with this.
   bool invertZ = false;

@@ -187,6 +187,10 @@ Groom parseGroom(const Json& json, const std::string& path) {
     require(groom.isProcedural(), fields.child("scalp"), "applies to \"procedural\" grooms only");
     groom.scalp = parseScalp(*scalp, fields.child("scalp"));
   }
+  if (const Json* comb = fields.take("comb")) {
+    require(groom.isProcedural(), fields.child("comb"), "applies to \"procedural\" grooms only");
+    groom.comb = detail::read<glm::vec3>(*comb, fields.child("comb"));
+  }
   if (const Json* sim = fields.take("simulation")) {
     groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));
   }

@@ -290,6 +290,7 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       settings.seed = 1 + sceneGroom;
       if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
       if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
+      settings.comb = groom.comb;
       if (subdivided_[meshIndex]) {
         // Drawn as its limit surface: the roots sit on that surface itself, which every
         // re-tessellation approximates, rather than on the triangles of the load-time view.

@@ -63,6 +63,31 @@ TEST(GroomOnMesh, StraightStrandsGrowAlongTheFaceNormal) {
   EXPECT_EQ(*again, *strands);
 }
 
+// Combed, a strand on the +Y face grows along n + c_t, c_t the comb's part along the face: the
+// comb (1, 5, −1) leans it along (1, 0, −1), 54.7° from the normal (tan = √2), whatever its part
+// along the normal (5). Its roots and lengths are those of the uncombed groom with the same seed.
+TEST(GroomOnMesh, CombedStrandsLeanAlongTheCombsPartOnTheScalp) {
+  GroomSettings settings;
+  settings.strandCount = 50;
+  settings.strandLength = 0.2f;
+  const auto straight = generateGroomOnMesh(settings, kPositions, kIndices, kScalp);
+  settings.comb = {1.0f, 5.0f, -1.0f};
+  const auto combed = generateGroomOnMesh(settings, kPositions, kIndices, kScalp);
+  ASSERT_TRUE(straight.has_value() && combed.has_value());
+  const glm::vec3 expected = glm::normalize(glm::vec3(1.0f, 1.0f, -1.0f));
+  for (std::size_t s = 0; s < combed->size(); ++s) {
+    const std::vector<glm::vec3>& strand = (*combed)[s];
+    EXPECT_EQ(strand.front(), (*straight)[s].front()) << "strand " << s;
+    EXPECT_LT(glm::distance(glm::normalize(strand.back() - strand.front()), expected), 1e-6f) << "strand " << s;
+    EXPECT_NEAR(glm::distance(strand.back(), strand.front()),
+                glm::distance((*straight)[s].back(), (*straight)[s].front()), 1e-6f)
+        << "strand " << s;
+  }
+  settings.comb.x = std::nanf("");
+  EXPECT_NE(generateGroomOnMesh(settings, kPositions, kIndices, kScalp).error().message.find("comb must be finite"),
+            std::string::npos);
+}
+
 TEST(GroomOnMesh, BadRegionsAreNamed) {
   const GroomSettings settings;
   EXPECT_NE(generateGroomOnMesh(settings, kPositions, kIndices, {}).error().message.find("no triangles"),

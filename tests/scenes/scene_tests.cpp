@@ -311,6 +311,19 @@ TEST(Scene, ProceduralGroomsTakeAScalpRegion) {
             "dir/bad.json: grooms[0].scalp: applies to \"procedural\" grooms only");
 }
 
+TEST(Scene, ProceduralGroomsMayBeCombed) {
+  auto scene = parseScene(groomScene(R"(, "source": "procedural")"), "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->grooms[0].comb, glm::vec3(0.0f));
+  scene = parseScene(groomScene(R"(, "source": "procedural", "comb": [0, 0.2, -1.5])"), "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->grooms[0].comb, glm::vec3(0.0f, 0.2f, -1.5f));
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "a.tfx", "comb": [0, 0, -1])")),
+            "dir/bad.json: grooms[0].comb: applies to \"procedural\" grooms only");
+  EXPECT_NE(errorOf(groomScene(R"(, "source": "procedural", "comb": [0, -1])")).find("grooms[0].comb"),
+            std::string::npos);
+}
+
 TEST(Scene, GroomShapeStiffnessReachesTheSolverSettingsRange) {
   auto scene = parseScene(groomScene(R"(, "source": "procedural", "simulation": {"shape_stiffness": 0.5})"), "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
