@@ -585,6 +585,12 @@ TEST_F(PostRendering, PostPassesAreTimedOnlyWhenAskedFor) {
   draw(*renderer, litQuad(1.0f, {.autoGain = true, .glowStrength = 0.5f}), &timings);
   EXPECT_EQ(names(), (std::vector<std::string>{"surfaces", "post downsample", "auto gain", "glow", "output"}));
   for (const PassTiming& timing : timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
+  // The passes run one after another in the order recorded: the first begins the frame, and each
+  // begins no earlier than the one before it ended.
+  EXPECT_EQ(timings.front().startMilliseconds, 0.0);
+  for (std::size_t i = 1; i < timings.size(); ++i)
+    EXPECT_GE(timings[i].startMilliseconds, timings[i - 1].startMilliseconds + timings[i - 1].milliseconds - 1e-6)
+        << timings[i].pass;
 }
 
 TEST_F(PostRendering, RejectsBadSettingsByName) {
