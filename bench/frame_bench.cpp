@@ -3,7 +3,8 @@
 // renderer, then every pass with the scene's own post settings — at 1280×720 on the device mane
 // picks (lavapipe here). Each iteration is one frame of 1/30 s, timed by the wall clock; the
 // counters are medians over the iterations: frame_ms (the whole frame, and fps from it), sim_ms
-// (World::advance), upload_ms (the hand-off to the renderer), gpu_ms (the first pass's begin to
+// (World::advance), upload_ms (the hand-off to the renderer), refine_ms (the head's limit surface
+// tessellated again for its new pose, World::refineForCamera, and re-uploaded), gpu_ms (the first pass's begin to
 // the last one's end) and each pass's GPU time, the main pass (surfaces, furs, hair ribbons) as
 // one span.
 //
@@ -97,7 +98,7 @@ void BM_NaluFrame(benchmark::State& state) {
   const auto since = [](std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   };
-  std::vector<double> simulationMs, uploadMs;
+  std::vector<double> simulationMs, uploadMs, refineMs;
   const auto frame = [&](bool timed) -> Result<std::vector<render::PassTiming>> {
     auto start = std::chrono::steady_clock::now();
     if (auto advanced = world->advance(kFrameSeconds, 2); !advanced) return std::unexpected(advanced.error());
@@ -106,7 +107,11 @@ void BM_NaluFrame(benchmark::State& state) {
     if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
       return std::unexpected(uploaded.error());
     if (timed) uploadMs.push_back(since(start));
+    start = std::chrono::steady_clock::now();
     render::FrameInput input = world->frameInput();
+    if (auto refined = scenes::refineSubdivided(*world, **renderer, input.camera, {1280, 720}, 2); !refined)
+      return std::unexpected(refined.error());
+    if (timed) refineMs.push_back(since(start));
     input.post.frameSeconds = float(kFrameSeconds);
     if (variant == kNoFurShells) input.furShells = false;
     return (*renderer)->render(input);
@@ -144,6 +149,7 @@ void BM_NaluFrame(benchmark::State& state) {
   state.counters["fps"] = 1000.0 / median(frameMs);
   state.counters["sim_ms"] = median(simulationMs);
   state.counters["upload_ms"] = median(uploadMs);
+  state.counters["refine_ms"] = median(refineMs);
   state.counters["gpu_ms"] = median(gpuMs);
   order.push_back("main pass");
   for (const std::string& pass : order) {

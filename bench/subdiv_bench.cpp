@@ -55,7 +55,12 @@ struct Head {
   glm::vec3 centre{0.0f};
 };
 
-Head loadHead() {
+/// The scan's own triangles as the cage, or the coarse cage nalu.json draws (kCoarseCage).
+enum class CageKind { kScan, kCoarse };
+constexpr scenes::MeshSimplification kCoarseCage{.triangles = 3000, .maxRelativeError = 0.05f};
+constexpr int kCoarseIsolation = 1;
+
+Head loadHead(CageKind kind) {
   Head head;
   auto resolver = scenes::AssetResolver::createDefault();
   if (!resolver) return {.problem = resolver.error().message};
@@ -63,11 +68,19 @@ Head loadHead() {
   if (!found || !found->path) return {.problem = found ? found->missingReason : found.error().message};
   auto mesh = scenes::loadGltf(*found->path);
   if (!mesh) return {.problem = mesh.error().message};
-  head.cage = scenes::cageFromTriangles(*mesh);
   head.centre = mesh->bounds().centre();
-  // Isolation level 1: every vertex of a triangle cage is extraordinary after one step, so
-  // each level multiplies the Gregory end caps' local points (and the update time).
-  auto surface = subdiv::LimitSurface::create(head.cage, {.maxIsolationLevel = 1});
+  int isolation = kCoarseIsolation;
+  if (kind == CageKind::kCoarse) {
+    auto coarse = scenes::coarseCageFromTriangles(*mesh, kCoarseCage);
+    if (!coarse) return {.problem = coarse.error().message};
+    head.cage = std::move(coarse->cage);
+  } else {
+    head.cage = scenes::cageFromTriangles(*mesh);
+    // Isolation level 1: every vertex of a triangle cage is extraordinary after one step, so
+    // each level multiplies the Gregory end caps' local points (and the update time).
+    isolation = 1;
+  }
+  auto surface = subdiv::LimitSurface::create(head.cage, {.maxIsolationLevel = isolation});
   if (!surface) return {.problem = surface.error().message};
   head.surface = std::make_unique<subdiv::LimitSurface>(std::move(*surface));
   auto tessellator = subdiv::AdaptiveTessellator::create(*head.surface);
@@ -87,83 +100,101 @@ Head loadHead() {
   return head;
 }
 
-Head& head() {
-  static Head loaded = loadHead();
-  return loaded;
+Head& head(CageKind kind) {
+  static Head scan = loadHead(CageKind::kScan);
+  static Head coarse = loadHead(CageKind::kCoarse);
+  return kind == CageKind::kScan ? scan : coarse;
 }
 
-subdiv::ScreenView viewAt(float distance) {
+/// The cage a benchmark's first argument names.
+Head& headFor(const benchmark::State& state) {
+  return head(CageKind(state.range(0)));
+}
+
+subdiv::ScreenView viewAt(const Head& at, float distance) {
   const glm::mat4 projection = glm::perspective(glm::radians(40.0f), kViewport.x / kViewport.y, 0.1f, 1000.0f);
-  const glm::vec3 eye = head().centre + glm::vec3(0.0f, 0.0f, distance);
-  return {projection * glm::lookAt(eye, head().centre, glm::vec3(0.0f, 1.0f, 0.0f)), kViewport};
+  const glm::vec3 eye = at.centre + glm::vec3(0.0f, 0.0f, distance);
+  return {projection * glm::lookAt(eye, at.centre, glm::vec3(0.0f, 1.0f, 0.0f)), kViewport};
 }
 
 bool skipWithoutHead(benchmark::State& state) {
-  if (head().problem.empty()) return false;
-  state.SkipWithError(head().problem.c_str());
+  if (headFor(state).problem.empty()) return false;
+  state.SkipWithError(headFor(state).problem.c_str());
   return true;
 }
 
-// Arguments: distance index, worker threads.
+// Arguments: CageKind, distance index, worker threads.
 void BM_AdaptiveFrame(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
-  const subdiv::ScreenView view = viewAt(kDistances[state.range(0)]);
-  const auto threads = static_cast<unsigned>(state.range(1));
+  Head& head = headFor(state);
+  const subdiv::ScreenView view = viewAt(head, kDistances[state.range(1)]);
+  const auto threads = static_cast<unsigned>(state.range(2));
   subdiv::TessellatedMesh mesh;
   for (auto _ : state) {
-    head().tessellator->tessellate(view, mesh, threads);
+    head.tessellator->tessellate(view, mesh, threads);
     benchmark::DoNotOptimize(mesh.indices.data());
   }
-  state.SetLabel(kDistanceNames[state.range(0)]);
+  state.SetLabel(kDistanceNames[state.range(1)]);
   state.counters["triangles"] = double(mesh.triangleCount());
-  state.counters["cells"] = double(head().tessellator->statistics().cells);
+  state.counters["cells"] = double(head.tessellator->statistics().cells);
 }
 BENCHMARK(BM_AdaptiveFrame)
-    ->ArgsProduct({{0, 1, 2}, {1, 2}})
-    ->ArgNames({"view", "threads"})
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {1, 2}})
+    ->ArgNames({"cage", "view", "threads"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// Argument: worker threads.
+// Arguments: CageKind, worker threads.
 void BM_DeformingCageUpdate(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
-  const auto threads = static_cast<unsigned>(state.range(0));
+  Head& head = headFor(state);
+  const auto threads = static_cast<unsigned>(state.range(1));
   std::size_t frame = 0;
   for (auto _ : state) {
-    auto updated = head().surface->updatePositions(head().poses[frame++ % 2], threads);
+    auto updated = head.surface->updatePositions(head.poses[frame++ % 2], threads);
     benchmark::DoNotOptimize(updated);
   }
-  state.counters["points"] = double(head().surface->controlPointCount());
+  state.counters["points"] = double(head.surface->controlPointCount());
 }
-BENCHMARK(BM_DeformingCageUpdate)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DeformingCageUpdate)
+    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->ArgNames({"cage", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
-// Arguments: distance index, worker threads.
+// Arguments: CageKind, distance index, worker threads.
 void BM_DeformAndTessellateFrame(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
-  const subdiv::ScreenView view = viewAt(kDistances[state.range(0)]);
-  const auto threads = static_cast<unsigned>(state.range(1));
+  Head& head = headFor(state);
+  const subdiv::ScreenView view = viewAt(head, kDistances[state.range(1)]);
+  const auto threads = static_cast<unsigned>(state.range(2));
   subdiv::TessellatedMesh mesh;
   std::size_t frame = 0;
   for (auto _ : state) {
-    auto updated = head().surface->updatePositions(head().poses[frame++ % 2], threads);
+    auto updated = head.surface->updatePositions(head.poses[frame++ % 2], threads);
     benchmark::DoNotOptimize(updated);
-    head().tessellator->tessellate(view, mesh, threads);
+    head.tessellator->tessellate(view, mesh, threads);
     benchmark::DoNotOptimize(mesh.indices.data());
   }
-  state.SetLabel(kDistanceNames[state.range(0)]);
+  state.SetLabel(kDistanceNames[state.range(1)]);
   state.counters["triangles"] = double(mesh.triangleCount());
 }
 BENCHMARK(BM_DeformAndTessellateFrame)
-    ->ArgsProduct({{1}, {1, 2}})
-    ->ArgNames({"view", "threads"})
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {1, 2}})
+    ->ArgNames({"cage", "view", "threads"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// A nalu-like scene: the head (0.025 m per file unit) with isolation 1 as above, turning ±20° at
+// A nalu-like scene: the head (0.025 m per file unit) with either cage as above, turning ±20° at
 // 0.25 Hz, no hair; the camera at the mid distance (30 units = 0.75 m) from the head's centre.
-std::unique_ptr<scenes::World> loadTurningHead() {
-  if (!head().problem.empty()) return nullptr;
-  const glm::vec3 centre = head().centre * 0.025f;
+std::unique_ptr<scenes::World> loadTurningHead(CageKind kind) {
+  if (!head(kind).problem.empty()) return nullptr;
+  const glm::vec3 centre = head(kind).centre * 0.025f;
+  const std::string subdivision =
+      kind == CageKind::kScan ? R"({"isolation": 1})"
+                              : R"({"isolation": )" + std::to_string(kCoarseIsolation) +
+                                    R"(, "coarse_cage": {"triangles": )" + std::to_string(kCoarseCage.triangles) +
+                                    R"(, "max_error": )" + std::to_string(kCoarseCage.maxRelativeError) + "}}";
   const std::string text = R"({"name": "turning head", "output": {"width": 1280, "height": 720},
       "camera": {"position": [)" +
                            std::to_string(centre.x) + ", " + std::to_string(centre.y) + ", " +
@@ -171,7 +202,8 @@ std::unique_ptr<scenes::World> loadTurningHead() {
                            std::to_string(centre.y) + ", " + std::to_string(centre.z) +
                            R"(], "fov_degrees": 40, "near": 0.01, "far": 10},
       "meshes": [{"name": "head", "source": "head/LeePerrySmith/LeePerrySmith.glb", "transform": {"scale": 0.025},
-                  "subdivision": {"isolation": 1}}],
+                  "subdivision": )" +
+                           subdivision + R"(}],
       "animation": {"head": {"mesh": "head", "motion": "turn", "amplitude_degrees": 20, "frequency_hz": 0.25}}})";
   auto scene = scenes::parseScene(text, "turning_head.json");
   if (!scene) return nullptr;
@@ -182,15 +214,17 @@ std::unique_ptr<scenes::World> loadTurningHead() {
   return std::make_unique<scenes::World>(std::move(*world));
 }
 
-// Argument: worker threads.
+// Arguments: CageKind, worker threads.
 void BM_WorldRefineForCamera(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
-  static const std::unique_ptr<scenes::World> world = loadTurningHead();
+  static const std::unique_ptr<scenes::World> worlds[] = {loadTurningHead(CageKind::kScan),
+                                                          loadTurningHead(CageKind::kCoarse)};
+  const std::unique_ptr<scenes::World>& world = worlds[state.range(0)];
   if (!world) {
     state.SkipWithError("the turning-head scene did not load");
     return;
   }
-  const auto threads = static_cast<unsigned>(state.range(0));
+  const auto threads = static_cast<unsigned>(state.range(1));
   const render::Camera camera = world->frameInput().camera;
   std::size_t triangles = 0, changed = 0, frames = 0;
   for (auto _ : state) {
@@ -210,7 +244,11 @@ void BM_WorldRefineForCamera(benchmark::State& state) {
   state.counters["triangles"] = double(triangles);
   state.counters["retessellated"] = double(changed) / double(std::max<std::size_t>(frames, 1));
 }
-BENCHMARK(BM_WorldRefineForCamera)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_WorldRefineForCamera)
+    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->ArgNames({"cage", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 glm::dvec2 toPixels(const subdiv::ScreenView& view, const glm::dvec3& p) {
   const glm::dvec4 clip = glm::dmat4(view.viewProjection) * glm::dvec4(p, 1.0);
@@ -219,25 +257,25 @@ glm::dvec2 toPixels(const subdiv::ScreenView& view, const glm::dvec3& p) {
 
 /// Pixel error of the straight edge a–b (ptex coordinates ua, ub of `face`) against the
 /// limit surface, sampled at ¼, ½, ¾.
-double edgeError(const subdiv::ScreenView& view, std::uint32_t face, const glm::dvec3& a, const glm::dvec3& b,
-                 glm::dvec2 ua, glm::dvec2 ub) {
+double edgeError(const Head& head, const subdiv::ScreenView& view, std::uint32_t face, const glm::dvec3& a,
+                 const glm::dvec3& b, glm::dvec2 ua, glm::dvec2 ub) {
   double worst = 0.0;
   for (double f : {0.25, 0.5, 0.75}) {
     const glm::dvec2 uv = glm::mix(ua, ub, f);
-    const glm::dvec3 onSurface = head().surface->evaluatePosition(face, uv.x, uv.y);
+    const glm::dvec3 onSurface = head.surface->evaluatePosition(face, uv.x, uv.y);
     worst = std::max(worst, glm::length(toPixels(view, glm::mix(a, b, f)) - toPixels(view, onSurface)));
   }
   return worst;
 }
 
-double adaptiveError(const subdiv::ScreenView& view, const subdiv::TessellatedMesh& mesh) {
+double adaptiveError(const Head& head, const subdiv::ScreenView& view, const subdiv::TessellatedMesh& mesh) {
   double worst = 0.0;
   for (std::size_t t = 0; t < mesh.triangleCount(); ++t) {
     if (mesh.trianglePtexFaces[t] % kErrorSampleStride != 0) continue;
     for (std::size_t k = 0; k < 3; ++k) {
       const std::size_t a = 3 * t + k, b = 3 * t + (k + 1) % 3;
       worst = std::max(worst,
-                       edgeError(view, mesh.trianglePtexFaces[t], glm::dvec3(mesh.positions[mesh.indices[a]]),
+                       edgeError(head, view, mesh.trianglePtexFaces[t], glm::dvec3(mesh.positions[mesh.indices[a]]),
                                  glm::dvec3(mesh.positions[mesh.indices[b]]), glm::dvec2(mesh.cornerPtexCoordinates[a]),
                                  glm::dvec2(mesh.cornerPtexCoordinates[b])));
     }
@@ -246,43 +284,47 @@ double adaptiveError(const subdiv::ScreenView& view, const subdiv::TessellatedMe
 }
 
 /// The error of cutting every ptex face into an n × n grid (two triangles per cell).
-double uniformError(const subdiv::ScreenView& view, int n) {
+double uniformError(const Head& head, const subdiv::ScreenView& view, int n) {
   double worst = 0.0;
   std::vector<glm::dvec3> grid(std::size_t((n + 1) * (n + 1)));
-  for (std::uint32_t face = 0; face < head().surface->ptexFaceCount(); face += kErrorSampleStride) {
+  for (std::uint32_t face = 0; face < head.surface->ptexFaceCount(); face += kErrorSampleStride) {
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i)
-        grid[std::size_t(j * (n + 1) + i)] = head().surface->evaluatePosition(face, double(i) / n, double(j) / n);
+        grid[std::size_t(j * (n + 1) + i)] = head.surface->evaluatePosition(face, double(i) / n, double(j) / n);
     const auto at = [&](int i, int j) { return grid[std::size_t(j * (n + 1) + i)]; };
     const auto uv = [&](int i, int j) { return glm::dvec2(double(i) / n, double(j) / n); };
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        if (i < n) worst = std::max(worst, edgeError(view, face, at(i, j), at(i + 1, j), uv(i, j), uv(i + 1, j)));
-        if (j < n) worst = std::max(worst, edgeError(view, face, at(i, j), at(i, j + 1), uv(i, j), uv(i, j + 1)));
+        if (i < n) worst = std::max(worst, edgeError(head, view, face, at(i, j), at(i + 1, j), uv(i, j), uv(i + 1, j)));
+        if (j < n) worst = std::max(worst, edgeError(head, view, face, at(i, j), at(i, j + 1), uv(i, j), uv(i, j + 1)));
         if (i < n && j < n)
-          worst = std::max(worst, edgeError(view, face, at(i, j), at(i + 1, j + 1), uv(i, j), uv(i + 1, j + 1)));
+          worst = std::max(worst, edgeError(head, view, face, at(i, j), at(i + 1, j + 1), uv(i, j), uv(i + 1, j + 1)));
       }
   }
   return worst;
 }
 
-void printSummary() {
-  if (!head().problem.empty()) return;
-  std::fprintf(stderr, "\nLeePerrySmith cage: %zu vertices, %zu triangles, %u ptex faces, %zu patches, %zu points\n",
-               head().cage.positions.size(), head().cage.faceSizes.size(), head().surface->ptexFaceCount(),
-               head().surface->patchCount(), head().surface->controlPointCount());
+void printSummary(CageKind kind) {
+  const Head& head = mane::head(kind);
+  if (!head.problem.empty()) return;
+  std::size_t quads = 0;
+  for (const std::uint32_t size : head.cage.faceSizes) quads += size == 4 ? 1 : 0;
+  std::fprintf(stderr,
+               "\nLeePerrySmith %s cage: %zu vertices, %zu faces (%zu quads), %u ptex faces, %zu patches, %zu points\n",
+               kind == CageKind::kScan ? "scan" : "coarse", head.cage.positions.size(), head.cage.faceSizes.size(),
+               quads, head.surface->ptexFaceCount(), head.surface->patchCount(), head.surface->controlPointCount());
   std::fprintf(stderr, "%-5s %10s %9s %12s %12s %7s\n", "view", "adaptive", "max px", "uniform grid", "uniform tris",
                "ratio");
-  auto tessellator = subdiv::AdaptiveTessellator::create(*head().surface, {.keepPtexCoordinates = true});
+  auto tessellator = subdiv::AdaptiveTessellator::create(*head.surface, {.keepPtexCoordinates = true});
   if (!tessellator) return;
   for (int d = 0; d < 3; ++d) {
-    const subdiv::ScreenView view = viewAt(kDistances[d]);
+    const subdiv::ScreenView view = viewAt(head, kDistances[d]);
     subdiv::TessellatedMesh mesh;
     tessellator->tessellate(view, mesh);
-    const double target = adaptiveError(view, mesh);
+    const double target = adaptiveError(head, view, mesh);
     int n = 1;
-    while (n < 32 && uniformError(view, n) > target) n *= 2;  // 32 × 32 at most: slow to measure
-    const double uniformTriangles = 2.0 * n * n * head().surface->ptexFaceCount();
+    while (n < 32 && uniformError(head, view, n) > target) n *= 2;  // 32 × 32 at most: slow to measure
+    const double uniformTriangles = 2.0 * n * n * head.surface->ptexFaceCount();
     std::fprintf(stderr, "%-5s %10zu %9.3f %9d×%-2d %12.0f %7.3f\n", kDistanceNames[d], mesh.triangleCount(), target, n,
                  n, uniformTriangles, double(mesh.triangleCount()) / uniformTriangles);
   }
@@ -295,7 +337,8 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
-  mane::printSummary();
+  mane::printSummary(mane::CageKind::kScan);
+  mane::printSummary(mane::CageKind::kCoarse);
   benchmark::Shutdown();
   return 0;
 }

@@ -102,6 +102,18 @@ Light parseLight(const Json& json, const std::string& path) {
   return light;
 }
 
+MeshSimplification parseSimplification(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  MeshSimplification simplify;
+  simplify.triangles = fields.required<int>("triangles");
+  require(simplify.triangles >= 1, fields.child("triangles"), "expected at least 1 triangle");
+  simplify.maxRelativeError = fields.optional<float>("max_error", simplify.maxRelativeError);
+  require(simplify.maxRelativeError > 0.0f && simplify.maxRelativeError <= 1.0f, fields.child("max_error"),
+          "expected an error in (0, 1] of the mesh's extent");
+  fields.finish();
+  return simplify;
+}
+
 Subdivision parseSubdivision(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Subdivision subdivision;
@@ -117,20 +129,10 @@ Subdivision parseSubdivision(const Json& json, const std::string& path) {
   require(subdivision.maxDepth >= kMinSubdivisionLevel && subdivision.maxDepth <= kMaxSubdivisionLevel,
           fields.child("max_depth"), "expected a depth in " + levels);
   subdivision.capHoles = fields.optional<bool>("cap_holes", subdivision.capHoles);
+  if (const Json* coarseCage = fields.take("coarse_cage"))
+    subdivision.coarseCage = parseSimplification(*coarseCage, fields.child("coarse_cage"));
   fields.finish();
   return subdivision;
-}
-
-MeshSimplification parseSimplification(const Json& json, const std::string& path) {
-  ObjectFields fields(json, path);
-  MeshSimplification simplify;
-  simplify.triangles = fields.required<int>("triangles");
-  require(simplify.triangles >= 1, fields.child("triangles"), "expected at least 1 triangle");
-  simplify.maxRelativeError = fields.optional<float>("max_error", simplify.maxRelativeError);
-  require(simplify.maxRelativeError > 0.0f && simplify.maxRelativeError <= 1.0f, fields.child("max_error"),
-          "expected an error in (0, 1] of the mesh's extent");
-  fields.finish();
-  return simplify;
 }
 
 MeshInstance parseMesh(const Json& json, const std::string& path) {

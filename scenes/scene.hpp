@@ -102,6 +102,12 @@ inline constexpr int kMinSubdivisionLevel = 1;
 inline constexpr int kMaxSubdivisionLevel = 10;
 inline constexpr float kMaxSubdivisionPixelError = 100.0f;
 
+/// Drawing a mesh with fewer triangles (scenes/mesh_simplify.hpp), for one drawn small on screen.
+struct MeshSimplification {
+  int triangles = 0;               ///< at most this many, ≥ 1
+  float maxRelativeError = 0.01f;  ///< deviation allowed, fraction of the mesh's extent, (0, 1]
+};
+
 /// Drawing a mesh as the Catmull-Clark limit surface of its triangles or polygons (the cage),
 /// tessellated at load for the scene's camera and output size and again for each new view
 /// (World::refineForCamera; scenes/subdivided_mesh.hpp).
@@ -116,12 +122,11 @@ struct Subdivision {
   /// Close the cage's holes first, one sharp-rimmed polygon per boundary loop
   /// (`capBoundaryLoops`): for open cages that must be solid, e.g. for a voxel translucency table.
   bool capHoles = false;
-};
-
-/// Drawing a mesh with fewer triangles (scenes/mesh_simplify.hpp), for one drawn small on screen.
-struct MeshSimplification {
-  int triangles = 0;               ///< at most this many, ≥ 1
-  float maxRelativeError = 0.01f;  ///< deviation allowed, fraction of the mesh's extent, (0, 1]
+  /// A coarse quad-dominant cage instead of the mesh's own triangles (coarseCageFromTriangles):
+  /// the triangles simplified to this and paired into quads. For a dense scan, whose triangles
+  /// as a cage make every patch an end cap and the limit surface too costly to tessellate
+  /// each frame.
+  std::optional<MeshSimplification> coarseCage;
 };
 
 /// A mesh placed in the scene.

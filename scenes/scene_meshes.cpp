@@ -83,7 +83,11 @@ Result<LoadedMesh> loadSceneMesh(const MeshInstance& instance, const AssetResolv
     loaded->mesh = std::move(simplified->mesh);
   }
   if (!loaded || !instance.subdivision) return loaded;
-  if (file && isObj(*file)) {
+  if (const auto& coarse = instance.subdivision->coarseCage) {
+    auto cage = coarseCageFromTriangles(loaded->mesh, *coarse);
+    if (!cage) return fail("mesh '" + instance.name + "': subdivision " + cage.error().message);
+    loaded->cage = std::move(cage->cage);
+  } else if (file && isObj(*file)) {
     // The OBJ's own polygons: quads stay quads, and `t crease` / `t corner` tags are kept.
     auto cage = subdiv::loadCageObj(*file);
     if (!cage) return fail("mesh '" + instance.name + "': subdivision cage: " + cage.error().message);

@@ -6,7 +6,9 @@
 #include <thread>
 #include <tuple>
 
+#include "scenes/mesh_simplify.hpp"
 #include "subdiv/limit.hpp"
+#include "subdiv/quad_pairing.hpp"
 #include "subdiv/tessellator.hpp"
 
 namespace mane::scenes {
@@ -32,6 +34,17 @@ subdiv::Cage cageFromTriangles(const Mesh& mesh) {
       cage.faceUvIndices.insert(cage.faceUvIndices.end(), {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]});
   }
   return cage;
+}
+
+Result<CoarseCage> coarseCageFromTriangles(const Mesh& mesh, const MeshSimplification& simplification) {
+  auto simplified = simplifyMesh(mesh, {.targetTriangles = std::size_t(simplification.triangles),
+                                        .maxRelativeError = simplification.maxRelativeError});
+  if (!simplified) return fail("coarse cage: " + simplified.error().message);
+  subdiv::QuadPairing paired = subdiv::pairTrianglesIntoQuads(cageFromTriangles(simplified->mesh));
+  return CoarseCage{.cage = std::move(paired.cage),
+                    .quads = paired.quads,
+                    .triangles = paired.triangles,
+                    .simplificationError = simplified->error};
 }
 
 void flipCageUvsToTopLeft(subdiv::Cage& cage) {

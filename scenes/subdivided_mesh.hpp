@@ -24,6 +24,23 @@ namespace mane::scenes {
 /// UVs become face-varying UVs, and triangles that collapse once welded are dropped.
 [[nodiscard]] subdiv::Cage cageFromTriangles(const Mesh& mesh);
 
+/// What coarseCageFromTriangles made.
+struct CoarseCage {
+  subdiv::Cage cage;
+  std::size_t quads = 0;             ///< faces made by pairing two triangles
+  std::size_t triangles = 0;         ///< triangles left unpaired
+  float simplificationError = 0.0f;  ///< the simplifier's deviation from the mesh, in its units
+};
+
+/// A quad-dominant cage for a dense triangle mesh (a scan), in two repeatable steps:
+/// simplifyMesh to `simplification` (meshoptimizer's quadric edge collapse, uv seams kept), then
+/// cageFromTriangles and pairTrianglesIntoQuads (subdiv/quad_pairing.hpp). The cage's vertices
+/// stay on the scan; the limit surface, an average of them, lies slightly inside where the scan
+/// is convex. (Moving the vertices until the limit surface interpolates them was tried: it
+/// amplifies the simplified mesh's small-scale noise into ridges between the vertices.)
+/// Errors: the simplifier's.
+[[nodiscard]] Result<CoarseCage> coarseCageFromTriangles(const Mesh& mesh, const MeshSimplification& simplification);
+
 /// Turns a cage's UVs from OBJ's convention (v up from the bottom) to `Mesh`'s (glTF: v down).
 void flipCageUvsToTopLeft(subdiv::Cage& cage);
 
