@@ -1,14 +1,17 @@
-// Adaptive Catmull-Clark tessellation of the LeePerrySmith head per frame (issue 6): the
-// cage is the scan's own triangle mesh (vertices welded where positions are equal, UVs kept
-// as face-varying data), refined adaptively once; each frame re-tessellates for a 1280×720
-// camera at three distances. A deforming-cage update (new cage positions → refined and local
-// points) is timed on its own and with the tessellation.
+// Adaptive Catmull-Clark tessellation of the LeePerrySmith head per frame (issue 6), through two
+// cages (the first argument of every benchmark): the scan's own triangle mesh (vertices welded
+// where positions are equal, UVs kept as face-varying data), and the coarse quad-dominant cage
+// nalu.json draws (scenes::coarseCageFromTriangles). Each is refined adaptively once; each frame
+// tessellates again for a 1280×720 camera at three distances. A deforming-cage update (new cage
+// positions → refined and local points) is timed on its own, with the tessellation, and with
+// only the last tessellation's vertices re-evaluated (a still camera).
 //
 // The summary compares, at each distance, the adaptive triangle count with what a uniform
 // tessellation (every ptex face cut into a 2^k × 2^k grid of limit points) needs for the
 // same maximum pixel error. Errors are measured on every 16th ptex face (the same faces for
 // both), sampling each output edge at ¼, ½, ¾: the pixel distance between the straight edge
-// and the limit point at the same ptex parameter.
+// and the limit point at the same ptex parameter. It also measures the rest pose's triangles
+// moved onto the opened jaw against a fresh tessellation of it.
 //
 // BM_WorldRefineForCamera is the per-frame cost inside the World (scenes::World::
 // refineForCamera): the same head as a scene mesh with a `subdivision` block, turning ±20° at
@@ -185,6 +188,32 @@ BENCHMARK(BM_DeformAndTessellateFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// Arguments: CageKind, distance index, worker threads. A deforming head seen from a still
+// camera: each frame moves the cage and re-evaluates the last tessellation's vertices
+// (AdaptiveTessellator::updateVertices) instead of tessellating again.
+void BM_DeformAndUpdateVerticesFrame(benchmark::State& state) {
+  if (skipWithoutHead(state)) return;
+  Head& head = headFor(state);
+  const subdiv::ScreenView view = viewAt(head, kDistances[state.range(1)]);
+  const auto threads = static_cast<unsigned>(state.range(2));
+  subdiv::TessellatedMesh mesh;
+  head.tessellator->tessellate(view, mesh, threads);
+  std::size_t frame = 0;
+  for (auto _ : state) {
+    auto updated = head.surface->updatePositions(head.poses[frame++ % 2], threads);
+    auto moved = head.tessellator->updateVertices(mesh, threads);
+    if (!updated || !moved) return state.SkipWithError("updating the head failed");
+    benchmark::DoNotOptimize(mesh.positions.data());
+  }
+  state.SetLabel(kDistanceNames[state.range(1)]);
+  state.counters["triangles"] = double(mesh.triangleCount());
+}
+BENCHMARK(BM_DeformAndUpdateVerticesFrame)
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {1, 2}})
+    ->ArgNames({"cage", "view", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // A nalu-like scene: the head (0.025 m per file unit) with either cage as above, turning ±20° at
 // 0.25 Hz, no hair; the camera at the mid distance (30 units = 0.75 m) from the head's centre.
 std::unique_ptr<scenes::World> loadTurningHead(CageKind kind) {
@@ -328,6 +357,18 @@ void printSummary(CageKind kind) {
     std::fprintf(stderr, "%-5s %10zu %9.3f %9d×%-2d %12.0f %7.3f\n", kDistanceNames[d], mesh.triangleCount(), target, n,
                  n, uniformTriangles, double(mesh.triangleCount()) / uniformTriangles);
   }
+  // The jaw opened by 3° (one of the deforming frames' poses) under the mid view: the rest
+  // pose's triangles moved onto the new surface, against a fresh tessellation of it.
+  const subdiv::ScreenView view = viewAt(head, kDistances[1]);
+  subdiv::TessellatedMesh kept, fresh;
+  tessellator->tessellate(view, kept);
+  if (!head.surface->updatePositions(head.poses[0]) || !tessellator->updateVertices(kept)) return;
+  const double keptError = adaptiveError(head, view, kept);
+  tessellator->tessellate(view, fresh);
+  const double freshError = adaptiveError(head, view, fresh);
+  std::fprintf(stderr, "jaw at 3°, mid view: rest pose's triangles moved %.3f px, tessellated again %.3f px\n",
+               keptError, freshError);
+  if (!head.surface->updatePositions(head.cage.positions)) return;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "subdiv/tessellator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -21,6 +22,7 @@ using detail::kGrid;
 // and triangulate, a limit point half that to evaluate).
 constexpr std::size_t kMinFacesPerWorker = 512;
 constexpr std::size_t kMinPointsPerWorker = 1024;
+constexpr std::size_t kChunksPerWorker = 16;
 
 /// A limit point seen by the camera.
 struct ProjectedPoint {
@@ -62,8 +64,8 @@ struct AdaptiveTessellator::Impl {
     std::uint32_t face;
     GridPoint point;
   };
-  /// What one worker produces for its range of ptex faces, merged in range order.
-  struct Worker {
+  /// What one chunk of ptex faces produces (and its worker's scratch), merged in chunk order.
+  struct alignas(64) Worker {
     std::vector<Cell> cells;
     std::size_t positionEvaluations = 0;
     std::vector<std::pair<std::int64_t, std::int64_t>> rows, columns;  ///< one face's cell corners: (j, i), (i, j)
@@ -71,7 +73,6 @@ struct AdaptiveTessellator::Impl {
     std::vector<Corner> corners;  ///< 3 per triangle
   };
   std::vector<Worker> workers;
-  std::vector<std::size_t> faceRangeBegin;  ///< per worker, its first ptex face
   // Naming: limit points (one per location) and vertices (one per location and UV side).
   static constexpr std::uint32_t kNoVertex = 0xffffffffu;
   struct Location {
@@ -120,34 +121,55 @@ struct AdaptiveTessellator::Impl {
     return chord.inFront ? glm::length(chord.pixel - middle.pixel) : 0.0;
   }
 
+  /// The midpoints of a cell's sides (bottom, right, top, left) its parent already evaluated.
+  using KnownSides = std::array<const ProjectedPoint*, 4>;
+
   // Corners 0..3 at (i0, j0), (i1, j0), (i1, j1), (i0, j1).
   void refine(Worker& worker, std::uint32_t face, std::int64_t i0, std::int64_t j0, std::int64_t size,
-              const ProjectedPoint (&c)[4]) const {
-    const std::int64_t h = size / 2;
-    const ProjectedPoint bottom = evaluate(worker, face, i0 + h, j0);
-    const ProjectedPoint right = evaluate(worker, face, i0 + size, j0 + h);
-    const ProjectedPoint top = evaluate(worker, face, i0 + h, j0 + size);
-    const ProjectedPoint left = evaluate(worker, face, i0, j0 + h);
-    const ProjectedPoint centre = evaluate(worker, face, i0 + h, j0 + h);
-    bool split = size > smallestCell;
-    if (split) {
-      // Nothing to refine where all samples lie beyond one side of the view.
-      const unsigned outsideAll = c[0].outside & c[1].outside & c[2].outside & c[3].outside & bottom.outside &
-                                  right.outside & top.outside & left.outside & centre.outside;
-      const double error =
-          std::max({chordError(c[0], c[1], bottom), chordError(c[1], c[2], right), chordError(c[2], c[3], top),
-                    chordError(c[3], c[0], left), chordError(c[0], c[2], centre), chordError(c[1], c[3], centre),
-                    chordError(bottom, top, centre), chordError(left, right, centre)});
-      split = outsideAll == 0 && error > double(settings.maxPixelError);
-    }
-    if (!split) {
+              const ProjectedPoint (&c)[4], const KnownSides& known) const {
+    if (size <= smallestCell) {
       worker.cells.push_back({face, i0, j0, size});
       return;
     }
-    refine(worker, face, i0, j0, h, {c[0], bottom, centre, left});
-    refine(worker, face, i0 + h, j0, h, {bottom, c[1], right, centre});
-    refine(worker, face, i0 + h, j0 + h, h, {centre, right, c[2], top});
-    refine(worker, face, i0, j0 + h, h, {left, centre, top, c[3]});
+    const std::int64_t h = size / 2;
+    const auto side = [&](int k, std::int64_t i, std::int64_t j) {
+      return known[k] != nullptr ? *known[k] : evaluate(worker, face, i, j);
+    };
+    const ProjectedPoint bottom = side(0, i0 + h, j0);
+    const ProjectedPoint right = side(1, i0 + size, j0 + h);
+    const ProjectedPoint top = side(2, i0 + h, j0 + size);
+    const ProjectedPoint left = side(3, i0, j0 + h);
+    const ProjectedPoint centre = evaluate(worker, face, i0 + h, j0 + h);
+    // Nothing to refine where all samples lie beyond one side of the view.
+    const unsigned outsideAll = c[0].outside & c[1].outside & c[2].outside & c[3].outside & bottom.outside &
+                                right.outside & top.outside & left.outside & centre.outside;
+    const double error =
+        std::max({chordError(c[0], c[1], bottom), chordError(c[1], c[2], right), chordError(c[2], c[3], top),
+                  chordError(c[3], c[0], left), chordError(c[0], c[2], centre), chordError(c[1], c[3], centre),
+                  chordError(bottom, top, centre), chordError(left, right, centre)});
+    if (outsideAll != 0 || error <= double(settings.maxPixelError)) {
+      worker.cells.push_back({face, i0, j0, size});
+      return;
+    }
+    // The midpoints of the four sides the children share, evaluated once for both neighbours
+    // (children of the smallest size test nothing).
+    ProjectedPoint shared[4];  // between children 0–1, 1–2, 2–3, 3–0
+    KnownSides known0{}, known1{}, known2{}, known3{};
+    if (h > smallestCell) {
+      const std::int64_t q = h / 2;
+      shared[0] = evaluate(worker, face, i0 + h, j0 + q);
+      shared[1] = evaluate(worker, face, i0 + h + q, j0 + h);
+      shared[2] = evaluate(worker, face, i0 + h, j0 + h + q);
+      shared[3] = evaluate(worker, face, i0 + q, j0 + h);
+      known0 = {nullptr, &shared[0], &shared[3], nullptr};
+      known1 = {nullptr, nullptr, &shared[1], &shared[0]};
+      known2 = {&shared[1], nullptr, nullptr, &shared[2]};
+      known3 = {&shared[3], &shared[2], nullptr, nullptr};
+    }
+    refine(worker, face, i0, j0, h, {c[0], bottom, centre, left}, known0);
+    refine(worker, face, i0 + h, j0, h, {bottom, c[1], right, centre}, known1);
+    refine(worker, face, i0 + h, j0 + h, h, {centre, right, c[2], top}, known2);
+    refine(worker, face, i0, j0 + h, h, {left, centre, top, c[3]}, known3);
   }
 
   void refineFaces(Worker& worker, std::size_t begin, std::size_t end) const {
@@ -156,7 +178,7 @@ struct AdaptiveTessellator::Impl {
     for (auto face = std::uint32_t(begin); face < end; ++face) {
       const ProjectedPoint corners[4] = {evaluate(worker, face, 0, 0), evaluate(worker, face, kGrid, 0),
                                          evaluate(worker, face, kGrid, kGrid), evaluate(worker, face, 0, kGrid)};
-      refine(worker, face, 0, 0, kGrid, corners);
+      refine(worker, face, 0, 0, kGrid, corners, {});
     }
   }
 
@@ -369,14 +391,17 @@ struct AdaptiveTessellator::Impl {
     viewport = glm::dvec2(view.viewportSize);
     const std::size_t faces = surface->ptexFaceCount();
     const std::size_t workerTotal = detail::workerCount(faces, threads, kMinFacesPerWorker);
-    workers.resize(workerTotal);
-    detail::forEachRange(faces, workerTotal, [&](std::size_t w, std::size_t begin, std::size_t end) {
-      refineFaces(workers[w], begin, end);
+    // Faces near the camera or the silhouette split far more than the rest, and they sit
+    // together in face order: small interleaved chunks share them between the workers.
+    const std::size_t chunks = workerTotal == 1 ? 1 : workerTotal * kChunksPerWorker;
+    workers.resize(chunks);
+    detail::forEachChunk(faces, chunks, workerTotal, [&](std::size_t c, std::size_t begin, std::size_t end) {
+      refineFaces(workers[c], begin, end);
     });
     mergeCells();
     collectLinePoints();
-    detail::forEachRange(faces, workerTotal, [&](std::size_t w, std::size_t begin, std::size_t end) {
-      triangulateFaces(workers[w], begin, end);
+    detail::forEachChunk(faces, chunks, workerTotal, [&](std::size_t c, std::size_t begin, std::size_t end) {
+      triangulateFaces(workers[c], begin, end);
     });
     numberVertices(mesh);
     evaluateVertices(mesh, threads);
@@ -401,6 +426,14 @@ AdaptiveTessellator::~AdaptiveTessellator() = default;
 
 void AdaptiveTessellator::tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
   impl_->tessellate(view, mesh, threads);
+}
+
+Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned threads) {
+  if (impl_->vertices.empty() || mesh.positions.size() != impl_->vertices.size())
+    return fail("updating the vertices of a tessellation: the mesh has " + std::to_string(mesh.positions.size()) +
+                " vertices, the last tessellation " + std::to_string(impl_->vertices.size()));
+  impl_->evaluateVertices(mesh, threads);
+  return {};
 }
 
 const TessellationStatistics& AdaptiveTessellator::statistics() const {

@@ -83,6 +83,15 @@ public:
   /// same mesh, vertex order included, bit for bit whatever `threads` is.
   void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
 
+  /// Moves the vertices of the last tessellation onto the surface as it is now (after
+  /// LimitSurface::updatePositions), keeping its triangles: each vertex is evaluated again at
+  /// its ptex point. For a deforming cage seen from a still camera, between tessellations:
+  /// about a third of tessellate's cost. The screen error is what the last tessellate call
+  /// measured for the shape it saw; the caller tessellates again when the view or the shape
+  /// has changed enough for that to matter. Deterministic like tessellate. Errors: `mesh` is
+  /// not the last tessellation's output (different vertex count), or there was none.
+  [[nodiscard]] Result<void> updateVertices(TessellatedMesh& mesh, unsigned threads = 1);
+
   [[nodiscard]] const TessellationStatistics& statistics() const;
   [[nodiscard]] const TessellationSettings& settings() const;
 

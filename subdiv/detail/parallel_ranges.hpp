@@ -50,4 +50,16 @@ void forEachRange(std::size_t count, std::size_t workers, const Work& work) {
   pool.clear();  // joins
 }
 
+/// Calls `work(chunk, begin, end)` for chunks 0..chunks−1 of [0, count), worker w of `workers`
+/// taking chunks w, w + workers, w + 2·workers, ...: finer than one range per worker, so that
+/// work piled up in one part of [0, count) is still shared. Callers merge per-chunk outputs in
+/// chunk order, which neither the worker count nor the timing changes.
+template <typename Work>
+void forEachChunk(std::size_t count, std::size_t chunks, std::size_t workers, const Work& work) {
+  forEachRange(workers, workers, [&](std::size_t w, std::size_t, std::size_t) {
+    for (std::size_t c = w; c < chunks; c += workers)
+      work(c, rangeBegin(count, chunks, c), rangeBegin(count, chunks, c + 1));
+  });
+}
+
 }  // namespace mane::subdiv::detail

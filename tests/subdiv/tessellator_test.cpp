@@ -173,6 +173,52 @@ TEST(AdaptiveTessellation, IsDeterministicAndFollowsADeformingCage) {
   EXPECT_EQ(countEdges(moved).notTwo, 0u);
 }
 
+// A deforming cage seen from a still camera keeps its triangles: updateVertices moves each
+// vertex to the new surface at its own ptex point, and moving the cage back restores the mesh.
+TEST(AdaptiveTessellation, UpdatingVerticesKeepsTheTrianglesOnTheMovedSurface) {
+  const Cage cage = testing::uvSphere(10, 6, 1.0f);
+  Tessellated t = prepare(cage, {.keepPtexCoordinates = true});
+  TessellatedMesh none;
+  EXPECT_FALSE(t.tessellator.updateVertices(none).has_value()) << "nothing tessellated yet";
+  const ScreenView view = viewFrom(glm::vec3(0.0f), 5.0f);
+  TessellatedMesh rest;
+  t.tessellator.tessellate(view, rest);
+  TessellatedMesh mesh = rest;
+
+  std::vector<glm::vec3> stretched = cage.positions;
+  for (glm::vec3& p : stretched) p.x *= 1.5f;
+  ASSERT_TRUE(t.surface.updatePositions(stretched).has_value());
+  ASSERT_TRUE(t.tessellator.updateVertices(mesh).has_value());
+  EXPECT_EQ(mesh.indices, rest.indices);
+  float largest = 0.0f;
+  for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
+    const std::uint32_t v = mesh.indices[corner];
+    const glm::vec2 uv = mesh.cornerPtexCoordinates[corner];
+    const LimitSample sample = t.surface.evaluate(mesh.trianglePtexFaces[corner / 3], uv.x, uv.y);
+    largest = std::max(largest, glm::length(mesh.positions[v] - sample.position));
+    EXPECT_NEAR(glm::dot(mesh.normals[v], sample.normal), 1.0f, 1e-5f);
+    EXPECT_EQ(mesh.meanCurvature[v], mesh.meanCurvature[mesh.weldedVertex[v]]);
+  }
+  EXPECT_LT(largest, 1e-6f);
+  float widthBefore = 0.0f, widthAfter = 0.0f;
+  for (const glm::vec3& p : rest.positions) widthBefore = std::max(widthBefore, std::abs(p.x));
+  for (const glm::vec3& p : mesh.positions) widthAfter = std::max(widthAfter, std::abs(p.x));
+  EXPECT_NEAR(widthAfter / widthBefore, 1.5f, 0.02f);
+
+  ASSERT_TRUE(t.surface.updatePositions(cage.positions).has_value());
+  ASSERT_TRUE(t.tessellator.updateVertices(mesh, 2).has_value());
+  EXPECT_EQ(mesh.positions, rest.positions);
+  EXPECT_EQ(mesh.normals, rest.normals);
+  EXPECT_EQ(mesh.meanCurvature, rest.meanCurvature);
+  EXPECT_EQ(mesh.uvs, rest.uvs);
+
+  TessellatedMesh other;  // not this tessellation's output
+  other.positions.resize(3);
+  const auto refused = t.tessellator.updateVertices(other);
+  ASSERT_FALSE(refused.has_value());
+  EXPECT_NE(refused.error().message.find("3 vertices"), std::string::npos) << refused.error().message;
+}
+
 TEST(AdaptiveTessellation, UvSeamsSplitVerticesButNotTheSurface) {
   MANE_RESOLVE_OR_SKIP(file, "subdiv/opensubdiv/catmark_cube.obj");
   auto cage = loadCageObj(file);
