@@ -95,6 +95,10 @@ struct LimitSurface::Impl {
     assert(handle != nullptr && "every ptex face of a hole-free cage has patches");
     return *handle;
   }
+
+  /// LimitSample without its uv, on a patch `findPatch` found (u, v as it clamped them).
+  LimitSample shapeAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const;
+  glm::vec2 uvAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const;
 };
 
 LimitSurface::LimitSurface(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -186,12 +190,23 @@ Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositi
 
 LimitSample LimitSurface::evaluate(std::uint32_t ptexFace, double u, double v) const {
   const auto& handle = impl_->findPatch(ptexFace, u, v);
+  LimitSample sample = impl_->shapeAt(handle, u, v);
+  if (hasUvs()) sample.uv = impl_->uvAt(handle, u, v);
+  return sample;
+}
+
+LimitSample LimitSurface::evaluateShape(std::uint32_t ptexFace, double u, double v) const {
+  const auto& handle = impl_->findPatch(ptexFace, u, v);
+  return impl_->shapeAt(handle, u, v);
+}
+
+LimitSample LimitSurface::Impl::shapeAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const {
   double w[6][kMaxPatchPoints];
-  impl_->patches->EvaluateBasis(handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
-  const Far::ConstIndexArray cvs = impl_->patches->GetPatchVertices(handle);
+  patches->EvaluateBasis(handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
+  const Far::ConstIndexArray cvs = patches->GetPatchVertices(handle);
   glm::dvec3 sums[6] = {};
   for (int i = 0; i < cvs.size(); ++i) {
-    const glm::dvec3& point = impl_->points[static_cast<std::size_t>(cvs[i])];
+    const glm::dvec3& point = points[static_cast<std::size_t>(cvs[i])];
     for (int d = 0; d < 6; ++d) sums[d] += w[d][i] * point;
   }
   // OpenSubdiv (3.5) scales a patch's derivatives by 2^depth, the depth counting from the cage
@@ -199,7 +214,7 @@ LimitSample LimitSurface::evaluate(std::uint32_t ptexFace, double u, double v) c
   // twice what they are per unit of the sub-face's own (u, v) (checked against finite
   // differences in tests/subdiv/limit_test.cpp). Normals and curvature do not depend on the
   // scale; Jacobians (areas) do.
-  if (impl_->patches->GetPatchParam(handle).NonQuadRoot()) {
+  if (patches->GetPatchParam(handle).NonQuadRoot()) {
     for (int d = 1; d <= 2; ++d) sums[d] *= 0.5;
     for (int d = 3; d <= 5; ++d) sums[d] *= 0.25;
   }
@@ -214,7 +229,6 @@ LimitSample LimitSurface::evaluate(std::uint32_t ptexFace, double u, double v) c
   const double length = glm::length(normal);
   sample.normal = length > 0.0 ? glm::vec3(normal / length) : glm::vec3(0.0f);
   sample.curvature = curvatureFromDerivatives(sums[1], sums[2], sums[3], sums[4], sums[5]);
-  if (hasUvs()) sample.uv = evaluateUv(ptexFace, u, v);
   return sample;
 }
 
@@ -231,11 +245,15 @@ glm::dvec3 LimitSurface::evaluatePosition(std::uint32_t ptexFace, double u, doub
 glm::vec2 LimitSurface::evaluateUv(std::uint32_t ptexFace, double u, double v) const {
   if (!hasUvs()) return glm::vec2(0.0f);
   const auto& handle = impl_->findPatch(ptexFace, u, v);
+  return impl_->uvAt(handle, u, v);
+}
+
+glm::vec2 LimitSurface::Impl::uvAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const {
   double w[kMaxPatchPoints];
-  impl_->patches->EvaluateBasisFaceVarying(handle, u, v, w, nullptr, nullptr, nullptr, nullptr, nullptr, 0);
-  const Far::ConstIndexArray values = impl_->patches->GetPatchFVarValues(handle, 0);
+  patches->EvaluateBasisFaceVarying(handle, u, v, w, nullptr, nullptr, nullptr, nullptr, nullptr, 0);
+  const Far::ConstIndexArray values = patches->GetPatchFVarValues(handle, 0);
   glm::dvec2 sum(0.0);
-  for (int i = 0; i < values.size(); ++i) sum += w[i] * impl_->uvs[static_cast<std::size_t>(values[i])].p;
+  for (int i = 0; i < values.size(); ++i) sum += w[i] * uvs[static_cast<std::size_t>(values[i])].p;
   return glm::vec2(sum);
 }
 

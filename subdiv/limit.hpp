@@ -93,6 +93,8 @@ public:
   /// Full evaluation at (u, v) ∈ [0,1]² of `ptexFace` (< ptexFaceCount(); u and v are
   /// clamped to the face).
   [[nodiscard]] LimitSample evaluate(std::uint32_t ptexFace, double u, double v) const;
+  /// `evaluate` without the texture coordinates, which a deforming cage does not move.
+  [[nodiscard]] LimitSample evaluateShape(std::uint32_t ptexFace, double u, double v) const;
   /// The position alone: cheaper, for error estimates.
   [[nodiscard]] glm::dvec3 evaluatePosition(std::uint32_t ptexFace, double u, double v) const;
   /// The texture coordinates alone.

@@ -344,44 +344,51 @@ struct AdaptiveTessellator::Impl {
       }
   }
 
-  void evaluateVertices(TessellatedMesh& mesh, unsigned threads) {
+  /// Evaluates every vertex at its ptex point. Without `uvsToo`, mesh.uvs and weldedVertex are
+  /// kept as they are: a moved cage moves neither.
+  void evaluateVertices(TessellatedMesh& mesh, unsigned threads, bool uvsToo) {
     const std::size_t count = vertices.size();
-    const bool uvs = surface->hasUvs();
+    const bool uvs = uvsToo && surface->hasUvs();
     mesh.positions.resize(count);
     mesh.normals.resize(count);
     mesh.meanCurvature.resize(count);
-    mesh.weldedVertex.resize(count);
-    mesh.uvs.resize(uvs ? count : 0);
+    if (uvsToo) {
+      mesh.weldedVertex.resize(count);
+      mesh.uvs.resize(uvs ? count : 0);
+    }
     const auto toUv = [](std::int64_t coordinate) { return double(coordinate) / double(kGrid); };
     detail::forEachRange(locations.size(), detail::workerCount(locations.size(), threads, kMinPointsPerWorker),
                          [&](std::size_t, std::size_t begin, std::size_t end) {
                            for (std::size_t l = begin; l < end; ++l) {
                              const Location& location = locations[l];
-                             const LimitSample sample =
-                                 surface->evaluate(location.face, toUv(location.point.i), toUv(location.point.j));
-                             const std::uint32_t v = location.firstVertex;
-                             mesh.positions[v] = sample.position;
-                             mesh.normals[v] = sample.normal;
-                             mesh.meanCurvature[v] = sample.curvature.mean;
-                             if (uvs) mesh.uvs[v] = sample.uv;
+                             const double u = toUv(location.point.i), v = toUv(location.point.j);
+                             const LimitSample sample = uvs ? surface->evaluate(location.face, u, v)
+                                                            : surface->evaluateShape(location.face, u, v);
+                             const std::uint32_t first = location.firstVertex;
+                             mesh.positions[first] = sample.position;
+                             mesh.normals[first] = sample.normal;
+                             mesh.meanCurvature[first] = sample.curvature.mean;
+                             if (uvs) mesh.uvs[first] = sample.uv;
                            }
                          });
     // The other sides of UV seams: the same limit point, their own face's UVs.
-    detail::forEachRange(count, detail::workerCount(count, threads, kMinPointsPerWorker),
-                         [&](std::size_t, std::size_t begin, std::size_t end) {
-                           for (std::size_t v = begin; v < end; ++v) {
-                             const VertexSource& source = vertices[v];
-                             const std::uint32_t first = locations[source.location].firstVertex;
-                             mesh.weldedVertex[v] = first;
-                             if (first == v) continue;
-                             mesh.positions[v] = mesh.positions[first];
-                             mesh.normals[v] = mesh.normals[first];
-                             mesh.meanCurvature[v] = mesh.meanCurvature[first];
-                             if (uvs)
-                               mesh.uvs[v] =
-                                   surface->evaluateUv(source.face, toUv(source.point.i), toUv(source.point.j));
-                           }
-                         });
+    const auto copySeams = [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t v = begin; v < end; ++v) {
+        const VertexSource& source = vertices[v];
+        const std::uint32_t first = locations[source.location].firstVertex;
+        if (uvsToo) mesh.weldedVertex[v] = first;
+        if (first == v) continue;
+        mesh.positions[v] = mesh.positions[first];
+        mesh.normals[v] = mesh.normals[first];
+        mesh.meanCurvature[v] = mesh.meanCurvature[first];
+        if (uvs) mesh.uvs[v] = surface->evaluateUv(source.face, toUv(source.point.i), toUv(source.point.j));
+      }
+    };
+    // Copies alone are not worth a thread.
+    if (uvs)
+      detail::forEachRange(count, detail::workerCount(count, threads, kMinPointsPerWorker), copySeams);
+    else
+      copySeams(0, 0, count);
     statistics.limitPoints = locations.size();
   }
 
@@ -404,7 +411,7 @@ struct AdaptiveTessellator::Impl {
       triangulateFaces(workers[c], begin, end);
     });
     numberVertices(mesh);
-    evaluateVertices(mesh, threads);
+    evaluateVertices(mesh, threads, true);
   }
 };
 
@@ -432,7 +439,7 @@ Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned
   if (impl_->vertices.empty() || mesh.positions.size() != impl_->vertices.size())
     return fail("updating the vertices of a tessellation: the mesh has " + std::to_string(mesh.positions.size()) +
                 " vertices, the last tessellation " + std::to_string(impl_->vertices.size()));
-  impl_->evaluateVertices(mesh, threads);
+  impl_->evaluateVertices(mesh, threads, false);
   return {};
 }
 

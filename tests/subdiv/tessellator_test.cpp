@@ -236,6 +236,21 @@ TEST(AdaptiveTessellation, UvSeamsSplitVerticesButNotTheSurface) {
   }
   EXPECT_GT(split, 0u) << "the cube's unfolded UVs have seams";
   EXPECT_EQ(countEdges(mesh).notTwo, 0u);
+
+  // The cage doubled in size: every vertex moves to exactly twice its place (scaling by a power
+  // of two is exact in floating point, and the surface is an affine combination of the cage),
+  // seams stay split with equal positions on both sides, and the UVs do not move.
+  std::vector<glm::vec3> doubled = cage->positions;
+  for (glm::vec3& p : doubled) p *= 2.0f;
+  ASSERT_TRUE(t.surface.updatePositions(doubled).has_value());
+  const TessellatedMesh before = mesh;
+  ASSERT_TRUE(t.tessellator.updateVertices(mesh).has_value());
+  EXPECT_EQ(mesh.uvs, before.uvs);
+  EXPECT_EQ(mesh.weldedVertex, before.weldedVertex);
+  for (std::uint32_t v = 0; v < mesh.positions.size(); ++v) {
+    ASSERT_EQ(mesh.positions[v], 2.0f * before.positions[v]) << "vertex " << v;
+    EXPECT_EQ(mesh.positions[v], mesh.positions[mesh.weldedVertex[v]]);
+  }
 }
 
 TEST(AdaptiveTessellation, RejectsBadSettings) {
