@@ -3,10 +3,10 @@
 // renderer, then every pass with the scene's own post settings — at 1280×720 on the device mane
 // picks (lavapipe here). Each iteration is one frame of 1/30 s, timed by the wall clock; the
 // counters are medians over the iterations: frame_ms (the whole frame, and fps from it), sim_ms
-// (World::advance), upload_ms (the hand-off to the renderer), refine_ms (the head's limit surface
-// tessellated again for its new pose, World::refineForCamera, and re-uploaded), gpu_ms (the first pass's begin to
-// the last one's end) and each pass's GPU time, the main pass (surfaces, furs, hair ribbons) as
-// one span.
+// (World::advance), upload_ms (the hand-off to the renderer), refine_ms (the head's limit
+// surface tessellated again for its new pose by World::refineForCamera, and re-uploaded),
+// gpu_ms (the first pass's begin to the last one's end) and each pass's GPU time, the main
+// pass (surfaces, furs, hair ribbons) as one span.
 //
 //   BM_NaluFrame/variant:0  the scene as shipped (4,095 strands, pre-integrated skin), 1× MSAA
 //   BM_NaluFrame/variant:1  the same at 4× MSAA (`mane render`'s default)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -38,18 +39,14 @@ QuadPairing pairTrianglesIntoQuads(const Cage& cage, const QuadPairingSettings& 
   };
   const auto uv = [&](std::size_t face, std::uint32_t k) { return cage.uvs[uvIndex(face, k)]; };
 
-  // Directed edge → (face, corner it starts at); an edge used twice in one direction is
-  // impossible in a valid cage. Undirected edges used by more than two faces are not either.
+  // Directed edge → (face, corner it starts at): a valid cage uses each directed edge once.
   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> directed;
   for (std::size_t f = 0; f < faceCount; ++f)
     for (std::uint32_t k = 0; k < cage.faceSizes[f]; ++k)
       directed.emplace(edgeKey(vertex(f, k), vertex(f, k + 1)), std::pair{std::uint32_t(f), k});
-  std::unordered_map<std::uint64_t, bool> creased;
+  std::unordered_set<std::uint64_t> creased;
   for (const Crease& crease : cage.creases)
-    if (crease.sharpness > 0.0f) {
-      creased[edgeKey(crease.a, crease.b)] = true;
-      creased[edgeKey(crease.b, crease.a)] = true;
-    }
+    if (crease.sharpness > 0.0f) creased.insert({edgeKey(crease.a, crease.b), edgeKey(crease.b, crease.a)});
 
   std::vector<Candidate> candidates;
   for (std::size_t f = 0; f < faceCount; ++f) {

@@ -76,9 +76,10 @@ TEST(World, HandsTheRendererTheScenesCameraLightsAndMaterials) {
   const render::StaticScene statics = world->staticScene();
   ASSERT_EQ(statics.meshes.size(), 4u);
   // LeePerrySmith (17,684 triangles, ../shared/assets/README.md) as the limit surface of its
-  // 3,000-triangle coarse cage, tessellated for the camera: finer than the cage, coarser than the scan.
+  // 3,000-triangle coarse cage, tessellated to 2 pixels for the camera: finer than the cage, and
+  // about as fine as the scan (19,896 triangles measured).
   EXPECT_GT(statics.meshes[0].indices.size(), 3u * 3000u);
-  EXPECT_LT(statics.meshes[0].indices.size(), 3u * 17684u * 4u);
+  EXPECT_LT(statics.meshes[0].indices.size(), 3u * 2u * 17684u);
   ASSERT_EQ(statics.materials.size(), 4u);  // the scene's skin, fin and fur, then the default material
   EXPECT_EQ(frame.instances[0].material, 0u);
   ASSERT_TRUE(statics.materials[0].albedo.has_value());
