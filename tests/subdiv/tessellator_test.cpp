@@ -212,6 +212,20 @@ TEST(AdaptiveTessellation, UpdatingVerticesKeepsTheTrianglesOnTheMovedSurface) {
   EXPECT_EQ(mesh.meanCurvature, rest.meanCurvature);
   EXPECT_EQ(mesh.uvs, rest.uvs);
 
+  // A small deformation, as an animated head's from one frame to the next (the lower half of the
+  // sphere turned by up to 3° about x, blended in over its height): the kept triangles stay
+  // within the target on screen, as a fresh tessellation does.
+  std::vector<glm::vec3> jaw = cage.positions;
+  for (glm::vec3& p : jaw) {
+    const float angle = glm::radians(3.0f) * std::clamp(-p.y, 0.0f, 1.0f);
+    p = glm::vec3(p.x, p.y * std::cos(angle) - p.z * std::sin(angle), p.y * std::sin(angle) + p.z * std::cos(angle));
+  }
+  ASSERT_TRUE(t.surface.updatePositions(jaw).has_value());
+  ASSERT_TRUE(t.tessellator.updateVertices(mesh).has_value());
+  EXPECT_LE(worstEdgeError(t.surface, mesh, view), 1.1 * t.tessellator.settings().maxPixelError);
+  ASSERT_TRUE(t.surface.updatePositions(cage.positions).has_value());
+  ASSERT_TRUE(t.tessellator.updateVertices(mesh).has_value());
+
   TessellatedMesh other;  // not this tessellation's output
   other.positions.resize(3);
   const auto refused = t.tessellator.updateVertices(other);
