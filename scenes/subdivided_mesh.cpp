@@ -41,10 +41,7 @@ Result<CoarseCage> coarseCageFromTriangles(const Mesh& mesh, const MeshSimplific
                                         .maxRelativeError = simplification.maxRelativeError});
   if (!simplified) return fail("coarse cage: " + simplified.error().message);
   subdiv::QuadPairing paired = subdiv::pairTrianglesIntoQuads(cageFromTriangles(simplified->mesh));
-  return CoarseCage{.cage = std::move(paired.cage),
-                    .quads = paired.quads,
-                    .triangles = paired.triangles,
-                    .simplificationError = simplified->error};
+  return CoarseCage{.cage = std::move(paired.cage), .quads = paired.quads, .triangles = paired.triangles};
 }
 
 void flipCageUvsToTopLeft(subdiv::Cage& cage) {

@@ -27,9 +27,8 @@ namespace mane::scenes {
 /// What coarseCageFromTriangles made.
 struct CoarseCage {
   subdiv::Cage cage;
-  std::size_t quads = 0;             ///< faces made by pairing two triangles
-  std::size_t triangles = 0;         ///< triangles left unpaired
-  float simplificationError = 0.0f;  ///< the simplifier's deviation from the mesh, in its units
+  std::size_t quads = 0;      ///< faces made by pairing two triangles
+  std::size_t triangles = 0;  ///< triangles left unpaired
 };
 
 /// A quad-dominant cage for a dense triangle mesh (a scan), in two repeatable steps:
