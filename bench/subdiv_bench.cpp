@@ -4,23 +4,27 @@
 // nalu.json draws (scenes::coarseCageFromTriangles). Each is refined adaptively once; each frame
 // tessellates again for a 1280×720 camera at three distances. A deforming-cage update (new cage
 // positions → refined and local points) is timed on its own, with the tessellation, and with
-// only the last tessellation's vertices re-evaluated (a still camera).
+// only the last tessellation's vertices re-evaluated (a still camera). BM_AnimatedHeadFrame is
+// the per-frame update of a head that deforms and turns: it tessellates again only when the
+// kept triangles no longer keep within the target in the turned view.
 //
 // The summary compares, at each distance, the adaptive triangle count with what a uniform
 // tessellation (every ptex face cut into a 2^k × 2^k grid of limit points) needs for the
 // same maximum pixel error. Errors are measured on every 16th ptex face (the same faces for
 // both), sampling each output edge at ¼, ½, ¾: the pixel distance between the straight edge
 // and the limit point at the same ptex parameter. It also measures the rest pose's triangles
-// moved onto the opened jaw against a fresh tessellation of it.
+// moved onto the opened jaw against a fresh tessellation of it, and the worst error of kept
+// triangles over the turn of BM_AnimatedHeadFrame (without the jaw).
 //
 // BM_WorldRefineForCamera is the per-frame cost inside the World (scenes::World::
 // refineForCamera): the same head as a scene mesh with a `subdivision` block, turning ±20° at
-// 0.25 Hz, so every frame sees it from a new side and is tessellated again, plus the copy
-// into the mesh the renderer's replaceMesh reads.
+// 0.25 Hz, so every frame sees it from a new side: tessellated again when the kept triangles
+// no longer keep within the target, then copied into the mesh the renderer's replaceMesh reads.
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -214,6 +218,65 @@ BENCHMARK(BM_DeformAndUpdateVerticesFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// Frames of one animation cycle: 60 per second over one 4 s period of the turn.
+constexpr int kCycleFrames = 240;
+
+/// `view` with the head turned as in frame `frame` of the cycle: ±20° at 0.25 Hz, 60 frames a
+/// second, about a vertical axis a unit behind the head's centre (the neck).
+subdiv::ScreenView turnedAtFrame(const Head& head, subdiv::ScreenView view, int frame) {
+  const glm::vec3 neck = head.centre - glm::vec3(0.0f, 0.0f, 1.0f);
+  const float degrees = 20.0f * std::sin(2.0f * 3.14159265f * 0.25f * float(frame) / 60.0f);
+  view.viewProjection = view.viewProjection * glm::translate(glm::mat4(1.0f), neck) *
+                        glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::vec3(0, 1, 0)) *
+                        glm::translate(glm::mat4(1.0f), -neck);
+  return view;
+}
+
+// Arguments: CageKind, distance index, worker threads. The animated head, one frame per
+// iteration over one cycle: the jaw moves (the cage deforms, as above) while the head turns
+// ±20° at 0.25 Hz about a vertical axis a unit behind its centre (the neck). Each frame moves
+// the cage, then re-evaluates the kept triangles when they still keep within the target in the
+// turned view (AdaptiveTessellator::keepsTarget), or tessellates again. The mean frame is the
+// benchmark's time; `worst_ms` the slowest frame, `retessellated` the share of frames that
+// tessellated again.
+void BM_AnimatedHeadFrame(benchmark::State& state) {
+  if (skipWithoutHead(state)) return;
+  Head& head = headFor(state);
+  const subdiv::ScreenView still = viewAt(head, kDistances[state.range(1)]);
+  const auto threads = static_cast<unsigned>(state.range(2));
+  const auto viewAtFrame = [&](int frame) { return turnedAtFrame(head, still, frame); };
+  subdiv::TessellatedMesh mesh;
+  head.tessellator->tessellate(viewAtFrame(0), mesh, threads);
+  int frame = 0, retessellated = 0;
+  double worst = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    const subdiv::ScreenView view = viewAtFrame(++frame);
+    auto updated = head.surface->updatePositions(head.poses[std::size_t(frame % 2)], threads);
+    if (!updated) return state.SkipWithError("updating the head failed");
+    if (head.tessellator->keepsTarget(view)) {
+      if (!head.tessellator->updateVertices(mesh, threads)) return state.SkipWithError("updating the vertices failed");
+    } else {
+      head.tessellator->tessellate(view, mesh, threads);
+      ++retessellated;
+    }
+    benchmark::DoNotOptimize(mesh.positions.data());
+    worst =
+        std::max(worst, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  if (!head.surface->updatePositions(head.cage.positions)) return state.SkipWithError("restoring the head failed");
+  state.SetLabel(kDistanceNames[state.range(1)]);
+  state.counters["triangles"] = double(mesh.triangleCount());
+  state.counters["worst_ms"] = worst;
+  state.counters["retessellated"] = double(retessellated) / double(frame);
+}
+BENCHMARK(BM_AnimatedHeadFrame)
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {1, 2}})
+    ->ArgNames({"cage", "view", "threads"})
+    ->Iterations(kCycleFrames)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // A nalu-like scene: the head (0.025 m per file unit) with either cage as above, turning ±20° at
 // 0.25 Hz, no hair; the camera at the mid distance (30 units = 0.75 m) from the head's centre.
 std::unique_ptr<scenes::World> loadTurningHead(CageKind kind) {
@@ -369,6 +432,26 @@ void printSummary(CageKind kind) {
   std::fprintf(stderr, "jaw at 3°, mid view: rest pose's triangles moved %.3f px, tessellated again %.3f px\n",
                keptError, freshError);
   if (!head.surface->updatePositions(head.cage.positions)) return;
+
+  // The turn alone: the kept triangles' worst error over the frames that keep them (every 8th
+  // frame measured), and how many frames tessellate again.
+  for (int d = 0; d < 3; ++d) {
+    const subdiv::ScreenView still = viewAt(head, kDistances[d]);
+    tessellator->tessellate(turnedAtFrame(head, still, 0), kept);
+    int retessellated = 0;
+    double worstKept = 0.0;
+    for (int frame = 1; frame <= kCycleFrames; ++frame) {
+      const subdiv::ScreenView turned = turnedAtFrame(head, still, frame);
+      if (!tessellator->keepsTarget(turned)) {
+        tessellator->tessellate(turned, kept);
+        ++retessellated;
+      } else if (frame % 8 == 0) {
+        worstKept = std::max(worstKept, adaptiveError(head, turned, kept));
+      }
+    }
+    std::fprintf(stderr, "turning, %s view: %d of %d frames tessellated again; kept triangles at most %.3f px\n",
+                 kDistanceNames[d], retessellated, kCycleFrames, worstKept);
+  }
 }
 
 }  // namespace

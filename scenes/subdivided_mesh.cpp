@@ -116,16 +116,10 @@ Result<std::unique_ptr<SubdividedSurface>> SubdividedSurface::create(const subdi
 
 bool SubdividedSurface::tessellate(const glm::mat4& modelViewProjection, glm::vec2 viewport, Mesh& mesh,
                                    std::vector<float>& inverseRadius, unsigned threads) {
-  if (tessellated_ && modelViewProjection == lastView_ && viewport == lastViewport_) return false;
-  tessellator_->tessellate({modelViewProjection, viewport}, scratch_, threads);
+  const subdiv::ScreenView view{modelViewProjection, viewport};
+  if (tessellated_ && tessellator_->keepsTarget(view)) return false;
+  tessellator_->tessellate(view, scratch_, threads);
   tessellated_ = true;
-  lastView_ = modelViewProjection;
-  lastViewport_ = viewport;
-  // A camera that moved a little often asks for the very same cells (the error is below the
-  // target either way): then the renderer need not upload anything.
-  if (scratch_.indices == mesh.indices && scratch_.positions == mesh.positions && scratch_.normals == mesh.normals &&
-      scratch_.uvs == mesh.uvs)
-    return false;
   mesh.positions.assign(scratch_.positions.begin(), scratch_.positions.end());
   mesh.normals.assign(scratch_.normals.begin(), scratch_.normals.end());
   mesh.uvs.assign(scratch_.uvs.begin(), scratch_.uvs.end());

@@ -82,10 +82,11 @@ public:
   /// Tessellates the surface so that no triangle strays more than the target number of pixels
   /// from it as seen through `modelViewProjection` (model units → clip space) on a
   /// `viewport`-pixel image, and writes the result into `mesh` (positions, normals, UVs,
-  /// triangles; its name is kept) and `inverseRadius` (as SubdividedMesh's) when it differs
-  /// from what `mesh` holds. Returns whether they changed. The same view as the last call costs
-  /// nothing: the surface has not moved, so neither have the triangles. `threads` ≥ 1 workers
-  /// (0 counts as 1); the triangles do not depend on it.
+  /// triangles; its name is kept) and `inverseRadius` (as SubdividedMesh's). Returns whether
+  /// they changed: a view in which the last triangles still keep within the target
+  /// (AdaptiveTessellator::keepsTarget: the mesh turned, or the camera moved a little) costs
+  /// almost nothing and changes nothing. `threads` ≥ 1 workers (0 counts as 1); the triangles
+  /// do not depend on it.
   bool tessellate(const glm::mat4& modelViewProjection, glm::vec2 viewport, Mesh& mesh,
                   std::vector<float>& inverseRadius, unsigned threads);
 
@@ -100,8 +101,6 @@ private:
   std::unique_ptr<subdiv::AdaptiveTessellator> tessellator_;
   subdiv::TessellatedMesh scratch_;  ///< reused storage of the last tessellation
   bool tessellated_ = false;
-  glm::mat4 lastView_{0.0f};
-  glm::vec2 lastViewport_{0.0f};
 };
 
 /// Builds the limit surface of `cage` (isolation `subdivision.isolation`, Gregory end caps) and

@@ -24,13 +24,52 @@ constexpr std::size_t kMinFacesPerWorker = 512;
 constexpr std::size_t kMinPointsPerWorker = 1024;
 constexpr std::size_t kChunksPerWorker = 16;
 
+// keepsTarget: a kept tessellation's screen error may grow by this fraction (half of the 10 %
+// the tests allow: the rest covers the scale changing between the vertices, where it is
+// checked, and the cells' midpoints, where the error was measured) ...
+constexpr double kKeptErrorGrowth = 0.05;
+// ... and is tessellated again once every point's scale has fallen below this fraction, when
+// it has about 1/0.7 ≈ 1.4 times the triangles the view needs (the count goes with the scale).
+constexpr double kKeptFinestScale = 0.7;
+
 /// A limit point seen by the camera.
 struct ProjectedPoint {
   glm::dvec3 world{0.0};
-  glm::dvec2 pixel{0.0};
-  bool inFront = false;  ///< w > 0: the pixel position means something
+  /// The most pixels a unit-length step from here can move on screen in any direction.
+  double pixelsPerUnit = 0.0;
+  bool inFront = false;  ///< w > 0: the pixel scale means something
   unsigned outside = 0;  ///< bits: left, right, below, above, behind
 };
+
+/// Where a camera puts points, and how much it magnifies them.
+struct Projector {
+  glm::dmat4 viewProjection{1.0};
+  glm::dvec2 viewport{1.0};
+
+  ProjectedPoint project(const glm::dvec3& world) const {
+    ProjectedPoint point;
+    point.world = world;
+    const glm::dvec4 clip = viewProjection * glm::dvec4(world, 1.0);
+    point.outside = (clip.x < -clip.w ? 1u : 0u) | (clip.x > clip.w ? 2u : 0u) | (clip.y < -clip.w ? 4u : 0u) |
+                    (clip.y > clip.w ? 8u : 0u) | (clip.w <= 0.0 ? 16u : 0u);
+    point.inFront = clip.w > 0.0;
+    if (!point.inFront) return point;
+    // The pixel position's Jacobian has rows (viewport/2)·(M_x − ndc_x·M_w)/w and likewise for
+    // y, M_r being row r of the matrix without its translation; the scale is its largest
+    // singular value, the square root of the larger eigenvalue of J·Jᵀ (2×2).
+    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+    const glm::dmat4& m = viewProjection;
+    const glm::dvec3 rowW(m[0][3], m[1][3], m[2][3]);
+    const glm::dvec3 jx = (glm::dvec3(m[0][0], m[1][0], m[2][0]) - ndc.x * rowW) * (0.5 * viewport.x / clip.w);
+    const glm::dvec3 jy = (glm::dvec3(m[0][1], m[1][1], m[2][1]) - ndc.y * rowW) * (0.5 * viewport.y / clip.w);
+    const double xx = glm::dot(jx, jx), yy = glm::dot(jy, jy), xy = glm::dot(jx, jy);
+    point.pixelsPerUnit = std::sqrt(0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy));
+    return point;
+  }
+};
+
+/// The nine samples of a cell left coarse because they all lay beyond one side of the view.
+using CulledSamples = std::array<glm::dvec3, 9>;
 
 /// A quadtree leaf: grid square [i0, i0+size] × [j0, j0+size] of a ptex face.
 struct Cell {
@@ -53,8 +92,7 @@ struct AdaptiveTessellator::Impl {
   TessellationStatistics statistics;
 
   // Per frame.
-  glm::dmat4 viewProjection{1.0};
-  glm::dvec2 viewport{1.0};
+  Projector projector;
   std::vector<Cell> cells;  ///< all faces' leaves, face after face
   std::vector<std::size_t> firstCellOfFace;
   std::vector<std::vector<std::int64_t>> linePoints;  ///< sorted parameters of cell corners on each line
@@ -67,6 +105,8 @@ struct AdaptiveTessellator::Impl {
   /// What one chunk of ptex faces produces (and its worker's scratch), merged in chunk order.
   struct alignas(64) Worker {
     std::vector<Cell> cells;
+    std::vector<CulledSamples> culled;
+    bool measuredBehindCamera = false;  ///< a kept cell's error left out samples behind the camera
     std::size_t positionEvaluations = 0;
     std::vector<std::pair<std::int64_t, std::int64_t>> rows, columns;  ///< one face's cell corners: (j, i), (i, j)
     std::vector<GridPoint> polygon;
@@ -92,33 +132,29 @@ struct AdaptiveTessellator::Impl {
   std::vector<Location> locations;
   std::vector<VertexSource> vertices;
 
+  // What keepsTarget needs of the last tessellation.
+  std::vector<glm::dvec3> pointPositions;  ///< per location, as last evaluated
+  std::vector<double> pointScales;         ///< per location, pixels per unit in the view tessellated for
+  std::vector<CulledSamples> culled;
+  bool keepable = false;  ///< no error was left unmeasured behind the camera
+
   Impl(const LimitSurface& limit, const TessellationSettings& chosen)
       : surface(&limit), settings(chosen), sides(limit.cage()) {
     smallestCell = kGrid >> settings.maxDepth;
   }
 
-  ProjectedPoint project(const glm::dvec3& world) const {
-    ProjectedPoint point;
-    point.world = world;
-    const glm::dvec4 clip = viewProjection * glm::dvec4(world, 1.0);
-    point.outside = (clip.x < -clip.w ? 1u : 0u) | (clip.x > clip.w ? 2u : 0u) | (clip.y < -clip.w ? 4u : 0u) |
-                    (clip.y > clip.w ? 8u : 0u) | (clip.w <= 0.0 ? 16u : 0u);
-    point.inFront = clip.w > 0.0;
-    if (point.inFront) point.pixel = (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * viewport;
-    return point;
-  }
-
   ProjectedPoint evaluate(Worker& worker, std::uint32_t face, std::int64_t i, std::int64_t j) const {
     ++worker.positionEvaluations;
-    return project(surface->evaluatePosition(face, double(i) / double(kGrid), double(j) / double(kGrid)));
+    return projector.project(surface->evaluatePosition(face, double(i) / double(kGrid), double(j) / double(kGrid)));
   }
 
-  /// Pixels between the limit point `middle` and the midpoint of the straight segment a–b;
-  /// 0 when any of them is behind the camera (invisible, and its pixel is meaningless).
-  double chordError(const ProjectedPoint& a, const ProjectedPoint& b, const ProjectedPoint& middle) const {
+  /// The distance between the limit point `middle` and the midpoint of the straight segment
+  /// a–b, in pixels at `middle` whichever way it points: so the error does not depend on which
+  /// way the surface faces, and a turning object keeps its triangles (keepsTarget). 0 when any
+  /// of them is behind the camera (invisible, and its scale is meaningless).
+  static double chordError(const ProjectedPoint& a, const ProjectedPoint& b, const ProjectedPoint& middle) {
     if (!a.inFront || !b.inFront || !middle.inFront) return 0.0;
-    const ProjectedPoint chord = project(0.5 * (a.world + b.world));
-    return chord.inFront ? glm::length(chord.pixel - middle.pixel) : 0.0;
+    return glm::length(0.5 * (a.world + b.world) - middle.world) * middle.pixelsPerUnit;
   }
 
   /// The midpoints of a cell's sides (bottom, right, top, left) its parent already evaluated.
@@ -147,7 +183,15 @@ struct AdaptiveTessellator::Impl {
         std::max({chordError(c[0], c[1], bottom), chordError(c[1], c[2], right), chordError(c[2], c[3], top),
                   chordError(c[3], c[0], left), chordError(c[0], c[2], centre), chordError(c[1], c[3], centre),
                   chordError(bottom, top, centre), chordError(left, right, centre)});
-    if (outsideAll != 0 || error <= double(settings.maxPixelError)) {
+    if (outsideAll != 0) {
+      worker.culled.push_back({c[0].world, c[1].world, c[2].world, c[3].world, bottom.world, right.world, top.world,
+                               left.world, centre.world});
+      worker.cells.push_back({face, i0, j0, size});
+      return;
+    }
+    if (error <= double(settings.maxPixelError)) {
+      for (const ProjectedPoint* sample : {&c[0], &c[1], &c[2], &c[3], &bottom, &right, &top, &left, &centre})
+        worker.measuredBehindCamera |= !sample->inFront;
       worker.cells.push_back({face, i0, j0, size});
       return;
     }
@@ -174,6 +218,8 @@ struct AdaptiveTessellator::Impl {
 
   void refineFaces(Worker& worker, std::size_t begin, std::size_t end) const {
     worker.cells.clear();
+    worker.culled.clear();
+    worker.measuredBehindCamera = false;
     worker.positionEvaluations = 0;
     for (auto face = std::uint32_t(begin); face < end; ++face) {
       const ProjectedPoint corners[4] = {evaluate(worker, face, 0, 0), evaluate(worker, face, kGrid, 0),
@@ -185,8 +231,12 @@ struct AdaptiveTessellator::Impl {
   /// Concatenates the workers' leaves in face order and indexes them by face.
   void mergeCells() {
     cells.clear();
+    culled.clear();
+    keepable = true;
     for (const Worker& worker : workers) {
       cells.insert(cells.end(), worker.cells.begin(), worker.cells.end());
+      culled.insert(culled.end(), worker.culled.begin(), worker.culled.end());
+      keepable &= !worker.measuredBehindCamera;
       statistics.positionEvaluations += worker.positionEvaluations;
     }
     firstCellOfFace.assign(surface->ptexFaceCount() + 1, cells.size());
@@ -349,6 +399,7 @@ struct AdaptiveTessellator::Impl {
   void evaluateVertices(TessellatedMesh& mesh, unsigned threads, bool uvsToo) {
     const std::size_t count = vertices.size();
     const bool uvs = uvsToo && surface->hasUvs();
+    pointPositions.resize(locations.size());
     mesh.positions.resize(count);
     mesh.normals.resize(count);
     mesh.meanCurvature.resize(count);
@@ -365,6 +416,7 @@ struct AdaptiveTessellator::Impl {
                              const LimitSample sample = uvs ? surface->evaluate(location.face, u, v)
                                                             : surface->evaluateShape(location.face, u, v);
                              const std::uint32_t first = location.firstVertex;
+                             pointPositions[l] = glm::dvec3(sample.position);
                              mesh.positions[first] = sample.position;
                              mesh.normals[first] = sample.normal;
                              mesh.meanCurvature[first] = sample.curvature.mean;
@@ -394,8 +446,7 @@ struct AdaptiveTessellator::Impl {
 
   void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
     statistics = {};
-    viewProjection = glm::dmat4(view.viewProjection);
-    viewport = glm::dvec2(view.viewportSize);
+    projector = {glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize)};
     const std::size_t faces = surface->ptexFaceCount();
     const std::size_t workerTotal = detail::workerCount(faces, threads, kMinFacesPerWorker);
     // Faces near the camera or the silhouette split far more than the rest, and they sit
@@ -412,6 +463,31 @@ struct AdaptiveTessellator::Impl {
     });
     numberVertices(mesh);
     evaluateVertices(mesh, threads, true);
+    pointScales.resize(locations.size());
+    for (std::size_t l = 0; l < locations.size(); ++l) {
+      const ProjectedPoint point = projector.project(pointPositions[l]);
+      keepable &= point.inFront;
+      pointScales[l] = point.pixelsPerUnit;
+    }
+  }
+
+  bool keepsTarget(const ScreenView& view) const {
+    if (!keepable || pointScales.empty()) return false;
+    const Projector candidate{glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize)};
+    double largestGrowth = 0.0;
+    for (std::size_t l = 0; l < pointScales.size(); ++l) {
+      const ProjectedPoint point = candidate.project(pointPositions[l]);
+      if (!point.inFront) return false;
+      largestGrowth = std::max(largestGrowth, point.pixelsPerUnit / pointScales[l]);
+    }
+    if (largestGrowth > 1.0 + kKeptErrorGrowth || largestGrowth < kKeptFinestScale) return false;
+    // The coarse cells outside the view must stay outside it: the same test refine made.
+    for (const CulledSamples& samples : culled) {
+      unsigned outsideAll = ~0u;
+      for (const glm::dvec3& sample : samples) outsideAll &= candidate.project(sample).outside;
+      if (outsideAll == 0) return false;
+    }
+    return true;
   }
 };
 
@@ -441,6 +517,10 @@ Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned
                 " vertices, the last tessellation " + std::to_string(impl_->vertices.size()));
   impl_->evaluateVertices(mesh, threads, false);
   return {};
+}
+
+bool AdaptiveTessellator::keepsTarget(const ScreenView& view) const {
+  return impl_->keepsTarget(view);
 }
 
 const TessellationStatistics& AdaptiveTessellator::statistics() const {

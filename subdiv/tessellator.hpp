@@ -1,9 +1,11 @@
 #pragma once
 // View-dependent tessellation of a limit surface (Bunnell, "Adaptive Tessellation of
 // Subdivision Surfaces with Displacement Mapping", GPU Gems 2, ch. 7): every ptex face is
-// split as a quadtree until, for each side, diagonal and midline of a cell, the straight
-// segment's midpoint and the limit surface's midpoint project less than a target number of
-// pixels apart.
+// split as a quadtree until, for each side, diagonal and midline of a cell, the distance
+// between the straight segment's midpoint and the limit surface's midpoint, projected to the
+// screen, is below a target number of pixels. "Projected" takes the distance at its largest
+// magnification there, whatever its direction: an upper bound of its on-screen length that
+// does not change as the surface turns, so a turning object keeps its triangles.
 //
 // No cracks: a point on a side shared by two cells or two faces has one name (a cage vertex,
 // a parameter along a cage edge or an n-gon spoke, or a grid point inside a face), so both
@@ -31,7 +33,7 @@ struct ScreenView {
 
 struct TessellationSettings {
   /// The largest allowed projected distance, in pixels, between a cell's straight side (or
-  /// diagonal or midline) and the limit surface at its midpoint.
+  /// diagonal or midline) and the limit surface at its midpoint (in any direction: see above).
   float maxPixelError = 1.0f;
   /// The most times a ptex face side is halved (1..10): at most 2^maxDepth segments.
   int maxDepth = 10;
@@ -91,6 +93,15 @@ public:
   /// has changed enough for that to matter. Deterministic like tessellate. Errors: `mesh` is
   /// not the last tessellation's output (different vertex count), or there was none.
   [[nodiscard]] Result<void> updateVertices(TessellatedMesh& mesh, unsigned threads = 1);
+
+  /// Whether the last tessellation still keeps within the target (up to 5 % more) seen through
+  /// `view`, so that tessellate need not run: the error is a world distance times the pixels
+  /// per unit at the point, and no point's scale has grown by more than 5 %, none has come from
+  /// behind the camera, and no cell left coarse outside the view has come into it. A turning or
+  /// slightly moving object keeps its triangles; one the camera has come nearer to, or moved
+  /// away from until every point's scale is below 0.7 of what it was (too many triangles), does
+  /// not. Shape changes since (updateVertices) are not measured. False before any tessellate.
+  [[nodiscard]] bool keepsTarget(const ScreenView& view) const;
 
   [[nodiscard]] const TessellationStatistics& statistics() const;
   [[nodiscard]] const TessellationSettings& settings() const;

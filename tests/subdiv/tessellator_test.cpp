@@ -233,6 +233,61 @@ TEST(AdaptiveTessellation, UpdatingVerticesKeepsTheTrianglesOnTheMovedSurface) {
   EXPECT_NE(refused.error().message.find("3 vertices"), std::string::npos) << refused.error().message;
 }
 
+/// The view of viewFrom with the object turned by `degrees` about the vertical line through
+/// `pivot` (a head turning on its neck): the cage stays where it is, the view moves.
+ScreenView turnedView(float degrees, glm::vec3 pivot, float distance) {
+  const glm::mat4 turn = glm::translate(glm::mat4(1.0f), pivot) *
+                         glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::vec3(0, 1, 0)) *
+                         glm::translate(glm::mat4(1.0f), -pivot);
+  ScreenView view = viewFrom(glm::vec3(0.0f), distance);
+  view.viewProjection = view.viewProjection * turn;
+  return view;
+}
+
+// keepsTarget lets a turning object keep its triangles only while they stay within the target
+// (+10 %, the oracle's bound) in the new view, measured independently along every edge.
+TEST(AdaptiveTessellation, KeptTrianglesStayWithinTheTargetAsTheObjectTurns) {
+  Tessellated t = prepare(testing::unitCube(), {.keepPtexCoordinates = true});
+  const glm::vec3 neck(0.0f, -1.0f, -1.5f);
+  TessellatedMesh mesh;
+  EXPECT_FALSE(t.tessellator.keepsTarget(turnedView(0.0f, neck, 6.0f))) << "nothing tessellated yet";
+  t.tessellator.tessellate(turnedView(0.0f, neck, 6.0f), mesh);
+  int kept = 0, tessellated = 1;
+  for (float degrees = 3.0f; degrees <= 90.0f; degrees += 3.0f) {
+    const ScreenView view = turnedView(degrees, neck, 6.0f);
+    if (!t.tessellator.keepsTarget(view)) {
+      t.tessellator.tessellate(view, mesh);
+      ++tessellated;
+      continue;
+    }
+    ++kept;
+    EXPECT_LE(worstEdgeError(t.surface, mesh, view), 1.1) << degrees << "°";
+  }
+  // The corners swing up to 0.6 units nearer the camera: some views need new triangles.
+  EXPECT_GE(kept, 10);
+  EXPECT_GE(tessellated, 2);
+
+  t.tessellator.tessellate(turnedView(0.0f, neck, 6.0f), mesh);
+  EXPECT_TRUE(t.tessellator.keepsTarget(turnedView(0.0f, neck, 6.3f))) << "a little farther: finer than needed";
+  EXPECT_FALSE(t.tessellator.keepsTarget(turnedView(0.0f, neck, 5.4f))) << "nearer: too coarse";
+  EXPECT_FALSE(t.tessellator.keepsTarget(turnedView(0.0f, neck, 12.0f))) << "twice as far: far too fine";
+  // What the refusals prevent: these triangles seen from a fifth nearer break the bound.
+  EXPECT_FALSE(t.tessellator.keepsTarget(turnedView(0.0f, neck, 4.8f)));
+  EXPECT_GT(worstEdgeError(t.surface, mesh, turnedView(0.0f, neck, 4.8f)), 1.1);
+}
+
+// Cells left coarse outside the view must be refined once they come into it.
+TEST(AdaptiveTessellation, APartOutsideTheViewThatComesIntoItIsTessellatedAgain) {
+  Tessellated t = prepare(testing::unitCube());
+  const ScreenView centred = viewFrom(glm::vec3(0.0f), 3.0f);
+  ScreenView panned = centred;  // the object half off the left of the image
+  panned.viewProjection = glm::translate(glm::mat4(1.0f), glm::vec3(-1.0f, 0.0f, 0.0f)) * centred.viewProjection;
+  TessellatedMesh mesh;
+  t.tessellator.tessellate(panned, mesh);
+  ASSERT_TRUE(t.tessellator.keepsTarget(panned));
+  EXPECT_FALSE(t.tessellator.keepsTarget(centred));
+}
+
 TEST(AdaptiveTessellation, UvSeamsSplitVerticesButNotTheSurface) {
   MANE_RESOLVE_OR_SKIP(file, "subdiv/opensubdiv/catmark_cube.obj");
   auto cage = loadCageObj(file);
