@@ -55,6 +55,36 @@ struct LimitSurface::Impl {
   std::vector<Point2> uvs;  ///< face-varying values of all levels, then local points
   std::vector<PtexFace> ptexFaces;
   std::vector<std::uint32_t> firstPtex;
+  /// Per cage face, the cage vertices its limit surface depends on: those of every face that
+  /// shares a vertex with it (Catmull-Clark's rules reach no further), as offsets into
+  /// supportVertices (one more than there are faces).
+  std::vector<std::uint32_t> supportOffsets, supportVertices;
+  std::uint64_t revision = 0;
+  std::vector<std::uint64_t> ptexRevisions;  ///< per ptex face, the revision of its last change
+
+  void buildSupports() {
+    const std::size_t faceCount = cage.faceSizes.size();
+    std::vector<std::uint32_t> faceOffsets(faceCount + 1, 0);
+    for (std::size_t f = 0; f < faceCount; ++f) faceOffsets[f + 1] = faceOffsets[f] + cage.faceSizes[f];
+    std::vector<std::vector<std::uint32_t>> facesOfVertex(cage.positions.size());
+    for (std::size_t f = 0; f < faceCount; ++f)
+      for (std::uint32_t k = faceOffsets[f]; k < faceOffsets[f + 1]; ++k)
+        facesOfVertex[cage.faceVertices[k]].push_back(std::uint32_t(f));
+    supportOffsets.assign(1, 0);
+    supportVertices.clear();
+    std::vector<std::uint32_t> support;
+    for (std::size_t f = 0; f < faceCount; ++f) {
+      support.clear();
+      for (std::uint32_t k = faceOffsets[f]; k < faceOffsets[f + 1]; ++k)
+        for (std::uint32_t neighbour : facesOfVertex[cage.faceVertices[k]])
+          support.insert(support.end(), cage.faceVertices.begin() + faceOffsets[neighbour],
+                         cage.faceVertices.begin() + faceOffsets[neighbour + 1]);
+      std::sort(support.begin(), support.end());
+      support.erase(std::unique(support.begin(), support.end()), support.end());
+      supportVertices.insert(supportVertices.end(), support.begin(), support.end());
+      supportOffsets.push_back(std::uint32_t(supportVertices.size()));
+    }
+  }
 
   std::size_t refinedEnd() const { return static_cast<std::size_t>(refiner->GetNumVerticesTotal()); }
 
@@ -171,6 +201,8 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
   if (impl->ptexFaces.size() != static_cast<std::size_t>(impl->ptexIndices->GetNumFaces()))
     return fail("OpenSubdiv numbers " + std::to_string(impl->ptexIndices->GetNumFaces()) +
                 " ptex faces where the cage has " + std::to_string(impl->ptexFaces.size()));
+  impl->buildSupports();
+  impl->ptexRevisions.assign(impl->ptexFaces.size(), 0);
   return LimitSurface(std::move(impl));
 }
 
@@ -183,8 +215,19 @@ Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositi
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       return fail("deformed cage vertex " + std::to_string(v) + " has a non-finite position");
   }
-  std::copy(cagePositions.begin(), cagePositions.end(), impl_->cage.positions.begin());
-  impl_->recomputePoints(threads);
+  Impl& impl = *impl_;
+  std::vector<char> moved(cagePositions.size());
+  for (std::size_t v = 0; v < cagePositions.size(); ++v) moved[v] = cagePositions[v] != impl.cage.positions[v];
+  ++impl.revision;
+  for (std::size_t f = 0; f < impl.firstPtex.size(); ++f) {
+    const auto begin = impl.supportVertices.begin() + impl.supportOffsets[f];
+    const auto end = impl.supportVertices.begin() + impl.supportOffsets[f + 1];
+    if (std::none_of(begin, end, [&](std::uint32_t v) { return moved[v] != 0; })) continue;
+    const std::size_t next = f + 1 < impl.firstPtex.size() ? impl.firstPtex[f + 1] : impl.ptexFaces.size();
+    for (std::size_t p = impl.firstPtex[f]; p < next; ++p) impl.ptexRevisions[p] = impl.revision;
+  }
+  std::copy(cagePositions.begin(), cagePositions.end(), impl.cage.positions.begin());
+  impl.recomputePoints(threads);
   return {};
 }
 
@@ -255,6 +298,14 @@ glm::vec2 LimitSurface::Impl::uvAt(const Far::PatchTable::PatchHandle& handle, d
   glm::dvec2 sum(0.0);
   for (int i = 0; i < values.size(); ++i) sum += w[i] * uvs[static_cast<std::size_t>(values[i])].p;
   return glm::vec2(sum);
+}
+
+std::uint64_t LimitSurface::revision() const {
+  return impl_->revision;
+}
+
+std::uint64_t LimitSurface::changedAt(std::uint32_t ptexFace) const {
+  return impl_->ptexRevisions.at(ptexFace);
 }
 
 std::uint32_t LimitSurface::ptexFaceCount() const {

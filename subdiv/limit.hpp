@@ -90,6 +90,13 @@ public:
   /// depend on it, bit for bit. Errors: a wrong vertex count or a non-finite position.
   [[nodiscard]] Result<void> updatePositions(std::span<const glm::vec3> cagePositions, unsigned threads = 1);
 
+  /// How many times updatePositions has moved the cage (0 as built).
+  [[nodiscard]] std::uint64_t revision() const;
+  /// The revision whose updatePositions last changed the surface over `ptexFace`: the last that
+  /// moved a cage vertex of a face sharing a vertex with its cage face (the limit surface over a
+  /// face depends on no others). 0 when none has. Evaluations there since are still exact.
+  [[nodiscard]] std::uint64_t changedAt(std::uint32_t ptexFace) const;
+
   /// Full evaluation at (u, v) ∈ [0,1]² of `ptexFace` (< ptexFaceCount(); u and v are
   /// clamped to the face).
   [[nodiscard]] LimitSample evaluate(std::uint32_t ptexFace, double u, double v) const;

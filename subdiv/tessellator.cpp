@@ -42,30 +42,51 @@ struct ProjectedPoint {
 };
 
 /// Where a camera puts points, and how much it magnifies them.
-struct Projector {
-  glm::dmat4 viewProjection{1.0};
-  glm::dvec2 viewport{1.0};
+class Projector {
+public:
+  Projector() = default;
+  Projector(const glm::dmat4& viewProjection, glm::dvec2 viewport)
+      : viewProjection_(viewProjection),
+        halfViewport_(0.5 * viewport),
+        rowX_(viewProjection[0][0], viewProjection[1][0], viewProjection[2][0]),
+        rowY_(viewProjection[0][1], viewProjection[1][1], viewProjection[2][1]),
+        rowW_(viewProjection[0][3], viewProjection[1][3], viewProjection[2][3]),
+        xx_(glm::dot(rowX_, rowX_)),
+        yy_(glm::dot(rowY_, rowY_)),
+        ww_(glm::dot(rowW_, rowW_)),
+        xy_(glm::dot(rowX_, rowY_)),
+        xw_(glm::dot(rowX_, rowW_)),
+        yw_(glm::dot(rowY_, rowW_)) {}
 
   ProjectedPoint project(const glm::dvec3& world) const {
     ProjectedPoint point;
     point.world = world;
-    const glm::dvec4 clip = viewProjection * glm::dvec4(world, 1.0);
+    const glm::dvec4 clip = viewProjection_ * glm::dvec4(world, 1.0);
     point.outside = (clip.x < -clip.w ? 1u : 0u) | (clip.x > clip.w ? 2u : 0u) | (clip.y < -clip.w ? 4u : 0u) |
                     (clip.y > clip.w ? 8u : 0u) | (clip.w <= 0.0 ? 16u : 0u);
     point.inFront = clip.w > 0.0;
-    if (!point.inFront) return point;
-    // The pixel position's Jacobian has rows (viewport/2)·(M_x − ndc_x·M_w)/w and likewise for
-    // y, M_r being row r of the matrix without its translation; the scale is its largest
-    // singular value, the square root of the larger eigenvalue of J·Jᵀ (2×2).
-    const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
-    const glm::dmat4& m = viewProjection;
-    const glm::dvec3 rowW(m[0][3], m[1][3], m[2][3]);
-    const glm::dvec3 jx = (glm::dvec3(m[0][0], m[1][0], m[2][0]) - ndc.x * rowW) * (0.5 * viewport.x / clip.w);
-    const glm::dvec3 jy = (glm::dvec3(m[0][1], m[1][1], m[2][1]) - ndc.y * rowW) * (0.5 * viewport.y / clip.w);
-    const double xx = glm::dot(jx, jx), yy = glm::dot(jy, jy), xy = glm::dot(jx, jy);
-    point.pixelsPerUnit = std::sqrt(0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy));
+    if (point.inFront) point.pixelsPerUnit = pixelsPerUnit(clip);
     return point;
   }
+
+  /// The scale at a point in front of the camera, given its clip coordinates.
+  double pixelsPerUnit(const glm::dvec4& clip) const {
+    // The pixel position's Jacobian has rows a = (M_x − ndc_x·M_w)·(width/2)/w and likewise b
+    // for y, M_r being row r of the matrix without its translation: the scale is its largest
+    // singular value, the square root of the larger eigenvalue of [a·a a·b; a·b b·b].
+    const double nx = clip.x / clip.w, ny = clip.y / clip.w;
+    const double sx = halfViewport_.x / clip.w, sy = halfViewport_.y / clip.w;
+    const double aa = (xx_ - 2.0 * nx * xw_ + nx * nx * ww_) * sx * sx;
+    const double bb = (yy_ - 2.0 * ny * yw_ + ny * ny * ww_) * sy * sy;
+    const double ab = (xy_ - ny * xw_ - nx * yw_ + nx * ny * ww_) * sx * sy;
+    return std::sqrt(0.5 * (aa + bb) + std::sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab));
+  }
+
+private:
+  glm::dmat4 viewProjection_{1.0};
+  glm::dvec2 halfViewport_{0.5};
+  glm::dvec3 rowX_{0.0}, rowY_{0.0}, rowW_{0.0};
+  double xx_ = 0.0, yy_ = 0.0, ww_ = 0.0, xy_ = 0.0, xw_ = 0.0, yw_ = 0.0;
 };
 
 /// The nine samples of a cell left coarse because they all lay beyond one side of the view.
@@ -137,6 +158,9 @@ struct AdaptiveTessellator::Impl {
   std::vector<double> pointScales;         ///< per location, pixels per unit in the view tessellated for
   std::vector<CulledSamples> culled;
   bool keepable = false;  ///< no error was left unmeasured behind the camera
+
+  std::uint64_t evaluatedRevision = 0;        ///< the surface's revision at the last evaluation
+  std::vector<std::uint32_t> staleLocations;  ///< the locations evaluateVertices evaluates
 
   Impl(const LimitSurface& limit, const TessellationSettings& chosen)
       : surface(&limit), settings(chosen), sides(limit.cage()) {
@@ -394,11 +418,18 @@ struct AdaptiveTessellator::Impl {
       }
   }
 
-  /// Evaluates every vertex at its ptex point. Without `uvsToo`, mesh.uvs and weldedVertex are
-  /// kept as they are: a moved cage moves neither.
+  /// Evaluates the vertices at their ptex points: all of them (`uvsToo`, a new tessellation),
+  /// or those on faces whose surface has changed since the last evaluation, leaving mesh.uvs and
+  /// weldedVertex as they are (a moved cage moves neither).
   void evaluateVertices(TessellatedMesh& mesh, unsigned threads, bool uvsToo) {
     const std::size_t count = vertices.size();
     const bool uvs = uvsToo && surface->hasUvs();
+    staleLocations.clear();
+    for (std::size_t l = 0; l < locations.size(); ++l)
+      if (uvsToo || surface->changedAt(locations[l].face) > evaluatedRevision)
+        staleLocations.push_back(std::uint32_t(l));
+    evaluatedRevision = surface->revision();
+    statistics.pointsEvaluated = staleLocations.size();
     pointPositions.resize(locations.size());
     mesh.positions.resize(count);
     mesh.normals.resize(count);
@@ -408,9 +439,11 @@ struct AdaptiveTessellator::Impl {
       mesh.uvs.resize(uvs ? count : 0);
     }
     const auto toUv = [](std::int64_t coordinate) { return double(coordinate) / double(kGrid); };
-    detail::forEachRange(locations.size(), detail::workerCount(locations.size(), threads, kMinPointsPerWorker),
+    const std::size_t stale = staleLocations.size();
+    detail::forEachRange(stale, detail::workerCount(stale, threads, kMinPointsPerWorker),
                          [&](std::size_t, std::size_t begin, std::size_t end) {
-                           for (std::size_t l = begin; l < end; ++l) {
+                           for (std::size_t k = begin; k < end; ++k) {
+                             const std::uint32_t l = staleLocations[k];
                              const Location& location = locations[l];
                              const double u = toUv(location.point.i), v = toUv(location.point.j);
                              const LimitSample sample = uvs ? surface->evaluate(location.face, u, v)
@@ -446,7 +479,7 @@ struct AdaptiveTessellator::Impl {
 
   void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
     statistics = {};
-    projector = {glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize)};
+    projector = Projector(glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize));
     const std::size_t faces = surface->ptexFaceCount();
     const std::size_t workerTotal = detail::workerCount(faces, threads, kMinFacesPerWorker);
     // Faces near the camera or the silhouette split far more than the rest, and they sit
@@ -473,7 +506,7 @@ struct AdaptiveTessellator::Impl {
 
   bool keepsTarget(const ScreenView& view) const {
     if (!keepable || pointScales.empty()) return false;
-    const Projector candidate{glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize)};
+    const Projector candidate(glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize));
     double largestGrowth = 0.0;
     for (std::size_t l = 0; l < pointScales.size(); ++l) {
       const ProjectedPoint point = candidate.project(pointPositions[l]);

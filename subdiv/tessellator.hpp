@@ -64,6 +64,9 @@ struct TessellationStatistics {
   std::size_t cells = 0;  ///< quadtree leaves
   std::size_t positionEvaluations = 0;
   std::size_t limitPoints = 0;  ///< distinct limit points (vertices before UV seams)
+  /// Limit points evaluated in full by the last tessellate (all) or updateVertices (those on
+  /// faces whose surface the cage's last moves changed: LimitSurface::changedAt).
+  std::size_t pointsEvaluated = 0;
 };
 
 class AdaptiveTessellator {
@@ -86,9 +89,11 @@ public:
   void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
 
   /// Moves the vertices of the last tessellation onto the surface as it is now (after
-  /// LimitSurface::updatePositions), keeping its triangles: each vertex is evaluated again at
-  /// its ptex point. For a deforming cage seen from a still camera, between tessellations:
-  /// about a third of tessellate's cost. The screen error is what the last tessellate call
+  /// LimitSurface::updatePositions), keeping its triangles: each vertex on a face whose surface
+  /// has changed since (LimitSurface::changedAt) is evaluated again at its ptex point; `mesh`
+  /// keeps the others, so it must be as the last tessellate or updateVertices left it. For a
+  /// deforming cage seen from a still camera, between tessellations: at most about a third of
+  /// tessellate's cost, less when only part of the cage moves. The screen error is what the last tessellate call
   /// measured for the shape it saw; the caller tessellates again when the view or the shape
   /// has changed enough for that to matter. Deterministic like tessellate. Errors: `mesh` is
   /// not the last tessellation's output (different vertex count), or there was none.

@@ -233,6 +233,46 @@ TEST(AdaptiveTessellation, UpdatingVerticesKeepsTheTrianglesOnTheMovedSurface) {
   EXPECT_NE(refused.error().message.find("3 vertices"), std::string::npos) << refused.error().message;
 }
 
+// A cage moved in one place re-evaluates only the vertices whose surface changed, and the mesh
+// is what evaluating every vertex gives: the support LimitSurface::changedAt assumes (the faces
+// sharing a vertex with a face) is wide enough. (Within float rounding: a vertex on a face
+// boundary is evaluated through one of its faces, the check through each triangle's; a
+// vertex left stale would be off by up to the move, 0.1–0.2 units.)
+TEST(AdaptiveTessellation, UpdatingAfterALocalMoveEvaluatesOnlyWhatMoved) {
+  const Cage cage = testing::uvSphere(12, 6, 1.0f);
+  Tessellated t = prepare(cage, {.keepPtexCoordinates = true});
+  TessellatedMesh mesh;
+  t.tessellator.tessellate(viewFrom(glm::vec3(0.0f), 5.0f), mesh);
+  const std::size_t all = t.tessellator.statistics().limitPoints;
+  EXPECT_EQ(t.tessellator.statistics().pointsEvaluated, all);
+  std::vector<glm::vec3> moved = cage.positions;
+  for (std::size_t step = 1; step <= 2; ++step) {  // twice, so the second starts from a moved mesh
+    moved[20] *= 1.0f + 0.1f * float(step);
+    ASSERT_TRUE(t.surface.updatePositions(moved).has_value());
+    ASSERT_TRUE(t.tessellator.updateVertices(mesh).has_value());
+    EXPECT_GT(t.tessellator.statistics().pointsEvaluated, 0u);
+    EXPECT_LT(t.tessellator.statistics().pointsEvaluated, all / 2) << "one vertex of 62 moved";
+    for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
+      const std::uint32_t v = mesh.indices[corner];
+      const glm::vec2 uv = mesh.cornerPtexCoordinates[corner];
+      const LimitSample sample = t.surface.evaluate(mesh.trianglePtexFaces[corner / 3], uv.x, uv.y);
+      ASSERT_LT(glm::length(mesh.positions[v] - sample.position), 1e-6f) << "vertex " << v << ", step " << step;
+      ASSERT_GT(glm::dot(mesh.normals[v], sample.normal), 1.0f - 1e-6f) << "vertex " << v << ", step " << step;
+    }
+  }
+  // Two moves between updates: the points either one changed are evaluated.
+  moved[3] += glm::vec3(0.1f);
+  ASSERT_TRUE(t.surface.updatePositions(moved).has_value());
+  ASSERT_TRUE(t.surface.updatePositions(moved).has_value());  // no vertex moved this time
+  ASSERT_TRUE(t.tessellator.updateVertices(mesh).has_value());
+  EXPECT_GT(t.tessellator.statistics().pointsEvaluated, 0u);
+  for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
+    const glm::vec2 uv = mesh.cornerPtexCoordinates[corner];
+    const glm::vec3 onSurface = t.surface.evaluate(mesh.trianglePtexFaces[corner / 3], uv.x, uv.y).position;
+    ASSERT_LT(glm::length(mesh.positions[mesh.indices[corner]] - onSurface), 1e-6f);
+  }
+}
+
 /// The view of viewFrom with the object turned by `degrees` about the vertical line through
 /// `pivot` (a head turning on its neck): the cage stays where it is, the view moves.
 ScreenView turnedView(float degrees, glm::vec3 pivot, float distance) {
