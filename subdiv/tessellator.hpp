@@ -99,9 +99,9 @@ public:
   /// not the last tessellation's output (different vertex count), or there was none.
   [[nodiscard]] Result<void> updateVertices(TessellatedMesh& mesh, unsigned threads = 1);
 
-  /// Whether the last tessellation still keeps within the target (up to 5 % more) seen through
+  /// Whether the last tessellation still keeps within the target (up to 10 % more, the tests' bound) seen through
   /// `view`, so that tessellate need not run: the error is a world distance times the pixels
-  /// per unit at the point, and no point's scale has grown by more than 5 %, none has come from
+  /// per unit at the point, and no point's scale has grown by more than 10 %, none has come from
   /// behind the camera, and no cell left coarse outside the view has come into it. A turning or
   /// slightly moving object keeps its triangles; one the camera has come nearer to, or moved
   /// away from until every point's scale is below 0.7 of what it was (too many triangles), does
