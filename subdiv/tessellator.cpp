@@ -431,6 +431,7 @@ struct AdaptiveTessellator::Impl {
     evaluatedRevision = surface->revision();
     statistics.pointsEvaluated = staleLocations.size();
     pointPositions.resize(locations.size());
+    if (uvsToo) pointScales.resize(locations.size());
     mesh.positions.resize(count);
     mesh.normals.resize(count);
     mesh.meanCurvature.resize(count);
@@ -450,6 +451,8 @@ struct AdaptiveTessellator::Impl {
                                                             : surface->evaluateShape(location.face, u, v);
                              const std::uint32_t first = location.firstVertex;
                              pointPositions[l] = glm::dvec3(sample.position);
+                             // The scales a kept tessellation is measured against (keepsTarget).
+                             if (uvsToo) pointScales[l] = projector.project(pointPositions[l]).pixelsPerUnit;
                              mesh.positions[first] = sample.position;
                              mesh.normals[first] = sample.normal;
                              mesh.meanCurvature[first] = sample.curvature.mean;
@@ -496,12 +499,8 @@ struct AdaptiveTessellator::Impl {
     });
     numberVertices(mesh);
     evaluateVertices(mesh, threads, true);
-    pointScales.resize(locations.size());
-    for (std::size_t l = 0; l < locations.size(); ++l) {
-      const ProjectedPoint point = projector.project(pointPositions[l]);
-      keepable &= point.inFront;
-      pointScales[l] = point.pixelsPerUnit;
-    }
+    // A point behind the camera has no scale (0).
+    keepable &= std::find(pointScales.begin(), pointScales.end(), 0.0) == pointScales.end();
   }
 
   bool keepsTarget(const ScreenView& view) const {
