@@ -93,19 +93,21 @@ public:
   /// has changed since (LimitSurface::changedAt) is evaluated again at its ptex point; `mesh`
   /// keeps the others, so it must be as the last tessellate or updateVertices left it. For a
   /// deforming cage seen from a still camera, between tessellations: at most about a third of
-  /// tessellate's cost, less when only part of the cage moves. The screen error is what the last tessellate call
-  /// measured for the shape it saw; the caller tessellates again when the view or the shape
-  /// has changed enough for that to matter. Deterministic like tessellate. Errors: `mesh` is
-  /// not the last tessellation's output (different vertex count), or there was none.
+  /// tessellate's cost, less when only part of the cage moves. The screen error is what the
+  /// last tessellate call measured for the shape it saw; the caller tessellates again when the
+  /// view or the shape has changed enough for that to matter. Deterministic like tessellate.
+  /// Errors: `mesh` is not the last tessellation's output (different vertex count), or there
+  /// was none.
   [[nodiscard]] Result<void> updateVertices(TessellatedMesh& mesh, unsigned threads = 1);
 
-  /// Whether the last tessellation still keeps within the target (up to 10 % more, the tests' bound) seen through
-  /// `view`, so that tessellate need not run: the error is a world distance times the pixels
-  /// per unit at the point, and no point's scale has grown by more than 10 %, none has come from
-  /// behind the camera, and no cell left coarse outside the view has come into it. A turning or
-  /// slightly moving object keeps its triangles; one the camera has come nearer to, or moved
-  /// away from until every point's scale is below 0.7 of what it was (too many triangles), does
-  /// not. Shape changes since (updateVertices) are not measured. False before any tessellate.
+  /// Whether the last tessellation still keeps within the target (up to 10 % more, the tests'
+  /// bound) seen through `view`, so that tessellate need not run. The error is a world distance
+  /// times the pixels per unit at the point, so it holds while no point's scale has grown by
+  /// more than 10 %, none has come from behind the camera, and no cell left coarse outside the
+  /// view has come into it. A turning or slightly moving object keeps its triangles; one the
+  /// camera has come nearer to does not, nor one it has moved away from until every point's
+  /// scale is below 0.7 of what it was (too many triangles). Shape changes since (updateVertices)
+  /// are not measured. False before any tessellate.
   [[nodiscard]] bool keepsTarget(const ScreenView& view) const;
 
   [[nodiscard]] const TessellationStatistics& statistics() const;
