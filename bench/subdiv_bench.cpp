@@ -5,16 +5,17 @@
 // tessellates again for a 1280×720 camera at three distances. A deforming-cage update (new cage
 // positions → refined and local points) is timed on its own, with the tessellation, and with
 // only the last tessellation's vertices re-evaluated (a still camera). BM_AnimatedHeadFrame is
-// the per-frame update of a head that deforms and turns: it tessellates again only when the
-// kept triangles no longer keep within the target in the turned view.
+// the per-frame update of a head that deforms and turns (AdaptiveTessellator::update): it keeps
+// the triangles while they keep within the target in the turned view, and prepares the next
+// ones on a thread of its own before they stop doing so.
 //
 // The summary compares, at each distance, the adaptive triangle count with what a uniform
 // tessellation (every ptex face cut into a 2^k × 2^k grid of limit points) needs for the
 // same maximum pixel error. Errors are measured on every 16th ptex face (the same faces for
 // both), sampling each output edge at ¼, ½, ¾: the pixel distance between the straight edge
 // and the limit point at the same ptex parameter. It also measures the rest pose's triangles
-// moved onto the opened jaw against a fresh tessellation of it, and the worst error of kept
-// triangles over the turn of BM_AnimatedHeadFrame (without the jaw).
+// moved onto the opened jaw against a fresh tessellation of it, and the worst error of the
+// triangles update keeps or adopts over the turn of BM_AnimatedHeadFrame (without the jaw).
 //
 // BM_WorldRefineForCamera is the per-frame cost inside the World (scenes::World::
 // refineForCamera): the same head as a scene mesh with a `subdivision` block, turning ±20° at
@@ -30,6 +31,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -232,51 +234,71 @@ subdiv::ScreenView turnedAtFrame(const Head& head, subdiv::ScreenView view, int 
   return view;
 }
 
-// Arguments: CageKind, distance index, worker threads. The animated head, one frame per
-// iteration over one cycle: the jaw moves (the cage deforms, as above) while the head turns
-// ±20° at 0.25 Hz about a vertical axis a unit behind its centre (the neck). Each frame moves
-// the cage, then re-evaluates the kept triangles when they still keep within the target in the
-// turned view (AdaptiveTessellator::keepsTarget), or tessellates again. The mean frame is the
-// benchmark's time; `worst_ms` the slowest frame, `retessellated` the share of frames that
-// tessellated again.
+// Arguments: CageKind, distance index, worker threads, prepared, paced. The animated head, one
+// frame per iteration over one cycle: the jaw moves (the cage deforms, as above) while the head
+// turns ±20° at 0.25 Hz about a vertical axis a unit behind its centre (the neck). Each frame
+// moves the cage, then keeps the triangles (re-evaluating their moved vertices) while they keep
+// within the target in the turned view. Prepared (1): AdaptiveTessellator::update, which
+// prepares the next tessellation on a thread of its own before they stop doing so and adopts it
+// five frames later; else (0) the frame tessellates again itself when they stop. Paced (1),
+// frames start every 1/60 s as in an application, so a preparing thread has the rest of each
+// frame; back to back (0), it competes with the frames, which may wait for it. The time is the
+// mean of the frames' updates (the pacing's waits left out); `worst_ms` the slowest,
+// `retessellated` the share of frames that tessellated on the calling threads, and `prepared`
+// the share that started a preparation.
 void BM_AnimatedHeadFrame(benchmark::State& state) {
   if (skipWithoutHead(state)) return;
   Head& head = headFor(state);
   const subdiv::ScreenView still = viewAt(head, kDistances[state.range(1)]);
   const auto threads = static_cast<unsigned>(state.range(2));
+  const bool prepare = state.range(3) != 0;
+  const bool paced = state.range(4) != 0;
   const auto viewAtFrame = [&](int frame) { return turnedAtFrame(head, still, frame); };
   // From the rest pose, whatever the benchmarks before left.
   if (!head.surface->updatePositions(head.cage.positions)) return state.SkipWithError("restoring the head failed");
+  auto tessellator = subdiv::AdaptiveTessellator::create(*head.surface);
+  if (!tessellator) return state.SkipWithError(tessellator.error().message.c_str());
   subdiv::TessellatedMesh mesh;
-  head.tessellator->tessellate(viewAtFrame(0), mesh, threads);
-  int frame = 0, retessellated = 0;
+  tessellator->tessellate(viewAtFrame(0), mesh, threads);
+  int frame = 0, retessellated = 0, prepared = 0;
   double worst = 0.0;
+  const auto cycleStart = std::chrono::steady_clock::now();
   for (auto _ : state) {
+    ++frame;
+    if (paced) std::this_thread::sleep_until(cycleStart + std::chrono::microseconds(frame * 1000000 / 60));
     const auto start = std::chrono::steady_clock::now();
-    const subdiv::ScreenView view = viewAtFrame(++frame);
     auto updated = head.surface->updatePositions(head.poses[std::size_t(frame % 2)], threads);
     if (!updated) return state.SkipWithError("updating the head failed");
-    if (head.tessellator->keepsTarget(view)) {
-      if (!head.tessellator->updateVertices(mesh, threads)) return state.SkipWithError("updating the vertices failed");
+    const subdiv::ScreenView view = viewAtFrame(frame);
+    Result<subdiv::FrameUpdate> update = subdiv::FrameUpdate::kKept;
+    if (prepare) {
+      update = tessellator->update(view, mesh, threads);
+    } else if (tessellator->keepsTarget(view)) {
+      if (auto moved = tessellator->updateVertices(mesh, threads); !moved) update = std::unexpected(moved.error());
     } else {
-      head.tessellator->tessellate(view, mesh, threads);
-      ++retessellated;
+      tessellator->tessellate(view, mesh, threads);
+      update = subdiv::FrameUpdate::kTessellated;
     }
+    if (!update) return state.SkipWithError(update.error().message.c_str());
+    retessellated += *update == subdiv::FrameUpdate::kTessellated ? 1 : 0;
+    prepared += *update == subdiv::FrameUpdate::kPrepared ? 1 : 0;
     benchmark::DoNotOptimize(mesh.positions.data());
-    worst =
-        std::max(worst, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.SetIterationTime(seconds);
+    worst = std::max(worst, 1000.0 * seconds);
   }
   state.SetLabel(kDistanceNames[state.range(1)]);
   state.counters["triangles"] = double(mesh.triangleCount());
   state.counters["worst_ms"] = worst;
   state.counters["retessellated"] = double(retessellated) / double(frame);
+  state.counters["prepared"] = double(prepared) / double(frame);
 }
 BENCHMARK(BM_AnimatedHeadFrame)
-    ->ArgsProduct({{0, 1}, {0, 1, 2}, {1, 2}})
-    ->ArgNames({"cage", "view", "threads"})
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {1, 2}, {0, 1}, {0, 1}})
+    ->ArgNames({"cage", "view", "threads", "prepared", "paced"})
     ->Iterations(kCycleFrames)
     ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+    ->UseManualTime();
 
 // A nalu-like scene: the head (0.025 m per file unit) with either cage as above, turning ±20° at
 // 0.25 Hz, no hair; the camera at the mid distance (30 units = 0.75 m) from the head's centre.
@@ -434,24 +456,27 @@ void printSummary(CageKind kind) {
                keptError, freshError);
   if (!head.surface->updatePositions(head.cage.positions)) return;
 
-  // The turn alone: the kept triangles' worst error over the frames that keep them (every 8th
-  // frame measured), and how many frames tessellate again.
+  // The turn alone, through AdaptiveTessellator::update: the worst error of the triangles it
+  // kept or adopted (every 4th frame measured), and how many frames prepared a tessellation or
+  // tessellated on the calling thread.
   for (int d = 0; d < 3; ++d) {
     const subdiv::ScreenView still = viewAt(head, kDistances[d]);
     tessellator->tessellate(turnedAtFrame(head, still, 0), kept);
-    int retessellated = 0;
+    int retessellated = 0, prepared = 0;
     double worstKept = 0.0;
     for (int frame = 1; frame <= kCycleFrames; ++frame) {
       const subdiv::ScreenView turned = turnedAtFrame(head, still, frame);
-      if (!tessellator->keepsTarget(turned)) {
-        tessellator->tessellate(turned, kept);
-        ++retessellated;
-      } else if (frame % 8 == 0) {
+      const auto update = tessellator->update(turned, kept);
+      if (!update) return;
+      retessellated += *update == subdiv::FrameUpdate::kTessellated ? 1 : 0;
+      prepared += *update == subdiv::FrameUpdate::kPrepared ? 1 : 0;
+      if (*update != subdiv::FrameUpdate::kTessellated && frame % 4 == 0)
         worstKept = std::max(worstKept, adaptiveError(head, turned, kept));
-      }
     }
-    std::fprintf(stderr, "turning, %s view: %d of %d frames tessellated again; kept triangles at most %.3f px\n",
-                 kDistanceNames[d], retessellated, kCycleFrames, worstKept);
+    std::fprintf(stderr,
+                 "turning, %s view: %d of %d frames prepared a tessellation, %d tessellated on the calling thread; "
+                 "kept and adopted triangles at most %.3f px\n",
+                 kDistanceNames[d], prepared, kCycleFrames, retessellated, worstKept);
   }
 }
 

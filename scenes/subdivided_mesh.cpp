@@ -117,9 +117,10 @@ Result<std::unique_ptr<SubdividedSurface>> SubdividedSurface::create(const subdi
 bool SubdividedSurface::tessellate(const glm::mat4& modelViewProjection, glm::vec2 viewport, Mesh& mesh,
                                    std::vector<float>& inverseRadius, unsigned threads) {
   const subdiv::ScreenView view{modelViewProjection, viewport};
-  if (tessellated_ && tessellator_->keepsTarget(view)) return false;
-  tessellator_->tessellate(view, scratch_, threads);
-  tessellated_ = true;
+  // The cage does not move here, so kept triangles keep their vertices too.
+  const auto update = tessellator_->update(view, scratch_, threads);
+  if (update && (*update == subdiv::FrameUpdate::kKept || *update == subdiv::FrameUpdate::kPrepared)) return false;
+  if (!update) tessellator_->tessellate(view, scratch_, threads);  // scratch_ was not the last mesh: start anew
   mesh.positions.assign(scratch_.positions.begin(), scratch_.positions.end());
   mesh.normals.assign(scratch_.normals.begin(), scratch_.normals.end());
   mesh.uvs.assign(scratch_.uvs.begin(), scratch_.uvs.end());

@@ -85,8 +85,9 @@ public:
   /// triangles; its name is kept) and `inverseRadius` (as SubdividedMesh's). Returns whether
   /// they changed: a view in which the last triangles still keep within the target
   /// (AdaptiveTessellator::keepsTarget: the mesh turned, or the camera moved a little) costs
-  /// almost nothing and changes nothing. `threads` ≥ 1 workers (0 counts as 1); the triangles
-  /// do not depend on it.
+  /// almost nothing and changes nothing, and the next triangles are prepared on a thread of
+  /// their own before these stop keeping within it (AdaptiveTessellator::update). `threads` ≥ 1
+  /// workers (0 counts as 1); the triangles do not depend on it.
   bool tessellate(const glm::mat4& modelViewProjection, glm::vec2 viewport, Mesh& mesh,
                   std::vector<float>& inverseRadius, unsigned threads);
 
@@ -100,7 +101,6 @@ private:
   subdiv::LimitSurface surface_;
   std::unique_ptr<subdiv::AdaptiveTessellator> tessellator_;
   subdiv::TessellatedMesh scratch_;  ///< reused storage of the last tessellation
-  bool tessellated_ = false;
 };
 
 /// Builds the limit surface of `cage` (isolation `subdivision.isolation`, Gregory end caps) and

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,9 @@ constexpr int kMaxPatchPoints = 20;
 // Below this many stencils per worker a thread costs more than it saves.
 constexpr std::size_t kMinStencilsPerWorker = 16384;
 
-}  // namespace
-
-struct LimitSurface::Impl {
-  Cage cage;
+/// What refining a cage fixes once, whatever its positions: topology, patches, stencils, UVs
+/// (positions never move them) and the faces' supports. Shared by a surface and its snapshots.
+struct RefinedTopology {
   std::unique_ptr<Far::TopologyRefiner> refiner;
   std::unique_ptr<const Far::PatchTable> patches;
   std::unique_ptr<const Far::PatchMap> patchMap;
@@ -48,10 +48,6 @@ struct LimitSurface::Impl {
   detail::FlatStencils refinedStencils;
   /// Local (end cap) points from cage and refined vertices.
   detail::FlatStencils localStencils;
-  /// Cage, refined levels, local points: what patches index. Control points are kept in
-  /// double: second derivatives of deep patches are differences of nearly equal points divided
-  /// by the square of a small spacing, and float loses the curvature there.
-  std::vector<glm::dvec3> points;
   std::vector<Point2> uvs;  ///< face-varying values of all levels, then local points
   std::vector<PtexFace> ptexFaces;
   std::vector<std::uint32_t> firstPtex;
@@ -59,10 +55,8 @@ struct LimitSurface::Impl {
   /// shares a vertex with it (Catmull-Clark's rules reach no further), as offsets into
   /// supportVertices (one more than there are faces).
   std::vector<std::uint32_t> supportOffsets, supportVertices;
-  std::uint64_t revision = 0;
-  std::vector<std::uint64_t> ptexRevisions;  ///< per ptex face, the revision of its last change
 
-  void buildSupports() {
+  void buildSupports(const Cage& cage) {
     const std::size_t faceCount = cage.faceSizes.size();
     std::vector<std::uint32_t> faceOffsets(faceCount + 1, 0);
     for (std::size_t f = 0; f < faceCount; ++f) faceOffsets[f + 1] = faceOffsets[f] + cage.faceSizes[f];
@@ -88,20 +82,7 @@ struct LimitSurface::Impl {
 
   std::size_t refinedEnd() const { return static_cast<std::size_t>(refiner->GetNumVerticesTotal()); }
 
-  // Refined points read cage points only and local points read cage and refined points, so
-  // each stage's destinations split freely among threads.
-  void recomputePoints(unsigned threads) {
-    const std::size_t cageCount = cage.positions.size();
-    for (std::size_t v = 0; v < cageCount; ++v) points[v] = glm::dvec3(cage.positions[v]);
-    for (const detail::FlatStencils* stencils : {&refinedStencils, &localStencils}) {
-      const std::size_t workers = detail::workerCount(stencils->size(), threads, kMinStencilsPerWorker);
-      detail::forEachRange(stencils->size(), workers, [&](std::size_t, std::size_t begin, std::size_t end) {
-        stencils->apply(points, begin, end);
-      });
-    }
-  }
-
-  void computeUvs() {
+  void computeUvs(const Cage& cage) {
     uvs.assign(static_cast<std::size_t>(refiner->GetNumFVarValuesTotal(0)) +
                    static_cast<std::size_t>(patches->GetNumLocalPointsFaceVarying(0)),
                Point2{});
@@ -116,12 +97,40 @@ struct LimitSurface::Impl {
     if (const auto* local = patches->GetLocalPointFaceVaryingStencilTable<double>(0))
       local->UpdateValues(uvs.data(), uvs.data() + refiner->GetNumFVarValuesTotal(0));
   }
+};
+
+}  // namespace
+
+/// A surface's state: the shared topology and what moving the cage changes. Copying it makes a
+/// snapshot.
+struct LimitSurface::Impl {
+  std::shared_ptr<const RefinedTopology> topology;
+  Cage cage;
+  /// Cage, refined levels, local points: what patches index. Control points are kept in
+  /// double: second derivatives of deep patches are differences of nearly equal points divided
+  /// by the square of a small spacing, and float loses the curvature there.
+  std::vector<glm::dvec3> points;
+  std::uint64_t revision = 0;
+  std::vector<std::uint64_t> ptexRevisions;  ///< per ptex face, the revision of its last change
+
+  // Refined points read cage points only and local points read cage and refined points, so
+  // each stage's destinations split freely among threads.
+  void recomputePoints(unsigned threads) {
+    const std::size_t cageCount = cage.positions.size();
+    for (std::size_t v = 0; v < cageCount; ++v) points[v] = glm::dvec3(cage.positions[v]);
+    for (const detail::FlatStencils* stencils : {&topology->refinedStencils, &topology->localStencils}) {
+      const std::size_t workers = detail::workerCount(stencils->size(), threads, kMinStencilsPerWorker);
+      detail::forEachRange(stencils->size(), workers, [&](std::size_t, std::size_t begin, std::size_t end) {
+        stencils->apply(points, begin, end);
+      });
+    }
+  }
 
   const Far::PatchTable::PatchHandle& findPatch(std::uint32_t face, double& u, double& v) const {
-    assert(face < ptexFaces.size());
+    assert(face < topology->ptexFaces.size());
     u = std::clamp(u, 0.0, 1.0);
     v = std::clamp(v, 0.0, 1.0);
-    const Far::PatchTable::PatchHandle* handle = patchMap->FindPatch(static_cast<int>(face), u, v);
+    const Far::PatchTable::PatchHandle* handle = topology->patchMap->FindPatch(static_cast<int>(face), u, v);
     assert(handle != nullptr && "every ptex face of a hole-free cage has patches");
     return *handle;
   }
@@ -132,6 +141,14 @@ struct LimitSurface::Impl {
 };
 
 LimitSurface::LimitSurface(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+LimitSurface::LimitSurface(const LimitSurface& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+LimitSurface& LimitSurface::operator=(const LimitSurface& other) {
+  if (impl_)
+    *impl_ = *other.impl_;  // the vectors keep their storage
+  else
+    impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
 LimitSurface::LimitSurface(LimitSurface&&) noexcept = default;
 LimitSurface& LimitSurface::operator=(LimitSurface&&) noexcept = default;
 LimitSurface::~LimitSurface() = default;
@@ -144,10 +161,9 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
   auto created = detail::createTopologyRefiner(cage);
   if (!created) return std::unexpected(created.error());
 
-  auto impl = std::make_unique<Impl>();
-  impl->cage = cage;
-  impl->refiner = std::move(*created);
-  Far::TopologyRefiner& refiner = *impl->refiner;
+  auto topology = std::make_shared<RefinedTopology>();
+  topology->refiner = std::move(*created);
+  Far::TopologyRefiner& refiner = *topology->refiner;
 
   Far::PatchTableFactory::Options options(static_cast<unsigned>(settings.maxIsolationLevel));
   options.SetEndCapType(settings.endCap == EndCap::kGregory ? Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS
@@ -163,10 +179,10 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
   options.generateFVarLegacyLinearPatches = false;
   // The refiner must isolate what the patch table expects (PITFALLS.md).
   refiner.RefineAdaptive(options.GetRefineAdaptiveOptions());
-  impl->patches.reset(Far::PatchTableFactory::Create(refiner, options));
-  if (!impl->patches) return fail("OpenSubdiv could not build a patch table for the cage");
-  impl->patchMap = std::make_unique<Far::PatchMap>(*impl->patches);
-  impl->ptexIndices = std::make_unique<Far::PtexIndices>(refiner);
+  topology->patches.reset(Far::PatchTableFactory::Create(refiner, options));
+  if (!topology->patches) return fail("OpenSubdiv could not build a patch table for the cage");
+  topology->patchMap = std::make_unique<Far::PatchMap>(*topology->patches);
+  topology->ptexIndices = std::make_unique<Far::PtexIndices>(refiner);
 
   if (refiner.GetMaxLevel() > 0) {
     Far::StencilTableFactoryReal<double>::Options stencilOptions;
@@ -178,31 +194,35 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
     const std::unique_ptr<const Far::StencilTableReal<double>> refined(
         Far::StencilTableFactoryReal<double>::Create(refiner, stencilOptions));
     if (!refined) return fail("OpenSubdiv could not build the refinement stencils");
-    impl->refinedStencils = detail::FlatStencils(*refined, cage.positions.size());
+    topology->refinedStencils = detail::FlatStencils(*refined, cage.positions.size());
   }
-  if (const auto* local = impl->patches->GetLocalPointStencilTable<double>())
-    impl->localStencils = detail::FlatStencils(*local, impl->refinedEnd());
-  if (!impl->refinedStencils.readsOnlyEarlierPoints() || !impl->localStencils.readsOnlyEarlierPoints())
+  if (const auto* local = topology->patches->GetLocalPointStencilTable<double>())
+    topology->localStencils = detail::FlatStencils(*local, topology->refinedEnd());
+  if (!topology->refinedStencils.readsOnlyEarlierPoints() || !topology->localStencils.readsOnlyEarlierPoints())
     return fail("OpenSubdiv's stencils read points they also write; the parallel update cannot run them");
-  impl->points.resize(impl->refinedEnd() + static_cast<std::size_t>(impl->patches->GetNumLocalPoints()));
-  impl->recomputePoints(1);
-  if (cage.hasUvs()) impl->computeUvs();
+  if (cage.hasUvs()) topology->computeUvs(cage);
 
   const Far::TopologyLevel& base = refiner.GetLevel(0);
-  impl->firstPtex.resize(cage.faceSizes.size());
+  topology->firstPtex.resize(cage.faceSizes.size());
   for (int face = 0; face < base.GetNumFaces(); ++face) {
-    impl->firstPtex[face] = static_cast<std::uint32_t>(impl->ptexIndices->GetFaceId(face));
+    topology->firstPtex[face] = static_cast<std::uint32_t>(topology->ptexIndices->GetFaceId(face));
     const int size = base.GetFaceVertices(face).size();
     if (size == 4)
-      impl->ptexFaces.push_back({static_cast<std::uint32_t>(face), -1});
+      topology->ptexFaces.push_back({static_cast<std::uint32_t>(face), -1});
     else
-      for (int j = 0; j < size; ++j) impl->ptexFaces.push_back({static_cast<std::uint32_t>(face), j});
+      for (int j = 0; j < size; ++j) topology->ptexFaces.push_back({static_cast<std::uint32_t>(face), j});
   }
-  if (impl->ptexFaces.size() != static_cast<std::size_t>(impl->ptexIndices->GetNumFaces()))
-    return fail("OpenSubdiv numbers " + std::to_string(impl->ptexIndices->GetNumFaces()) +
-                " ptex faces where the cage has " + std::to_string(impl->ptexFaces.size()));
-  impl->buildSupports();
-  impl->ptexRevisions.assign(impl->ptexFaces.size(), 0);
+  if (topology->ptexFaces.size() != static_cast<std::size_t>(topology->ptexIndices->GetNumFaces()))
+    return fail("OpenSubdiv numbers " + std::to_string(topology->ptexIndices->GetNumFaces()) +
+                " ptex faces where the cage has " + std::to_string(topology->ptexFaces.size()));
+  topology->buildSupports(cage);
+
+  auto impl = std::make_unique<Impl>();
+  impl->cage = cage;
+  impl->points.resize(topology->refinedEnd() + static_cast<std::size_t>(topology->patches->GetNumLocalPoints()));
+  impl->ptexRevisions.assign(topology->ptexFaces.size(), 0);
+  impl->topology = std::move(topology);
+  impl->recomputePoints(1);
   return LimitSurface(std::move(impl));
 }
 
@@ -216,15 +236,16 @@ Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositi
       return fail("deformed cage vertex " + std::to_string(v) + " has a non-finite position");
   }
   Impl& impl = *impl_;
+  const RefinedTopology& topology = *impl.topology;
   std::vector<char> moved(cagePositions.size());
   for (std::size_t v = 0; v < cagePositions.size(); ++v) moved[v] = cagePositions[v] != impl.cage.positions[v];
   ++impl.revision;
-  for (std::size_t f = 0; f < impl.firstPtex.size(); ++f) {
-    const auto begin = impl.supportVertices.begin() + impl.supportOffsets[f];
-    const auto end = impl.supportVertices.begin() + impl.supportOffsets[f + 1];
+  for (std::size_t f = 0; f < topology.firstPtex.size(); ++f) {
+    const auto begin = topology.supportVertices.begin() + topology.supportOffsets[f];
+    const auto end = topology.supportVertices.begin() + topology.supportOffsets[f + 1];
     if (std::none_of(begin, end, [&](std::uint32_t v) { return moved[v] != 0; })) continue;
-    const std::size_t next = f + 1 < impl.firstPtex.size() ? impl.firstPtex[f + 1] : impl.ptexFaces.size();
-    for (std::size_t p = impl.firstPtex[f]; p < next; ++p) impl.ptexRevisions[p] = impl.revision;
+    const std::size_t next = f + 1 < topology.firstPtex.size() ? topology.firstPtex[f + 1] : topology.ptexFaces.size();
+    for (std::size_t p = topology.firstPtex[f]; p < next; ++p) impl.ptexRevisions[p] = impl.revision;
   }
   std::copy(cagePositions.begin(), cagePositions.end(), impl.cage.positions.begin());
   impl.recomputePoints(threads);
@@ -244,9 +265,10 @@ LimitSample LimitSurface::evaluateShape(std::uint32_t ptexFace, double u, double
 }
 
 LimitSample LimitSurface::Impl::shapeAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const {
+  const Far::PatchTable& patches = *topology->patches;
   double w[6][kMaxPatchPoints];
-  patches->EvaluateBasis(handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
-  const Far::ConstIndexArray cvs = patches->GetPatchVertices(handle);
+  patches.EvaluateBasis(handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
+  const Far::ConstIndexArray cvs = patches.GetPatchVertices(handle);
   glm::dvec3 sums[6] = {};
   for (int i = 0; i < cvs.size(); ++i) {
     const glm::dvec3& point = points[static_cast<std::size_t>(cvs[i])];
@@ -257,7 +279,7 @@ LimitSample LimitSurface::Impl::shapeAt(const Far::PatchTable::PatchHandle& hand
   // twice what they are per unit of the sub-face's own (u, v) (checked against finite
   // differences in tests/subdiv/limit_test.cpp). Normals and curvature do not depend on the
   // scale; Jacobians (areas) do.
-  if (patches->GetPatchParam(handle).NonQuadRoot()) {
+  if (patches.GetPatchParam(handle).NonQuadRoot()) {
     for (int d = 1; d <= 2; ++d) sums[d] *= 0.5;
     for (int d = 3; d <= 5; ++d) sums[d] *= 0.25;
   }
@@ -278,8 +300,8 @@ LimitSample LimitSurface::Impl::shapeAt(const Far::PatchTable::PatchHandle& hand
 glm::dvec3 LimitSurface::evaluatePosition(std::uint32_t ptexFace, double u, double v) const {
   const auto& handle = impl_->findPatch(ptexFace, u, v);
   double w[kMaxPatchPoints];
-  impl_->patches->EvaluateBasis(handle, u, v, w);
-  const Far::ConstIndexArray cvs = impl_->patches->GetPatchVertices(handle);
+  impl_->topology->patches->EvaluateBasis(handle, u, v, w);
+  const Far::ConstIndexArray cvs = impl_->topology->patches->GetPatchVertices(handle);
   glm::dvec3 sum(0.0);
   for (int i = 0; i < cvs.size(); ++i) sum += w[i] * impl_->points[static_cast<std::size_t>(cvs[i])];
   return sum;
@@ -293,10 +315,11 @@ glm::vec2 LimitSurface::evaluateUv(std::uint32_t ptexFace, double u, double v) c
 
 glm::vec2 LimitSurface::Impl::uvAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const {
   double w[kMaxPatchPoints];
-  patches->EvaluateBasisFaceVarying(handle, u, v, w, nullptr, nullptr, nullptr, nullptr, nullptr, 0);
-  const Far::ConstIndexArray values = patches->GetPatchFVarValues(handle, 0);
+  const Far::PatchTable& patches = *topology->patches;
+  patches.EvaluateBasisFaceVarying(handle, u, v, w, nullptr, nullptr, nullptr, nullptr, nullptr, 0);
+  const Far::ConstIndexArray values = patches.GetPatchFVarValues(handle, 0);
   glm::dvec2 sum(0.0);
-  for (int i = 0; i < values.size(); ++i) sum += w[i] * uvs[static_cast<std::size_t>(values[i])].p;
+  for (int i = 0; i < values.size(); ++i) sum += w[i] * topology->uvs[static_cast<std::size_t>(values[i])].p;
   return glm::vec2(sum);
 }
 
@@ -309,21 +332,21 @@ std::uint64_t LimitSurface::changedAt(std::uint32_t ptexFace) const {
 }
 
 std::uint32_t LimitSurface::ptexFaceCount() const {
-  return static_cast<std::uint32_t>(impl_->ptexFaces.size());
+  return static_cast<std::uint32_t>(impl_->topology->ptexFaces.size());
 }
 
 PtexFace LimitSurface::ptexFace(std::uint32_t ptexFace) const {
-  return impl_->ptexFaces.at(ptexFace);
+  return impl_->topology->ptexFaces.at(ptexFace);
 }
 
 std::uint32_t LimitSurface::firstPtexFace(std::uint32_t cageFace) const {
-  return impl_->firstPtex.at(cageFace);
+  return impl_->topology->firstPtex.at(cageFace);
 }
 
 PtexAdjacency LimitSurface::ptexAdjacency(std::uint32_t ptexFace) const {
-  const PtexFace& face = impl_->ptexFaces.at(ptexFace);
+  const PtexFace& face = impl_->topology->ptexFaces.at(ptexFace);
   PtexAdjacency adjacency;
-  impl_->ptexIndices->GetAdjacency(*impl_->refiner, static_cast<int>(face.cageFace), std::max(face.subFace, 0),
+  impl_->topology->ptexIndices->GetAdjacency(*impl_->topology->refiner, static_cast<int>(face.cageFace), std::max(face.subFace, 0),
                                    adjacency.faces.data(), adjacency.edges.data());
   return adjacency;
 }
@@ -337,7 +360,7 @@ bool LimitSurface::hasUvs() const {
 }
 
 std::size_t LimitSurface::patchCount() const {
-  return static_cast<std::size_t>(impl_->patches->GetNumPatchesTotal());
+  return static_cast<std::size_t>(impl_->topology->patches->GetNumPatchesTotal());
 }
 
 std::size_t LimitSurface::controlPointCount() const {

@@ -80,6 +80,13 @@ public:
   /// rejecting the topology.
   [[nodiscard]] static Result<LimitSurface> create(const Cage& cage, const LimitSurfaceSettings& settings = {});
 
+  /// A copy is a snapshot of the surface as it is now: it shares the topology, patches, stencils
+  /// and UVs, and has its own cage positions and points (assigning one reuses their storage).
+  /// Its revisions go on from the original's, so that evaluations of a snapshot can be compared
+  /// with later changes to the original (changedAt). For evaluating a shape on another thread
+  /// while the surface moves on.
+  LimitSurface(const LimitSurface& other);
+  LimitSurface& operator=(const LimitSurface& other);
   LimitSurface(LimitSurface&&) noexcept;
   LimitSurface& operator=(LimitSurface&&) noexcept;
   ~LimitSurface();

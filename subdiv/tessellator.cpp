@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <string>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 #include <glm/geometric.hpp>
@@ -31,6 +35,26 @@ constexpr double kKeptErrorGrowth = 0.10;
 // ... and is tessellated again once every point's scale has fallen below this fraction, when
 // it has about 1/0.7 ≈ 1.4 times the triangles the view needs (the count goes with the scale).
 constexpr double kKeptFinestScale = 0.7;
+
+// update prepares the next tessellation on one thread beside the caller's frames and adopts it
+// this many calls later: 83 ms at 60 frames a second, where a tessellation of the LeePerrySmith
+// head filling a 1280×720 image takes 20–50 ms on one thread of this project's 2-core machine.
+constexpr int kPreparedCalls = 5;
+// It prepares when the largest growth of a scale, extrapolated from its rate over the last
+// kGrowthSpan calls (an even number: an animation that alternates between two poses every
+// frame changes it by the same amount each way), would leave the allowance within twice that
+// latency; or, whatever the rate, once it has passed this much of the 10 % allowed, or every
+// scale has fallen below the next fraction.
+constexpr std::size_t kGrowthSpan = 4;
+constexpr double kPrepareErrorGrowth = 0.07;
+constexpr double kPrepareFinestScale = 0.75;
+constexpr unsigned kPreparingThreads = 1;
+
+/// Whether a tessellation whose points' scales grew by at most `growth` (Impl::scaleGrowth)
+/// still keeps within the target and is not too fine.
+bool keepsWithin(const std::optional<double>& growth) {
+  return growth && *growth <= 1.0 + kKeptErrorGrowth && *growth >= kKeptFinestScale;
+}
 
 /// A limit point seen by the camera.
 struct ProjectedPoint {
@@ -108,7 +132,7 @@ struct GridPoint {
 struct AdaptiveTessellator::Impl {
   const LimitSurface* surface = nullptr;
   TessellationSettings settings;
-  detail::PtexSides sides;
+  std::shared_ptr<const detail::PtexSides> sides;  ///< shared with the tessellations it prepares
   std::int64_t smallestCell = 4;
   TessellationStatistics statistics;
 
@@ -159,11 +183,15 @@ struct AdaptiveTessellator::Impl {
   std::vector<CulledSamples> culled;
   bool keepable = false;  ///< no error was left unmeasured behind the camera
 
+  /// update's scaleGrowth of the last calls that kept this tessellation, newest last
+  std::array<double, kGrowthSpan + 1> recentGrowth{};
+  std::size_t recentGrowthCount = 0;
+
   std::uint64_t evaluatedRevision = 0;        ///< the surface's revision at the last evaluation
   std::vector<std::uint32_t> staleLocations;  ///< the locations evaluateVertices evaluates
 
-  Impl(const LimitSurface& limit, const TessellationSettings& chosen)
-      : surface(&limit), settings(chosen), sides(limit.cage()) {
+  Impl(const LimitSurface& limit, const TessellationSettings& chosen, std::shared_ptr<const detail::PtexSides> shared)
+      : surface(&limit), settings(chosen), sides(std::move(shared)) {
     smallestCell = kGrid >> settings.maxDepth;
   }
 
@@ -270,12 +298,12 @@ struct AdaptiveTessellator::Impl {
 
   /// Collects the corners of cells on every line (face boundary), from all faces.
   void collectLinePoints() {
-    linePoints.resize(sides.lineCount());
+    linePoints.resize(sides->lineCount());
     for (auto& points : linePoints) points.clear();
     for (const Cell& cell : cells) {
       const std::int64_t i1 = cell.i0 + cell.size, j1 = cell.j0 + cell.size;
       const auto add = [&](int side, std::int64_t from, std::int64_t to) {
-        const detail::SideOnLine& s = sides.side(cell.face, side);
+        const detail::SideOnLine& s = sides->side(cell.face, side);
         linePoints[s.line].push_back(s.toLine(from));
         linePoints[s.line].push_back(s.toLine(to));
       };
@@ -303,7 +331,7 @@ struct AdaptiveTessellator::Impl {
     const bool onBoundary = fixed == 0 || fixed == kGrid;
     if (onBoundary) {
       const int side = horizontal ? (fixed == 0 ? 0 : 2) : (fixed == 0 ? 3 : 1);
-      const detail::SideOnLine& s = sides.side(face, side);
+      const detail::SideOnLine& s = sides->side(face, side);
       const std::int64_t a = s.toLine(low), b = s.toLine(high);
       const auto& points = linePoints[s.line];
       auto first = std::upper_bound(points.begin(), points.end(), std::min(a, b));
@@ -321,7 +349,7 @@ struct AdaptiveTessellator::Impl {
   }
 
   void emitTriangle(Worker& worker, std::uint32_t face, GridPoint a, GridPoint b, GridPoint c) const {
-    for (const GridPoint& p : {a, b, c}) worker.corners.push_back({sides.name(face, p.i, p.j), face, p});
+    for (const GridPoint& p : {a, b, c}) worker.corners.push_back({sides->name(face, p.i, p.j), face, p});
   }
 
   void triangulateFace(Worker& worker, std::uint32_t face) const {
@@ -482,6 +510,7 @@ struct AdaptiveTessellator::Impl {
 
   void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
     statistics = {};
+    recentGrowthCount = 0;
     projector = Projector(glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize));
     const std::size_t faces = surface->ptexFaceCount();
     const std::size_t workerTotal = detail::workerCount(faces, threads, kMinFacesPerWorker);
@@ -503,23 +532,38 @@ struct AdaptiveTessellator::Impl {
     keepable &= std::find(pointScales.begin(), pointScales.end(), 0.0) == pointScales.end();
   }
 
-  bool keepsTarget(const ScreenView& view) const {
-    if (!keepable || pointScales.empty()) return false;
+  /// The largest growth of any point's scale from the view tessellated for to `view` (see
+  /// keepsTarget), or nothing when the triangles cannot be kept in `view` whatever it is: no
+  /// tessellation to keep, an error left unmeasured behind the camera, a point now behind it, or
+  /// a cell left coarse outside the view that has come into it.
+  std::optional<double> scaleGrowth(const ScreenView& view) const {
+    if (!keepable || pointScales.empty()) return std::nullopt;
     const Projector candidate(glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize));
     double largestGrowth = 0.0;
     for (std::size_t l = 0; l < pointScales.size(); ++l) {
       const ProjectedPoint point = candidate.project(pointPositions[l]);
-      if (!point.inFront) return false;
+      if (!point.inFront) return std::nullopt;
       largestGrowth = std::max(largestGrowth, point.pixelsPerUnit / pointScales[l]);
     }
-    if (largestGrowth > 1.0 + kKeptErrorGrowth || largestGrowth < kKeptFinestScale) return false;
     // The coarse cells outside the view must stay outside it: the same test refine made.
     for (const CulledSamples& samples : culled) {
       unsigned outsideAll = ~0u;
       for (const glm::dvec3& sample : samples) outsideAll &= candidate.project(sample).outside;
-      if (outsideAll == 0) return false;
+      if (outsideAll == 0) return std::nullopt;
     }
-    return true;
+    return largestGrowth;
+  }
+
+  /// Records a kept call's scale growth and says whether the next tessellation should be
+  /// prepared now (see kGrowthSpan).
+  bool recordGrowthAndPredictLoss(double growth) {
+    std::rotate(recentGrowth.begin(), recentGrowth.begin() + 1, recentGrowth.end());
+    recentGrowth.back() = growth;
+    recentGrowthCount = std::min(recentGrowthCount + 1, recentGrowth.size());
+    if (growth > 1.0 + kPrepareErrorGrowth || growth < kPrepareFinestScale) return true;
+    if (recentGrowthCount < recentGrowth.size()) return false;
+    const double rate = (growth - recentGrowth.front()) / double(kGrowthSpan);
+    return growth + 2.0 * kPreparedCalls * rate > 1.0 + kKeptErrorGrowth;
   }
 };
 
@@ -531,8 +575,43 @@ Result<AdaptiveTessellator> AdaptiveTessellator::create(const LimitSurface& surf
   if (settings.maxDepth < 1 || settings.maxDepth > detail::kMaxDepth)
     return fail("the tessellation depth " + std::to_string(settings.maxDepth) + " is outside 1.." +
                 std::to_string(detail::kMaxDepth));
-  return AdaptiveTessellator(std::make_unique<Impl>(surface, settings));
+  return AdaptiveTessellator(
+      std::make_unique<Impl>(surface, settings, std::make_shared<const detail::PtexSides>(surface.cage())));
 }
+
+/// The next tessellation, which update prepares on a thread of its own from a snapshot of the
+/// surface. Once adopted, it holds the storage of the tessellation it replaced, for the next.
+struct AdaptiveTessellator::Preparation {
+  std::optional<LimitSurface> snapshot;
+  std::unique_ptr<Impl> tessellation;
+  TessellatedMesh mesh;
+  bool pending = false;  ///< started and not yet adopted or dropped
+  int calls = 0;         ///< update calls since it started
+  std::jthread thread;   ///< declared last, so joined first
+
+  void start(const Impl& current, const ScreenView& view) {
+    if (snapshot)
+      *snapshot = *current.surface;  // in the storage of the last
+    else
+      snapshot.emplace(*current.surface);
+    if (!tessellation) tessellation = std::make_unique<Impl>(*snapshot, current.settings, current.sides);
+    tessellation->surface = &*snapshot;
+    pending = true;
+    calls = 0;
+    const auto work = [this, view] { tessellation->tessellate(view, mesh, kPreparingThreads); };
+    try {
+      thread = std::jthread(work);
+    } catch (const std::system_error&) {
+      work();  // no thread to be had: the same tessellation, made now
+    }
+  }
+
+  /// Waits for the tessellation to be made.
+  void finish() {
+    if (thread.joinable()) thread.join();
+    pending = false;
+  }
+};
 
 AdaptiveTessellator::AdaptiveTessellator(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 AdaptiveTessellator::AdaptiveTessellator(AdaptiveTessellator&&) noexcept = default;
@@ -540,7 +619,38 @@ AdaptiveTessellator& AdaptiveTessellator::operator=(AdaptiveTessellator&&) noexc
 AdaptiveTessellator::~AdaptiveTessellator() = default;
 
 void AdaptiveTessellator::tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
+  if (preparation_) preparation_->finish();  // made for the tessellation this one replaces: dropped
   impl_->tessellate(view, mesh, threads);
+}
+
+Result<FrameUpdate> AdaptiveTessellator::update(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
+  if (impl_->vertices.empty()) {
+    tessellate(view, mesh, threads);
+    return FrameUpdate::kTessellated;
+  }
+  std::optional<double> growth = impl_->scaleGrowth(view);
+  const bool preparing = preparation_ && preparation_->pending;
+  if (preparing && (++preparation_->calls >= kPreparedCalls || !keepsWithin(growth))) {
+    Preparation& prepared = *preparation_;
+    prepared.finish();
+    // The prepared tessellation saw the surface as the snapshot was: from here on it reads the
+    // surface itself, and evaluateVertices moves the points on faces that changed since.
+    prepared.tessellation->surface = impl_->surface;
+    std::swap(impl_, prepared.tessellation);
+    std::swap(mesh, prepared.mesh);
+    impl_->evaluateVertices(mesh, threads, false);
+    growth = impl_->scaleGrowth(view);
+    if (keepsWithin(growth)) return FrameUpdate::kAdopted;
+  }
+  if (!keepsWithin(growth)) {
+    tessellate(view, mesh, threads);
+    return FrameUpdate::kTessellated;
+  }
+  if (auto updated = updateVertices(mesh, threads); !updated) return std::unexpected(updated.error());
+  if (!impl_->recordGrowthAndPredictLoss(*growth) || preparing) return FrameUpdate::kKept;
+  if (!preparation_) preparation_ = std::make_unique<Preparation>();
+  preparation_->start(*impl_, view);
+  return FrameUpdate::kPrepared;
 }
 
 Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned threads) {
@@ -552,7 +662,7 @@ Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned
 }
 
 bool AdaptiveTessellator::keepsTarget(const ScreenView& view) const {
-  return impl_->keepsTarget(view);
+  return keepsWithin(impl_->scaleGrowth(view));
 }
 
 const TessellationStatistics& AdaptiveTessellator::statistics() const {

@@ -14,6 +14,7 @@
 // mesh has no T-junctions either: every interior edge has exactly two triangles.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -69,6 +70,14 @@ struct TessellationStatistics {
   std::size_t pointsEvaluated = 0;
 };
 
+/// What AdaptiveTessellator::update did.
+enum class FrameUpdate {
+  kKept,         ///< kept the last triangles, their vertices moved with the surface
+  kPrepared,     ///< kept them, and began preparing the next tessellation on a thread of its own
+  kAdopted,      ///< made the prepared tessellation the current one
+  kTessellated,  ///< tessellated again itself: there was none yet, or the view changed too fast
+};
+
 class AdaptiveTessellator {
 public:
   /// Prepares the side tables of `surface`'s ptex faces. The tessellator keeps a pointer to
@@ -110,13 +119,30 @@ public:
   /// are not measured. False before any tessellate.
   [[nodiscard]] bool keepsTarget(const ScreenView& view) const;
 
+  /// The per-frame update of a moving surface seen by a moving camera, after
+  /// LimitSurface::updatePositions: the last triangles while they keep within the target
+  /// (keepsTarget), their vertices moved with the surface (updateVertices). When the growth of
+  /// the points' scales, extrapolated from the last few calls, would use up the 10 % allowed
+  /// within about ten calls (or has used 7 % of it, or every scale has shrunk below 0.75), it
+  /// copies the surface and tessellates the copy for this view on a thread of its own; on the
+  /// 5th call after that, or sooner if the kept triangles stop keeping within the target, it
+  /// waits for that tessellation, makes it the current one and moves its vertices to the surface
+  /// as it is then. It tessellates on the calling threads only when there is no tessellation
+  /// yet, or when even the prepared one does not keep within the target (a camera that jumped).
+  /// What it does depends on the calls alone (views and surfaces), never on timing, so the
+  /// meshes are as deterministic as tessellate's. Errors: as updateVertices (`mesh` must be what
+  /// the last call left).
+  [[nodiscard]] Result<FrameUpdate> update(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
+
   [[nodiscard]] const TessellationStatistics& statistics() const;
   [[nodiscard]] const TessellationSettings& settings() const;
 
 private:
   struct Impl;
+  struct Preparation;
   explicit AdaptiveTessellator(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Preparation> preparation_;  ///< the next tessellation, while update prepares one
 };
 
 }  // namespace mane::subdiv

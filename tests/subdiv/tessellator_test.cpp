@@ -316,6 +316,86 @@ TEST(AdaptiveTessellation, KeptTrianglesStayWithinTheTargetAsTheObjectTurns) {
   EXPECT_GT(worstEdgeError(t.surface, mesh, turnedView(0.0f, neck, 4.8f)), 1.1);
 }
 
+// update, per frame of an object that turns and deforms: the kept triangles until a tessellation
+// prepared on another thread is adopted, 5 calls after it began, so no frame after the first
+// tessellates on the calling thread. Oracles: every frame's mesh is watertight, lies on the
+// surface as it is then, and keeps within the target (+10 %) on screen; an adopted mesh is
+// bit for bit what tessellating the surface and view of the preparing frame and then moving
+// the vertices (updateVertices) gives, on a surface of its own; and the meshes do not depend on
+// the thread count.
+TEST(AdaptiveTessellation, UpdateAdoptsATessellationPreparedBeforeTheKeptOneMissesTheTarget) {
+  const Cage cage = testing::unitCube();
+  const glm::vec3 neck(1.5f, -1.0f, 0.0f);  // beside the object: turning brings it nearer
+  // Breathing in three steps, so that a tessellation adopted 5 frames after it was prepared
+  // finds the cage moved since.
+  const auto poseAt = [&](int frame) {
+    std::vector<glm::vec3> pose = cage.positions;
+    for (glm::vec3& p : pose) p *= 1.0f + 0.002f * float(frame % 3);
+    return pose;
+  };
+  const auto viewAt = [&](int frame) { return turnedView(0.5f * float(frame), neck, 6.0f); };
+  constexpr int kFrames = 120;  // 60° in half-degree steps
+
+  std::vector<TessellatedMesh> firstRun;
+  for (unsigned threads : {1u, 2u}) {
+    Tessellated t = prepare(cage, {.keepPtexCoordinates = true});
+    Tessellated reference = prepare(cage, {.keepPtexCoordinates = true});
+    TessellatedMesh mesh, expected;
+    std::map<FrameUpdate, int> counts;
+    int preparedAt = -1;
+    for (int frame = 0; frame <= kFrames; ++frame) {
+      ASSERT_TRUE(t.surface.updatePositions(poseAt(frame)).has_value());
+      const auto update = t.tessellator.update(viewAt(frame), mesh, threads);
+      ASSERT_TRUE(update.has_value()) << update.error().message;
+      ++counts[*update];
+      if (frame == 0) {
+        EXPECT_EQ(*update, FrameUpdate::kTessellated) << "nothing to keep yet";
+      } else {
+        ASSERT_NE(*update, FrameUpdate::kTessellated) << "frame " << frame;
+      }
+      if (*update == FrameUpdate::kPrepared) {
+        ASSERT_TRUE(reference.surface.updatePositions(poseAt(frame)).has_value());
+        reference.tessellator.tessellate(viewAt(frame), expected);
+        preparedAt = frame;
+      }
+      if (*update == FrameUpdate::kAdopted) {
+        EXPECT_EQ(frame, preparedAt + 5);
+        ASSERT_TRUE(reference.surface.updatePositions(poseAt(frame)).has_value());
+        ASSERT_TRUE(reference.tessellator.updateVertices(expected).has_value());
+        EXPECT_EQ(mesh.indices, expected.indices) << "frame " << frame;
+        EXPECT_EQ(mesh.positions, expected.positions) << "frame " << frame;
+        EXPECT_EQ(mesh.normals, expected.normals) << "frame " << frame;
+      }
+      EXPECT_EQ(countEdges(mesh).notTwo, 0u) << "frame " << frame;
+      EXPECT_LE(worstEdgeError(t.surface, mesh, viewAt(frame)), 1.1) << "frame " << frame;
+      float offSurface = 0.0f;
+      for (std::size_t corner = 0; corner < mesh.indices.size(); ++corner) {
+        const glm::vec2 uv = mesh.cornerPtexCoordinates[corner];
+        const glm::vec3 onSurface = t.surface.evaluatePosition(mesh.trianglePtexFaces[corner / 3], uv.x, uv.y);
+        offSurface = std::max(offSurface, glm::length(mesh.positions[mesh.indices[corner]] - onSurface));
+      }
+      EXPECT_LT(offSurface, 1e-6f) << "frame " << frame;
+      if (threads == 1) {
+        firstRun.push_back(mesh);
+      } else {
+        EXPECT_EQ(mesh.indices, firstRun[std::size_t(frame)].indices) << "frame " << frame;
+        EXPECT_EQ(mesh.positions, firstRun[std::size_t(frame)].positions) << "frame " << frame;
+      }
+    }
+    EXPECT_GE(counts[FrameUpdate::kAdopted], 2);
+    EXPECT_EQ(counts[FrameUpdate::kAdopted], counts[FrameUpdate::kPrepared]);
+    EXPECT_GE(counts[FrameUpdate::kKept], kFrames / 2);
+
+    // A camera that jumps back and a fifth nearer (the object still all in view): the kept
+    // triangles would be too coarse, and nothing was prepared for it, so the call tessellates.
+    const ScreenView jumped = turnedView(0.0f, neck, 4.8f);
+    const auto update = t.tessellator.update(jumped, mesh, threads);
+    ASSERT_TRUE(update.has_value());
+    EXPECT_EQ(*update, FrameUpdate::kTessellated);
+    EXPECT_LE(worstEdgeError(t.surface, mesh, jumped), 1.1);
+  }
+}
+
 // Cells left coarse outside the view must be refined once they come into it.
 TEST(AdaptiveTessellation, APartOutsideTheViewThatComesIntoItIsTessellatedAgain) {
   Tessellated t = prepare(testing::unitCube());
