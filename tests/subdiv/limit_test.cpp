@@ -276,6 +276,41 @@ TEST(LimitSurface, DeformingTheCageKeepsTopologyAndFollowsAffineMaps) {
   EXPECT_NE(surface->updatePositions(moved).error().message.find("vertex 2"), std::string::npos);
 }
 
+// A copy is a snapshot: it evaluates exactly as the original did when it was taken, keeps that
+// shape while the original moves on, and numbers its revisions on from the original's; assigning
+// a later state brings it up to date.
+TEST(LimitSurface, ACopyKeepsTheShapeItWasTakenWith) {
+  const Cage cage = unitCube();
+  auto surface = LimitSurface::create(cage);
+  ASSERT_TRUE(surface.has_value());
+  std::vector<glm::vec3> moved = cage.positions;
+  moved[0] += glm::vec3(0.3f);
+  ASSERT_TRUE(surface->updatePositions(moved).has_value());
+  LimitSurface copy = *surface;
+  std::vector<LimitSample> taken;
+  for (std::uint32_t f = 0; f < surface->ptexFaceCount(); ++f) taken.push_back(surface->evaluate(f, 0.3, 0.6));
+
+  ASSERT_TRUE(surface->updatePositions(cage.positions).has_value());
+  EXPECT_EQ(copy.revision(), 1u);
+  EXPECT_EQ(surface->revision(), 2u);
+  bool originalMoved = false;
+  for (std::uint32_t f = 0; f < copy.ptexFaceCount(); ++f) {
+    const LimitSample sample = copy.evaluate(f, 0.3, 0.6);
+    EXPECT_EQ(sample.position, taken[f].position) << "face " << f;
+    EXPECT_EQ(sample.normal, taken[f].normal) << "face " << f;
+    EXPECT_EQ(sample.curvature.mean, taken[f].curvature.mean) << "face " << f;
+    originalMoved |= surface->evaluate(f, 0.3, 0.6).position != taken[f].position;
+  }
+  EXPECT_TRUE(originalMoved);
+
+  copy = *surface;
+  EXPECT_EQ(copy.revision(), 2u);
+  for (std::uint32_t f = 0; f < copy.ptexFaceCount(); ++f) {
+    EXPECT_EQ(copy.changedAt(f), surface->changedAt(f));
+    EXPECT_EQ(copy.evaluate(f, 0.7, 0.1).position, surface->evaluate(f, 0.7, 0.1).position);
+  }
+}
+
 TEST(LimitSurface, RejectsBadCagesAndSettingsWithTheReason) {
   Cage outOfRange = unitCube();
   outOfRange.faceVertices[3] = 99;
