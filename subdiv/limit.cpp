@@ -19,6 +19,7 @@
 #include "subdiv/detail/flat_stencils.hpp"
 #include "subdiv/detail/osd_topology.hpp"
 #include "subdiv/detail/parallel_ranges.hpp"
+#include "subdiv/detail/patch_sums.hpp"
 
 namespace mane::subdiv {
 namespace {
@@ -31,8 +32,7 @@ struct Point2 {
   void AddWithWeight(const Point2& source, double weight) { p += weight * source.p; }
 };
 
-// Gregory basis patches have 20 control points, regular B-spline patches 16.
-constexpr int kMaxPatchPoints = 20;
+using detail::kMaxPatchPoints;
 
 // Below this many stencils per worker a thread costs more than it saves.
 constexpr std::size_t kMinStencilsPerWorker = 16384;
@@ -266,14 +266,11 @@ LimitSample LimitSurface::evaluateShape(std::uint32_t ptexFace, double u, double
 
 LimitSample LimitSurface::Impl::shapeAt(const Far::PatchTable::PatchHandle& handle, double u, double v) const {
   const Far::PatchTable& patches = *topology->patches;
-  double w[6][kMaxPatchPoints];
+  detail::PatchWeights w;
   patches.EvaluateBasis(handle, u, v, w[0], w[1], w[2], w[3], w[4], w[5]);
   const Far::ConstIndexArray cvs = patches.GetPatchVertices(handle);
-  glm::dvec3 sums[6] = {};
-  for (int i = 0; i < cvs.size(); ++i) {
-    const glm::dvec3& point = points[static_cast<std::size_t>(cvs[i])];
-    for (int d = 0; d < 6; ++d) sums[d] += w[d][i] * point;
-  }
+  glm::dvec3 sums[6];
+  detail::patchSums(w, std::span(&cvs[0], std::size_t(cvs.size())), points, sums);
   // OpenSubdiv (3.5) scales a patch's derivatives by 2^depth, the depth counting from the cage
   // face; a non-quad face's ptex sub-face starts one level down, so its derivatives come out
   // twice what they are per unit of the sub-face's own (u, v) (checked against finite
