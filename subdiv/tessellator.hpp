@@ -94,7 +94,8 @@ public:
   /// Tessellates the surface as it is now for `view` into `mesh`, reusing its storage (call
   /// once per frame when the camera or the cage moves). `threads` ≥ 1 workers (0 counts as 1)
   /// share the ptex faces and limit points. Deterministic: the same surface and view give the
-  /// same mesh, vertex order included, bit for bit whatever `threads` is.
+  /// same mesh, vertex order included, bit for bit whatever `threads` is. A tessellation that
+  /// update was preparing is waited for and dropped.
   void tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
 
   /// Moves the vertices of the last tessellation onto the surface as it is now (after
