@@ -343,8 +343,8 @@ std::uint32_t LimitSurface::firstPtexFace(std::uint32_t cageFace) const {
 PtexAdjacency LimitSurface::ptexAdjacency(std::uint32_t ptexFace) const {
   const PtexFace& face = impl_->topology->ptexFaces.at(ptexFace);
   PtexAdjacency adjacency;
-  impl_->topology->ptexIndices->GetAdjacency(*impl_->topology->refiner, static_cast<int>(face.cageFace), std::max(face.subFace, 0),
-                                   adjacency.faces.data(), adjacency.edges.data());
+  impl_->topology->ptexIndices->GetAdjacency(*impl_->topology->refiner, static_cast<int>(face.cageFace),
+                                             std::max(face.subFace, 0), adjacency.faces.data(), adjacency.edges.data());
   return adjacency;
 }
 

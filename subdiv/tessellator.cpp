@@ -545,6 +545,7 @@ struct AdaptiveTessellator::Impl {
       if (!point.inFront) return std::nullopt;
       largestGrowth = std::max(largestGrowth, point.pixelsPerUnit / pointScales[l]);
     }
+    if (!keepsWithin(largestGrowth)) return largestGrowth;  // refused whatever the culled cells say
     // The coarse cells outside the view must stay outside it: the same test refine made.
     for (const CulledSamples& samples : culled) {
       unsigned outsideAll = ~0u;
