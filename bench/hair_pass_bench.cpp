@@ -154,6 +154,7 @@ void frame(const Device& device, const RenderTarget& target, const Setup* hair) 
   const HairPass* pass = hair ? hair->pass.get() : nullptr;
   device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     if (hair) hair->lighting->record(commands);
+    if (pass) pass->record(commands);
     target.beginScene(commands, {0.02f, 0.02f, 0.03f, 1.0f});
     if (pass) pass->draw(commands);
     commands.endRendering();

@@ -190,6 +190,8 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
     enabledCore.geometryShader = core.geometryShader;
     enabledCore.sampleRateShading = core.sampleRateShading;
     enabledCore.fillModeNonSolid = core.fillModeNonSolid;
+    enabledCore.wideLines = core.wideLines;
+    self->wideLines_ = core.wideLines == VK_TRUE;
     enabled.get<vk::PhysicalDeviceVulkan12Features>().hostQueryReset = v12.hostQueryReset;
     enabled.get<vk::PhysicalDeviceVulkan12Features>().shaderFloat16 = v12.shaderFloat16;
     // Needed for the DEPTH_ATTACHMENT_OPTIMAL layout of our depth-only images.

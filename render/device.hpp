@@ -72,6 +72,8 @@ public:
   const vk::raii::Queue& queue() const { return queue_; }
   std::uint32_t queueFamily() const { return queueFamily_; }
   const vk::PhysicalDeviceLimits& limits() const { return limits_; }
+  /// Whether lines wider than 1 pixel may be drawn (the wideLines feature, enabled where supported).
+  bool wideLines() const { return wideLines_; }
 
   /// Records commands with `record`, submits them and waits for the queue to finish. Not
   /// thread-safe: one thread records at a time (the command pool is shared).
@@ -104,6 +106,7 @@ private:
   vk::raii::CommandPool commandPool_{nullptr};
   std::uint32_t queueFamily_ = 0;
   vk::PhysicalDeviceLimits limits_{};
+  bool wideLines_ = false;
   DeviceInfo info_;
   mutable std::atomic<std::uint64_t> allocatedBytes_ = 0;
 };

@@ -91,9 +91,10 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
   const std::vector<vk::PipelineColorBlendAttachmentState> blends(settings.colorFormats.size(), blend);
   const vk::PipelineColorBlendStateCreateInfo colorBlend{.attachmentCount = static_cast<std::uint32_t>(blends.size()),
                                                          .pAttachments = blends.data()};
-  const std::array dynamicStates{vk::DynamicState::eViewport, vk::DynamicState::eScissor};
-  const vk::PipelineDynamicStateCreateInfo dynamic{.dynamicStateCount = dynamicStates.size(),
-                                                   .pDynamicStates = dynamicStates.data()};
+  std::vector dynamicStates{vk::DynamicState::eViewport, vk::DynamicState::eScissor};
+  if (settings.dynamicLineWidth) dynamicStates.push_back(vk::DynamicState::eLineWidth);
+  const vk::PipelineDynamicStateCreateInfo dynamic{
+      .dynamicStateCount = static_cast<std::uint32_t>(dynamicStates.size()), .pDynamicStates = dynamicStates.data()};
   const vk::PipelineRenderingCreateInfo rendering{
       .colorAttachmentCount = static_cast<std::uint32_t>(settings.colorFormats.size()),
       .pColorAttachmentFormats = settings.colorFormats.data(),

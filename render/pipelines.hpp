@@ -27,6 +27,7 @@ struct GraphicsPipelineSettings {
   std::vector<vk::VertexInputBindingDescription> vertexBindings;
   std::vector<vk::VertexInputAttributeDescription> vertexAttributes;
   vk::PrimitiveTopology topology = vk::PrimitiveTopology::eTriangleList;
+  bool dynamicLineWidth = false;  ///< set the line width when recording (vkCmdSetLineWidth); else 1
   vk::CullModeFlags cullMode = vk::CullModeFlagBits::eNone;
   std::vector<vk::Format> colorFormats;
   Blend blend = Blend::kNone;
@@ -44,7 +45,7 @@ struct Pipeline {
   vk::raii::Pipeline pipeline{nullptr};
 };
 
-/// Viewport and scissor are dynamic state; set them when recording.
+/// Viewport and scissor are dynamic state (and the line width where asked); set them when recording.
 Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettings& settings);
 
 /// A compute pipeline running the embedded shader `shader` with one descriptor set,

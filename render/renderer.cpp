@@ -249,12 +249,22 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
     timer_.end(commands);
   }
   furs_.setShadowUniforms(shadows_->uniforms());
+  // The groom is drawn only where its shading, view and order all took.
+  std::vector<bool> drawn(hair_.size(), false);
   if (hair) {
     timer_.begin(commands, "hair lighting");
     const glm::mat4 viewProjection = frame.camera.projection(target_.aspect()) * frame.camera.view();
-    for (const HairGroom& groom : hair_)
-      if (groom.hasGuides && groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()))
-        groom.lighting->record(commands);
+    const glm::vec4 eye = hairEye(viewProjection);
+    for (std::size_t g = 0; g < hair_.size(); ++g) {
+      const HairGroom& groom = hair_[g];
+      if (!groom.hasGuides ||
+          !groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()))
+        continue;
+      groom.lighting->record(commands);
+      drawn[g] = groom.ribbons->update(frame, target_.extent(), groom.settings) &&
+                 groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye));
+      if (drawn[g]) groom.ribbons->record(commands);
+    }
     timer_.end(commands);
   }
   if (!textureSpaceSkins_.empty()) {
@@ -287,11 +297,8 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   if (hair) {
     timer_.end(commands);
     timer_.begin(commands, "hair");
-    const glm::vec4 eye = hairEye(frame.camera.projection(target_.aspect()) * frame.camera.view());
-    for (const HairGroom& groom : hair_)
-      if (groom.hasGuides && groom.ribbons->update(frame, target_.extent(), groom.settings) &&
-          groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye)))
-        groom.ribbons->draw(commands);
+    for (std::size_t g = 0; g < hair_.size(); ++g)
+      if (drawn[g]) hair_[g].ribbons->draw(commands);
   }
   commands.endRendering();
   timer_.end(commands);

@@ -5,10 +5,42 @@ layout(set = 0, binding = 0, std140) uniform HairUniforms {
   vec4 eye;             // w = 1: eye position (metres); w = 0: unit direction towards the eye
   vec4 groom;           // x: root width (m), y: tip width scale, z: opacity, w: min width (px)
   vec4 viewport;        // xy: extent in pixels
-  uvec4 counts;         // y: vertices per strand
+  uvec4 counts;         // x: strands, y: vertices per strand, z: 1 when lines may stand in for ribbons
 } hair;
 
 // Unit vector from `position` (world, metres) towards the eye.
 vec3 hairToEye(vec3 position) {
   return hair.eye.w != 0.0 ? normalize(hair.eye.xyz - position) : hair.eye.xyz;
+}
+
+// A strand vertex's ribbon (render/passes/hair_pass.hpp): the unit vector it is widened along,
+// perpendicular to the strand and to the view; the strand's half width there; and half the
+// minimum drawn width there (both metres). The ribbon is drawn max(halfWidth, minimumHalfWidth)
+// to each side.
+struct HairRibbon {
+  vec3 side;
+  float halfWidth;
+  float minimumHalfWidth;
+};
+
+HairRibbon hairRibbon(vec4 point, vec3 tangent) {
+  HairRibbon ribbon;
+  vec3 toEye = hairToEye(point.xyz);
+  // Any perpendicular to the view where the strand points at the eye (or its tangent is zero:
+  // coincident neighbours).
+  vec3 side = cross(tangent, toEye);
+  if (dot(side, side) < 1e-12) side = cross(abs(toEye.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0), toEye);
+  ribbon.side = normalize(side);
+
+  // Pixels per metre along `side` here, from projecting the root half-width offset (exact for any
+  // projection, including the obliquity of off-axis strands under perspective).
+  float rootHalfWidth = 0.5 * hair.groom.x;
+  vec4 centre = hair.viewProjection * vec4(point.xyz, 1.0);
+  vec4 edge = hair.viewProjection * vec4(point.xyz + ribbon.side * rootHalfWidth, 1.0);
+  vec2 offsetPixels = (edge.xy / edge.w - centre.xy / centre.w) * 0.5 * hair.viewport.xy;
+  float pixelsPerMetre = length(offsetPixels) / rootHalfWidth;
+
+  ribbon.halfWidth = rootHalfWidth * mix(1.0, hair.groom.y, point.w);
+  ribbon.minimumHalfWidth = 0.5 * hair.groom.w / max(pixelsPerMetre, 1e-6);
+  return ribbon;
 }

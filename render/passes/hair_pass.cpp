@@ -44,18 +44,38 @@ Result<void> validate(const HairGroomSettings& groom) {
   return {};
 }
 
-// Two triangles per segment over the ribbon vertices 2 × (k × Nd + i) + side of the vertex shader,
-// counter-clockwise seen from the side s points to: (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +).
-// The count fits 32 bits (setStrands checks), and so does every index, as 2·Nd ≤ 6·(Nd − 1).
-Buffer ribbonIndices(const Device& device, std::uint32_t strands, std::uint32_t verticesPerStrand) {
+// VkDrawIndexedIndirectCommand, twice, and what the choice was made from: Primitives in
+// shaders/hair_primitive.comp.
+struct PrimitiveDraws {
+  vk::DrawIndexedIndirectCommand ribbons;
+  vk::DrawIndexedIndirectCommand lines;
+  std::uint32_t wideVertices = 0;
+  std::array<std::uint32_t, 2> width{};      ///< low, high word
+  std::array<std::uint32_t, 2> lostWidth{};  ///< low, high word
+};
+constexpr vk::DeviceSize kSumsBytes = sizeof(PrimitiveDraws) - offsetof(PrimitiveDraws, wideVertices);
+constexpr vk::DeviceSize kRibbonDrawOffset = offsetof(PrimitiveDraws, ribbons);
+constexpr vk::DeviceSize kLineDrawOffset = offsetof(PrimitiveDraws, lines);
+constexpr vk::DeviceSize kWideVerticesOffset = offsetof(PrimitiveDraws, wideVertices);
+constexpr std::uint32_t kPrimitiveWorkgroup = 64;  // local_size_x of hair_primitive.comp
+constexpr std::uint32_t kMaxWorkgroupsX = 65535;   // the least maxComputeWorkGroupCount[0]
+
+// The ribbon indices, then the line indices. Ribbons: two triangles per segment over the vertices
+// 2 × (k × Nd + i) + side of the vertex shader, counter-clockwise seen from the side s points to:
+// (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +). Lines: one per segment over k × Nd + i. The
+// count fits 32 bits (setStrands checks), and so does every index, as 2·Nd ≤ 8·(Nd − 1).
+Buffer strandIndices(const Device& device, std::uint32_t strands, std::uint32_t verticesPerStrand) {
   std::vector<std::uint32_t> indices;
-  indices.reserve(std::size_t(strands) * (verticesPerStrand - 1) * 6);
+  indices.reserve(std::size_t(strands) * (verticesPerStrand - 1) * 8);
   for (std::uint32_t k = 0; k < strands; ++k)
     for (std::uint32_t i = 0; i + 1 < verticesPerStrand; ++i) {
       const std::uint32_t minus = 2 * (k * verticesPerStrand + i), plus = minus + 1;
       const std::uint32_t nextMinus = minus + 2, nextPlus = minus + 3;
       indices.insert(indices.end(), {minus, nextMinus, nextPlus, minus, nextPlus, plus});
     }
+  for (std::uint32_t k = 0; k < strands; ++k)
+    for (std::uint32_t i = 0; i + 1 < verticesPerStrand; ++i)
+      indices.insert(indices.end(), {k * verticesPerStrand + i, k * verticesPerStrand + i + 1});
   if (indices.empty()) indices.push_back(0);  // a zero-sized buffer is not allowed
   return Buffer::withData(device, std::as_bytes(std::span(indices)), vk::BufferUsageFlagBits::eIndexBuffer);
 }
@@ -73,27 +93,47 @@ Result<std::unique_ptr<HairPass>> HairPass::create(const Device& device, const H
 HairPass::HairPass(const Device& device, const HairPassSettings& settings) : device_(&device) {
   using Stage = vk::ShaderStageFlagBits;
   using Type = vk::DescriptorType;
-  setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment},
+  setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment | Stage::eCompute},
+                                      // 1–3 alike: setStrands writes them in one update.
+                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
+                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
+                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
                                       {Type::eStorageBuffer, Stage::eVertex},
-                                      {Type::eStorageBuffer, Stage::eVertex},
-                                      {Type::eStorageBuffer, Stage::eVertex},
-                                      {Type::eStorageBuffer, Stage::eVertex}});
+                                      {Type::eStorageBuffer, Stage::eCompute}});
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
-  pipeline_ = makeGraphicsPipeline(device, GraphicsPipelineSettings{.vertexShader = "hair.vert",
-                                                                    .fragmentShader = "hair.frag",
-                                                                    .cullMode = vk::CullModeFlagBits::eNone,
-                                                                    .colorFormats = {settings.colorFormat},
-                                                                    .blend = Blend::kPremultipliedAlpha,
-                                                                    .depthFormat = settings.depthFormat,
-                                                                    .depthTest = depth,
-                                                                    .depthWrite = false,
-                                                                    .samples = settings.samples,
-                                                                    .setLayouts = {*setLayout_}});
-  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 4}});
+  const auto drawPipeline = [&](bool lines) {
+    return makeGraphicsPipeline(
+        device, GraphicsPipelineSettings{
+                    .vertexShader = "hair.vert",
+                    .fragmentShader = "hair.frag",
+                    .topology = lines ? vk::PrimitiveTopology::eLineList : vk::PrimitiveTopology::eTriangleList,
+                    .dynamicLineWidth = lines,
+                    .cullMode = vk::CullModeFlagBits::eNone,
+                    .colorFormats = {settings.colorFormat},
+                    .blend = Blend::kPremultipliedAlpha,
+                    .depthFormat = settings.depthFormat,
+                    .depthTest = depth,
+                    .depthWrite = false,
+                    .samples = settings.samples,
+                    .setLayouts = {*setLayout_},
+                    .constants = {lines ? 1u : 0u}});
+  };
+  ribbonPipeline_ = drawPipeline(false);
+  linePipeline_ = drawPipeline(true);
+  countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u});
+  choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
+  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 5}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   writeUniformBuffer(device, set_, 0, uniforms_);
+  // Host-visible so that lastPrimitive() can read what the GPU chose.
+  draws_ = Buffer(device, sizeof(PrimitiveDraws),
+                  vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer |
+                      vk::BufferUsageFlagBits::eTransferDst,
+                  vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
+  std::memset(draws_.mapped().data(), 0, sizeof(PrimitiveDraws));
+  writeStorageBuffer(device, set_, 5, draws_);
 }
 
 Result<void> HairPass::setStrands(const HairStrands& strands) {
@@ -101,11 +141,11 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
     return fail("hair strands: the position, tangent or radiance buffer is null");
   if (strands.verticesPerStrand < 2)
     return fail("hair strands: need at least 2 vertices per strand, got " + std::to_string(strands.verticesPerStrand));
-  const std::uint64_t indices = std::uint64_t(strands.strandCount) * (strands.verticesPerStrand - 1) * 6;
-  if (indices > std::numeric_limits<std::uint32_t>::max())
+  const std::uint64_t segments = std::uint64_t(strands.strandCount) * (strands.verticesPerStrand - 1);
+  if (8 * segments > std::numeric_limits<std::uint32_t>::max())
     return fail("hair strands: " + std::to_string(strands.strandCount) + " strands × " +
-                std::to_string(strands.verticesPerStrand) + " vertices need " + std::to_string(indices) +
-                " ribbon indices, more than one draw can count (2^32 − 1)");
+                std::to_string(strands.verticesPerStrand) + " vertices need " + std::to_string(8 * segments) +
+                " ribbon and line indices, more than a draw can reach (2^32 − 1)");
 
   const std::array buffers{vk::DescriptorBufferInfo{.buffer = strands.positions, .offset = 0, .range = VK_WHOLE_SIZE},
                            vk::DescriptorBufferInfo{.buffer = strands.tangents, .offset = 0, .range = VK_WHOLE_SIZE},
@@ -123,13 +163,18 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   auto* order = reinterpret_cast<std::uint32_t*>(order_.mapped().data());
   for (std::uint32_t s = 0; s < strands.strandCount; ++s) order[s] = s;
   writeStorageBuffer(*device_, set_, 4, order_);
-  indices_ = ribbonIndices(*device_, strands.strandCount, strands.verticesPerStrand);
+  indices_ = strandIndices(*device_, strands.strandCount, strands.verticesPerStrand);
   strandCount_ = strands.strandCount;
-  indexCount_ = static_cast<std::uint32_t>(indices);
+  indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;
-  // Keep the uniforms of an earlier update in step (counts.y is Nd).
-  std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts) + sizeof(std::uint32_t), &verticesPerStrand_,
-              sizeof(verticesPerStrand_));
+  PrimitiveDraws draws{};
+  draws.ribbons = vk::DrawIndexedIndirectCommand{.indexCount = indexCount_, .instanceCount = 1};
+  draws.lines =
+      vk::DrawIndexedIndirectCommand{.indexCount = static_cast<std::uint32_t>(2 * segments), .firstIndex = indexCount_};
+  std::memcpy(draws_.mapped().data(), &draws, sizeof(draws));
+  // Keep the uniforms of an earlier update in step (counts.x is the strands, y Nd).
+  const std::array counts{strandCount_, verticesPerStrand_};
+  std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts), counts.data(), sizeof(counts));
   return {};
 }
 
@@ -160,9 +205,10 @@ Result<void> HairPass::update(const HairView& view, const HairGroomSettings& gro
   uniforms.eye = hairEye(view.viewProjection);
   uniforms.groom = glm::vec4(groom.width, groom.tipWidthScale, groom.opacity, groom.minimumPixelWidth);
   uniforms.viewport = glm::vec4(float(view.extent.width), float(view.extent.height), 0.0f, 0.0f);
-  uniforms.counts = glm::uvec4(0u, verticesPerStrand_, 0u, 0u);
+  uniforms.counts = glm::uvec4(strandCount_, verticesPerStrand_, linesDrawable(groom.minimumPixelWidth) ? 1u : 0u, 0u);
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
   extent_ = view.extent;
+  lineWidth_ = groom.minimumPixelWidth;
   return {};
 }
 
@@ -172,13 +218,78 @@ Result<void> HairPass::update(const FrameInput& frame, vk::Extent2D extent, cons
   return update(HairView{frame.camera.projection(aspect) * frame.camera.view(), extent}, groom);
 }
 
+bool HairPass::linesDrawable(float width) const {
+  const vk::PhysicalDeviceLimits& limits = device_->limits();
+  if (limits.strictLines != VK_TRUE) return false;  // parallelograms: their area depends on the slope
+  if (width == 1.0f) return true;
+  return device_->wideLines() && width >= limits.lineWidthRange[0] && width <= limits.lineWidthRange[1];
+}
+
+void HairPass::record(const vk::raii::CommandBuffer& commands) const {
+  if (indexCount_ == 0 || extent_.width == 0) return;
+  using Stage = vk::PipelineStageFlagBits2;
+  using Access = vk::AccessFlagBits2;
+  // In: the strands from the interpolation dispatch. The count is zeroed after the previous
+  // frame's draws have read their commands and the host its choice.
+  const std::array before{vk::MemoryBarrier2{.srcStageMask = Stage::eComputeShader,
+                                             .srcAccessMask = Access::eShaderStorageWrite,
+                                             .dstStageMask = Stage::eComputeShader,
+                                             .dstAccessMask = Access::eShaderStorageRead},
+                          vk::MemoryBarrier2{.srcStageMask = Stage::eDrawIndirect | Stage::eComputeShader,
+                                             .dstStageMask = Stage::eTransfer,
+                                             .dstAccessMask = Access::eTransferWrite}};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = before.size(), .pMemoryBarriers = before.data()});
+  commands.fillBuffer(*draws_.buffer(), kWideVerticesOffset, kSumsBytes, 0);
+  const vk::MemoryBarrier2 zeroed{.srcStageMask = Stage::eTransfer,
+                                  .srcAccessMask = Access::eTransferWrite,
+                                  .dstStageMask = Stage::eComputeShader,
+                                  .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &zeroed});
+
+  const std::uint32_t groups = (strandCount_ * verticesPerStrand_ + kPrimitiveWorkgroup - 1) / kPrimitiveWorkgroup;
+  const std::uint32_t groupsX = std::min(groups, kMaxWorkgroupsX);
+  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *countPipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *countPipeline_.layout, 0, {*set_}, {});
+  commands.dispatch(groupsX, (groups + groupsX - 1) / groupsX, 1);
+  const vk::MemoryBarrier2 counted{.srcStageMask = Stage::eComputeShader,
+                                   .srcAccessMask = Access::eShaderStorageWrite,
+                                   .dstStageMask = Stage::eComputeShader,
+                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &counted});
+  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *choosePipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *choosePipeline_.layout, 0, {*set_}, {});
+  commands.dispatch(1, 1, 1);
+  const vk::MemoryBarrier2 chosen{.srcStageMask = Stage::eComputeShader,
+                                  .srcAccessMask = Access::eShaderStorageWrite,
+                                  .dstStageMask = Stage::eDrawIndirect | Stage::eHost,
+                                  .dstAccessMask = Access::eIndirectCommandRead | Access::eHostRead};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &chosen});
+}
+
+HairPrimitiveChoice HairPass::lastChoice() const {
+  PrimitiveDraws draws{};
+  std::memcpy(&draws, draws_.mapped().data(), sizeof(draws));
+  const auto sum = [](const std::array<std::uint32_t, 2>& words) {
+    return std::ldexp(double(words[1]), 32) + words[0];
+  };
+  const double width = sum(draws.width);
+  return {.primitive = draws.lines.instanceCount != 0 ? HairPrimitive::kLines : HairPrimitive::kRibbons,
+          .wideVertices = draws.wideVertices,
+          .uncoveredByLines = width > 0.0 ? sum(draws.lostWidth) / width : 0.0};
+}
+
 void HairPass::draw(const vk::raii::CommandBuffer& commands) const {
   if (indexCount_ == 0 || extent_.width == 0) return;
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline_.layout, 0, {*set_}, {});
-  setViewportAndScissor(commands, extent_);
+  // Both draws are recorded; the choice made by record() gives one of them no instance.
   commands.bindIndexBuffer(*indices_.buffer(), 0, vk::IndexType::eUint32);
-  commands.drawIndexed(indexCount_, 1, 0, 0, 0);
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *ribbonPipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *ribbonPipeline_.layout, 0, {*set_}, {});
+  setViewportAndScissor(commands, extent_);
+  commands.drawIndexedIndirect(*draws_.buffer(), kRibbonDrawOffset, 1, sizeof(vk::DrawIndexedIndirectCommand));
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *linePipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *linePipeline_.layout, 0, {*set_}, {});
+  commands.setLineWidth(lineWidth_);
+  commands.drawIndexedIndirect(*draws_.buffer(), kLineDrawOffset, 1, sizeof(vk::DrawIndexedIndirectCommand));
 }
 
 }  // namespace mane::render

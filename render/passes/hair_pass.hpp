@@ -32,6 +32,18 @@
 //  biases thin strands up to +¼ pixel of coverage). Coverage-scaled alpha is exact in area at
 //  both sample counts.
 //
+// Lines. Where a ribbon is drawn at the minimum width, a line of that width along the strand
+// covers the same pixels with half the primitives (one per segment, not two triangles): on
+// lavapipe the nalu frame's hair went from about 70 to 40 ms. A vertex wider on screen than the
+// minimum is drawn by a line at the minimum width, with coverage 1: it loses the difference. The
+// choice is made on the GPU every frame by `record` (shaders/hair_primitive.comp), from the widths
+// the vertex shader computes, summed over the vertices: lines when they leave at most 1 % of the
+// summed width uncovered, ribbons otherwise. A groom at or under the minimum width everywhere
+// loses nothing; nalu's, whose nearest roots are up to about 1.2 pixels wide, loses well under
+// 1 %. `draw` records both draws as indirect draws and the choice gives one of them no instance,
+// so the frame needs no read-back. Lines are drawn only where their area is exact: rectangular
+// lines (strictLines), at width 1 or with the wideLines feature within its range.
+//
 // Compositing: sorted, back to front, per strand. Each strand is blended with premultiplied-alpha
 // "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the
 // order setDrawOrder gives (the Renderer sorts strands every frame by the distance of their
@@ -79,6 +91,17 @@ struct HairStrands {
   std::uint32_t verticesPerStrand = 0;  ///< Nd ≥ 2
 };
 
+enum class HairPrimitive { kRibbons, kLines };
+
+/// What `record` chose for the last frame it ran in, and why.
+struct HairPrimitiveChoice {
+  HairPrimitive primitive = HairPrimitive::kRibbons;
+  std::uint32_t wideVertices = 0;  ///< dense vertices wider on screen than minimumPixelWidth
+  /// The share of the strands' width on screen, summed over the vertices, that lines of the
+  /// minimum width leave uncovered: Σ max(w − min, 0) / Σ w. Lines are drawn when it is ≤ 1 %.
+  double uncoveredByLines = 0.0;
+};
+
 /// What the pass is drawn into.
 struct HairPassSettings {
   vk::Format colorFormat = vk::Format::eR16G16B16A16Sfloat;
@@ -120,27 +143,43 @@ public:
   /// `update` with the frame's perspective camera (Camera::projection at the extent's aspect).
   [[nodiscard]] Result<void> update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom);
 
+  /// Records the compute step that chooses this frame's primitive, ribbons or lines (see the file
+  /// comment), outside a rendering scope, after `update` and before `draw`; the strands' writes
+  /// are made visible to it. Nothing is recorded before setStrands.
+  void record(const vk::raii::CommandBuffer& commands) const;
+
   /// Records the draw inside a dynamic rendering scope with the formats and sample count of
-  /// HairPassSettings (viewport and scissor are set to the view's extent). Nothing is drawn
-  /// before setStrands. The strand buffers' writes must be visible to vertex-shader storage
-  /// reads (StrandInterpolationPass::record's and HairLightingPass::record's barriers do that).
+  /// HairPassSettings (viewport and scissor are set to the view's extent), after `record` in the
+  /// same submission. Nothing is drawn before setStrands. The strand buffers' writes must be
+  /// visible to vertex-shader storage reads (StrandInterpolationPass::record's and
+  /// HairLightingPass::record's barriers do that).
   void draw(const vk::raii::CommandBuffer& commands) const;
+
+  /// The choice of the last submission that ran `record`, once it has finished.
+  [[nodiscard]] HairPrimitiveChoice lastChoice() const;
 
   /// Indices of the ribbon draw: strands × (Nd − 1) × 6, three per triangle.
   [[nodiscard]] std::uint32_t ribbonIndexCount() const { return indexCount_; }
 
 private:
   HairPass(const Device& device, const HairPassSettings& settings);
+  /// Whether lines `width` pixels wide have the area of a ribbon of that width on this device.
+  bool linesDrawable(float width) const;
 
   const Device* device_;
   vk::Extent2D extent_{};
+  float lineWidth_ = 1.0f;  ///< the groom's minimumPixelWidth
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
-  Pipeline pipeline_;
+  Pipeline ribbonPipeline_;
+  Pipeline linePipeline_;
+  Pipeline countPipeline_;   ///< hair_primitive.comp counting the wide vertices
+  Pipeline choosePipeline_;  ///< hair_primitive.comp enabling one of the two draws
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
   Buffer order_;    ///< uint per strand, host-visible
-  Buffer indices_;  ///< two triangles per segment over the 2 × strands × Nd ribbon vertices
+  Buffer indices_;  ///< two triangles per segment over the 2 × strands × Nd ribbon vertices, then a line per segment
+  Buffer draws_;    ///< PrimitiveDraws (hair_pass.cpp), host-visible
   std::uint32_t strandCount_ = 0;
   std::uint32_t indexCount_ = 0;
   std::uint32_t verticesPerStrand_ = 0;

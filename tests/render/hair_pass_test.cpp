@@ -114,12 +114,14 @@ public:
       using Stage = vk::PipelineStageFlagBits2;
       using Access = vk::AccessFlagBits2;
       (*lighting)->record(commands);
+      (*pass)->record(commands);
       target.beginScene(commands, glm::vec4(0.0f));
       (*pass)->draw(commands);
       commands.endRendering();
       transition(commands, target.hdr(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
                  Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
     });
+    lastChoice = (*pass)->lastChoice();
     const std::vector<std::byte> bytes = readBack(device(), target.hdr(), 8);
     Pixels pixels(std::size_t(extent.width) * extent.height);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -129,6 +131,9 @@ public:
     }
     return pixels;
   }
+
+  /// What the pass drew in the last `render`.
+  HairPrimitiveChoice lastChoice;
 
 private:
   std::vector<std::unique_ptr<MarschnerLut>> luts_;
@@ -189,6 +194,8 @@ Coverage renderParallelStrands(HairPassTest& test, vk::SampleCountFlagBits sampl
 void expectCoverage(HairPassTest& test, vk::SampleCountFlagBits samples) {
   const float width = 3.3f;
   const Coverage wide = renderParallelStrands(test, samples, width);
+  EXPECT_EQ(test.lastChoice.primitive, HairPrimitive::kRibbons);
+  EXPECT_EQ(test.lastChoice.wideVertices, 9u * kStrands) << "every vertex is wider than the minimum";
   const double area = kStrands * width * kLengthPixels;
   EXPECT_NEAR(wide.sum, area, 0.01 * area) << "3.3-pixel strands";
   std::printf("coverage %dx: 3.3 px strands %.2f px² vs analytic %.2f (%.3f %%)\n", int(samples), wide.sum, area,
@@ -208,6 +215,8 @@ TEST_F(HairPassTest, WideStrandsCoverTheirProjectedAreaWith4xMsaa) {
 void expectSubPixelCoverage(HairPassTest& test, vk::SampleCountFlagBits samples) {
   const float width = 0.3f;
   const Coverage thin = renderParallelStrands(test, samples, width);
+  EXPECT_EQ(test.lastChoice.primitive, HairPrimitive::kLines);
+  EXPECT_EQ(test.lastChoice.wideVertices, 0u);
   const double area = kStrands * width * kLengthPixels;
   EXPECT_NEAR(thin.sum, area, 0.01 * area) << "0.3-pixel strands";
   EXPECT_LE(thin.largest, width * 1.01f) << "a sub-pixel strand must not fill a pixel";
@@ -222,6 +231,139 @@ TEST_F(HairPassTest, SubPixelStrandsCoverTheirAreaWithoutMsaa) {
 
 TEST_F(HairPassTest, SubPixelStrandsCoverTheirAreaWith4xMsaa) {
   expectSubPixelCoverage(*this, vk::SampleCountFlagBits::e4);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lines standing in for ribbons
+
+// Lines must cover a strand's area at any slope: rectangular lines do, where a parallelogram
+// (non-strict) line 1 pixel wide along its minor axis covers cos 45° ≈ 0.71 of it at 45°.
+// Twelve parallel 0.3-pixel strands 160 pixels long at `degrees` from vertical, 12 pixels apart,
+// their centres at sub-pixel offsets spread over a pixel, drawn as lines of `lineWidth` pixels.
+void expectSlopedCoverage(HairPassTest& test, vk::SampleCountFlagBits samples, float degrees, float lineWidth) {
+  constexpr vk::Extent2D kExtent{256, 256};
+  constexpr int kSloped = 12;
+  constexpr float kLength = 160.0f, kWidth = 0.3f;
+  const float angle = glm::radians(degrees);
+  const glm::vec2 along(std::sin(angle), std::cos(angle)), across(std::cos(angle), -std::sin(angle));
+  StrandData data;
+  for (int i = 0; i < kSloped; ++i) {
+    const glm::vec2 centre = across * (12.0f * (float(i) - 5.5f) + (float(i) + 0.5f) / float(kSloped));
+    const glm::vec2 root = centre - 0.5f * kLength * along, tip = centre + 0.5f * kLength * along;
+    addStraightStrand(data, glm::vec3(root * kMetresPerPixel, 0.0f), glm::vec3(tip * kMetresPerPixel, 0.0f), 9);
+  }
+  const HairGroomSettings groom{.width = kWidth * kMetresPerPixel, .opacity = 1.0f, .minimumPixelWidth = lineWidth};
+  const std::array lights{DirectionalLight{.direction = {0, 0, 1}}};
+  const Coverage coverage = measureCoverage(test.render(test.lut(blondeHairParams()), data, samples,
+                                                        {orthographicView(kExtent, kMetresPerPixel), kExtent}, lights,
+                                                        glm::vec3(0.1f), groom));
+  EXPECT_EQ(test.lastChoice.primitive, HairPrimitive::kLines);
+  const double area = kSloped * kWidth * kLength;
+  // 1 %: each strand's ends cross pixel centres at its own offsets, a fraction of a pixel of
+  // length (a few tenths of a percent) per strand; alpha is half-float.
+  EXPECT_NEAR(coverage.sum, area, 0.01 * area) << degrees << "° from vertical";
+  EXPECT_LE(coverage.largest, kWidth / lineWidth * 1.01f) << "a sub-pixel strand must not fill a pixel";
+  std::printf("sloped %dx, %.0f°, %.0f-pixel lines: %.2f px² vs analytic %.2f (%.3f %%)\n", int(samples), degrees,
+              lineWidth, coverage.sum, area, 100.0 * (coverage.sum - area) / area);
+}
+
+TEST_F(HairPassTest, LinesCoverTheAreaOfSlopedStrands) {
+  for (const vk::SampleCountFlagBits samples : {vk::SampleCountFlagBits::e1, vk::SampleCountFlagBits::e4})
+    for (const float degrees : {0.0f, 30.0f, 45.0f, 60.0f, 90.0f}) expectSlopedCoverage(*this, samples, degrees, 1.0f);
+}
+
+TEST_F(HairPassTest, WideLinesCoverTheAreaOfSlopedStrands) {
+  if (!device().wideLines()) GTEST_SKIP() << "the device has no wide lines: ribbons are drawn instead";
+  for (const float degrees : {0.0f, 45.0f}) expectSlopedCoverage(*this, vk::SampleCountFlagBits::e1, degrees, 2.0f);
+}
+
+// The choice, against a CPU reference in double precision: tapered strands receding from a
+// perspective camera, so that their width on screen runs from about 2.3 pixels at the nearest
+// roots to a tenth of a pixel at the farthest tips, as the groom's width varies. Per vertex the
+// width in pixels is twice the half width times the pixels per metre of projecting the root
+// half-width offset along s = t × ωe (shaders/hair_uniforms.glsl); a vertex is wide above the
+// minimum pixel width, and lines lose what it exceeds that by. The GPU must count the same wide
+// vertices, report the same uncovered share, and draw lines exactly when that share is ≤ 1 %.
+struct LineLoss {
+  std::uint32_t wideVertices = 0;
+  double uncovered = 0.0;      ///< Σ max(w − min, 0) / Σ w
+  double closestRatio = 1e30;  ///< min |w / min − 1|: how near a vertex comes to the threshold
+};
+
+LineLoss lineLossOnCpu(const StrandData& data, const HairView& view, const HairGroomSettings& groom) {
+  const glm::dmat4 viewProjection(view.viewProjection);
+  const glm::dvec4 eye(hairEye(view.viewProjection));
+  const glm::dvec2 halfViewport(0.5 * view.extent.width, 0.5 * view.extent.height);
+  const double rootHalfWidth = 0.5 * double(groom.width);
+  LineLoss loss;
+  double width = 0.0, lost = 0.0;
+  for (std::size_t v = 0; v < data.positions.size(); ++v) {
+    const glm::dvec3 point(data.positions[v]);
+    const glm::dvec3 toEye = eye.w != 0.0 ? glm::normalize(glm::dvec3(eye) - point) : glm::dvec3(eye);
+    const glm::dvec3 side = glm::normalize(glm::cross(glm::dvec3(data.tangents[v]), toEye));
+    const glm::dvec4 centre = viewProjection * glm::dvec4(point, 1.0);
+    const glm::dvec4 edge = viewProjection * glm::dvec4(point + side * rootHalfWidth, 1.0);
+    const double pixelsPerMetre =
+        glm::length((glm::dvec2(edge) / edge.w - glm::dvec2(centre) / centre.w) * halfViewport) / rootHalfWidth;
+    const double halfWidth = rootHalfWidth * glm::mix(1.0, double(groom.tipWidthScale), double(data.positions[v].w));
+    const double widthInLines = 2.0 * halfWidth * pixelsPerMetre / double(groom.minimumPixelWidth);
+    width += widthInLines;
+    if (widthInLines > 1.0) {
+      ++loss.wideVertices;
+      lost += widthInLines - 1.0;
+    }
+    loss.closestRatio = std::min(loss.closestRatio, std::abs(widthInLines - 1.0));
+  }
+  loss.uncovered = lost / width;
+  return loss;
+}
+
+TEST_F(HairPassTest, DrawsLinesWhenTheyLeaveAtMostOnePercentOfTheWidthUncovered) {
+  StrandData data;
+  for (int i = 0; i < 16; ++i) {
+    const float x = -0.06f + 0.008f * float(i);
+    addStraightStrand(data, {x, 0.02f * float(i % 3), 0.0f}, {x + 0.01f, -0.05f, -0.3f}, 12);
+  }
+  const vk::Extent2D extent{256, 256};
+  const Camera camera{.position = {0.0f, 0.0f, 0.3f}, .target = {0.0f, 0.0f, 0.0f}, .verticalFovRadians = 0.7f};
+  const HairView view{camera.projection(1.0f) * camera.view(), extent};
+  std::vector<glm::vec4> radiance(data.positions.size(), glm::vec4(1.0f));
+  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
+  const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
+  const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
+  const Buffer colours = Buffer::withData(device(), std::as_bytes(std::span(radiance)), usage);
+  auto pass = HairPass::create(device(), {});
+  ASSERT_TRUE(pass.has_value()) << pass.error().message;
+  ASSERT_TRUE((*pass)
+                  ->setStrands({.positions = *positions.buffer(),
+                                .tangents = *tangents.buffer(),
+                                .radiance = *colours.buffer(),
+                                .strandCount = data.strandCount(),
+                                .verticesPerStrand = data.verticesPerStrand})
+                  .has_value());
+  bool narrow = false, slightlyWide = false, wide = false;
+  for (const float width : {0.5e-3f, 0.8e-3f, 0.9e-3f, 1.2e-3f, 2.0e-3f}) {
+    const HairGroomSettings groom{.width = width, .tipWidthScale = 0.3f};
+    const LineLoss expected = lineLossOnCpu(data, view, groom);
+    ASSERT_GT(expected.closestRatio, 1e-4) << "no vertex may sit on the threshold, where float and double differ";
+    ASSERT_GT(std::abs(expected.uncovered - 0.01), 1e-4) << "nor the groom on the 1 % threshold";
+    ASSERT_TRUE((*pass)->update(view, groom).has_value());
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { (*pass)->record(commands); });
+    const HairPrimitiveChoice choice = (*pass)->lastChoice();
+    EXPECT_EQ(choice.wideVertices, expected.wideVertices) << "width " << width;
+    // The GPU rounds each vertex's width to 1/4096 of the minimum: 1e-5 of the sum at most.
+    EXPECT_NEAR(choice.uncoveredByLines, expected.uncovered, 1e-5) << "width " << width;
+    EXPECT_EQ(choice.primitive, expected.uncovered <= 0.01 ? HairPrimitive::kLines : HairPrimitive::kRibbons)
+        << "width " << width;
+    narrow = narrow || expected.wideVertices == 0;
+    slightlyWide = slightlyWide || (expected.wideVertices > 0 && expected.uncovered <= 0.01);
+    wide = wide || expected.uncovered > 0.01;
+    std::printf(
+        "width %.1f mm: %u of %zu vertices wide (CPU %u), %.5f of the width uncovered by lines (CPU %.5f): %s\n",
+        width * 1e3, choice.wideVertices, data.positions.size(), expected.wideVertices, choice.uncoveredByLines,
+        expected.uncovered, choice.primitive == HairPrimitive::kLines ? "lines" : "ribbons");
+  }
+  EXPECT_TRUE(narrow && slightlyWide && wide) << "the widths must give every case";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -371,6 +513,7 @@ TEST_F(HairPassTest, StrandsSortedBackToFrontCompositeFrontOverBack) {
   const auto centre = [&] {
     const RenderTarget target(device(), {.extent = kShadingExtent});
     device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      (*pass)->record(commands);
       target.beginScene(commands, glm::vec4(0.0f));
       (*pass)->draw(commands);
       commands.endRendering();
