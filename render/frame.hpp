@@ -125,6 +125,10 @@ struct MaterialData {
   std::optional<TextureData> specularMap;
   TranslucencyParameters translucency;
   FurParameters fur;  ///< kFur only
+  /// Both faces drawn (and lit from the side they face). False culls the faces turned away from
+  /// the camera, as glTF's doubleSided: false: for closed meshes, whose back faces are hidden,
+  /// it saves shading them where they are drawn before the front faces in front of them.
+  bool doubleSided = true;
 };
 
 /// Fur growing on a mesh: the instances that draw `mesh` with `material` (a kFur material) are

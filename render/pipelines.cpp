@@ -93,6 +93,8 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
                                                          .pAttachments = blends.data()};
   std::vector dynamicStates{vk::DynamicState::eViewport, vk::DynamicState::eScissor};
   if (settings.dynamicLineWidth) dynamicStates.push_back(vk::DynamicState::eLineWidth);
+  if (settings.dynamicCulling)
+    dynamicStates.insert(dynamicStates.end(), {vk::DynamicState::eCullMode, vk::DynamicState::eFrontFace});
   const vk::PipelineDynamicStateCreateInfo dynamic{
       .dynamicStateCount = static_cast<std::uint32_t>(dynamicStates.size()), .pDynamicStates = dynamicStates.data()};
   const vk::PipelineRenderingCreateInfo rendering{

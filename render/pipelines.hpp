@@ -29,6 +29,9 @@ struct GraphicsPipelineSettings {
   vk::PrimitiveTopology topology = vk::PrimitiveTopology::eTriangleList;
   bool dynamicLineWidth = false;  ///< set the line width when recording (vkCmdSetLineWidth); else 1
   vk::CullModeFlags cullMode = vk::CullModeFlagBits::eNone;
+  /// Set the cull mode and front face when recording (vkCmdSetCullMode, vkCmdSetFrontFace);
+  /// else `cullMode` with counter-clockwise front faces.
+  bool dynamicCulling = false;
   std::vector<vk::Format> colorFormats;
   Blend blend = Blend::kNone;
   vk::Format depthFormat = vk::Format::eUndefined;

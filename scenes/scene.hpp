@@ -77,6 +77,8 @@ struct Material {
   /// Light from the first light shining through the object (render::TranslucencyMethod); off by
   /// default. Extinction (1/metre) is for kinds other than skin, the voxel resolution for kVoxelLut.
   render::TranslucencyParameters translucency;
+  /// False culls the faces turned away from the camera (render::MaterialData::doubleSided).
+  bool doubleSided = true;
 };
 
 /// Placement of a mesh: scale, then rotation (X, then Y, then Z, about the fixed axes), then

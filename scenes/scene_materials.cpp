@@ -159,6 +159,7 @@ Material parseMaterial(const Json& json, const std::string& path) {
   material.normalMap = fields.optional<std::string>("normal_map", "");
   material.specularMap = fields.optional<std::string>("specular_map", "");
   material.baseColour = fields.optional<glm::vec3>("base_colour", material.baseColour);
+  material.doubleSided = fields.optional<bool>("double_sided", material.doubleSided);
   if (const Json* translucency = fields.take("translucency")) {
     material.translucency = parseTranslucency(*translucency, fields.child("translucency"), material.kind);
   }

@@ -439,7 +439,8 @@ render::StaticScene World::staticScene() const {
   }
   for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
     render::MaterialData material{.baseColor = scene_.materials[i].baseColour,
-                                  .translucency = scene_.materials[i].translucency};
+                                  .translucency = scene_.materials[i].translucency,
+                                  .doubleSided = scene_.materials[i].doubleSided};
     if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);
     if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
     if (scene_.materials[i].kind == MaterialKind::fur && material.albedo) {

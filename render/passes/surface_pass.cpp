@@ -136,7 +136,7 @@ void SurfacePass::buildPipelines() {
                                  {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
                                  {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)},
                                  {3, 0, vk::Format::eR32Sfloat, offsetof(Vertex, curvature)}},
-            .cullMode = vk::CullModeFlagBits::eNone,
+            .dynamicCulling = true,
             .colorFormats = {formats_.color},
             .depthFormat = formats_.depth,
             .depthTest = true,
@@ -217,6 +217,7 @@ SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& materia
                   .shading = material.shading,
                   .skin = material.skin,
                   .translucency = material.translucency,
+                  .doubleSided = material.doubleSided,
                   .descriptors = allocateSet(*device_, materialPool_, materialLayout_)};
   writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
   writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
@@ -377,6 +378,10 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1,
                                 {*material.descriptors, thickness ? *thickness->set : *emptyThickness_}, {});
     commands.pushConstants<glm::mat4>(layout, vk::ShaderStageFlagBits::eVertex, 0, instance.model);
+    commands.setCullMode(material.doubleSided ? vk::CullModeFlagBits::eNone : vk::CullModeFlagBits::eBack);
+    // A mirroring model matrix turns the mesh's counter-clockwise faces clockwise.
+    commands.setFrontFace(glm::determinant(glm::mat3(instance.model)) < 0.0f ? vk::FrontFace::eClockwise
+                                                                             : vk::FrontFace::eCounterClockwise);
     commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
     commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
     commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);

@@ -132,6 +132,7 @@ private:
     SurfaceShading shading = SurfaceShading::kLambert;
     SkinParameters skin;
     TranslucencyParameters translucency;
+    bool doubleSided = true;
     vk::raii::DescriptorSet descriptors{nullptr};
   };
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <span>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "render/luts/preintegrated_skin.hpp"
@@ -50,6 +51,12 @@ class Surface : public testing::VulkanTest {
 public:
   Shot render(const MaterialData& material, const DirectionalLight& light, glm::vec3 ambient,
               std::span<const float> curvatures = {}) {
+    return renderFrom(glm::vec3(0, 0, 2), glm::mat4(1.0f), material, light, ambient, curvatures);
+  }
+
+  /// The quad placed by `model`, seen from `eye` towards the origin.
+  Shot renderFrom(glm::vec3 eye, const glm::mat4& model, const MaterialData& material, const DirectionalLight& light,
+                  glm::vec3 ambient, std::span<const float> curvatures = {}) {
     auto renderer = Renderer::create(device(), {.extent = kExtent});
     EXPECT_TRUE(renderer.has_value());
     StaticScene scene{
@@ -57,9 +64,9 @@ public:
             .positions = kPositions, .normals = kNormals, .uvs = kUvs, .indices = kIndices, .curvatures = curvatures}},
         .materials = {material}};
     EXPECT_TRUE((*renderer)->setScene(scene).has_value());
-    FrameInput frame{.camera = {.position = {0, 0, 2}, .target = {0, 0, 0}},
+    FrameInput frame{.camera = {.position = eye, .target = {0, 0, 0}},
                      .lights = {light},
-                     .instances = {{.mesh = 0, .material = 0}},
+                     .instances = {{.mesh = 0, .material = 0, .model = model}},
                      .ambient = ambient};
     auto timings = (*renderer)->render(frame);
     EXPECT_TRUE(timings.has_value());
@@ -154,6 +161,27 @@ TEST_F(Surface, BackgroundOutsideTheQuad) {
   const Shot shot = render({.baseColor = glm::vec3(1)}, {.direction = {0, 0, 1}}, glm::vec3(0));
   const glm::vec3 background = FrameInput{}.background;
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(shot.rgba[c], 255.0 * srgbEncode(background[c]), 1.0) << "channel " << c;
+}
+
+// The quad faces +z (counter-clockwise seen from there). Double-sided, it is drawn from either
+// side; single-sided, only from +z, also when a mirroring model matrix turns its winding
+// clockwise (its faces still face the way its normals do).
+TEST_F(Surface, SingleSidedMaterialsHideOnlyTheFacesTurnedAway) {
+  const DirectionalLight light{.direction = {0, 0, 1}};
+  const glm::vec3 ambient(0.5f);
+  const auto drawn = [](const Shot& shot) {
+    const std::array<int, 3> centre = shot.centre();
+    const glm::vec3 background = FrameInput{}.background;
+    return std::abs(centre[0] - 255.0 * srgbEncode(background[0])) > 2.0;
+  };
+  const glm::mat4 mirror = glm::scale(glm::mat4(1.0f), glm::vec3(-1, 1, 1));
+  for (const bool doubleSided : {true, false}) {
+    const MaterialData material{.baseColor = glm::vec3(1.0f), .doubleSided = doubleSided};
+    EXPECT_TRUE(drawn(renderFrom({0, 0, 2}, glm::mat4(1.0f), material, light, ambient))) << doubleSided;
+    EXPECT_TRUE(drawn(renderFrom({0, 0, 2}, mirror, material, light, ambient))) << doubleSided;
+    EXPECT_EQ(drawn(renderFrom({0, 0, -2}, glm::mat4(1.0f), material, light, ambient)), doubleSided) << doubleSided;
+    EXPECT_EQ(drawn(renderFrom({0, 0, -2}, mirror, material, light, ambient)), doubleSided) << doubleSided;
+  }
 }
 
 // A constant normal map tilted by the texel; the light comes along the tilt axis.

@@ -56,6 +56,7 @@ TEST(Scene, NaluLoadsWithTheLeePerrySmithHeadAndItsMaps) {
   EXPECT_EQ(skin->albedoTexture, "head/LeePerrySmith/Map-COL.jpg");
   EXPECT_EQ(skin->normalMap, "head/LeePerrySmith/Infinite-Level_02_Tangent_SmoothUV.jpg");
   EXPECT_EQ(skin->specularMap, "head/LeePerrySmith/Map-SPEC.jpg");
+  EXPECT_FALSE(skin->doubleSided) << "the head is closed where the camera sees it: its back faces are culled";
   ASSERT_EQ(scene->grooms.size(), 1u);
   EXPECT_TRUE(scene->grooms[0].isProcedural());
   EXPECT_EQ(scene->grooms[0].attachedMesh, "head");
@@ -134,6 +135,9 @@ TEST(Scene, WrongTypeNamesTheFieldPathAndTheExpectation) {
             "dir/bad.json: output.width: expected an integer, got a fraction");
   EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0], "target": [0, 0, 0]}})"),
             "dir/bad.json: camera.position: expected an array of 3 numbers, got 2 elements");
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                        "materials": [{"name": "m", "double_sided": "no"}]})"),
+            "dir/bad.json: materials[0].double_sided: expected true or false, got a string");
 }
 
 TEST(Scene, UnknownFieldIsATypo) {
