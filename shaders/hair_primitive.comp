@@ -1,19 +1,18 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Chooses the hair pass's primitive for the frame (render/passes/hair_pass.hpp, "Lines").
-// kWriteDraws false, one invocation per dense vertex: sums the strands' widths on screen and the
-// part of them lines of the minimum width would not cover, and counts the vertices wider than
-// that. kWriteDraws true, one invocation: enables the line draw when lines may be drawn and lose
-// at most kLineCoverageLoss of the width, the ribbon draw otherwise.
+// kWriteDraws false, one invocation per dense strand: sums the strand's widths on screen at its
+// vertices and the part of them lines of the minimum width would not cover, and counts the
+// vertices wider than that. kWriteDraws true, one invocation: enables the line draw when lines
+// may be drawn and lose at most kLineCoverageLoss of the width, the ribbon draw otherwise.
 #include "hair_uniforms.glsl"
 
 layout(constant_id = 0) const bool kWriteDraws = false;
 
 // The share of the strands' summed width that lines may leave uncovered (HairPass's file comment).
 const float kLineCoverageLoss = 0.01;
-// Widths are summed in units of 1/4096 of the line width, each capped at 1024 line widths, so that
-// a workgroup's sum fits 32 bits; the frame's sums are 64-bit (two words) and exact, so they do
-// not depend on the order the workgroups add in.
+// Widths are summed in units of 1/4096 of the line width, each capped at 1024 line widths, into
+// 64-bit sums (two words): exact, so they do not depend on the order the strands add in.
 const float kWidthUnits = 4096.0;
 const float kLargestWidth = 1024.0;
 
@@ -45,12 +44,14 @@ layout(set = 0, binding = 5, std430) buffer Primitives {
 
 layout(local_size_x = 64) in;
 
-shared uint groupWide;
-shared uint groupWidth;
-shared uint groupLost;
-
 float sum64(uvec2 words) {
   return float(words.y) * 4294967296.0 + float(words.x);
+}
+
+void add64(inout uvec2 sum, uint value) {
+  uint carry;
+  sum.x = uaddCarry(sum.x, value, carry);
+  sum.y += carry;
 }
 
 void main() {
@@ -61,30 +62,28 @@ void main() {
     primitives.lines.instanceCount = lines ? 1u : 0u;
     return;
   }
-  if (gl_LocalInvocationIndex == 0u) {
-    groupWide = 0u;
-    groupWidth = 0u;
-    groupLost = 0u;
-  }
-  barrier();
   // Rows of workgroups past the 65,535 one dimension is sure to allow.
-  uint vertex = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
-  if (vertex < hair.counts.x * hair.counts.y) {
+  uint strand = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
+  if (strand >= hair.counts.x) return;
+  // One strand per invocation keeps the sums in registers: three atomic adds per strand, not per vertex.
+  uint wide = 0u;
+  uvec2 width = uvec2(0u), lost = uvec2(0u);
+  for (uint vertex = strand * hair.counts.y; vertex < (strand + 1u) * hair.counts.y; ++vertex) {
     HairRibbon ribbon = hairRibbon(positions[vertex], tangents[vertex].xyz);
-    float width = min(ribbon.halfWidth / ribbon.minimumHalfWidth, kLargestWidth);  // in line widths
-    atomicAdd(groupWidth, uint(round(width * kWidthUnits)));
-    if (width > 1.0) {
-      atomicAdd(groupWide, 1u);
-      atomicAdd(groupLost, uint(round((width - 1.0) * kWidthUnits)));
+    float lineWidths = min(ribbon.halfWidth / ribbon.minimumHalfWidth, kLargestWidth);
+    add64(width, uint(round(lineWidths * kWidthUnits)));
+    if (lineWidths > 1.0) {
+      ++wide;
+      add64(lost, uint(round((lineWidths - 1.0) * kWidthUnits)));
     }
   }
-  barrier();
-  if (gl_LocalInvocationIndex == 0u) {
-    if (groupWide != 0u) atomicAdd(primitives.wideVertices, groupWide);
-    // 64-bit sums: the add that wraps the low word carries one into the high word.
-    uint before = atomicAdd(primitives.width.x, groupWidth);
-    if (before + groupWidth < before) atomicAdd(primitives.width.y, 1u);
-    before = atomicAdd(primitives.lostWidth.x, groupLost);
-    if (before + groupLost < before) atomicAdd(primitives.lostWidth.y, 1u);
+  if (wide != 0u) atomicAdd(primitives.wideVertices, wide);
+  // The add that wraps the low word carries one into the high word.
+  uint before = atomicAdd(primitives.width.x, width.x);
+  atomicAdd(primitives.width.y, width.y + (before + width.x < before ? 1u : 0u));
+  if (wide != 0u) {
+    before = atomicAdd(primitives.lostWidth.x, lost.x);
+    uint high = lost.y + (before + lost.x < before ? 1u : 0u);
+    if (high != 0u) atomicAdd(primitives.lostWidth.y, high);
   }
 }

@@ -246,7 +246,7 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &zeroed});
 
-  const std::uint32_t groups = (strandCount_ * verticesPerStrand_ + kPrimitiveWorkgroup - 1) / kPrimitiveWorkgroup;
+  const std::uint32_t groups = (strandCount_ + kPrimitiveWorkgroup - 1) / kPrimitiveWorkgroup;
   const std::uint32_t groupsX = std::min(groups, kMaxWorkgroupsX);
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *countPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *countPipeline_.layout, 0, {*set_}, {});
