@@ -4,10 +4,13 @@
 //
 //   BM_EmptyFrame/<samples>/0: record, submit, wait: begin rendering (clear colour + depth), end
 //     (resolve at 4×).
-//   BM_HairFrame/<samples>/<lights>: the same with the hair: the per-vertex shading dispatch
-//     (render/passes/hair_lighting, blonde Marschner LUTs, no shadow maps) with a key and a back
-//     light (lights 2) or ambient only (lights 0), then the ribbon draw, strands ~1.3 pixels
-//     wide, premultiplied-alpha blending.
+//   BM_HairFrame/<samples>/<lights>/<width>: the same with the hair: the per-vertex shading
+//     dispatch (render/passes/hair_lighting, blonde Marschner LUTs, no shadow maps) with a key and
+//     a back light (lights 2) or ambient only (lights 0), the choice of primitive, then the hair
+//     draw, premultiplied-alpha blending. Width in µm: 800, strands up to ~1.3 pixels wide, drawn
+//     as ribbons (lines would leave about a quarter of their width uncovered); 400, up to ~0.65
+//     pixels, drawn as 1-pixel lines (render/passes/hair_pass.hpp, "Lines"). The counters say
+//     which was drawn.
 //
 // The groom: strands hanging from a half-sphere "scalp" (radius 0.1 m), 0.3 m down and flaring
 // out, seen from 0.6 m: about a third of the frame. Wall time around submit + wait (LAVAPIPE.md:
@@ -94,6 +97,9 @@ Groom makeGroom(const Device& device) {
           Buffer::withData(device, std::as_bytes(std::span(tangents)), usage)};
 }
 
+constexpr int kRibbonWidth = 800;  // µm
+constexpr int kLineWidth = 400;
+
 struct Setup {
   std::unique_ptr<RenderTarget> target;
   std::unique_ptr<HairLightingPass> lighting;
@@ -114,8 +120,8 @@ struct Shared {
     groom = makeGroom(*device);
   }
 
-  Setup& setup(vk::SampleCountFlagBits samples, std::size_t lights) {
-    auto [it, inserted] = setups.try_emplace(int(samples) * 10 + int(lights));
+  Setup& setup(vk::SampleCountFlagBits samples, std::size_t lights, int widthMicrometres) {
+    auto [it, inserted] = setups.try_emplace(widthMicrometres * 100 + int(samples) * 10 + int(lights));
     if (!inserted) return it->second;
     it->second.target = std::make_unique<RenderTarget>(*device, RenderTargetSettings{kExtent, samples});
     it->second.lighting =
@@ -140,7 +146,9 @@ struct Shared {
     orExit(it->second.lighting->update(frame.camera.projection(aspect) * frame.camera.view(), frame.lights,
                                        frame.ambient, shadows->uniforms()),
            "lighting");
-    orExit(it->second.pass->update(frame, kExtent, HairGroomSettings{.width = 8e-4f, .opacity = 0.9f}), "update");
+    orExit(it->second.pass->update(frame, kExtent,
+                                   HairGroomSettings{.width = float(widthMicrometres) * 1e-6f, .opacity = 0.9f}),
+           "update");
     return it->second;
   }
 };
@@ -166,17 +174,27 @@ vk::SampleCountFlagBits samplesOf(const benchmark::State& state) {
 }
 
 void BM_EmptyFrame(benchmark::State& state) {
-  Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)));
+  Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)), kRibbonWidth);
   for (auto _ : state) frame(*shared().device, *setup.target, nullptr);
 }
 
 void BM_HairFrame(benchmark::State& state) {
-  Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)));
+  Setup& setup = shared().setup(samplesOf(state), std::size_t(state.range(1)), int(state.range(2)));
   for (auto _ : state) frame(*shared().device, *setup.target, &setup);
   state.counters["triangles"] = double(setup.pass->ribbonIndexCount() / 3);
+  const HairPrimitiveChoice choice = setup.pass->lastChoice();
+  state.counters["lines"] = choice.primitive == HairPrimitive::kLines ? 1.0 : 0.0;
+  state.counters["uncovered_by_lines"] = choice.uncoveredByLines;
 }
 
 BENCHMARK(BM_EmptyFrame)->Args({1, 0})->Args({4, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_HairFrame)->Args({1, 2})->Args({4, 2})->Args({1, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HairFrame)
+    ->Args({1, 2, kRibbonWidth})
+    ->Args({4, 2, kRibbonWidth})
+    ->Args({1, 0, kRibbonWidth})
+    ->Args({1, 2, kLineWidth})
+    ->Args({4, 2, kLineWidth})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
