@@ -127,7 +127,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   writeUniformBuffer(device, set_, 0, uniforms_);
-  // Host-visible so that lastPrimitive() can read what the GPU chose.
+  // Host-visible so that lastChoice() can read what the GPU chose.
   draws_ = Buffer(device, sizeof(PrimitiveDraws),
                   vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer |
                       vk::BufferUsageFlagBits::eTransferDst,

@@ -57,6 +57,31 @@ void addStraightStrand(StrandData& data, glm::vec3 root, glm::vec3 tip, std::uin
   }
 }
 
+/// A hair pass over `data` drawn in fixed colours, one per vertex, with the buffers it reads.
+struct FixedColourHair {
+  Buffer positions;
+  Buffer tangents;
+  Buffer colours;
+  std::unique_ptr<HairPass> pass;
+};
+
+FixedColourHair fixedColourHair(const Device& device, const StrandData& data, std::span<const glm::vec4> radiance) {
+  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
+  FixedColourHair hair{.positions = Buffer::withData(device, std::as_bytes(std::span(data.positions)), usage),
+                       .tangents = Buffer::withData(device, std::as_bytes(std::span(data.tangents)), usage),
+                       .colours = Buffer::withData(device, std::as_bytes(radiance), usage)};
+  auto pass = HairPass::create(device, {});
+  if (!pass) throw std::runtime_error(pass.error().message);
+  hair.pass = std::move(*pass);
+  const auto set = hair.pass->setStrands({.positions = *hair.positions.buffer(),
+                                          .tangents = *hair.tangents.buffer(),
+                                          .radiance = *hair.colours.buffer(),
+                                          .strandCount = data.strandCount(),
+                                          .verticesPerStrand = data.verticesPerStrand});
+  if (!set) throw std::runtime_error(set.error().message);
+  return hair;
+}
+
 /// Orthographic world → clip seen from +z: `metresPerPixel` at `extent`, centred on the origin,
 /// Vulkan's Y flip as Camera::projection does.
 glm::mat4 orthographicView(vk::Extent2D extent, float metresPerPixel) {
@@ -327,29 +352,18 @@ TEST_F(HairPassTest, DrawsLinesWhenTheyLeaveAtMostOnePercentOfTheWidthUncovered)
   const vk::Extent2D extent{256, 256};
   const Camera camera{.position = {0.0f, 0.0f, 0.3f}, .target = {0.0f, 0.0f, 0.0f}, .verticalFovRadians = 0.7f};
   const HairView view{camera.projection(1.0f) * camera.view(), extent};
-  std::vector<glm::vec4> radiance(data.positions.size(), glm::vec4(1.0f));
-  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
-  const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
-  const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
-  const Buffer colours = Buffer::withData(device(), std::as_bytes(std::span(radiance)), usage);
-  auto pass = HairPass::create(device(), {});
-  ASSERT_TRUE(pass.has_value()) << pass.error().message;
-  ASSERT_TRUE((*pass)
-                  ->setStrands({.positions = *positions.buffer(),
-                                .tangents = *tangents.buffer(),
-                                .radiance = *colours.buffer(),
-                                .strandCount = data.strandCount(),
-                                .verticesPerStrand = data.verticesPerStrand})
-                  .has_value());
+  const std::vector<glm::vec4> radiance(data.positions.size(), glm::vec4(1.0f));
+  const FixedColourHair hair = fixedColourHair(device(), data, radiance);
+  const std::unique_ptr<HairPass>& pass = hair.pass;
   bool narrow = false, slightlyWide = false, wide = false;
   for (const float width : {0.5e-3f, 0.8e-3f, 0.9e-3f, 1.2e-3f, 2.0e-3f}) {
     const HairGroomSettings groom{.width = width, .tipWidthScale = 0.3f};
     const LineLoss expected = lineLossOnCpu(data, view, groom);
     ASSERT_GT(expected.closestRatio, 1e-4) << "no vertex may sit on the threshold, where float and double differ";
     ASSERT_GT(std::abs(expected.uncovered - 0.01), 1e-4) << "nor the groom on the 1 % threshold";
-    ASSERT_TRUE((*pass)->update(view, groom).has_value());
-    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { (*pass)->record(commands); });
-    const HairPrimitiveChoice choice = (*pass)->lastChoice();
+    ASSERT_TRUE(pass->update(view, groom).has_value());
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { pass->record(commands); });
+    const HairPrimitiveChoice choice = pass->lastChoice();
     EXPECT_EQ(choice.wideVertices, expected.wideVertices) << "width " << width;
     // The GPU rounds each vertex's width to 1/4096 of the minimum: 1e-5 of the sum at most.
     EXPECT_NEAR(choice.uncoveredByLines, expected.uncovered, 1e-5) << "width " << width;
@@ -493,29 +507,18 @@ TEST_F(HairPassTest, StrandsSortedBackToFrontCompositeFrontOverBack) {
   addStraightStrand(data, {0.0f, -0.02f, -0.1f}, {0.0f, 0.02f, -0.1f}, 4);  // back
   std::vector<glm::vec4> radiance(4, glm::vec4(1, 0, 0, 1));
   radiance.resize(8, glm::vec4(0, 0, 1, 1));
-  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
-  const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
-  const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
-  const Buffer colours = Buffer::withData(device(), std::as_bytes(std::span(radiance)), usage);
-  auto pass = HairPass::create(device(), {});
-  ASSERT_TRUE(pass.has_value()) << pass.error().message;
-  ASSERT_TRUE((*pass)
-                  ->setStrands({.positions = *positions.buffer(),
-                                .tangents = *tangents.buffer(),
-                                .radiance = *colours.buffer(),
-                                .strandCount = 2,
-                                .verticesPerStrand = 4})
-                  .has_value());
+  const FixedColourHair hair = fixedColourHair(device(), data, radiance);
+  const std::unique_ptr<HairPass>& pass = hair.pass;
   const HairView view{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent};
   constexpr float kAlpha = 0.5f;
-  ASSERT_TRUE((*pass)->update(view, {.width = 20 * kMetresPerPixel, .opacity = kAlpha}).has_value());
+  ASSERT_TRUE(pass->update(view, {.width = 20 * kMetresPerPixel, .opacity = kAlpha}).has_value());
 
   const auto centre = [&] {
     const RenderTarget target(device(), {.extent = kShadingExtent});
     device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-      (*pass)->record(commands);
+      pass->record(commands);
       target.beginScene(commands, glm::vec4(0.0f));
-      (*pass)->draw(commands);
+      pass->draw(commands);
       commands.endRendering();
       transition(commands, target.hdr(), vk::ImageLayout::eColorAttachmentOptimal, vk::ImageLayout::eTransferSrcOptimal,
                  vk::PipelineStageFlagBits2::eColorAttachmentOutput, vk::AccessFlagBits2::eColorAttachmentWrite,
@@ -538,7 +541,7 @@ TEST_F(HairPassTest, StrandsSortedBackToFrontCompositeFrontOverBack) {
   const std::array middles{glm::vec3(0.0f, 0.0f, 0.1f), glm::vec3(0.0f, 0.0f, -0.1f)};
   const auto backToFront = order.backToFront(middles, hairEye(view.viewProjection));
   ASSERT_EQ(std::vector<std::uint32_t>(backToFront.begin(), backToFront.end()), (std::vector<std::uint32_t>{1, 0}));
-  ASSERT_TRUE((*pass)->setDrawOrder(backToFront).has_value());
+  ASSERT_TRUE(pass->setDrawOrder(backToFront).has_value());
   const glm::vec4 sorted = centre();
   EXPECT_NEAR(sorted.r, kAlpha, 1e-3);
   EXPECT_NEAR(sorted.b, (1 - kAlpha) * kAlpha, 1e-3);
@@ -546,8 +549,8 @@ TEST_F(HairPassTest, StrandsSortedBackToFrontCompositeFrontOverBack) {
   EXPECT_NEAR(unsorted.a, sorted.a, 1e-3) << "coverage does not depend on the order";
 
   const std::array repeated{0u, 0u};
-  EXPECT_FALSE((*pass)->setDrawOrder(repeated).has_value());
-  EXPECT_FALSE((*pass)->setDrawOrder(std::span<const std::uint32_t>(repeated).first(1)).has_value());
+  EXPECT_FALSE(pass->setDrawOrder(repeated).has_value());
+  EXPECT_FALSE(pass->setDrawOrder(std::span<const std::uint32_t>(repeated).first(1)).has_value());
 }
 
 // ---------------------------------------------------------------------------------------------
