@@ -4,7 +4,8 @@
 // kWriteDraws false, one invocation per dense strand: sums the strand's widths on screen at its
 // vertices and the part of them lines of the minimum width would not cover, and counts the
 // vertices wider than that. kWriteDraws true, one invocation: enables the line draw when lines
-// may be drawn and lose at most kLineCoverageLoss of the width, the ribbon draw otherwise.
+// may be drawn and lose at most kLineCoverageLoss of the width, the ribbon draw otherwise, and
+// zeroes the sums for the next frame.
 #include "hair_uniforms.glsl"
 
 layout(constant_id = 0) const bool kWriteDraws = false;
@@ -32,20 +33,29 @@ struct IndexedDraw {
   uint firstInstance;
 };
 
-// Mirrors PrimitiveDraws in render/passes/hair_pass.cpp; everything after `lines` is zeroed before
-// the sums.
+// The vertices wider than the line width, and two 64-bit sums in kWidthUnits: Σ width on screen and
+// Σ max(width − line width, 0), what lines leave uncovered. Words only, so that the layout is the
+// same in C++.
+struct Sums {
+  uint wideVertices;
+  uint widthLow;
+  uint widthHigh;
+  uint lostLow;
+  uint lostHigh;
+};
+
+// Mirrors PrimitiveDraws in render/passes/hair_pass.cpp.
 layout(set = 0, binding = 5, std430) buffer Primitives {
   IndexedDraw ribbons;
   IndexedDraw lines;
-  uint wideVertices;
-  uvec2 width;      // Σ width on screen, kWidthUnits per line width: low, high word
-  uvec2 lostWidth;  // Σ max(width − line width, 0), the same units
+  Sums sums;    // added to by the strands; zeroed by the choice, for the next frame
+  Sums chosen;  // what the last choice was made from
 } primitives;
 
 layout(local_size_x = 64) in;
 
-float sum64(uvec2 words) {
-  return float(words.y) * 4294967296.0 + float(words.x);
+float sum64(uint low, uint high) {
+  return float(high) * 4294967296.0 + float(low);
 }
 
 void add64(inout uvec2 sum, uint value) {
@@ -56,10 +66,14 @@ void add64(inout uvec2 sum, uint value) {
 
 void main() {
   if (kWriteDraws) {
-    bool lines = hair.counts.z != 0u &&
-                 sum64(primitives.lostWidth) <= kLineCoverageLoss * sum64(primitives.width);
+    if (gl_LocalInvocationIndex != 0u) return;  // one invocation reads the sums and zeroes them
+    Sums sums = primitives.sums;
+    bool lines = hair.counts.z != 0u && sum64(sums.lostLow, sums.lostHigh) <=
+                                            kLineCoverageLoss * sum64(sums.widthLow, sums.widthHigh);
     primitives.ribbons.instanceCount = lines ? 0u : 1u;
     primitives.lines.instanceCount = lines ? 1u : 0u;
+    primitives.chosen = sums;
+    primitives.sums = Sums(0u, 0u, 0u, 0u, 0u);
     return;
   }
   // Rows of workgroups past the 65,535 one dimension is sure to allow.
@@ -77,13 +91,14 @@ void main() {
       add64(lost, uint(round((lineWidths - 1.0) * kWidthUnits)));
     }
   }
-  if (wide != 0u) atomicAdd(primitives.wideVertices, wide);
   // The add that wraps the low word carries one into the high word.
-  uint before = atomicAdd(primitives.width.x, width.x);
-  atomicAdd(primitives.width.y, width.y + (before + width.x < before ? 1u : 0u));
+  uint before = atomicAdd(primitives.sums.widthLow, width.x);
+  uint high = width.y + (before + width.x < before ? 1u : 0u);
+  if (high != 0u) atomicAdd(primitives.sums.widthHigh, high);
   if (wide != 0u) {
-    before = atomicAdd(primitives.lostWidth.x, lost.x);
-    uint high = lost.y + (before + lost.x < before ? 1u : 0u);
-    if (high != 0u) atomicAdd(primitives.lostWidth.y, high);
+    atomicAdd(primitives.sums.wideVertices, wide);
+    before = atomicAdd(primitives.sums.lostLow, lost.x);
+    high = lost.y + (before + lost.x < before ? 1u : 0u);
+    if (high != 0u) atomicAdd(primitives.sums.lostHigh, high);
   }
 }

@@ -44,19 +44,22 @@ Result<void> validate(const HairGroomSettings& groom) {
   return {};
 }
 
-// VkDrawIndexedIndirectCommand, twice, and what the choice was made from: Primitives in
-// shaders/hair_primitive.comp.
+// Sums and Primitives in shaders/hair_primitive.comp: VkDrawIndexedIndirectCommand twice, then
+// the sums the strands add to and those the last choice was made from.
+struct PrimitiveSums {
+  std::uint32_t wideVertices;
+  std::uint32_t widthLow, widthHigh;
+  std::uint32_t lostLow, lostHigh;
+};
 struct PrimitiveDraws {
   vk::DrawIndexedIndirectCommand ribbons;
   vk::DrawIndexedIndirectCommand lines;
-  std::uint32_t wideVertices = 0;
-  std::array<std::uint32_t, 2> width{};      ///< low, high word
-  std::array<std::uint32_t, 2> lostWidth{};  ///< low, high word
+  PrimitiveSums sums;
+  PrimitiveSums chosen;
 };
-constexpr vk::DeviceSize kSumsBytes = sizeof(PrimitiveDraws) - offsetof(PrimitiveDraws, wideVertices);
+static_assert(sizeof(PrimitiveDraws) == 80, "std430 packs the shader's words without padding");
 constexpr vk::DeviceSize kRibbonDrawOffset = offsetof(PrimitiveDraws, ribbons);
 constexpr vk::DeviceSize kLineDrawOffset = offsetof(PrimitiveDraws, lines);
-constexpr vk::DeviceSize kWideVerticesOffset = offsetof(PrimitiveDraws, wideVertices);
 constexpr std::uint32_t kPrimitiveWorkgroup = 64;  // local_size_x of hair_primitive.comp
 constexpr std::uint32_t kMaxWorkgroupsX = 65535;   // the least maxComputeWorkGroupCount[0]
 
@@ -129,8 +132,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   writeUniformBuffer(device, set_, 0, uniforms_);
   // Host-visible so that lastChoice() can read what the GPU chose.
   draws_ = Buffer(device, sizeof(PrimitiveDraws),
-                  vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer |
-                      vk::BufferUsageFlagBits::eTransferDst,
+                  vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer,
                   vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   std::memset(draws_.mapped().data(), 0, sizeof(PrimitiveDraws));
   writeStorageBuffer(device, set_, 5, draws_);
@@ -167,7 +169,7 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   strandCount_ = strands.strandCount;
   indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;
-  PrimitiveDraws draws{};
+  PrimitiveDraws draws{};  // the sums start at zero
   draws.ribbons = vk::DrawIndexedIndirectCommand{.indexCount = indexCount_, .instanceCount = 1};
   draws.lines =
       vk::DrawIndexedIndirectCommand{.indexCount = static_cast<std::uint32_t>(2 * segments), .firstIndex = indexCount_};
@@ -229,22 +231,13 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
   if (indexCount_ == 0 || extent_.width == 0) return;
   using Stage = vk::PipelineStageFlagBits2;
   using Access = vk::AccessFlagBits2;
-  // In: the strands from the interpolation dispatch. The count is zeroed after the previous
-  // frame's draws have read their commands and the host its choice.
-  const std::array before{vk::MemoryBarrier2{.srcStageMask = Stage::eComputeShader,
-                                             .srcAccessMask = Access::eShaderStorageWrite,
-                                             .dstStageMask = Stage::eComputeShader,
-                                             .dstAccessMask = Access::eShaderStorageRead},
-                          vk::MemoryBarrier2{.srcStageMask = Stage::eDrawIndirect | Stage::eComputeShader,
-                                             .dstStageMask = Stage::eTransfer,
-                                             .dstAccessMask = Access::eTransferWrite}};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = before.size(), .pMemoryBarriers = before.data()});
-  commands.fillBuffer(*draws_.buffer(), kWideVerticesOffset, kSumsBytes, 0);
-  const vk::MemoryBarrier2 zeroed{.srcStageMask = Stage::eTransfer,
-                                  .srcAccessMask = Access::eTransferWrite,
+  // In: the strands from the interpolation dispatch, and the sums the previous choice zeroed.
+  // The choice below rewrites the draw commands after the previous frame's draws have read them.
+  const vk::MemoryBarrier2 before{.srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect,
+                                  .srcAccessMask = Access::eShaderStorageWrite,
                                   .dstStageMask = Stage::eComputeShader,
                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &zeroed});
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &before});
 
   const std::uint32_t groups = (strandCount_ + kPrimitiveWorkgroup - 1) / kPrimitiveWorkgroup;
   const std::uint32_t groupsX = std::min(groups, kMaxWorkgroupsX);
@@ -269,13 +262,12 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
 HairPrimitiveChoice HairPass::lastChoice() const {
   PrimitiveDraws draws{};
   std::memcpy(&draws, draws_.mapped().data(), sizeof(draws));
-  const auto sum = [](const std::array<std::uint32_t, 2>& words) {
-    return std::ldexp(double(words[1]), 32) + words[0];
-  };
-  const double width = sum(draws.width);
+  const auto sum = [](std::uint32_t low, std::uint32_t high) { return std::ldexp(double(high), 32) + low; };
+  const PrimitiveSums& chosen = draws.chosen;
+  const double width = sum(chosen.widthLow, chosen.widthHigh);
   return {.primitive = draws.lines.instanceCount != 0 ? HairPrimitive::kLines : HairPrimitive::kRibbons,
-          .wideVertices = draws.wideVertices,
-          .uncoveredByLines = width > 0.0 ? sum(draws.lostWidth) / width : 0.0};
+          .wideVertices = chosen.wideVertices,
+          .uncoveredByLines = width > 0.0 ? sum(chosen.lostLow, chosen.lostHigh) / width : 0.0};
 }
 
 void HairPass::draw(const vk::raii::CommandBuffer& commands) const {

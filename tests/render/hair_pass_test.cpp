@@ -380,6 +380,23 @@ TEST_F(HairPassTest, DrawsLinesWhenTheyLeaveAtMostOnePercentOfTheWidthUncovered)
   EXPECT_TRUE(narrow && slightlyWide && wide) << "the widths must give every case";
 }
 
+// Every vertex of 1,280 is capped at 1,024 line widths of 4,096 units: the width sum, 1,280 × 2²²,
+// passes 2³² and must carry into its high word. Lines would leave 1,023 of each 1,024 uncovered.
+TEST_F(HairPassTest, TheWidthSumsCarryPast32Bits) {
+  StrandData data;
+  for (int i = 0; i < 64; ++i)
+    addStraightStrand(data, {0.001f * float(i), -0.05f, 0.0f}, {0.001f * float(i), 0.05f, 0.0f}, 20);
+  const std::vector<glm::vec4> radiance(data.positions.size(), glm::vec4(1.0f));
+  const FixedColourHair hair = fixedColourHair(device(), data, radiance);
+  const HairView view{orthographicView(kCoverageExtent, kMetresPerPixel), kCoverageExtent};
+  ASSERT_TRUE(hair.pass->update(view, {.width = 2.0f}).has_value()) << "2,000 pixels wide";
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { hair.pass->record(commands); });
+  const HairPrimitiveChoice choice = hair.pass->lastChoice();
+  EXPECT_EQ(choice.wideVertices, 1280u);
+  EXPECT_DOUBLE_EQ(choice.uncoveredByLines, 1023.0 / 1024.0);
+  EXPECT_EQ(choice.primitive, HairPrimitive::kRibbons);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Shading
 
