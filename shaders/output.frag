@@ -35,7 +35,8 @@ layout(location = 0) in vec2 inUv;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  vec3 color = texture(hdrColor, inUv).rgb;
+  // The frame is the output's size: its texel at this pixel, without filtering.
+  vec3 color = texelFetch(hdrColor, ivec2(gl_FragCoord.xy), 0).rgb;
   if (kGlow) color = mix(color, texture(glow, inUv * settings.glowUvScale).rgb, settings.glowStrength);
   if (kGodRays) color += settings.godRays * texture(godRays, inUv * settings.glowUvScale).rgb;
   color *= kAutoGain ? state.gain : settings.exposure;
