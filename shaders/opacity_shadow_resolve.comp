@@ -5,7 +5,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 2, std430) readonly buffer Increments {
-  uint increments[];
+  uvec4 increments[];  // a texel's 16 slices in 4 loads
 };
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image2DArray slices;
 
@@ -19,12 +19,13 @@ void main() {
   uint size = uint(build.weights.z);
   uvec2 texel = gl_GlobalInvocationID.xy;
   if (texel.x >= size || texel.y >= size) return;
-  uint base = (texel.y * size + texel.x) * 16u;
+  uint base = (texel.y * size + texel.x) * 4u;
   uint sum = 0u;
   for (int layer = 0; layer < 4; ++layer) {
+    uvec4 added = increments[base + uint(layer)];
     vec4 value;
     for (int channel = 0; channel < 4; ++channel) {
-      sum += increments[base + uint(layer * 4 + channel)];
+      sum += added[channel];
       value[channel] = float(sum) / 65536.0;
     }
     imageStore(slices, ivec3(texel, layer), value);
