@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Camera-facing ribbons pulled from the dense-strand storage buffers (see render/passes/hair_pass.hpp),
-// or lines standing in for them where every ribbon would be drawn at the minimum width.
+// Camera-facing ribbons pulled from the dense-strand storage buffers, or lines of the minimum width
+// standing in for them where the pass chose lines (render/passes/hair_pass.hpp, "Lines").
 // Ribbons (indexed): gl_VertexIndex = 2 × (k × Nd + i) + side is vertex i of strand order[k], the
 // k-th strand in drawing order (back to front), pushed to side 0 (−) or 1 (+). The index buffer
 // joins them into two triangles per segment, so each ribbon vertex is shaded once, not six times.
