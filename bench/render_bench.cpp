@@ -2,7 +2,7 @@
 // baselines measured in the same run: the same passes with nothing to draw (clear + output
 // pass), and the same head shaded Lambert instead of skin. The README reports the ratios, which
 // are steadier across machines than milliseconds. The hair is not drawn (no guides are handed
-// to the renderer).
+// to the renderer), nor the fins and the furred bunny.
 //
 //   BM_NaluFrame/scene:0: nothing drawn; scene:1: the head, Lambert; scene:2: the head, skin
 //   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular); scene:3 and 4:
@@ -74,18 +74,24 @@ void renderFrames(benchmark::State& state, const render::StaticScene& statics, c
 void BM_NaluFrame(benchmark::State& state) {
   static const scenes::World world = loadWorld("nalu.json");
   render::StaticScene statics = world.staticScene();
+  render::FrameInput frame = world.frameInput();
+  // The head alone: the instances drawn with skin (not the fins or the furred bunny).
+  const auto skin = [&](std::size_t material) {
+    return statics.materials[material].shading == render::SurfaceShading::kSkin;
+  };
+  std::erase_if(frame.instances, [&](const render::MeshInstance& instance) { return !skin(instance.material); });
+  if (state.range(0) == 0) frame.instances.clear();
   for (render::MaterialData& material : statics.materials) {
+    if (material.shading != render::SurfaceShading::kSkin) continue;
     if (state.range(0) == 1) material.shading = render::SurfaceShading::kLambert;
     if (state.range(0) == 3 || state.range(0) == 4) {
       material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
       material.skin.irradianceSize = state.range(0) == 3 ? 1024 : 2048;
     }
-    if (state.range(0) >= 5 && material.shading == render::SurfaceShading::kSkin)
+    if (state.range(0) >= 5)
       material.translucency.method =
           state.range(0) == 5 ? render::TranslucencyMethod::kDepthMap : render::TranslucencyMethod::kVoxelLut;
   }
-  render::FrameInput frame = world.frameInput();
-  if (state.range(0) == 0) frame.instances.clear();
   renderFrames(state, statics, frame, static_cast<std::uint32_t>(state.range(1)));
 }
 BENCHMARK(BM_NaluFrame)
