@@ -131,8 +131,10 @@ public:
   /// as it is then. It tessellates on the calling threads only when there is no tessellation
   /// yet, or when even the prepared one does not keep within the target (a camera that jumped).
   /// What it does depends on the calls alone (views and surfaces), never on timing, so the
-  /// meshes are as deterministic as tessellate's. Errors: as updateVertices (`mesh` must be what
-  /// the last call left).
+  /// meshes are as deterministic as tessellate's. The first call, which tessellates, also
+  /// tessellates once on that thread meanwhile and drops the result, so that the first
+  /// prepared tessellation finds its storage ready. Errors: as updateVertices (`mesh` must be
+  /// what the last call left).
   [[nodiscard]] Result<FrameUpdate> update(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
 
   [[nodiscard]] const TessellationStatistics& statistics() const;
