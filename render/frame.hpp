@@ -170,6 +170,11 @@ struct DirectionalLight {
   glm::vec3 direction{0.0f, 0.0f, 1.0f};  ///< unit vector from the surface towards the light
   glm::vec3 color{1.0f};                  ///< linear RGB
   float intensity = 1.0f;                 ///< irradiance scale at normal incidence
+  /// Radians: the angular radius of the light's disc, seen where the background shows it
+  /// (render/passes/light_disc_pass.hpp); 0: not seen.
+  float discRadius = 0.0f;
+  /// The disc's radiance as a multiple of `color`, ≥ 0.
+  float discRadiance = 20.0f;
 };
 
 /// How the post chain maps HDR colour to display values (render/passes/post_chain.hpp).
@@ -200,9 +205,13 @@ struct PostSettings {
   /// Snap L̄ to this frame's value (a cut); the first frame with auto gain always snaps.
   bool resetAdaptation = false;
   /// God rays (issue 8, item 4): strength of the light shafts added to the HDR colour, ≥ 0; 0 skips
-  /// their passes. They stream from the screen position of FrameInput::lights[0] (a directional
-  /// light, at infinity); none when there is no light or it is behind the camera or off-screen.
+  /// their passes. They stream from the screen position of FrameInput::lights[godRayLight] (a
+  /// directional light, at infinity); none when there is no light or it is behind the camera or
+  /// off-screen.
   float godRays = 0.0f;
+  /// Which of FrameInput::lights the god rays stream from (one with a visible disc gives them
+  /// something bright to stream from: DirectionalLight::discRadius).
+  std::uint32_t godRayLight = 0;
   /// Luminance (linear HDR units, before the gain) above which a texel emits rays; below it, and
   /// anything dark, occludes. ≥ 0.
   float godRayThreshold = 1.0f;

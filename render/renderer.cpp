@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 
 namespace mane::render {
 namespace {
@@ -18,6 +19,7 @@ Renderer::Renderer(const Device& device, const RendererSettings& settings, std::
       target_(device, {.extent = settings.extent, .samples = sampleCount(settings.msaaSamples)}),
       shadows_(std::move(shadows)),
       surfaces_(device, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
+      discs_(device, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
       post_(device, target_.hdr()),
       output_(device, target_, post_),
       timer_(device, 16) {}
@@ -291,6 +293,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   timer_.begin(commands, "surfaces");
   // Main pass: previous contents are discarded and cleared.
   target_.beginScene(commands, glm::vec4(frame.background, 1.0f));
+  discs_.draw(commands, frame.camera, frame.lights, target_.extent());
   surfaces_.draw(commands, frame);
   furs_.draw(commands);
   // Hair over the opaque surfaces, depth-tested against them (render/passes/hair_pass.hpp).
@@ -331,10 +334,12 @@ void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameIn
     post_.recordGlow(commands);
     timer_.end(commands);
   }
-  // God rays stream from the first light's screen position; none when it is off screen or behind.
-  const std::optional<glm::vec2> light = frame.post.godRays > 0.0f && !frame.lights.empty()
-                                             ? godRayLightUv(frame.camera, frame.lights[0].direction, target_.aspect())
-                                             : std::nullopt;
+  // God rays stream from their light's screen position; none when it is off screen or behind.
+  const std::size_t rayLight = frame.post.godRayLight;
+  const std::optional<glm::vec2> light =
+      frame.post.godRays > 0.0f && rayLight < frame.lights.size()
+          ? godRayLightUv(frame.camera, frame.lights[rayLight].direction, target_.aspect())
+          : std::nullopt;
   if (light) {
     timer_.begin(commands, "god rays");
     post_.recordGodRays(commands, frame.post, *light);
@@ -400,6 +405,15 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
                   " with a fur material, but the scene grows no fur (StaticScene::furs) on that pair");
   }
   if (auto valid = validate(frame.post); !valid) return std::unexpected(valid.error());
+  if (frame.post.godRays > 0.0f && frame.post.godRayLight > 0 && frame.post.godRayLight >= frame.lights.size())
+    return fail("the god rays stream from light " + std::to_string(frame.post.godRayLight) + ", but the frame has " +
+                std::to_string(frame.lights.size()) + " lights");
+  for (std::size_t i = 0; i < frame.lights.size(); ++i) {
+    if (!(frame.lights[i].discRadius >= 0.0f && frame.lights[i].discRadius < 0.5f * std::numbers::pi_v<float>))
+      return fail("light " + std::to_string(i) + "'s disc radius is not in [0, π/2) radians");
+    if (!(frame.lights[i].discRadiance >= 0.0f && std::isfinite(frame.lights[i].discRadiance)))
+      return fail("light " + std::to_string(i) + "'s disc radiance is not a finite number >= 0");
+  }
   if (auto prepared = surfaces_.prepareThickness(frame); !prepared) return std::unexpected(prepared.error());
   if (auto updated = furs_.update(frame, target_.extent(), target_.aspect()); !updated)
     return std::unexpected(updated.error());

@@ -18,6 +18,7 @@
 #include "render/passes/hair_lighting.hpp"
 #include "render/passes/hair_pass.hpp"
 #include "render/passes/hair_shadows.hpp"
+#include "render/passes/light_disc_pass.hpp"
 #include "render/passes/skin_diffusion.hpp"
 #include "render/passes/output_pass.hpp"
 #include "render/passes/post_chain.hpp"
@@ -97,6 +98,7 @@ private:
   RenderTarget target_;
   std::unique_ptr<HairShadows> shadows_;
   SurfacePass surfaces_;
+  LightDiscPass discs_;
   // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {
     std::unique_ptr<StrandInterpolationPass> strands;

@@ -95,10 +95,16 @@ Light parseLight(const Json& json, const std::string& path) {
   light.direction = unitDirection(fields, "direction");
   light.colour = fields.optional<glm::vec3>("colour", light.colour);
   light.intensity = fields.optional<float>("intensity", light.intensity);
+  light.discRadiusDegrees = fields.optional<float>("disc_radius_degrees", light.discRadiusDegrees);
+  light.discRadiance = fields.optional<float>("disc_radiance", light.discRadiance);
   fields.finish();
   require(light.colour.r >= 0 && light.colour.g >= 0 && light.colour.b >= 0, fields.child("colour"),
           "expected non-negative linear RGB");
   require(light.intensity >= 0.0f, fields.child("intensity"), "expected an intensity >= 0");
+  require(light.discRadiusDegrees >= 0.0f && light.discRadiusDegrees <= 20.0f, fields.child("disc_radius_degrees"),
+          "expected an angular radius in [0, 20] degrees");
+  require(light.discRadiance >= 0.0f && light.discRadiance <= 1000.0f, fields.child("disc_radiance"),
+          "expected a radiance in [0, 1000] (a multiple of the colour)");
   return light;
 }
 
@@ -273,6 +279,9 @@ void checkReferences(const Scene& scene) {
     require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
             "no mesh named \"" + scene.headMotion.mesh + "\" in meshes");
   }
+  require(scene.post.godRayLight == 0 || scene.post.godRayLight < scene.lights.size(), "post.god_ray_light",
+          "no light " + std::to_string(scene.post.godRayLight) + " in lights (it has " +
+              std::to_string(scene.lights.size()) + ")");
 }
 
 Scene parseRoot(const Json& json) {

@@ -44,6 +44,9 @@ struct Light {
   glm::vec3 direction{0.0f, -1.0f, 0.0f};
   glm::vec3 colour{1.0f};  ///< linear RGB, each ≥ 0
   float intensity = 1.0f;  ///< ≥ 0, unitless scale
+  /// The angular radius of the light's disc where the background shows it (a sun), 0..20; 0: not seen.
+  float discRadiusDegrees = 0.0f;
+  float discRadiance = 20.0f;  ///< the disc's radiance as a multiple of `colour`, 0..1000
 };
 
 /// lambert: diffuse; skin: render::SurfaceShading::kSkin; fur: shells and fins grown from the

@@ -275,6 +275,7 @@ render::PostSettings parsePost(const Json& json, const std::string& path) {
   post.glowStrength = fields.optional<float>("glow", post.glowStrength);
   post.adaptationSeconds = fields.optional<float>("adaptation_seconds", post.adaptationSeconds);
   post.godRays = fields.optional<float>("god_rays", post.godRays);
+  const int godRayLight = fields.optional<int>("god_ray_light", 0);
   fields.finish();
   require(post.key > 0.0f && post.key <= 1.0f, fields.child("key"), "expected a key value in (0, 1]");
   require(post.glowStrength >= 0.0f && post.glowStrength <= 1.0f, fields.child("glow"),
@@ -283,6 +284,8 @@ render::PostSettings parsePost(const Json& json, const std::string& path) {
           "expected an adaptation time in [0, 60] seconds");
   require(post.godRays >= 0.0f && post.godRays <= 10.0f, fields.child("god_rays"),
           "expected a god-ray strength in [0, 10]");
+  require(godRayLight >= 0, fields.child("god_ray_light"), "expected a light's index, 0 or more");
+  post.godRayLight = static_cast<std::uint32_t>(godRayLight);
   return post;
 }
 

@@ -492,7 +492,11 @@ render::FrameInput World::frameInput() const {
                                 .farPlane = camera.farPlane};
   for (const Light& light : scene_.lights)
     // The scene says where light travels; the renderer wants the way back to the light.
-    frame.lights.push_back({.direction = -light.direction, .color = light.colour, .intensity = light.intensity});
+    frame.lights.push_back({.direction = -light.direction,
+                            .color = light.colour,
+                            .intensity = light.intensity,
+                            .discRadius = glm::radians(light.discRadiusDegrees),
+                            .discRadiance = light.discRadiance});
   // loadScene has checked that a named material exists; no name means the default one, which
   // staticScene() puts after the scene's own.
   auto materialIndex = [&](const std::string& name) {

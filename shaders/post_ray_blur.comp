@@ -1,7 +1,8 @@
 #version 450
 // God rays, step 3 (render/passes/post_chain.hpp): the blur along each ray of the polar image (a
-// vertical blur: one column per angle), towards the light: out(j) = Σ_k w[k] · in(max(j − k·step,
-// 0)) with w[k] ∝ decay^k, so light only moves outwards and fades (radialBlur in
+// vertical blur: one column per angle), towards the light: out(j) = Σ_{k: j − k·step ≥ 0} w[k] ·
+// in(j − k·step) with w[k] ∝ decay^k, tapered (godRayWeights), so light only moves outwards and fades; taps that would
+// reach past the light add nothing, so each ray keeps the light it had (radialBlur in
 // render/passes/post_reference.hpp). Taps and step are specialisation constants: a fixed loop.
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -21,7 +22,7 @@ void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, imageSize(polar)))) return;
   vec4 sum = vec4(0.0);
-  for (int k = 0; k < kTaps; ++k)
-    sum += kernel.weights[k / 4][k % 4] * imageLoad(polar, ivec2(texel.x, max(texel.y - k * kStep, 0)));
+  for (int k = 0; k < kTaps && texel.y - k * kStep >= 0; ++k)
+    sum += kernel.weights[k / 4][k % 4] * imageLoad(polar, ivec2(texel.x, texel.y - k * kStep));
   imageStore(blurred, texel, sum);
 }

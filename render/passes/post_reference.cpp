@@ -186,7 +186,12 @@ HdrImage fromPolar(const HdrImage& polar, glm::vec2 centre, glm::uvec2 size) {
 std::vector<float> godRayWeights(float decay) {
   std::vector<double> weights(kGodRayTaps);
   double total = 0.0;
-  for (int k = 0; k < kGodRayTaps; ++k) total += weights[k] = std::pow(double(decay), k);
+  // The taper brings the last taps to nearly 0, so that a shaft fades out instead of ending where
+  // the taps do (decay^31 is still 0.28 at the default 0.96).
+  for (int k = 0; k < kGodRayTaps; ++k) {
+    const double along = double(k) / double(kGodRayTaps);
+    total += weights[std::size_t(k)] = std::pow(double(decay), k) * (1.0 - along * along);
+  }
   std::vector<float> normalised(weights.size());
   for (std::size_t k = 0; k < weights.size(); ++k) normalised[k] = float(weights[k] / total);
   return normalised;
@@ -197,10 +202,8 @@ HdrImage radialBlur(const HdrImage& polar, std::span<const float> weights) {
   for (std::uint32_t j = 0; j < polar.height; ++j)
     for (std::uint32_t i = 0; i < polar.width; ++i) {
       glm::dvec4 sum(0.0);
-      for (std::size_t k = 0; k < weights.size(); ++k) {
-        const long from = std::max(long(j) - long(k) * kGodRayStep, 0L);
-        sum += double(weights[k]) * glm::dvec4(polar.at(i, std::uint32_t(from)));
-      }
+      for (std::size_t k = 0; k < weights.size() && long(j) - long(k) * kGodRayStep >= 0; ++k)
+        sum += double(weights[k]) * glm::dvec4(polar.at(i, std::uint32_t(long(j) - long(k) * kGodRayStep)));
       blurred.texels[std::size_t(j) * polar.width + i] = glm::vec4(sum);
     }
   return blurred;

@@ -100,10 +100,11 @@ HdrImage toPolar(const HdrImage& image, glm::vec2 centre, glm::uvec2 polarSize);
 /// Back to an image `size` texels large: each texel centre's angle and radius around `centre`,
 /// sampled bilinearly from `polar`, wrapping in angle and clamped in radius.
 HdrImage fromPolar(const HdrImage& polar, glm::vec2 centre, glm::uvec2 size);
-/// w[k] ∝ decay^k, k < kGodRayTaps, normalised to sum 1.
+/// w[k] ∝ decay^k · (1 − (k/kGodRayTaps)²), k < kGodRayTaps, normalised to sum 1.
 std::vector<float> godRayWeights(float decay);
-/// Along each ray (a column of the polar image): out(j) = Σ_k w[k] · in(max(j − k·kGodRayStep, 0)):
-/// light moves only outwards, away from the light, fading with the decay.
+/// Along each ray (a column of the polar image): out(j) = Σ_{k: j − k·kGodRayStep ≥ 0} w[k] ·
+/// in(j − k·kGodRayStep): light moves only outwards, away from the light, fading with the decay;
+/// none comes from before the light, so a ray keeps the light it had (short of the image's end).
 HdrImage radialBlur(const HdrImage& polar, std::span<const float> weights);
 /// The whole: godRayBright, toPolar, radialBlur, fromPolar, on the downsampled copy.
 HdrImage godRaysReference(const HdrImage& quarter, glm::vec2 centre, float threshold, float decay);

@@ -15,12 +15,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <numbers>
 #include <random>
 #include <span>
 
 #include <glm/gtc/packing.hpp>
+#include <glm/mat3x3.hpp>
 #include <gtest/gtest.h>
 
+#include "render/passes/light_disc_pass.hpp"
 #include "render/passes/post_chain.hpp"
 #include "render/passes/post_reference.hpp"
 #include "render/renderer.hpp"
@@ -327,6 +330,29 @@ float checkOnRay(const HdrImage& rays, glm::vec2 light, glm::vec2 source) {
 // One bright copy texel (a 4×4 block of 50 in a black frame), the light 26 texels away: the blur
 // carries it outwards along its ray only, on the GPU and in the CPU reference, and the two agree
 // (within 2 % of the peak: float trigonometry against double, half-float stores).
+// The radial blur moves light outwards along each ray without adding any: a polar image with one
+// bright row (at the light, beside it, or further out) keeps each column's sum (short of the
+// image's end), and a row at the light lights the rows k·step beyond it with w[k] exactly.
+TEST(PostReference, RadialBlurKeepsTheLightOfEachRay) {
+  const std::vector<float> weights = godRayWeights(0.96f);
+  for (std::uint32_t row : {0u, 1u, 10u}) {
+    HdrImage polar = blank(4, 160);
+    for (std::uint32_t i = 0; i < 4; ++i) polar.texels[std::size_t(row) * 4 + i] = glm::vec4(float(i + 1));
+    const HdrImage blurred = radialBlur(polar, weights);
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      double sum = 0.0;
+      for (std::uint32_t j = 0; j < 160; ++j) sum += blurred.at(i, j).r;
+      EXPECT_NEAR(sum, double(i + 1), 1e-5 * double(i + 1)) << "row " << row << ", column " << i;
+    }
+    if (row == 0)
+      for (std::uint32_t j = 0; j < 160; ++j) {
+        const int tap = int(j) / kGodRayStep;
+        const float expected = int(j) % kGodRayStep == 0 && tap < kGodRayTaps ? weights[std::size_t(tap)] : 0.0f;
+        EXPECT_NEAR(blurred.at(0, j).r, expected, 1e-7f) << j;
+      }
+  }
+}
+
 TEST_F(PostChainTest, RadialBlurOfABrightTexelSpreadsOnlyAlongItsRayAwayFromTheLight) {
   HdrImage frame = blank(256, 192);
   const glm::uvec2 source(40, 30);
@@ -606,6 +632,70 @@ TEST_F(PostRendering, RejectsBadSettingsByName) {
   EXPECT_NE(errorOf({.frameSeconds = NAN}).find("frameSeconds"), std::string::npos);
   EXPECT_NE(errorOf({.godRays = -1.0f}).find("godRays"), std::string::npos);
   EXPECT_NE(errorOf({.godRayDecay = 0.0f}).find("godRayDecay"), std::string::npos);
+  EXPECT_EQ(errorOf({.godRays = 1.0f, .godRayLight = 1}), "the god rays stream from light 1, but the frame has 0 lights");
+}
+
+// A light's disc is the cone of its angular radius r around the direction to it. Straight ahead
+// of a camera of vertical field θ on an image H pixels high, its outline is a circle of radius
+// tan r / tan(θ/2) · H/2 pixels (11.5 here) at the image's centre, of radiance colour ×
+// discRadiance: the area where it covers more than half a pixel within 3 % of the circle's, its
+// centre within a quarter pixel, the middle's value the exposed radiance (±1 code). The quad in
+// front hides all of it.
+TEST_F(PostRendering, ALightsDiscIsACircleOfItsAngularRadiusBehindTheScene) {
+  auto renderer = makeRenderer({128, 96}, true);
+  const float radius = glm::radians(5.0f);
+  const glm::vec3 colour(1.0f, 0.5f, 0.25f);
+  FrameInput frame{.camera = {.position = {0, 0, 6}, .target = {0, 0, 0}},
+                   .lights = {DirectionalLight{
+                       .direction = {0, 0, -1}, .color = colour, .intensity = 0.0f, .discRadius = radius,
+                       .discRadiance = 2.0f}},
+                   .background = glm::vec3(0.0f),
+                   .exposure = 0.25f};
+  const std::vector<std::uint8_t> disc = draw(*renderer, frame);
+  ASSERT_EQ(disc.size(), std::size_t(128 * 96 * 4));
+  const double halfCovered = 255.0 * srgbEncode(0.5 * 2.0 * 0.25);
+  double area = 0.0;
+  glm::dvec2 centroid(0.0);
+  for (std::uint32_t y = 0; y < 96; ++y)
+    for (std::uint32_t x = 0; x < 128; ++x)
+      if (disc[(std::size_t(y) * 128 + x) * 4] > halfCovered) {
+        area += 1.0;
+        centroid += glm::dvec2(x + 0.5, y + 0.5);
+      }
+  const double pixels = std::tan(double(radius)) / std::tan(0.5 * double(frame.camera.verticalFovRadians)) * 48.0;
+  EXPECT_NEAR(area, std::numbers::pi * pixels * pixels, 0.03 * std::numbers::pi * pixels * pixels);
+  centroid /= area;
+  EXPECT_NEAR(centroid.x, 64.0, 0.25);
+  EXPECT_NEAR(centroid.y, 48.0, 0.25);
+  const std::size_t middle = (std::size_t(48) * 128 + 64) * 4;
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(int(disc[middle + std::size_t(c)]), std::lround(255.0 * srgbEncode(2.0 * 0.25 * colour[c])), 1) << c;
+  std::printf("disc of %.2f px radius: area %.1f against %.1f\n", pixels, area, std::numbers::pi * pixels * pixels);
+
+  frame.instances = {{.mesh = 0, .material = 0}};
+  const std::vector<std::uint8_t> hidden = draw(*renderer, frame);
+  frame.lights[0].discRadius = 0.0f;
+  EXPECT_EQ(hidden, draw(*renderer, frame)) << "the quad in front covers the disc";
+}
+
+// The rectangle drawn for a disc: around it on screen, nothing when it is all behind the camera
+// or off screen, the whole screen when only part of it is behind.
+TEST(LightDiscBounds, HoldTheDiscOnScreenOnly) {
+  const Camera camera{.position = {0, 0, 6}, .target = {0, 0, 0}};
+  const glm::mat4 ndcFromDirection = camera.projection(4.0f / 3.0f) * glm::mat4(glm::mat3(camera.view()));
+  const float radius = glm::radians(5.0f);
+  const auto ahead = discBounds(ndcFromDirection, {0, 0, -1}, radius);
+  ASSERT_TRUE(ahead.has_value());
+  const float half = std::tan(radius) / std::tan(0.5f * camera.verticalFovRadians);  // NDC, vertically
+  EXPECT_LE(ahead->y, -half);
+  EXPECT_GE(ahead->w, half);
+  EXPECT_LT(ahead->w, 1.1f * half);
+  EXPECT_NEAR(ahead->x, -ahead->z, 1e-5f);
+  EXPECT_FALSE(discBounds(ndcFromDirection, {0, 0, 1}, radius).has_value()) << "behind the camera";
+  EXPECT_FALSE(discBounds(ndcFromDirection, glm::normalize(glm::vec3(1, 0, -1)), radius).has_value()) << "off screen";
+  const auto across = discBounds(ndcFromDirection, glm::normalize(glm::vec3(1, 0, -0.03f)), radius);
+  ASSERT_TRUE(across.has_value()) << "partly behind the camera";
+  EXPECT_EQ(*across, glm::vec4(-1, -1, 1, 1));
 }
 
 }  // namespace

@@ -494,6 +494,32 @@ TEST(Scene, PostBlockSetsTheFramesToneMappingGainAndGlow) {
             "dir/bad.json: post.adaptation_seconds: expected an adaptation time in [0, 60] seconds");
   EXPECT_EQ(postError(R"({"god_rays": -0.5})"), "dir/bad.json: post.god_rays: expected a god-ray strength in [0, 10]");
   EXPECT_EQ(postError(R"({"auto_gain": 1})"), "dir/bad.json: post.auto_gain: expected true or false, got a number");
+  EXPECT_EQ(postError(R"({"god_ray_light": -1})"), "dir/bad.json: post.god_ray_light: expected a light's index, 0 or more");
+  EXPECT_EQ(postError(R"({"god_ray_light": 1})"), "dir/bad.json: post.god_ray_light: no light 1 in lights (it has 0)");
+}
+
+// A light's visible disc (a sun for the god rays to stream from): its angular radius and radiance,
+// in degrees and as a multiple of the colour, reach the frame in radians.
+TEST(Scene, ALightsDiscReachesTheFrameInRadians) {
+  auto scene = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                              "lights": [{"kind": "directional", "direction": [0, 0, 1]},
+                                         {"kind": "directional", "direction": [0, 0, 1], "disc_radius_degrees": 2,
+                                          "disc_radiance": 50}],
+                              "post": {"god_rays": 1, "god_ray_light": 1}})",
+                          "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->lights[0].discRadiusDegrees, 0.0f) << "no disc unless asked";
+  EXPECT_EQ(scene->lights[1].discRadiusDegrees, 2.0f);
+  EXPECT_EQ(scene->lights[1].discRadiance, 50.0f);
+  EXPECT_EQ(scene->post.godRayLight, 1u);
+  const auto lightError = [](const std::string& fields) {
+    return errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+                      "lights": [{"kind": "directional", "direction": [0, 0, 1], )" + fields + "}]}");
+  };
+  EXPECT_EQ(lightError(R"("disc_radius_degrees": 30)"),
+            "dir/bad.json: lights[0].disc_radius_degrees: expected an angular radius in [0, 20] degrees");
+  EXPECT_EQ(lightError(R"("disc_radiance": -1)"),
+            "dir/bad.json: lights[0].disc_radiance: expected a radiance in [0, 1000] (a multiple of the colour)");
 }
 
 TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
