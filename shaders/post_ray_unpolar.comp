@@ -10,13 +10,14 @@ layout(set = 0, binding = 0, rgba16f) uniform readonly image2D polar;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D rays;
 
 layout(push_constant) uniform Centre {
-  vec2 centre;  // the light, in copy texel coordinates
+  vec2 centre;   // the light, in copy texel coordinates
+  ivec2 extent;  // the angles and radii of the polar image it uses (godRayPolarExtent)
 } settings;
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, imageSize(rays)))) return;
-  ivec2 size = imageSize(polar);
+  ivec2 size = settings.extent;
   vec2 d = vec2(texel) + 0.5 - settings.centre;
   float theta = atan(d.y, d.x);
   theta += theta < 0.0 ? 6.283185307 : 0.0;

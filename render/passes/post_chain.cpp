@@ -33,6 +33,12 @@ struct AdaptConstants {
 
 static_assert(sizeof(PostExposure) == 16);
 
+// Push constants of shaders/post_ray_polar.comp and post_ray_unpolar.comp.
+struct RayCentreConstants {
+  glm::vec2 centre;
+  glm::ivec2 extent;
+};
+
 // Push constants of shaders/post_ray_blur.comp: w[k] = weights[k / 4][k % 4].
 struct RayBlurConstants {
   float weights[32];
@@ -174,10 +180,11 @@ PostChain::PostChain(const Device& device, const Image& frame)
   tinyPipeline_ = makeComputePipeline(device, "post_tiny.comp", storageLayout_, 0, {postTinyBlock(quarter)});
   adaptPipeline_ = makeComputePipeline(device, "post_adapt.comp", adaptLayout_, sizeof(AdaptConstants));
   rayBrightPipeline_ = makeComputePipeline(device, "post_ray_bright.comp", storageLayout_, sizeof(float));
-  rayPolarPipeline_ = makeComputePipeline(device, "post_ray_polar.comp", storageLayout_, sizeof(glm::vec2));
+  rayPolarPipeline_ = makeComputePipeline(device, "post_ray_polar.comp", storageLayout_, sizeof(RayCentreConstants));
   rayBlurPipeline_ = makeComputePipeline(device, "post_ray_blur.comp", storageLayout_, sizeof(RayBlurConstants),
                                          {std::uint32_t(kGodRayTaps), std::uint32_t(kGodRayStep)});
-  rayUnpolarPipeline_ = makeComputePipeline(device, "post_ray_unpolar.comp", storageLayout_, sizeof(glm::vec2));
+  rayUnpolarPipeline_ =
+      makeComputePipeline(device, "post_ray_unpolar.comp", storageLayout_, sizeof(RayCentreConstants));
 
   pool_ = makeDescriptorPool(device, 11,
                              {{vk::DescriptorType::eCombinedImageSampler, 1},
@@ -311,19 +318,22 @@ void PostChain::recordGodRays(const vk::raii::CommandBuffer& commands, const Pos
   commands.pushConstants<float>(*rayBrightPipeline_.layout, compute, 0, settings.godRayThreshold);
   dispatch(commands, rayBrightPipeline_, rayBrightSet_, rayBright_.extent());
   computeToCompute(commands);
+  // Only the angles and radii this light reaches: a quarter of the image for a light at the centre.
   const glm::vec2 centre = godRayCentre(lightUv);
-  commands.pushConstants<glm::vec2>(*rayPolarPipeline_.layout, compute, 0, centre);
-  dispatch(commands, rayPolarPipeline_, rayPolarSet_, polar_.extent());
+  const glm::uvec2 used = godRayPolarExtent({rayBright_.extent().width, rayBright_.extent().height}, centre);
+  const RayCentreConstants polarConstants{.centre = centre, .extent = glm::ivec2(used)};
+  commands.pushConstants<RayCentreConstants>(*rayPolarPipeline_.layout, compute, 0, polarConstants);
+  dispatch(commands, rayPolarPipeline_, rayPolarSet_, {used.x, used.y});
   computeToCompute(commands);
   if (blur) {
     RayBlurConstants constants{};
     const std::vector<float> weights = godRayWeights(settings.godRayDecay);
     for (std::size_t k = 0; k < weights.size(); ++k) constants.weights[k] = weights[k];
     commands.pushConstants<RayBlurConstants>(*rayBlurPipeline_.layout, compute, 0, constants);
-    dispatch(commands, rayBlurPipeline_, rayBlurSet_, polarBlurred_.extent());
+    dispatch(commands, rayBlurPipeline_, rayBlurSet_, {used.x, used.y});
     computeToCompute(commands);
   }
-  commands.pushConstants<glm::vec2>(*rayUnpolarPipeline_.layout, compute, 0, centre);
+  commands.pushConstants<RayCentreConstants>(*rayUnpolarPipeline_.layout, compute, 0, polarConstants);
   dispatch(commands, rayUnpolarPipeline_, rayUnpolarSets_[blur ? 1 : 0], godRays_.extent());
   godRaysRecorded_ = true;
 }

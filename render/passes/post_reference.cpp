@@ -148,6 +148,17 @@ glm::uvec2 godRayPolarSize(glm::uvec2 quarter) {
   return {ceilDivide(angles, 8) * 8, radii};
 }
 
+glm::uvec2 godRayPolarExtent(glm::uvec2 quarter, glm::vec2 centre) {
+  const glm::uvec2 most = godRayPolarSize(quarter);
+  double farthest = 0.0;
+  for (const glm::dvec2 corner : {glm::dvec2(0.0), glm::dvec2(quarter.x, 0.0), glm::dvec2(0.0, quarter.y),
+                                  glm::dvec2(quarter)})
+    farthest = std::max(farthest, glm::length(corner - glm::dvec2(centre)));
+  const auto radii = std::min(most.y, std::uint32_t(std::ceil(farthest)) + 1);
+  const auto angles = std::uint32_t(std::ceil(3.141592653589793 * radii));
+  return {std::min(most.x, ceilDivide(angles, 8) * 8), radii};
+}
+
 HdrImage godRayBright(const HdrImage& quarter, float threshold) {
   HdrImage bright = blankImage({quarter.width, quarter.height});
   for (std::size_t i = 0; i < quarter.texels.size(); ++i) {
@@ -211,7 +222,7 @@ HdrImage radialBlur(const HdrImage& polar, std::span<const float> weights) {
 
 HdrImage godRaysReference(const HdrImage& quarter, glm::vec2 centre, float threshold, float decay) {
   const glm::uvec2 size(quarter.width, quarter.height);
-  const HdrImage polar = toPolar(godRayBright(quarter, threshold), centre, godRayPolarSize(size));
+  const HdrImage polar = toPolar(godRayBright(quarter, threshold), centre, godRayPolarExtent(size, centre));
   return fromPolar(radialBlur(polar, godRayWeights(decay)), centre, size);
 }
 

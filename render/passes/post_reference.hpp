@@ -91,6 +91,10 @@ inline constexpr int kGodRayStep = 2;
 /// enough for a light anywhere on screen; A = ⌈πR⌉ rounded up to a multiple of 8 angles, so
 /// neighbouring rays are at most 2 texels apart at the far corner (1 at half the distance).
 glm::uvec2 godRayPolarSize(glm::uvec2 quarter);
+/// The part of it a light at `centre` (copy texel coordinates, on the copy) uses: as
+/// godRayPolarSize with R = ⌈the distance to the farthest corner⌉ + 1 (at most that size). A
+/// light at the centre uses about a quarter of the texels, one in a corner all of them.
+glm::uvec2 godRayPolarExtent(glm::uvec2 quarter, glm::vec2 centre);
 /// rgb · max(L − threshold, 0)/L: texels brighter than the threshold keep their excess, the rest
 /// (occluders, dark sky) are 0.
 HdrImage godRayBright(const HdrImage& quarter, float threshold);
@@ -106,7 +110,8 @@ std::vector<float> godRayWeights(float decay);
 /// in(j − k·kGodRayStep): light moves only outwards, away from the light, fading with the decay;
 /// none comes from before the light, so a ray keeps the light it had (short of the image's end).
 HdrImage radialBlur(const HdrImage& polar, std::span<const float> weights);
-/// The whole: godRayBright, toPolar, radialBlur, fromPolar, on the downsampled copy.
+/// The whole: godRayBright, toPolar (of godRayPolarExtent), radialBlur, fromPolar, on the
+/// downsampled copy.
 HdrImage godRaysReference(const HdrImage& quarter, glm::vec2 centre, float threshold, float decay);
 
 }  // namespace mane::render

@@ -287,7 +287,9 @@ TEST_F(PostChainTest, PolarRoundTripReturnsTheImageAwayFromTheCentre) {
   const glm::uvec2 size(quarter->width, quarter->height);
   ASSERT_EQ(glm::uvec2(polar->width, polar->height), godRayPolarSize(size));
   const glm::vec2 centre = chain.godRayCentre(lightUv);
-  const HdrImage cpu = fromPolar(toPolar(godRayBright(*quarter, 0.0f), centre, godRayPolarSize(size)), centre, size);
+  const glm::uvec2 used = godRayPolarExtent(size, centre);
+  EXPECT_LT(used.x * used.y, polar->width * polar->height) << "a light away from the corners uses part of it";
+  const HdrImage cpu = fromPolar(toPolar(godRayBright(*quarter, 0.0f), centre, used), centre, size);
   double worst = 0.0, worstCpu = 0.0;
   for (std::uint32_t y = 0; y < size.y; ++y)
     for (std::uint32_t x = 0; x < size.x; ++x) {
@@ -330,6 +332,20 @@ float checkOnRay(const HdrImage& rays, glm::vec2 light, glm::vec2 source) {
 // One bright copy texel (a 4×4 block of 50 in a black frame), the light 26 texels away: the blur
 // carries it outwards along its ray only, on the GPU and in the CPU reference, and the two agree
 // (within 2 % of the peak: float trigonometry against double, half-float stores).
+// The part of the polar image a light uses reaches the farthest corner, with rays at most 2 copy
+// texels apart there: all of it for a light in a corner, about a quarter for one at the centre.
+TEST(PostReference, GodRaysUseThePolarImageOutToTheFarthestCorner) {
+  const glm::uvec2 quarter(320, 180);
+  const glm::uvec2 all = godRayPolarSize(quarter);
+  EXPECT_EQ(godRayPolarExtent(quarter, {0.0f, 0.0f}), all);
+  EXPECT_EQ(godRayPolarExtent(quarter, glm::vec2(quarter)), all);
+  const glm::uvec2 centred = godRayPolarExtent(quarter, 0.5f * glm::vec2(quarter));
+  EXPECT_EQ(centred.y, std::uint32_t(std::ceil(0.5 * std::hypot(320.0, 180.0))) + 1);
+  EXPECT_GE(double(centred.x), std::numbers::pi * centred.y);
+  EXPECT_EQ(centred.x % 8, 0u);
+  EXPECT_LT(centred.x * centred.y, all.x * all.y / 3);
+}
+
 // The radial blur moves light outwards along each ray without adding any: a polar image with one
 // bright row (at the light, beside it, or further out) keeps each column's sum (short of the
 // image's end), and a row at the light lights the rows k·step beyond it with w[k] exactly.
