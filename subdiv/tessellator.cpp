@@ -645,7 +645,7 @@ Result<FrameUpdate> AdaptiveTessellator::update(const ScreenView& view, Tessella
     // The preparing thread warms its storage while this one tessellates; both are done before
     // the call returns, so no later frame shares a core with the warming.
     preparation_->warm(*impl_, view);
-    tessellate(view, mesh, threads);
+    impl_->tessellate(view, mesh, threads);  // not tessellate(), which would wait for the warming first
     preparation_->finish();
     return FrameUpdate::kTessellated;
   }
