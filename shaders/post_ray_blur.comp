@@ -1,9 +1,10 @@
 #version 450
 // God rays, step 3 (render/passes/post_chain.hpp): the blur along each ray of the polar image (a
 // vertical blur: one column per angle), towards the light: out(j) = Σ_{k: j − k·step ≥ 0} w[k] ·
-// in(j − k·step) with w[k] ∝ decay^k, tapered (godRayWeights), so light only moves outwards and fades; taps that would
-// reach past the light add nothing, so each ray keeps the light it had (radialBlur in
-// render/passes/post_reference.hpp). Taps and step are specialisation constants: a fixed loop.
+// in(j − k·step) with w[k] ∝ decay^k, tapered (godRayWeights), so light only moves outwards and
+// fades; taps that would reach past the light add nothing, so each ray keeps the light it had
+// (radialBlur in render/passes/post_reference.hpp). Taps and step are specialisation constants:
+// a fixed loop.
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

@@ -76,6 +76,7 @@ void LightDiscPass::draw(const vk::raii::CommandBuffer& commands, const Camera& 
   const float aspect = float(extent.width) / float(extent.height);
   // Directions only: the view without its translation.
   const glm::mat4 ndcFromDirection = camera.projection(aspect) * glm::mat4(glm::mat3(camera.view()));
+  const glm::mat4 ndcToDirection = glm::inverse(ndcFromDirection);
   bool bound = false;
   for (const DirectionalLight& light : lights) {
     if (!(light.discRadius > 0.0f)) continue;
@@ -88,7 +89,7 @@ void LightDiscPass::draw(const vk::raii::CommandBuffer& commands, const Camera& 
       bound = true;
     }
     const LightDiscConstants constants{
-        .ndcToDirection = glm::inverse(ndcFromDirection),
+        .ndcToDirection = ndcToDirection,
         .bounds = *bounds,
         .towardLight = glm::vec4(towardLight, light.discRadius),
         .radiance = glm::vec4(light.color * light.discRadiance, 0.0f)};

@@ -3,11 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 namespace mane::render {
 namespace {
 
 std::uint32_t ceilDivide(std::uint32_t value, std::uint32_t divisor) {
   return (value + divisor - 1) / divisor;
+}
+
+// The polar image out to `reach` copy texels from the light: a radius per texel, and ⌈πR⌉ angles
+// rounded up to a multiple of 8, so neighbouring rays are at most 2 texels apart at the far end.
+glm::uvec2 polarSizeReaching(double reach) {
+  const auto radii = std::uint32_t(std::ceil(reach)) + 1;
+  const auto angles = std::uint32_t(std::ceil(3.141592653589793 * radii));
+  return {ceilDivide(angles, 8) * 8, radii};
 }
 
 HdrImage blankImage(glm::uvec2 size) {
@@ -143,20 +153,15 @@ glm::dvec3 reinhard(glm::dvec3 rgb, double gain) {
 }
 
 glm::uvec2 godRayPolarSize(glm::uvec2 quarter) {
-  const auto radii = std::uint32_t(std::ceil(glm::length(glm::dvec2(quarter)))) + 1;
-  const auto angles = std::uint32_t(std::ceil(3.141592653589793 * radii));
-  return {ceilDivide(angles, 8) * 8, radii};
+  return polarSizeReaching(glm::length(glm::dvec2(quarter)));
 }
 
 glm::uvec2 godRayPolarExtent(glm::uvec2 quarter, glm::vec2 centre) {
-  const glm::uvec2 most = godRayPolarSize(quarter);
   double farthest = 0.0;
   for (const glm::dvec2 corner : {glm::dvec2(0.0), glm::dvec2(quarter.x, 0.0), glm::dvec2(0.0, quarter.y),
                                   glm::dvec2(quarter)})
     farthest = std::max(farthest, glm::length(corner - glm::dvec2(centre)));
-  const auto radii = std::min(most.y, std::uint32_t(std::ceil(farthest)) + 1);
-  const auto angles = std::uint32_t(std::ceil(3.141592653589793 * radii));
-  return {std::min(most.x, ceilDivide(angles, 8) * 8), radii};
+  return glm::min(polarSizeReaching(farthest), godRayPolarSize(quarter));
 }
 
 HdrImage godRayBright(const HdrImage& quarter, float threshold) {

@@ -404,6 +404,36 @@ TEST_F(PostChainTest, RadialBlurOfABrightTexelSpreadsOnlyAlongItsRayAwayFromTheL
   std::printf("single texel: reach %.1f texels, GPU vs CPU worst %.4f of peak %.4f\n", gpuReach, worst, peak);
 }
 
+// A bright block on the light itself (a visible sun): every ray starts in it, and taps that would
+// reach back past the light must add nothing on the GPU as in the CPU reference (whose blur keeps
+// each ray's light: RadialBlurKeepsTheLightOfEachRay). Within 2 % of the peak.
+TEST_F(PostChainTest, RadialBlurOfABrightBlockOnTheLightMatchesTheCpu) {
+  HdrImage frame = blank(256, 192);
+  for (std::uint32_t y = 88; y < 104; ++y)
+    for (std::uint32_t x = 120; x < 136; ++x) frame.texels[std::size_t(y) * frame.width + x] = glm::vec4(50, 50, 50, 1);
+  const Image uploaded = uploadHdr(device(), frame);
+  PostChain chain(device(), uploaded);
+  const glm::vec2 lightUv(0.5f, 0.5f);
+  const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 1.0f, .godRayDecay = 0.96f};
+  run(chain, settings, 1.0f);
+  device().submitAndWait(
+      [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, 1.0f, lightUv); });
+  ASSERT_TRUE(chain.godRaysRecorded());
+  auto rays = chain.readGodRays();
+  auto quarter = chain.readDownsampled();
+  ASSERT_TRUE(rays.has_value() && quarter.has_value());
+  const HdrImage cpu =
+      godRaysReference(*quarter, chain.godRayCentre(lightUv), settings.godRayThreshold, settings.godRayDecay);
+  float peak = 0.0f, worst = 0.0f;
+  for (std::size_t i = 0; i < cpu.texels.size(); ++i) {
+    peak = std::max(peak, cpu.texels[i].r);
+    worst = std::max(worst, std::abs(cpu.texels[i].r - rays->texels[i].r));
+  }
+  EXPECT_GT(peak, 1.0f);
+  EXPECT_LT(worst, 0.02f * peak);
+  std::printf("block on the light: GPU vs CPU worst %.4f of peak %.4f\n", worst, peak);
+}
+
 // ---------------------------------------------------------------------------------------------
 // End to end through the Renderer
 
