@@ -140,6 +140,38 @@ public:
     device().submitAndWait(
         [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, exposure); });
   }
+
+  // God rays around `lightUv` on `frame` (threshold 1, decay 0.96): the GPU's, and the CPU
+  // reference's from the same downsampled copy; `centre` is the light in copy texels.
+  struct GodRays {
+    HdrImage gpu, cpu;
+    glm::vec2 centre{0.0f};
+  };
+  GodRays godRaysOf(const HdrImage& frame, glm::vec2 lightUv) {
+    const Image uploaded = uploadHdr(device(), frame);
+    PostChain chain(device(), uploaded);
+    const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 1.0f, .godRayDecay = 0.96f};
+    run(chain, settings, 1.0f);
+    device().submitAndWait(
+        [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, 1.0f, lightUv); });
+    EXPECT_TRUE(chain.godRaysRecorded());
+    auto rays = chain.readGodRays();
+    auto quarter = chain.readDownsampled();
+    EXPECT_TRUE(rays.has_value() && quarter.has_value());
+    if (!rays || !quarter) return {};
+    const glm::vec2 centre = chain.godRayCentre(lightUv);
+    return {*rays, godRaysReference(*quarter, centre, settings.godRayThreshold, settings.godRayDecay), centre};
+  }
+
+  // The reference's brightest red and the largest red difference from it.
+  static std::pair<float, float> peakAndWorst(const GodRays& rays) {
+    float peak = 0.0f, worst = 0.0f;
+    for (std::size_t i = 0; i < rays.cpu.texels.size(); ++i) {
+      peak = std::max(peak, rays.cpu.texels[i].r);
+      worst = std::max(worst, std::abs(rays.cpu.texels[i].r - rays.gpu.texels[i].r));
+    }
+    return {peak, worst};
+  }
 };
 
 // Half-float stores may round towards zero (Vulkan allows it; lavapipe does): up to 2⁻¹⁰ relative
@@ -375,31 +407,16 @@ TEST_F(PostChainTest, RadialBlurOfABrightTexelSpreadsOnlyAlongItsRayAwayFromTheL
   for (std::uint32_t dy = 0; dy < 4; ++dy)
     for (std::uint32_t dx = 0; dx < 4; ++dx)
       frame.texels[std::size_t(4 * source.y + dy) * frame.width + 4 * source.x + dx] = glm::vec4(50, 50, 50, 1);
-  const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
-  const glm::vec2 lightUv(16.0f / 64.0f, 20.0f / 48.0f);
-  const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 1.0f, .godRayDecay = 0.96f};
-  run(chain, settings, 1.0f);
-  device().submitAndWait(
-      [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, 1.0f, lightUv); });
-  ASSERT_TRUE(chain.godRaysRecorded());
-  auto rays = chain.readGodRays();
-  auto quarter = chain.readDownsampled();
-  ASSERT_TRUE(rays.has_value() && quarter.has_value());
-  const glm::vec2 centre = chain.godRayCentre(lightUv);
+  const GodRays rays = godRaysOf(frame, glm::vec2(16.0f / 64.0f, 20.0f / 48.0f));
+  ASSERT_FALSE(rays.gpu.texels.empty());
   const glm::vec2 sourceCentre = glm::vec2(source) + 0.5f;
-  const HdrImage cpu = godRaysReference(*quarter, centre, settings.godRayThreshold, settings.godRayDecay);
-  const float gpuReach = checkOnRay(*rays, centre, sourceCentre);
-  const float cpuReach = checkOnRay(cpu, centre, sourceCentre);
+  const float gpuReach = checkOnRay(rays.gpu, rays.centre, sourceCentre);
+  const float cpuReach = checkOnRay(rays.cpu, rays.centre, sourceCentre);
   // Taps 2 polar texels apart, 32 of them: the shaft reaches ≈ 62 texels, cut by the frame's edge
   // (here ≈ 30 texels along the ray).
   EXPECT_GT(gpuReach, 20.0f);
   EXPECT_NEAR(gpuReach, cpuReach, 1.5f);
-  float peak = 0.0f, worst = 0.0f;
-  for (std::size_t i = 0; i < cpu.texels.size(); ++i) {
-    peak = std::max(peak, cpu.texels[i].r);
-    worst = std::max(worst, std::abs(cpu.texels[i].r - rays->texels[i].r));
-  }
+  const auto [peak, worst] = peakAndWorst(rays);
   EXPECT_LT(worst, 0.02f * peak);
   std::printf("single texel: reach %.1f texels, GPU vs CPU worst %.4f of peak %.4f\n", gpuReach, worst, peak);
 }
@@ -411,24 +428,9 @@ TEST_F(PostChainTest, RadialBlurOfABrightBlockOnTheLightMatchesTheCpu) {
   HdrImage frame = blank(256, 192);
   for (std::uint32_t y = 88; y < 104; ++y)
     for (std::uint32_t x = 120; x < 136; ++x) frame.texels[std::size_t(y) * frame.width + x] = glm::vec4(50, 50, 50, 1);
-  const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
-  const glm::vec2 lightUv(0.5f, 0.5f);
-  const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 1.0f, .godRayDecay = 0.96f};
-  run(chain, settings, 1.0f);
-  device().submitAndWait(
-      [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, 1.0f, lightUv); });
-  ASSERT_TRUE(chain.godRaysRecorded());
-  auto rays = chain.readGodRays();
-  auto quarter = chain.readDownsampled();
-  ASSERT_TRUE(rays.has_value() && quarter.has_value());
-  const HdrImage cpu =
-      godRaysReference(*quarter, chain.godRayCentre(lightUv), settings.godRayThreshold, settings.godRayDecay);
-  float peak = 0.0f, worst = 0.0f;
-  for (std::size_t i = 0; i < cpu.texels.size(); ++i) {
-    peak = std::max(peak, cpu.texels[i].r);
-    worst = std::max(worst, std::abs(cpu.texels[i].r - rays->texels[i].r));
-  }
+  const GodRays rays = godRaysOf(frame, glm::vec2(0.5f, 0.5f));
+  ASSERT_FALSE(rays.gpu.texels.empty());
+  const auto [peak, worst] = peakAndWorst(rays);
   EXPECT_GT(peak, 1.0f);
   EXPECT_LT(worst, 0.02f * peak);
   std::printf("block on the light: GPU vs CPU worst %.4f of peak %.4f\n", worst, peak);
