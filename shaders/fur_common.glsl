@@ -58,13 +58,15 @@ vec3 furDirection(vec3 n, vec3 lean, float s) {
 // Where a vertex samples the photo (FurPass, "Lay"): its uv, or with a fur-direction field the
 // point's coordinates in the frame (n × f, f) of the field f projected on the surface.
 // `position` and `normal` in model space.
+// Both are computed and one selected, without a branch on the uniform: lavapipe (Mesa 22.3)
+// compiles a vertex shader again, every frame, for a branch that only uniforms decide.
 vec2 photoCoordinates(vec2 uv, vec3 position, vec3 normal) {
-  if (fur.layField.w <= 0.0) return uv;
   vec3 n = normalize(normal);
   vec3 f = fur.layField.xyz - dot(fur.layField.xyz, n) * n;
   if (dot(f, f) < 1e-6) f = abs(n.x) < 0.9 ? cross(n, vec3(1, 0, 0)) : cross(n, vec3(0, 1, 0));
   f = normalize(f);
-  return vec2(dot(position, cross(n, f)), dot(position, f)) * (fur.layField.w * fur.lay.z);
+  vec2 alongField = vec2(dot(position, cross(n, f)), dot(position, f)) * (fur.layField.w * fur.lay.z);
+  return fur.layField.w > 0.0 ? alongField : uv;
 }
 
 uint layerCount() {

@@ -10,7 +10,11 @@
 
 const int kHairLightingMaxLights = 4;
 
-layout(set = 0, binding = 0, std140) uniform HairLighting {
+// A storage buffer, not a uniform block: lavapipe (Mesa 22.3) folds uniform-block values that
+// decide a branch or a loop's trip count (the light count, the shadow slots) into the shader,
+// and does it again, with a full LLVM compile, each time the block is bound: every frame. Its
+// layout is std140's (every member is a vec4 or made of them).
+layout(set = 0, binding = 0, std430) readonly buffer HairLighting {
   vec4 eye;                                     // w = 1: eye position (metres); w = 0: unit direction towards the eye
   vec4 ambient;                                 // rgb: ambient radiance × the groom's white-furnace albedo
   vec4 lightDirection[kHairLightingMaxLights];  // xyz: unit vector towards the light
@@ -38,7 +42,7 @@ void main() {
   if (along > 0u) spread += 0.5 * acos(clamp(dot(tangent, tangents[vertex - 1u].xyz), -1.0, 1.0));
   if (along + 1u < lighting.counts.y) spread += 0.5 * acos(clamp(dot(tangent, tangents[vertex + 1u].xyz), -1.0, 1.0));
 
-  vec3 toEye = lighting.eye.w != 0.0 ? normalize(lighting.eye.xyz - position) : lighting.eye.xyz;
+  vec3 toEye = normalize(lighting.eye.xyz - lighting.eye.w * position);
   float shadow = hairShadowTransmittance(lighting.shadows, position);
   vec3 result = lighting.ambient.rgb;
   for (uint i = 0u; i < lighting.counts.x; ++i) {

@@ -10,7 +10,7 @@ layout(set = 0, binding = 0, std140) uniform HairUniforms {
 
 // Unit vector from `position` (world, metres) towards the eye.
 vec3 hairToEye(vec3 position) {
-  return hair.eye.w != 0.0 ? normalize(hair.eye.xyz - position) : hair.eye.xyz;
+  return normalize(hair.eye.xyz - hair.eye.w * position);
 }
 
 // A strand vertex's ribbon (render/passes/hair_pass.hpp): the unit vector it is widened along,

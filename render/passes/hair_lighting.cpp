@@ -68,7 +68,7 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   using Type = vk::DescriptorType;
   const auto compute = vk::ShaderStageFlags(vk::ShaderStageFlagBits::eCompute);
   const std::pair sampler{Type::eCombinedImageSampler, compute};
-  setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, compute},
+  setLayout_ = makeSetLayout(device, {{Type::eStorageBuffer, compute},  // the uniforms: see the shader
                                       {Type::eStorageBuffer, compute},
                                       {Type::eStorageBuffer, compute},
                                       {Type::eStorageBuffer, compute},
@@ -84,18 +84,17 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler});  // shadow first depth, 4 slots
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eUniformBuffer, 1},
-                              {Type::eStorageBuffer, 3},
+                             {{Type::eStorageBuffer, 4},
                               {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
-  uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
+  uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eStorageBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   radiance_ = Buffer(device, vk::DeviceSize(vertexCount) * sizeof(glm::vec4),
                      vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc,
                      vk::MemoryPropertyFlagBits::eDeviceLocal);
   std::memset(uniforms_.mapped().data(), 0, sizeof(LightingUniforms));
-  writeUniformBuffer(device, set_, 0, uniforms_);
+  writeStorageBuffer(device, set_, 0, uniforms_);
   writeStorageBuffer(device, set_, 1, positions);
   writeStorageBuffer(device, set_, 2, tangents);
   writeStorageBuffer(device, set_, 3, radiance_);

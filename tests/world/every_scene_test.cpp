@@ -9,13 +9,15 @@
 // its most common colour. A smoke test, kept fast: no settling before the first frame, grooms
 // drawn with at most kSmokeDenseStrands strands, voxel translucency tables of kSmokeVoxelResolution³
 // cells, the subdivided meshes tessellated for the small frame. (Malformed scene files are
-// tests/scenes/scene_tests.cpp's and the CLI test's.)
+// tests/scenes/scene_tests.cpp's and the CLI test's.) Two more frames of each scene's animation
+// must compile no shader on lavapipe.
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,7 @@
 #include "render/renderer.hpp"
 #include "scenes/renderer_upload.hpp"
 #include "scenes/world.hpp"
+#include "tests/support/jit_compile_counter.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::scenes {
@@ -68,9 +71,15 @@ double fractionAwayFromMostCommonColour(const std::vector<std::uint8_t>& rgba, i
   return double(away) / double(rgba.size() / 4);
 }
 
-TEST_P(EveryScene, LoadsAndRendersOneSmallFrameThatIsNotBlank) {
-  auto scene = loadScene(GetParam());
-  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+// The scene file as a World at the smoke test's size, and a renderer holding its statics.
+struct SmokeScene {
+  World world;
+  std::unique_ptr<render::Renderer> renderer;
+};
+
+Result<SmokeScene> loadSmokeScene(const std::filesystem::path& file, render::Device& device) {
+  auto scene = loadScene(file);
+  if (!scene) return std::unexpected(scene.error());
   scene->simulation.settleSeconds = 0.0f;
   scene->output.width = int(kWidth);
   scene->output.height = int(kHeight);
@@ -80,31 +89,60 @@ TEST_P(EveryScene, LoadsAndRendersOneSmallFrameThatIsNotBlank) {
   for (Material& material : scene->materials)
     material.translucency.voxelResolution = std::min(material.translucency.voxelResolution, kSmokeVoxelResolution);
   auto resolver = AssetResolver::createDefault();
-  ASSERT_TRUE(resolver.has_value()) << resolver.error().message;
+  if (!resolver) return std::unexpected(resolver.error());
   auto world = World::create(std::move(*scene), *resolver);
-  ASSERT_TRUE(world.has_value()) << world.error().message;
+  if (!world) return std::unexpected(world.error());
   for (const std::string& note : world->notes()) std::cout << "note: " << note << '\n';
+  auto renderer = render::Renderer::create(device, {.extent = {kWidth, kHeight}, .msaaSamples = 1});
+  if (!renderer) return std::unexpected(renderer.error());
+  if (auto set = (*renderer)->setScene(world->staticScene()); !set) return std::unexpected(set.error());
+  return SmokeScene{std::move(*world), std::move(*renderer)};
+}
 
-  auto renderer = render::Renderer::create(device(), {.extent = {kWidth, kHeight}, .msaaSamples = 1});
-  ASSERT_TRUE(renderer.has_value()) << renderer.error().message;
-  const render::StaticScene statics = world->staticScene();
-  ASSERT_TRUE((*renderer)->setScene(statics).has_value());
-  auto uploaded = uploadFrameState(*world, **renderer);
-  ASSERT_TRUE(uploaded.has_value()) << uploaded.error().message;
-  const render::FrameInput frame = world->frameInput();
-  ASSERT_FALSE(frame.instances.empty() && statics.grooms.empty()) << "the scene draws nothing";
-  auto timings = (*renderer)->render(frame);
+// The world's current state handed to the renderer, and a frame of it.
+Result<std::vector<render::PassTiming>> renderCurrentFrame(SmokeScene& smoke) {
+  if (auto uploaded = uploadFrameState(smoke.world, *smoke.renderer); !uploaded)
+    return std::unexpected(uploaded.error());
+  return smoke.renderer->render(smoke.world.frameInput());
+}
+
+TEST_P(EveryScene, LoadsAndRendersOneSmallFrameThatIsNotBlank) {
+  auto smoke = loadSmokeScene(GetParam(), device());
+  ASSERT_TRUE(smoke.has_value()) << smoke.error().message;
+  const render::StaticScene statics = smoke->world.staticScene();
+  ASSERT_FALSE(smoke->world.frameInput().instances.empty() && statics.grooms.empty()) << "the scene draws nothing";
+  auto timings = renderCurrentFrame(*smoke);
   ASSERT_TRUE(timings.has_value()) << timings.error().message;
   const auto ran = [&](const std::string& pass) {
     return std::any_of(timings->begin(), timings->end(), [&](const auto& t) { return t.pass == pass; });
   };
   EXPECT_TRUE(ran("surfaces"));
-  EXPECT_EQ(ran("hair"), !world->hairGuides().empty()) << "hair is drawn exactly when the scene has grooms";
-  auto pixels = (*renderer)->readOutput();
+  EXPECT_EQ(ran("hair"), !smoke->world.hairGuides().empty()) << "hair is drawn exactly when the scene has grooms";
+  auto pixels = smoke->renderer->readOutput();
   ASSERT_TRUE(pixels.has_value()) << pixels.error().message;
   ASSERT_EQ(pixels->size(), std::size_t(kWidth) * kHeight * 4);
   // 12: well above the rounding of a uniform image's 8-bit values, far below any drawn object's contrast.
   EXPECT_GT(fractionAwayFromMostCommonColour(*pixels, 12), kMinDrawnFraction) << "the frame looks blank";
+}
+
+// After the first frame, which creates every pipeline, the animation's frames compile no shader
+// on lavapipe (tests/support/jit_compile_counter.hpp: a shader that branches on uniforms alone
+// is compiled again each time it is bound).
+TEST_P(EveryScene, LaterFramesCompileNoShaderOnLavapipe) {
+  if (device().info().name.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not lavapipe";
+  auto smoke = loadSmokeScene(GetParam(), device());
+  ASSERT_TRUE(smoke.has_value()) << smoke.error().message;
+  const std::size_t beforeFirst = mane::testing::jitCompiles();
+  ASSERT_TRUE(renderCurrentFrame(*smoke).has_value());
+  ASSERT_GT(mane::testing::jitCompiles(), beforeFirst) << "the counter saw the first frame compile nothing";
+  for (int frame = 1; frame <= 2; ++frame) {
+    const std::size_t before = mane::testing::jitCompiles();
+    ASSERT_TRUE(smoke->world.advance(1.0 / 30.0, 1).has_value());
+    auto timings = renderCurrentFrame(*smoke);
+    ASSERT_TRUE(timings.has_value()) << timings.error().message;
+    EXPECT_EQ(mane::testing::jitCompiles() - before, 0u)
+        << "shaders compiled again for frame " << frame << ": does one branch on uniform values alone?";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EveryScene, ::testing::ValuesIn(sceneFiles()), [](const auto& info) {
