@@ -9,14 +9,14 @@ RenderTarget::RenderTarget(const Device& device, const RenderTargetSettings& set
   if (multisampled())
     msaaColor_ = Image(device, {.extent = settings.extent,
                                 .format = kHdrFormat,
-                                .usage = Usage::eColorAttachment | Usage::eTransientAttachment,
+                                .usage = Usage::eColorAttachment,  // kept between the scene's two halves
                                 .samples = settings.samples});
   hdr_ = Image(device, {.extent = settings.extent,
                         .format = kHdrFormat,
                         .usage = Usage::eColorAttachment | Usage::eSampled | Usage::eTransferSrc});
   depth_ = Image(device, {.extent = settings.extent,
                           .format = kDepthFormat,
-                          .usage = Usage::eDepthStencilAttachment,
+                          .usage = Usage::eDepthStencilAttachment | Usage::eSampled,  // HairOcclusion reads it
                           .samples = settings.samples,
                           .aspect = vk::ImageAspectFlagBits::eDepth});
   output_ = Image(
@@ -25,34 +25,59 @@ RenderTarget::RenderTarget(const Device& device, const RenderTargetSettings& set
 }
 
 void RenderTarget::beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const {
+  begin(commands, clearColor, ScenePart::kWhole);
+}
+
+void RenderTarget::beginOpaque(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const {
+  begin(commands, clearColor, ScenePart::kOpaque);
+}
+
+void RenderTarget::resumeScene(const vk::raii::CommandBuffer& commands) const {
+  begin(commands, glm::vec4(0.0f), ScenePart::kRest);
+}
+
+void RenderTarget::begin(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor, ScenePart part) const {
   using Stage = vk::PipelineStageFlagBits2;
   using Access = vk::AccessFlagBits2;
   using Layout = vk::ImageLayout;
-  transition(commands, sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-             Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-  if (multisampled())
-    transition(commands, hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands, Access::eNone,
-               Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-  transition(commands, depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands, Access::eNone,
-             Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
-             Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
+  const bool starts = part != ScenePart::kRest;
+  const bool ends = part != ScenePart::kOpaque;
+  if (starts) {
+    transition(commands, sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
+               Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
+    if (multisampled())
+      transition(commands, hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
+                 Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
+    transition(commands, depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
+               Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
+               Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
+  } else {
+    // The first half's colour writes, before this half blends over them.
+    const vk::MemoryBarrier2 drawn{.srcStageMask = Stage::eColorAttachmentOutput,
+                                   .srcAccessMask = Access::eColorAttachmentWrite,
+                                   .dstStageMask = Stage::eColorAttachmentOutput,
+                                   .dstAccessMask = Access::eColorAttachmentRead | Access::eColorAttachmentWrite};
+    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &drawn});
+  }
+  const vk::AttachmentLoadOp load = starts ? vk::AttachmentLoadOp::eClear : vk::AttachmentLoadOp::eLoad;
   vk::RenderingAttachmentInfo color{
       .imageView = *sceneColor().view(),
       .imageLayout = Layout::eColorAttachmentOptimal,
-      .loadOp = vk::AttachmentLoadOp::eClear,
+      .loadOp = load,
       .storeOp = vk::AttachmentStoreOp::eStore,
       .clearValue = {.color = {.float32 = std::array{clearColor.r, clearColor.g, clearColor.b, clearColor.a}}}};
-  if (multisampled()) {
+  if (multisampled() && ends) {
     color.resolveMode = vk::ResolveModeFlagBits::eAverage;
     color.resolveImageView = *hdr().view();
     color.resolveImageLayout = Layout::eColorAttachmentOptimal;
     color.storeOp = vk::AttachmentStoreOp::eDontCare;
   }
-  const vk::RenderingAttachmentInfo depthAttachment{.imageView = *depth().view(),
-                                                    .imageLayout = Layout::eDepthAttachmentOptimal,
-                                                    .loadOp = vk::AttachmentLoadOp::eClear,
-                                                    .storeOp = vk::AttachmentStoreOp::eDontCare,
-                                                    .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
+  const vk::RenderingAttachmentInfo depthAttachment{
+      .imageView = *depth().view(),
+      .imageLayout = Layout::eDepthAttachmentOptimal,
+      .loadOp = load,
+      .storeOp = ends ? vk::AttachmentStoreOp::eDontCare : vk::AttachmentStoreOp::eStore,
+      .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = extent()},
                                             .layerCount = 1,
                                             .colorAttachmentCount = 1,

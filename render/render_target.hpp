@@ -41,7 +41,17 @@ public:
   /// COLOR_ATTACHMENT_OPTIMAL.
   void beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const;
 
+  /// The scene pass in two halves, with work between them that reads the depth (HairOcclusion):
+  /// beginOpaque starts it as beginScene does but keeps the colour and depth at its end, unresolved;
+  /// resumeScene continues it on them, then ends as beginScene's pass does. End each half with
+  /// commands.endRendering().
+  void beginOpaque(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const;
+  void resumeScene(const vk::raii::CommandBuffer& commands) const;
+
 private:
+  enum class ScenePart { kWhole, kOpaque, kRest };
+  void begin(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor, ScenePart part) const;
+
   RenderTargetSettings settings_;
   Image msaaColor_;
   Image hdr_;

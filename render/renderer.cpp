@@ -17,6 +17,8 @@ vk::SampleCountFlagBits sampleCount(std::uint32_t samples) {
 Renderer::Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows)
     : device_(&device),
       target_(device, {.extent = settings.extent, .samples = sampleCount(settings.msaaSamples)}),
+      occlusion_(device, target_),
+      hideOccludedHair_(settings.hideOccludedHair),
       shadows_(std::move(shadows)),
       surfaces_(device, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
       discs_(device, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
@@ -161,6 +163,8 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
                                            .verticesPerStrand = pass.vertexCount()});
         !set)
       return failed(set.error());
+    if (hideOccludedHair_) (*ribbons)->setOcclusion(occlusion_.tileMaxDepth(), occlusion_.tiles());
+    (*lighting)->setShadeList((*ribbons)->shadeList());
     drawn.lighting = std::move(*lighting);
     drawn.ribbons = std::move(*ribbons);
   }
@@ -251,23 +255,18 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
     timer_.end(commands);
   }
   furs_.setShadowUniforms(shadows_->uniforms());
-  // The groom is drawn only where its shading, view and order all took.
-  std::vector<bool> drawn(hair_.size(), false);
+  // A groom is shaded where its lighting took, and drawn where its view and order took as well.
+  std::vector<bool> shaded(hair_.size(), false), drawn(hair_.size(), false);
   if (hair) {
-    timer_.begin(commands, "hair lighting");
     const glm::mat4 viewProjection = frame.camera.projection(target_.aspect()) * frame.camera.view();
     const glm::vec4 eye = hairEye(viewProjection);
     for (std::size_t g = 0; g < hair_.size(); ++g) {
       const HairGroom& groom = hair_[g];
-      if (!groom.hasGuides ||
-          !groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()))
-        continue;
-      groom.lighting->record(commands);
-      drawn[g] = groom.ribbons->update(frame, target_.extent(), groom.settings) &&
+      shaded[g] = groom.hasGuides &&
+                  groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()).has_value();
+      drawn[g] = shaded[g] && groom.ribbons->update(frame, target_.extent(), groom.settings) &&
                  groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye));
-      if (drawn[g]) groom.ribbons->record(commands);
     }
-    timer_.end(commands);
   }
   if (!textureSpaceSkins_.empty()) {
     // Skin lit in UV space (light 0 through the hair shadows) and blurred, before the surfaces
@@ -291,15 +290,29 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   surfaces_.update(frame, target_.aspect());
 
   timer_.begin(commands, "surfaces");
-  // Main pass: previous contents are discarded and cleared.
-  target_.beginScene(commands, glm::vec4(frame.background, 1.0f));
+  // Main pass: previous contents are discarded and cleared. With hair, it stops after the
+  // surfaces and furs, whose depth then hides the strands behind them (HairOcclusion), and goes on
+  // with the hair chosen, shaded and drawn over them, depth-tested against them
+  // (render/passes/hair_pass.hpp).
+  if (hair)
+    target_.beginOpaque(commands, glm::vec4(frame.background, 1.0f));
+  else
+    target_.beginScene(commands, glm::vec4(frame.background, 1.0f));
   discs_.draw(commands, frame.camera, frame.lights, target_.extent());
   surfaces_.draw(commands, frame);
   furs_.draw(commands);
-  // Hair over the opaque surfaces, depth-tested against them (render/passes/hair_pass.hpp).
   if (hair) {
+    commands.endRendering();
+    timer_.end(commands);
+    timer_.begin(commands, "hair lighting");
+    if (hideOccludedHair_) occlusion_.record(commands);
+    for (std::size_t g = 0; g < hair_.size(); ++g) {
+      if (drawn[g]) hair_[g].ribbons->record(commands);  // first: it marks the vertices not to shade
+      if (shaded[g]) hair_[g].lighting->record(commands);
+    }
     timer_.end(commands);
     timer_.begin(commands, "hair");
+    target_.resumeScene(commands);
     for (std::size_t g = 0; g < hair_.size(); ++g)
       if (drawn[g]) hair_[g].ribbons->draw(commands);
   }
@@ -317,6 +330,12 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   timer_.end(commands);
   transition(commands, target_.output(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
              Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
+}
+
+std::vector<HairPrimitiveChoice> Renderer::hairChoices() const {
+  std::vector<HairPrimitiveChoice> choices;
+  for (const HairGroom& groom : hair_) choices.push_back(groom.ribbons ? groom.ribbons->lastChoice() : HairPrimitiveChoice{});
+  return choices;
 }
 
 void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameInput& frame) {

@@ -16,6 +16,7 @@
 #include "render/gpu_timer.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "render/passes/hair_lighting.hpp"
+#include "render/passes/hair_occlusion.hpp"
 #include "render/passes/hair_pass.hpp"
 #include "render/passes/hair_shadows.hpp"
 #include "render/passes/light_disc_pass.hpp"
@@ -32,6 +33,10 @@ struct RendererSettings {
   vk::Extent2D extent{1280, 720};
   /// 1 or 4 (lavapipe offers no other counts).
   std::uint32_t msaaSamples = 1;
+  /// Whether hair segments that lie wholly behind the opaque scene are left out of the hair's
+  /// shading and drawing (HairPass, "Hidden strands"). They would be depth-tested away anyway:
+  /// the image is the same either way.
+  bool hideOccludedHair = true;
 };
 
 class Renderer {
@@ -78,6 +83,11 @@ public:
   std::vector<PassTiming> lastTimings() const { return timer_.results(); }
 
   const RenderTarget& target() const { return target_; }
+
+  /// Per groom (StaticScene::grooms order), what the last rendered frame chose to draw it with
+  /// and how many of its vertices it hid (HairPass::lastChoice); a groom not drawn yet has the
+  /// defaults. After render() has returned.
+  std::vector<HairPrimitiveChoice> hairChoices() const;
   /// The HDR post chain: its glow, its auto gain state (render/passes/post_chain.hpp).
   const PostChain& post() const { return post_; }
   const Device& device() const { return *device_; }
@@ -96,6 +106,8 @@ private:
 
   const Device* device_;
   RenderTarget target_;
+  HairOcclusion occlusion_;
+  bool hideOccludedHair_;
   std::unique_ptr<HairShadows> shadows_;
   SurfacePass surfaces_;
   LightDiscPass discs_;

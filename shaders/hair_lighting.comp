@@ -28,12 +28,19 @@ layout(std430, set = 0, binding = 2) readonly buffer Tangents { vec4 tangents[];
 layout(std430, set = 0, binding = 3) writeonly buffer Radiance { vec4 radiance[]; };   // rgb; a: shadow transmittance
 layout(set = 0, binding = 4) uniform sampler2D longitudinalLut;
 layout(set = 0, binding = 5) uniform sampler2DArray azimuthalLut;
+// The vertices to shade (HairPass: those with a segment that can be seen); the others keep
+// whatever radiance they had, which no drawn segment uses. `dispatch` is the indirect dispatch:
+// xyz its workgroups, w the vertices listed.
+layout(std430, set = 0, binding = 14) readonly buffer ShadeList {
+  uvec4 dispatch;
+  uint shaded[];
+} shadeList;
 
 layout(local_size_x = 64) in;
 
 void main() {
-  uint vertex = gl_GlobalInvocationID.x;
-  if (vertex >= lighting.counts.z) return;
+  if (gl_GlobalInvocationID.x >= shadeList.dispatch.w) return;
+  uint vertex = shadeList.shaded[gl_GlobalInvocationID.x];
   vec3 position = positions[vertex].xyz;
   vec3 tangent = tangents[vertex].xyz;
   // The angle the tangent turns over this vertex's share of the strand, half a segment each way.

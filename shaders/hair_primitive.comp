@@ -1,14 +1,20 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Chooses the hair pass's primitive for the frame (render/passes/hair_pass.hpp, "Lines").
-// kWriteDraws false, one invocation per dense strand: sums the strand's widths on screen at its
-// vertices and the part of them lines of the minimum width would not cover, and counts the
-// vertices wider than that. kWriteDraws true, one invocation: enables the line draw when lines
-// may be drawn and lose at most kLineCoverageLoss of the width, the ribbon draw otherwise, and
-// zeroes the sums for the next frame.
+// The hair pass's per-frame choices (render/passes/hair_pass.hpp): the primitive ("Lines") and
+// the segments left out because the opaque scene hides them ("Hidden strands"), in three steps.
+// kStep 0, one invocation per dense strand: sums the strand's widths on screen at its vertices and
+//   the part of them lines of the minimum width would not cover, counts the vertices wider than
+//   that; marks its segments visible or hidden, and its vertices hidden where both their segments are.
+// kStep 1, one workgroup: enables the line draw when lines may be drawn and lose at most
+//   kLineCoverageLoss of the width, the ribbon draw otherwise, and zeroes the sums for the next
+//   frame; adds up the visible segments in drawing order (each strand's first index) and sets
+//   both draws' index counts.
+// kStep 2, one invocation per strand in drawing order: writes the chosen draw's indices of its
+//   visible segments. Integer sums in a fixed order throughout: the frame does not depend on the
+//   order the invocations run in.
 #include "hair_uniforms.glsl"
 
-layout(constant_id = 0) const bool kWriteDraws = false;
+layout(constant_id = 0) const uint kStep = 0u;
 
 // The share of the strands' summed width that lines may leave uncovered (HairPass's file comment).
 const float kLineCoverageLoss = 0.01;
@@ -42,6 +48,7 @@ struct Sums {
   uint widthHigh;
   uint lostLow;
   uint lostHigh;
+  uint hiddenVertices;
 };
 
 // Mirrors PrimitiveDraws in render/passes/hair_pass.cpp.
@@ -52,7 +59,105 @@ layout(set = 0, binding = 5, std430) buffer Primitives {
   Sums chosen;  // what the last choice was made from
 } primitives;
 
+// The farthest depth of the opaque scene in each tile of hair.occlusion.z² pixels, row-major.
+layout(set = 0, binding = 6, std430) readonly buffer OpaqueDepth {
+  float tileMaxDepth[];
+};
+// Out: 1 where the vertex and both its segments are hidden, else 0.
+layout(set = 0, binding = 7, std430) buffer Hidden {
+  uint hidden[];
+};
+// Per strand: its visible segments (low 16 bits) and vertices to shade, those with a visible
+// segment (high 16 bits; Nd ≤ 4096), and a bit per segment (set: visible), segmentWords() words.
+layout(set = 0, binding = 8, std430) buffer VisibleSegments {
+  uint visibleCounts[];
+};
+layout(set = 0, binding = 9, std430) buffer SegmentBits {
+  uint visibleBits[];
+};
+// Per strand in drawing order: the visible segments (x) and the vertices to shade (y) of the
+// strands drawn before it.
+layout(set = 0, binding = 10, std430) buffer FirstSegments {
+  uvec2 firstSegments[];
+};
+// The draws' index buffer: the ribbons' indices from 0, the lines' from hair.counts.w.
+layout(set = 0, binding = 11, std430) writeonly buffer Indices {
+  uint indices[];
+};
+// The vertices HairLightingPass shades, after its indirect dispatch (xyz) and their count (w).
+layout(set = 0, binding = 12, std430) buffer ShadeList {
+  uvec4 dispatch;
+  uint shaded[];
+} shadeList;
+layout(set = 0, binding = 4, std430) readonly buffer DrawOrder {
+  uint order[];  // strand indices in the order they are drawn
+};
+
+shared uvec2 partialSums[64];
+
+// A strand's visible segments (x) and vertices to shade (y) from their packed word.
+uvec2 unpackCounts(uint packed) {
+  return uvec2(packed & 0xffffu, packed >> 16u);
+}
+
+uint segmentWords() {
+  return (hair.counts.y + 30u) / 32u;  // Nd − 1 bits
+}
+
 layout(local_size_x = 64) in;
+
+// Pixels added around a segment's box: half the widest line (1 pixel) and a pixel for the
+// rasterizer's rounding. Depths are compared with a margin for the float rounding of the
+// interpolated depth.
+const float kBoxMargin = 1.5;
+const float kDepthMargin = 1e-6;
+// A box over more tiles than this is taken as visible rather than searched.
+const int kMostTiles = 64;
+
+// Where a ribbon point lands: its centre and its two drawn edges.
+struct ScreenPoint {
+  vec2 low, high;  // pixel box of the three
+  float nearest;   // smallest depth z/w of the three
+  bool inFront;    // all three in front of the eye (w > 0)
+};
+
+ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {
+  float drawn = max(ribbon.halfWidth, ribbon.minimumHalfWidth);
+  ScreenPoint point;
+  point.low = vec2(1e30);
+  point.high = vec2(-1e30);
+  point.nearest = 1e30;
+  point.inFront = true;
+  for (int side = -1; side <= 1; ++side) {
+    vec4 clip = hair.viewProjection * vec4(centre + ribbon.side * (float(side) * drawn), 1.0);
+    point.inFront = point.inFront && clip.w > 0.0;
+    vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * hair.viewport.xy;
+    point.low = min(point.low, pixel);
+    point.high = max(point.high, pixel);
+    point.nearest = min(point.nearest, clip.z / clip.w);
+  }
+  return point;
+}
+
+// Whether every pixel the segment between a and b can touch (ribbon or line) has opaque surface
+// nearer than any fragment of it. Depth is affine along a segment and across a ribbon's triangles
+// on screen, so a triangle's fragments are no nearer than its corners; but a line's samples may
+// lie past its ends (lavapipe draws multisampled lines as non-strict lines), where the depth is
+// extrapolated: by less than the segment's whole depth range for a segment a pixel or longer.
+bool segmentHidden(ScreenPoint a, ScreenPoint b) {
+  if (!a.inFront || !b.inFront) return false;
+  vec2 low = max(min(a.low, b.low) - kBoxMargin, vec2(0.0));
+  vec2 high = min(max(a.high, b.high) + kBoxMargin, hair.viewport.xy - 1.0);
+  if (any(greaterThan(low, high))) return true;  // off the screen: no fragments at all
+  float nearest = min(a.nearest, b.nearest) - abs(a.nearest - b.nearest) - kDepthMargin;
+  ivec2 first = ivec2(low) / int(hair.occlusion.z);
+  ivec2 last = ivec2(high) / int(hair.occlusion.z);
+  if ((last.x - first.x + 1) * (last.y - first.y + 1) > kMostTiles) return false;
+  for (int y = first.y; y <= last.y; ++y)
+    for (int x = first.x; x <= last.x; ++x)
+      if (tileMaxDepth[uint(y) * hair.occlusion.x + uint(x)] >= nearest) return false;
+  return true;
+}
 
 float sum64(uint low, uint high) {
   return float(high) * 4294967296.0 + float(low);
@@ -64,26 +169,118 @@ void add64(inout uvec2 sum, uint value) {
   sum.y += carry;
 }
 
-void main() {
-  if (kWriteDraws) {
-    if (gl_LocalInvocationIndex != 0u) return;  // one invocation reads the sums and zeroes them
+void choose() {
+  if (gl_LocalInvocationIndex == 0u) {
     Sums sums = primitives.sums;
     bool lines = hair.counts.z != 0u && sum64(sums.lostLow, sums.lostHigh) <=
                                             kLineCoverageLoss * sum64(sums.widthLow, sums.widthHigh);
     primitives.ribbons.instanceCount = lines ? 0u : 1u;
     primitives.lines.instanceCount = lines ? 1u : 0u;
     primitives.chosen = sums;
-    primitives.sums = Sums(0u, 0u, 0u, 0u, 0u);
+    primitives.sums = Sums(0u, 0u, 0u, 0u, 0u, 0u);
+  }
+  // Each invocation adds up a run of strands in drawing order; then the runs' sums are added up
+  // in order, and each run writes its strands' first segments.
+  uint strands = hair.counts.x;
+  uint run = (strands + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
+  uint begin = min(gl_LocalInvocationIndex * run, strands), end = min(begin + run, strands);
+  uvec2 sum = uvec2(0u);
+  for (uint k = begin; k < end; ++k) sum += unpackCounts(visibleCounts[order[k]]);
+  partialSums[gl_LocalInvocationIndex] = sum;
+  barrier();
+  uvec2 first = uvec2(0u);
+  for (uint i = 0u; i < gl_LocalInvocationIndex; ++i) first += partialSums[i];
+  for (uint k = begin; k < end; ++k) {
+    firstSegments[k] = first;
+    first += unpackCounts(visibleCounts[order[k]]);
+  }
+  if (gl_LocalInvocationIndex == gl_WorkGroupSize.x - 1u) {
+    primitives.ribbons.indexCount = 6u * first.x;
+    primitives.lines.indexCount = 2u * first.x;
+    shadeList.dispatch = uvec4((first.y + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x, 1u, 1u, first.y);
+  }
+}
+
+// Rows of workgroups past the 65,535 one dimension is sure to allow.
+uint invocation() {
+  return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
+}
+
+void writeIndices() {
+  uint k = invocation();
+  if (k >= hair.counts.x) return;
+  uint strand = order[k];
+  bool lines = primitives.lines.instanceCount != 0u;
+  uint next = firstSegments[k].x;
+  uint words = segmentWords();
+  // Its vertices that a visible segment uses, to be shaded.
+  uint shadedNext = firstSegments[k].y;
+  for (uint vertex = strand * hair.counts.y; vertex < (strand + 1u) * hair.counts.y; ++vertex)
+    if (hidden[vertex] == 0u) shadeList.shaded[shadedNext++] = vertex;
+  for (uint word = 0u; word < words; ++word) {
+    uint bits = visibleBits[strand * words + word];
+    while (bits != 0u) {
+      int bit = findLSB(bits);
+      bits &= bits - 1u;
+      uint i = word * 32u + uint(bit);      // the segment from vertex i to i + 1
+      uint vertex = k * hair.counts.y + i;  // as the vertex shader numbers it: by drawing order
+      if (lines) {
+        indices[hair.counts.w + 2u * next] = vertex;
+        indices[hair.counts.w + 2u * next + 1u] = vertex + 1u;
+      } else {
+        // Two triangles over the ribbon vertices 2·vertex + side (HairPass, strandIndices).
+        uint minus = 2u * vertex;
+        uint base = 6u * next;
+        indices[base] = minus;
+        indices[base + 1u] = minus + 2u;
+        indices[base + 2u] = minus + 3u;
+        indices[base + 3u] = minus;
+        indices[base + 4u] = minus + 3u;
+        indices[base + 5u] = minus + 1u;
+      }
+      ++next;
+    }
+  }
+}
+
+void main() {
+  if (kStep == 1u) {
+    choose();
     return;
   }
-  // Rows of workgroups past the 65,535 one dimension is sure to allow.
-  uint strand = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationIndex;
+  if (kStep == 2u) {
+    writeIndices();
+    return;
+  }
+  uint strand = invocation();
   if (strand >= hair.counts.x) return;
   // One strand per invocation keeps the sums in registers: three atomic adds per strand, not per vertex.
-  uint wide = 0u;
+  uint wide = 0u, hiddenCount = 0u, visible = 0u, bits = 0u;
   uvec2 width = uvec2(0u), lost = uvec2(0u);
-  for (uint vertex = strand * hair.counts.y; vertex < (strand + 1u) * hair.counts.y; ++vertex) {
-    HairRibbon ribbon = hairRibbon(positions[vertex], tangents[vertex].xyz);
+  uint first = strand * hair.counts.y, end = first + hair.counts.y;
+  uint words = segmentWords();
+  ScreenPoint previous;
+  bool previousSegmentHidden = true;  // the root has no segment before it
+  for (uint vertex = first; vertex < end; ++vertex) {
+    vec4 position = positions[vertex];
+    HairRibbon ribbon = hairRibbon(position, tangents[vertex].xyz);
+    // A vertex is hidden when both segments it joins are.
+    ScreenPoint point = screenPoint(position.xyz, ribbon);
+    if (vertex > first) {
+      uint segment = vertex - 1u - first;
+      bool segmentIsHidden = segmentHidden(previous, point);
+      bool previousHidden = previousSegmentHidden && segmentIsHidden;
+      hidden[vertex - 1u] = previousHidden ? 1u : 0u;
+      hiddenCount += previousHidden ? 1u : 0u;
+      previousSegmentHidden = segmentIsHidden;
+      visible += segmentIsHidden ? 0u : 1u;
+      bits |= segmentIsHidden ? 0u : 1u << (segment % 32u);
+      if (segment % 32u == 31u || vertex + 1u == end) {
+        visibleBits[strand * words + segment / 32u] = bits;
+        bits = 0u;
+      }
+    }
+    previous = point;
     float lineWidths = min(ribbon.halfWidth / ribbon.minimumHalfWidth, kLargestWidth);
     add64(width, uint(round(lineWidths * kWidthUnits)));
     if (lineWidths > 1.0) {
@@ -91,6 +288,10 @@ void main() {
       add64(lost, uint(round((lineWidths - 1.0) * kWidthUnits)));
     }
   }
+  hidden[end - 1u] = previousSegmentHidden ? 1u : 0u;  // the tip has no segment after it
+  hiddenCount += previousSegmentHidden ? 1u : 0u;
+  if (hiddenCount != 0u) atomicAdd(primitives.sums.hiddenVertices, hiddenCount);
+  visibleCounts[strand] = visible | (hair.counts.y - hiddenCount) << 16u;
   // The add that wraps the low word carries one into the high word.
   uint before = atomicAdd(primitives.sums.widthLow, width.x);
   uint high = width.y + (before + width.x < before ? 1u : 0u);

@@ -5,7 +5,9 @@ layout(set = 0, binding = 0, std140) uniform HairUniforms {
   vec4 eye;             // w = 1: eye position (metres); w = 0: unit direction towards the eye
   vec4 groom;           // x: root width (m), y: tip width scale, z: opacity, w: min width (px)
   vec4 viewport;        // xy: extent in pixels
-  uvec4 counts;         // x: strands, y: vertices per strand, z: 1 when lines may stand in for ribbons
+  uvec4 counts;         // x: strands, y: vertices per strand, z: 1 when lines may stand in for ribbons,
+                        // w: the line draw's first index
+  uvec4 occlusion;      // x, y: tiles across and down of the opaque depth's maxima; z: tile size (pixels)
 } hair;
 
 // Unit vector from `position` (world, metres) towards the eye.

@@ -4,13 +4,14 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "render/descriptors.hpp"
 
 namespace mane::render {
 namespace {
 
-constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of hair_lighting.comp
+constexpr std::uint32_t kWorkgroupSize = HairLightingPass::kWorkgroupSize;
 constexpr std::uint32_t kFirstShadowBinding = 6;
 
 // std140 mirror of HairLighting in shaders/hair_lighting.comp.
@@ -81,10 +82,11 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler,
-                                      sampler});  // shadow first depth, 4 slots
+                                      sampler,   // shadow first depth, 4 slots
+                                      {Type::eStorageBuffer, compute}});  // hidden vertices
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eStorageBuffer, 4},
+                             {{Type::eStorageBuffer, 5},
                               {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
@@ -98,6 +100,8 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   writeStorageBuffer(device, set_, 1, positions);
   writeStorageBuffer(device, set_, 2, tangents);
   writeStorageBuffer(device, set_, 3, radiance_);
+  everyVertex_ = everyVertex(device, vertexCount);
+  setShadeList(everyVertex_);
   writeSampledImage(device, set_, 4, lut.longitudinalView(), lut.sampler());
   writeSampledImage(device, set_, 5, lut.azimuthalView(), lut.sampler());
   refreshShadows();
@@ -105,6 +109,18 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   // Ambient: La · ∫S dωi, the white-furnace albedo of marschner.hpp, at θr = 0.
   const AzimuthalLobes albedo = azimuthalAlbedo(lut.params(), 1.0);
   ambientAlbedo_ = glm::vec3(albedo.tt + albedo.trt + glm::dvec3(albedo.r));
+}
+
+void HairLightingPass::setShadeList(const Buffer& shadeList) {
+  writeStorageBuffer(*device_, set_, 14, shadeList);
+  shadeList_ = &shadeList;
+}
+
+Buffer HairLightingPass::everyVertex(const Device& device, std::uint32_t vertices) {
+  std::vector<std::uint32_t> list{(vertices + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1, vertices};
+  for (std::uint32_t v = 0; v < vertices; ++v) list.push_back(v);
+  return Buffer::withData(device, std::as_bytes(std::span(list)),
+                          vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer);
 }
 
 void HairLightingPass::refreshShadows() {
@@ -145,7 +161,7 @@ void HairLightingPass::record(const vk::raii::CommandBuffer& commands) const {
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = before.size(), .pMemoryBarriers = before.data()});
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, {*set_}, {});
-  commands.dispatch((vertexCount_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+  commands.dispatchIndirect(*shadeList_->buffer(), 0);
   const vk::BufferMemoryBarrier2 after{.srcStageMask = Stage::eComputeShader,
                                        .srcAccessMask = Access::eShaderStorageWrite,
                                        .dstStageMask = Stage::eVertexShader | Stage::eCopy,

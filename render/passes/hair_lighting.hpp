@@ -60,8 +60,20 @@ public:
   /// Re-reads the shadow maps' descriptors (after HairShadows' slots changed). Between frames.
   void refreshShadows();
 
+  /// The vertices to shade (HairPass::shadeList); the others keep their radiance. The list's
+  /// layout: a VkDispatchIndirectCommand of workgroups of kWorkgroupSize, the count of vertices
+  /// listed, then their indices (uint each). It must outlive the pass. Until then every vertex
+  /// is shaded.
+  void setShadeList(const Buffer& shadeList);
+
+  /// A shade list of every vertex 0 .. vertices − 1.
+  [[nodiscard]] static Buffer everyVertex(const Device& device, std::uint32_t vertices);
+
+  static constexpr std::uint32_t kWorkgroupSize = 64;  ///< local_size_x of shaders/hair_lighting.comp
+
   /// Records the dispatch. Before it: the positions and tangents written by a compute shader
-  /// (StrandInterpolationPass::record) and the shadow maps built (HairShadows::record). After
+  /// (StrandInterpolationPass::record), the shadow maps built (HairShadows::record) and the hidden
+  /// vertices marked (HairPass::record), where set. After
   /// it, radiance() is visible to vertex-shader storage reads.
   void record(const vk::raii::CommandBuffer& commands) const;
 
@@ -79,6 +91,8 @@ private:
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
   Buffer uniforms_;
+  Buffer everyVertex_;  ///< the shade list until setShadeList
+  const Buffer* shadeList_ = nullptr;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};

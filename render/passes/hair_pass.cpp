@@ -21,8 +21,9 @@ struct HairUniforms {
   glm::vec4 groom;
   glm::vec4 viewport;
   glm::uvec4 counts;
+  glm::uvec4 occlusion;
 };
-static_assert(sizeof(HairUniforms) == 64 + 4 * 16);
+static_assert(sizeof(HairUniforms) == 64 + 5 * 16);
 
 bool finite(const glm::mat4& m) {
   for (int c = 0; c < 4; ++c)
@@ -50,6 +51,7 @@ struct PrimitiveSums {
   std::uint32_t wideVertices;
   std::uint32_t widthLow, widthHigh;
   std::uint32_t lostLow, lostHigh;
+  std::uint32_t hiddenVertices;
 };
 struct PrimitiveDraws {
   vk::DrawIndexedIndirectCommand ribbons;
@@ -57,7 +59,7 @@ struct PrimitiveDraws {
   PrimitiveSums sums;
   PrimitiveSums chosen;
 };
-static_assert(sizeof(PrimitiveDraws) == 80, "std430 packs the shader's words without padding");
+static_assert(sizeof(PrimitiveDraws) == 88, "std430 packs the shader's words without padding");
 constexpr vk::DeviceSize kRibbonDrawOffset = offsetof(PrimitiveDraws, ribbons);
 constexpr vk::DeviceSize kLineDrawOffset = offsetof(PrimitiveDraws, lines);
 constexpr std::uint32_t kPrimitiveWorkgroup = 64;  // local_size_x of hair_primitive.comp
@@ -80,7 +82,8 @@ Buffer strandIndices(const Device& device, std::uint32_t strands, std::uint32_t 
     for (std::uint32_t i = 0; i + 1 < verticesPerStrand; ++i)
       indices.insert(indices.end(), {k * verticesPerStrand + i, k * verticesPerStrand + i + 1});
   if (indices.empty()) indices.push_back(0);  // a zero-sized buffer is not allowed
-  return Buffer::withData(device, std::as_bytes(std::span(indices)), vk::BufferUsageFlagBits::eIndexBuffer);
+  return Buffer::withData(device, std::as_bytes(std::span(indices)),
+                          vk::BufferUsageFlagBits::eIndexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
 }
 
 }  // namespace
@@ -101,8 +104,15 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
-                                      {Type::eStorageBuffer, Stage::eVertex},
-                                      {Type::eStorageBuffer, Stage::eCompute}});
+                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},  // draw order
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 5: PrimitiveDraws
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 6: opaque depth tiles
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 7: hidden vertices
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 8: visible segments per strand
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 9: their bits
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 10: first segments in drawing order
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 11: the draws' indices
+                                      {Type::eStorageBuffer, Stage::eCompute}});  // 12: the vertices to shade
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
   const auto drawPipeline = [&](bool lines) {
     return makeGraphicsPipeline(
@@ -125,7 +135,8 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   linePipeline_ = drawPipeline(true);
   countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u});
   choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
-  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 5}});
+  indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u});
+  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 12}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -136,6 +147,21 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                   vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   std::memset(draws_.mapped().data(), 0, sizeof(PrimitiveDraws));
   writeStorageBuffer(device, set_, 5, draws_);
+  // Until setOcclusion: one tile over any screen, at the far plane, which hides nothing.
+  const float farPlane = 1.0f;
+  noOcclusion_ = Buffer::withData(device, std::as_bytes(std::span(&farPlane, 1)), vk::BufferUsageFlagBits::eStorageBuffer);
+  setOcclusion(noOcclusion_, {.tiles = {1, 1}, .tileSize = std::numeric_limits<std::int32_t>::max()});
+}
+
+void HairPass::setOcclusion(const Buffer& tileMaxDepth, const HairOcclusionTiles& tiles) {
+  writeStorageBuffer(*device_, set_, 6, tileMaxDepth);
+  occlusion_ = tiles;
+  writeOcclusionUniforms();
+}
+
+void HairPass::writeOcclusionUniforms() {
+  const glm::uvec4 occlusion(occlusion_.tiles.x, occlusion_.tiles.y, occlusion_.tileSize, 0u);
+  std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, occlusion), &occlusion, sizeof(occlusion));
 }
 
 Result<void> HairPass::setStrands(const HairStrands& strands) {
@@ -166,6 +192,24 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   for (std::uint32_t s = 0; s < strands.strandCount; ++s) order[s] = s;
   writeStorageBuffer(*device_, set_, 4, order_);
   indices_ = strandIndices(*device_, strands.strandCount, strands.verticesPerStrand);
+  writeStorageBuffer(*device_, set_, 11, indices_);
+  const vk::DeviceSize strandWords = std::max<vk::DeviceSize>(strands.strandCount, 1) * sizeof(std::uint32_t);
+  const vk::DeviceSize segmentWords = (strands.verticesPerStrand + 30) / 32;
+  visibleCounts_ = Buffer(*device_, strandWords, vk::BufferUsageFlagBits::eStorageBuffer,
+                          vk::MemoryPropertyFlagBits::eDeviceLocal);
+  visibleBits_ = Buffer(*device_, strandWords * segmentWords, vk::BufferUsageFlagBits::eStorageBuffer,
+                        vk::MemoryPropertyFlagBits::eDeviceLocal);
+  firstSegments_ = Buffer(*device_, 2 * strandWords, vk::BufferUsageFlagBits::eStorageBuffer,
+                          vk::MemoryPropertyFlagBits::eDeviceLocal);
+  writeStorageBuffer(*device_, set_, 8, visibleCounts_);
+  writeStorageBuffer(*device_, set_, 9, visibleBits_);
+  writeStorageBuffer(*device_, set_, 10, firstSegments_);
+  const std::size_t vertices = std::size_t(strands.strandCount) * strands.verticesPerStrand;
+  hidden_ = Buffer(*device_, std::max<vk::DeviceSize>(vertices, 1) * sizeof(std::uint32_t),
+                   vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
+  writeStorageBuffer(*device_, set_, 7, hidden_);
+  shadeList_ = HairLightingPass::everyVertex(*device_, static_cast<std::uint32_t>(vertices));
+  writeStorageBuffer(*device_, set_, 12, shadeList_);
   strandCount_ = strands.strandCount;
   indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;
@@ -174,9 +218,11 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   draws.lines =
       vk::DrawIndexedIndirectCommand{.indexCount = static_cast<std::uint32_t>(2 * segments), .firstIndex = indexCount_};
   std::memcpy(draws_.mapped().data(), &draws, sizeof(draws));
-  // Keep the uniforms of an earlier update in step (counts.x is the strands, y Nd).
+  // Keep the uniforms of an earlier update in step (counts.x is the strands, y Nd, w the lines' first index).
   const std::array counts{strandCount_, verticesPerStrand_};
   std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts), counts.data(), sizeof(counts));
+  std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts) + 3 * sizeof(std::uint32_t), &indexCount_,
+              sizeof(indexCount_));
   return {};
 }
 
@@ -207,8 +253,10 @@ Result<void> HairPass::update(const HairView& view, const HairGroomSettings& gro
   uniforms.eye = hairEye(view.viewProjection);
   uniforms.groom = glm::vec4(groom.width, groom.tipWidthScale, groom.opacity, groom.minimumPixelWidth);
   uniforms.viewport = glm::vec4(float(view.extent.width), float(view.extent.height), 0.0f, 0.0f);
-  uniforms.counts = glm::uvec4(strandCount_, verticesPerStrand_, linesDrawable(groom.minimumPixelWidth) ? 1u : 0u, 0u);
+  uniforms.counts =
+      glm::uvec4(strandCount_, verticesPerStrand_, linesDrawable(groom.minimumPixelWidth) ? 1u : 0u, indexCount_);
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
+  writeOcclusionUniforms();
   extent_ = view.extent;
   lineWidth_ = groom.minimumPixelWidth;
   return {};
@@ -231,32 +279,38 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
   if (indexCount_ == 0 || extent_.width == 0) return;
   using Stage = vk::PipelineStageFlagBits2;
   using Access = vk::AccessFlagBits2;
-  // In: the strands from the interpolation dispatch, and the sums the previous choice zeroed.
-  // The choice below rewrites the draw commands after the previous frame's draws have read them.
-  const vk::MemoryBarrier2 before{.srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect,
+  // In: the strands from the interpolation dispatch, the occlusion tiles, and the sums the previous
+  // choice zeroed. The steps below rewrite the draw commands and indices after the previous
+  // frame's draws have read them.
+  const vk::MemoryBarrier2 before{.srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect | Stage::eIndexInput,
                                   .srcAccessMask = Access::eShaderStorageWrite,
                                   .dstStageMask = Stage::eComputeShader,
                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &before});
-
+  // Each step reads what the one before wrote.
+  const vk::MemoryBarrier2 stepDone{.srcStageMask = Stage::eComputeShader,
+                                    .srcAccessMask = Access::eShaderStorageWrite,
+                                    .dstStageMask = Stage::eComputeShader,
+                                    .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
   const std::uint32_t groups = (strandCount_ + kPrimitiveWorkgroup - 1) / kPrimitiveWorkgroup;
   const std::uint32_t groupsX = std::min(groups, kMaxWorkgroupsX);
-  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *countPipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *countPipeline_.layout, 0, {*set_}, {});
-  commands.dispatch(groupsX, (groups + groupsX - 1) / groupsX, 1);
-  const vk::MemoryBarrier2 counted{.srcStageMask = Stage::eComputeShader,
-                                   .srcAccessMask = Access::eShaderStorageWrite,
-                                   .dstStageMask = Stage::eComputeShader,
-                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &counted});
-  commands.bindPipeline(vk::PipelineBindPoint::eCompute, *choosePipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *choosePipeline_.layout, 0, {*set_}, {});
-  commands.dispatch(1, 1, 1);
-  const vk::MemoryBarrier2 chosen{.srcStageMask = Stage::eComputeShader,
-                                  .srcAccessMask = Access::eShaderStorageWrite,
-                                  .dstStageMask = Stage::eDrawIndirect | Stage::eHost,
-                                  .dstAccessMask = Access::eIndirectCommandRead | Access::eHostRead};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &chosen});
+  const auto step = [&](const Pipeline& pipeline, std::uint32_t x, std::uint32_t y) {
+    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline.pipeline);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline.layout, 0, {*set_}, {});
+    commands.dispatch(x, y, 1);
+  };
+  step(countPipeline_, groupsX, (groups + groupsX - 1) / groupsX);
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &stepDone});
+  step(choosePipeline_, 1, 1);
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &stepDone});
+  step(indexPipeline_, groupsX, (groups + groupsX - 1) / groupsX);
+  const vk::MemoryBarrier2 written{
+      .srcStageMask = Stage::eComputeShader,
+      .srcAccessMask = Access::eShaderStorageWrite,
+      .dstStageMask = Stage::eDrawIndirect | Stage::eIndexInput | Stage::eComputeShader | Stage::eHost,
+      .dstAccessMask =
+          Access::eIndirectCommandRead | Access::eIndexRead | Access::eShaderStorageRead | Access::eHostRead};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &written});
 }
 
 HairPrimitiveChoice HairPass::lastChoice() const {
@@ -267,7 +321,8 @@ HairPrimitiveChoice HairPass::lastChoice() const {
   const double width = sum(chosen.widthLow, chosen.widthHigh);
   return {.primitive = draws.lines.instanceCount != 0 ? HairPrimitive::kLines : HairPrimitive::kRibbons,
           .wideVertices = chosen.wideVertices,
-          .uncoveredByLines = width > 0.0 ? sum(chosen.lostLow, chosen.lostHigh) / width : 0.0};
+          .uncoveredByLines = width > 0.0 ? sum(chosen.lostLow, chosen.lostHigh) / width : 0.0,
+          .hiddenVertices = chosen.hiddenVertices};
 }
 
 void HairPass::draw(const vk::raii::CommandBuffer& commands) const {

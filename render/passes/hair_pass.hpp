@@ -44,6 +44,23 @@
 // so the frame needs no read-back. Lines are drawn only where their area is exact: rectangular
 // lines (strictLines), at width 1 or with the wideLines feature within its range.
 //
+// Hidden strands. Long hair falls behind the head and shoulders, and out of the frame: in nalu
+// about half of the dense vertices. The Renderer splits the main pass around the hair, so the
+// opaque scene's depth is known before the hair is shaded and drawn, and reduces it to the
+// farthest depth per 8 × 8 pixel tile (HairOcclusion). `record` then tests every segment: it is
+// hidden when its pixel box on screen (its ends and the ribbon's edges, 1.5 pixels more each way
+// for the line width and rounding) lies off the screen, or only over tiles whose farthest opaque
+// depth is nearer than the segment's nearest depth, less its whole depth range (samples of a
+// multisampled line may lie past its ends). Those segments get no indices: the draws' index
+// buffer is written every frame from the visible segments alone, strand by strand in drawing
+// order (a prefix sum in a fixed order, so the frame is deterministic), and a vertex both of whose
+// segments are hidden is not shaded (shadeList(), for HairLightingPass). Nothing seen changes: a
+// hidden segment's fragments would all fail the depth test (tests/world/hidden_hair_test.cpp
+// compares the frames with and without, byte for byte); nalu's frame on lavapipe is about 15 %
+// faster (README, "Whole frame"). Moving hidden vertices beyond the far plane instead,
+// leaving the indices alone, changed the frame under 4× MSAA: lavapipe then clips the whole line
+// draw, which it rasterizes differently from the unclipped one.
+//
 // Compositing: sorted, back to front, per strand. Each strand is blended with premultiplied-alpha
 // "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the
 // order setDrawOrder gives (the Renderer sorts strands every frame by the distance of their
@@ -100,6 +117,16 @@ struct HairPrimitiveChoice {
   /// The share of the strands' width on screen, summed over the vertices, that lines of the
   /// minimum width leave uncovered: Σ max(w − min, 0) / Σ w. Lines are drawn when it is ≤ 1 %.
   double uncoveredByLines = 0.0;
+  /// Dense vertices both of whose segments are hidden (file comment, "Hidden strands"): behind the
+  /// opaque scene (setOcclusion) or off the screen.
+  std::uint32_t hiddenVertices = 0;
+};
+
+/// The farthest depth of the opaque scene per square tile of the frame (HairOcclusion), which
+/// `record` tests the strands against.
+struct HairOcclusionTiles {
+  glm::uvec2 tiles{1, 1};  ///< across and down, covering the view's extent
+  std::uint32_t tileSize = 8;  ///< pixels
 };
 
 /// What the pass is drawn into.
@@ -143,9 +170,16 @@ public:
   /// `update` with the frame's perspective camera (Camera::projection at the extent's aspect).
   [[nodiscard]] Result<void> update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom);
 
-  /// Records the compute step that chooses this frame's primitive, ribbons or lines (see the file
-  /// comment), outside a rendering scope, after `update` and before `draw`; the strands' writes
-  /// are made visible to it. Nothing is recorded before setStrands.
+  /// The opaque scene's depth to hide strands behind (see the file comment): `tileMaxDepth` holds
+  /// tiles.x × tiles.y floats, row-major, and must outlive the frames recorded with it. Until
+  /// then only the segments off the screen are hidden.
+  void setOcclusion(const Buffer& tileMaxDepth, const HairOcclusionTiles& tiles);
+
+  /// Records the compute steps that choose this frame's primitive, ribbons or lines, and write
+  /// the indices of the visible segments and the shade list (see the file comment), outside a
+  /// rendering scope, after `update` and before `draw` and HairLightingPass::record; the strands'
+  /// writes and the occlusion tiles' are made visible to them. Nothing is recorded before
+  /// setStrands.
   void record(const vk::raii::CommandBuffer& commands) const;
 
   /// Records the draw inside a dynamic rendering scope with the formats and sample count of
@@ -158,6 +192,10 @@ public:
   /// The choice of the last submission that ran `record`, once it has finished.
   [[nodiscard]] HairPrimitiveChoice lastChoice() const;
 
+  /// The vertices a visible segment uses, written by `record`, for HairLightingPass to shade
+  /// (HairLightingPass::setShadeList has the layout); every vertex until then.
+  [[nodiscard]] const Buffer& shadeList() const { return shadeList_; }
+
   /// Indices of the ribbon draw: strands × (Nd − 1) × 6, three per triangle.
   [[nodiscard]] std::uint32_t ribbonIndexCount() const { return indexCount_; }
 
@@ -165,6 +203,7 @@ private:
   HairPass(const Device& device, const HairPassSettings& settings);
   /// Whether lines `width` pixels wide have the area of a ribbon of that width on this device.
   bool linesDrawable(float width) const;
+  void writeOcclusionUniforms();
 
   const Device* device_;
   vk::Extent2D extent_{};
@@ -173,13 +212,21 @@ private:
   Pipeline ribbonPipeline_;
   Pipeline linePipeline_;
   Pipeline countPipeline_;   ///< hair_primitive.comp counting the wide vertices
-  Pipeline choosePipeline_;  ///< hair_primitive.comp enabling one of the two draws
+  Pipeline choosePipeline_;  ///< hair_primitive.comp enabling one of the two draws, counting the visible segments
+  Pipeline indexPipeline_;   ///< hair_primitive.comp writing the visible segments' indices
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
   Buffer order_;    ///< uint per strand, host-visible
-  Buffer indices_;  ///< two triangles per segment over the 2 × strands × Nd ribbon vertices, then a line per segment
+  Buffer indices_;  ///< two triangles per visible segment over the 2 × strands × Nd ribbon vertices, then a line per segment
   Buffer draws_;    ///< PrimitiveDraws (hair_pass.cpp), host-visible
+  Buffer hidden_;          ///< uint per dense vertex: 1 where both its segments are hidden
+  Buffer shadeList_;       ///< HairLightingPass::setShadeList's layout
+  Buffer visibleCounts_;   ///< uint per strand
+  Buffer visibleBits_;     ///< a bit per segment, per strand
+  Buffer firstSegments_;   ///< per strand in drawing order: the visible segments and shaded vertices before it
+  Buffer noOcclusion_;  ///< one tile at the far plane
+  HairOcclusionTiles occlusion_;
   std::uint32_t strandCount_ = 0;
   std::uint32_t indexCount_ = 0;
   std::uint32_t verticesPerStrand_ = 0;

@@ -1,0 +1,43 @@
+// The farthest depth of the opaque scene in each square tile of the frame
+// (render/passes/hair_occlusion.hpp), for HairPass to hide strands behind. One invocation per
+// tile; define HAIR_OCCLUSION_SAMPLES (1: a single-sample depth image) before including.
+
+#if HAIR_OCCLUSION_SAMPLES == 1
+layout(set = 0, binding = 0) uniform sampler2D opaqueDepth;
+#else
+layout(set = 0, binding = 0) uniform sampler2DMS opaqueDepth;
+#endif
+
+layout(set = 0, binding = 1, std430) writeonly buffer Tiles {
+  float tileMaxDepth[];
+};
+
+layout(push_constant) uniform Grid {
+  uvec2 tiles;    // across and down
+  uint tileSize;  // pixels
+} grid;
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main() {
+  uvec2 tile = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(tile, grid.tiles))) return;
+#if HAIR_OCCLUSION_SAMPLES == 1
+  ivec2 size = textureSize(opaqueDepth, 0);
+#else
+  ivec2 size = textureSize(opaqueDepth);
+#endif
+  ivec2 first = ivec2(tile * grid.tileSize);
+  ivec2 end = min(first + int(grid.tileSize), size);
+  float farthest = 0.0;
+  for (int y = first.y; y < end.y; ++y)
+    for (int x = first.x; x < end.x; ++x) {
+#if HAIR_OCCLUSION_SAMPLES == 1
+      farthest = max(farthest, texelFetch(opaqueDepth, ivec2(x, y), 0).r);
+#else
+      for (int s = 0; s < HAIR_OCCLUSION_SAMPLES; ++s)
+        farthest = max(farthest, texelFetch(opaqueDepth, ivec2(x, y), s).r);
+#endif
+    }
+  tileMaxDepth[tile.y * grid.tiles.x + tile.x] = farthest;
+}
