@@ -63,7 +63,7 @@ layout(set = 0, binding = 5, std430) buffer Primitives {
 layout(set = 0, binding = 6, std430) readonly buffer OpaqueDepth {
   float tileMaxDepth[];
 };
-// Out: 1 where the vertex and both its segments are hidden, else 0.
+// 1 where both segments of the vertex are hidden, else 0: written by step 0, read by step 2.
 layout(set = 0, binding = 7, std430) buffer Hidden {
   uint hidden[];
 };

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <utility>
@@ -127,6 +128,13 @@ public:
                                           .strandCount = data.strandCount(),
                                           .verticesPerStrand = data.verticesPerStrand});
     EXPECT_TRUE(set.has_value()) << set.error().message;
+    (*lighting)->setShadeList((*pass)->shadeList());
+    std::optional<Buffer> tiles;
+    if (occlusion) {
+      tiles = Buffer::withData(device(), std::as_bytes(std::span(occlusion->first)),
+                               vk::BufferUsageFlagBits::eStorageBuffer);
+      (*pass)->setOcclusion(*tiles, occlusion->second);
+    }
     const auto lit = (*lighting)->update(view.viewProjection, lights, ambient, (*shadows)->uniforms());
     EXPECT_TRUE(lit.has_value()) << lit.error().message;
     const auto updated = (*pass)->update(view, groom);
@@ -138,8 +146,8 @@ public:
       using Layout = vk::ImageLayout;
       using Stage = vk::PipelineStageFlagBits2;
       using Access = vk::AccessFlagBits2;
+      (*pass)->record(commands);  // first: it lists the vertices to shade
       (*lighting)->record(commands);
-      (*pass)->record(commands);
       target.beginScene(commands, glm::vec4(0.0f));
       (*pass)->draw(commands);
       commands.endRendering();
@@ -159,6 +167,9 @@ public:
 
   /// What the pass drew in the last `render`.
   HairPrimitiveChoice lastChoice;
+  /// Opaque depth per tile for `render` to hide strands behind (HairPass::setOcclusion); none
+  /// when empty.
+  std::optional<std::pair<std::vector<float>, HairOcclusionTiles>> occlusion;
 
 private:
   std::vector<std::unique_ptr<MarschnerLut>> luts_;
@@ -256,6 +267,47 @@ TEST_F(HairPassTest, SubPixelStrandsCoverTheirAreaWithoutMsaa) {
 
 TEST_F(HairPassTest, SubPixelStrandsCoverTheirAreaWith4xMsaa) {
   expectSubPixelCoverage(*this, vk::SampleCountFlagBits::e4);
+}
+
+// Hidden strands: the parallel strands (centres at pixel x 4.05 + 12.1·i) behind an opaque depth
+// of 0 over the left half of the view's 8-pixel tiles, 1 (nothing) over the right half. The five
+// strands whose pixels all lie left of x = 60 are neither drawn nor shaded; the other five are
+// drawn exactly as without any occlusion, pixel for pixel.
+void expectHiddenLeftHalf(HairPassTest& test, vk::SampleCountFlagBits samples, float widthPixels) {
+  const MarschnerLut& table = test.lut(blondeHairParams());
+  const HairGroomSettings groom{.width = widthPixels * kMetresPerPixel, .opacity = 1.0f, .minimumPixelWidth = 1.0f};
+  const std::array lights{DirectionalLight{.direction = {0, 0, 1}}};
+  const HairView view{orthographicView(kCoverageExtent, kMetresPerPixel), kCoverageExtent};
+  const Pixels everything = test.render(table, parallelStrands(), samples, view, lights, glm::vec3(0.1f), groom);
+  EXPECT_EQ(test.lastChoice.hiddenVertices, 0u);
+
+  const HairOcclusionTiles grid{.tiles = {kCoverageExtent.width / 8, kCoverageExtent.height / 8}, .tileSize = 8};
+  std::vector<float> depths(std::size_t(grid.tiles.x) * grid.tiles.y);
+  for (std::size_t i = 0; i < depths.size(); ++i) depths[i] = i % grid.tiles.x < grid.tiles.x / 2 ? 0.0f : 1.0f;
+  test.occlusion = std::pair(depths, grid);
+  const Pixels hidden = test.render(table, parallelStrands(), samples, view, lights, glm::vec3(0.1f), groom);
+  test.occlusion.reset();
+  EXPECT_EQ(test.lastChoice.hiddenVertices, 5u * 9u) << "the five left strands' vertices";
+  double leftBefore = 0.0, leftAfter = 0.0;
+  std::size_t rightDiffering = 0;
+  for (std::size_t i = 0; i < hidden.size(); ++i) {
+    if (i % kCoverageExtent.width < 60) {
+      leftBefore += everything[i].a;
+      leftAfter += hidden[i].a;
+    } else if (hidden[i] != everything[i]) {
+      ++rightDiffering;
+    }
+  }
+  EXPECT_GT(leftBefore, 0.0);
+  EXPECT_EQ(leftAfter, 0.0) << "a hidden strand was drawn";
+  EXPECT_EQ(rightDiffering, 0u) << "a visible strand was drawn differently";
+}
+
+TEST_F(HairPassTest, StrandsBehindTheOpaqueDepthAreNeitherDrawnNorShaded) {
+  expectHiddenLeftHalf(*this, vk::SampleCountFlagBits::e1, 3.3f);  // ribbons
+  EXPECT_EQ(lastChoice.primitive, HairPrimitive::kRibbons);
+  expectHiddenLeftHalf(*this, vk::SampleCountFlagBits::e4, 0.3f);  // lines
+  EXPECT_EQ(lastChoice.primitive, HairPrimitive::kLines);
 }
 
 // ---------------------------------------------------------------------------------------------
