@@ -30,14 +30,20 @@ void main() {
   ivec2 first = ivec2(tile * grid.tileSize);
   ivec2 end = min(first + int(grid.tileSize), size);
   float farthest = 0.0;
-  for (int y = first.y; y < end.y; ++y)
-    for (int x = first.x; x < end.x; ++x) {
 #if HAIR_OCCLUSION_SAMPLES == 1
-      farthest = max(farthest, texelFetch(opaqueDepth, ivec2(x, y), 0).r);
+  // Four texels a read: the 2 × 2 block whose shared corner is at (x + 1, y + 1). Past the
+  // image's edge the sampler clamps, repeating texels of the tile.
+  vec2 texel = 1.0 / vec2(size);
+  for (int y = first.y; y < end.y; y += 2)
+    for (int x = first.x; x < end.x; x += 2) {
+      vec4 block = textureGather(opaqueDepth, vec2(x + 1, y + 1) * texel);
+      farthest = max(farthest, max(max(block.x, block.y), max(block.z, block.w)));
+    }
 #else
+  for (int y = first.y; y < end.y; ++y)
+    for (int x = first.x; x < end.x; ++x)
       for (int s = 0; s < HAIR_OCCLUSION_SAMPLES; ++s)
         farthest = max(farthest, texelFetch(opaqueDepth, ivec2(x, y), s).r);
 #endif
-    }
   tileMaxDepth[tile.y * grid.tiles.x + tile.x] = farthest;
 }
