@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
@@ -303,9 +305,9 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
                                  .setLayouts = {*setLayout_},
                                  .pushConstants = {graphicsPush}};
   if (compute) {
-    increments_ = Buffer(device, vk::DeviceSize(settings.resolution) * settings.resolution * kSlices * 4,
-                         vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst,
-                         vk::MemoryPropertyFlagBits::eDeviceLocal);
+    // Zero at first; after that, each resolve zeroes what it has read, for the next splat.
+    const std::vector<std::uint32_t> zeros(std::size_t(settings.resolution) * settings.resolution * kSlices, 0u);
+    increments_ = Buffer::withData(device, std::as_bytes(std::span(zeros)), vk::BufferUsageFlagBits::eStorageBuffer);
     writeStorageBuffer(device, set_, 2, increments_);
     const vk::DescriptorImageInfo storage{.imageView = *opacity_.view, .imageLayout = Layout::eGeneral};
     device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set_,
@@ -502,18 +504,12 @@ void OpacityShadowMap::recordDeep(const vk::raii::CommandBuffer& commands) const
 }
 
 void OpacityShadowMap::recordCompute(const vk::raii::CommandBuffer& commands) const {
-  // The previous frame's resolve read the increments: clear them after it.
-  const vk::MemoryBarrier2 beforeClear{.srcStageMask = Stage::eComputeShader,
-                                       .srcAccessMask = Access::eShaderStorageRead,
-                                       .dstStageMask = Stage::eAllTransfer,
-                                       .dstAccessMask = Access::eTransferWrite};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &beforeClear});
-  commands.fillBuffer(*increments_.buffer(), 0, VK_WHOLE_SIZE, 0u);
-  const vk::MemoryBarrier2 cleared{.srcStageMask = Stage::eAllTransfer,
-                                   .srcAccessMask = Access::eTransferWrite,
-                                   .dstStageMask = Stage::eComputeShader,
-                                   .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &cleared});
+  // The previous frame's resolve zeroed the increments as it read them.
+  const vk::MemoryBarrier2 zeroed{.srcStageMask = Stage::eComputeShader,
+                                  .srcAccessMask = Access::eShaderStorageWrite,
+                                  .dstStageMask = Stage::eComputeShader,
+                                  .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &zeroed});
 
   const BuildConstants constants =
       buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_);

@@ -345,6 +345,20 @@ Sheets sheets() {
   return result;
 }
 
+// The compute builder's resolve leaves its increments zero for the next frame: built again, the
+// map is the same (it would double if they were kept).
+TEST_F(OpacityShadowMapTest, TheComputeBuilderGivesTheSameMapFrameAfterFrame) {
+  const Groom groom = wavyBall(200, kVertices, 0.05, 0.06, 3);
+  const Buffer positions = upload(groom);
+  const BoundingSphere sphere = *boundingSphere(groom.positions);
+  const auto map = build(positions, groom, {.builder = OpacityShadowBuilder::kCompute, .resolution = 128}, kLight, sphere);
+  ASSERT_TRUE(map);
+  const std::vector<float> first = map->readOpacity();
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { map->record(commands); });
+  EXPECT_TRUE(map->readOpacity() == first);
+  EXPECT_GT(*std::max_element(first.begin(), first.end()), 0.0f) << "the map is not empty";
+}
+
 TEST_F(OpacityShadowMapTest, SliceBoundariesSitAtTheirAnalyticDepths) {
   const Sheets layout = sheets();
   const Buffer positions = upload(layout.groom);
