@@ -92,9 +92,9 @@ void BM_NaluFrame(benchmark::State& state) {
     if (variant == kTextureSpace && material.shading == render::SurfaceShading::kSkin)
       material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
   if (variant == kDeepOpacity) statics.hairShadows.mode = render::HairShadowMode::kDeepOpacityMap;
-  auto renderer =
-      render::Renderer::create(device(), {.extent = {1280, 720}, .msaaSamples = variant == kMsaa4 ? 4u : 1u,
-                                              .hideOccludedHair = variant != kDemoContentEveryStrand});
+  auto renderer = render::Renderer::create(device(), {.extent = {1280, 720},
+                                                      .msaaSamples = variant == kMsaa4 ? 4u : 1u,
+                                                      .hideOccludedHair = variant != kDemoContentEveryStrand});
   if (!renderer) return state.SkipWithError(renderer.error().message.c_str());
   if (auto set = (*renderer)->setScene(statics); !set) return state.SkipWithError(set.error().message.c_str());
 

@@ -52,11 +52,14 @@ void RenderTarget::begin(const vk::raii::CommandBuffer& commands, const glm::vec
                Access::eNone, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
                Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
   } else {
-    // The first half's colour writes, before this half blends over them.
-    const vk::MemoryBarrier2 drawn{.srcStageMask = Stage::eColorAttachmentOutput,
-                                   .srcAccessMask = Access::eColorAttachmentWrite,
-                                   .dstStageMask = Stage::eColorAttachmentOutput,
-                                   .dstAccessMask = Access::eColorAttachmentRead | Access::eColorAttachmentWrite};
+    // The first half's colour and depth writes, before this half blends over them and tests against them.
+    const auto depthTests = Stage::eEarlyFragmentTests | Stage::eLateFragmentTests;
+    const vk::MemoryBarrier2 drawn{
+        .srcStageMask = Stage::eColorAttachmentOutput | depthTests,
+        .srcAccessMask = Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentWrite,
+        .dstStageMask = Stage::eColorAttachmentOutput | depthTests,
+        .dstAccessMask = Access::eColorAttachmentRead | Access::eColorAttachmentWrite |
+                         Access::eDepthStencilAttachmentRead | Access::eDepthStencilAttachmentWrite};
     commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &drawn});
   }
   const vk::AttachmentLoadOp load = starts ? vk::AttachmentLoadOp::eClear : vk::AttachmentLoadOp::eLoad;

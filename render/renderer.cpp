@@ -334,7 +334,8 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
 
 std::vector<HairPrimitiveChoice> Renderer::hairChoices() const {
   std::vector<HairPrimitiveChoice> choices;
-  for (const HairGroom& groom : hair_) choices.push_back(groom.ribbons ? groom.ribbons->lastChoice() : HairPrimitiveChoice{});
+  for (const HairGroom& groom : hair_)
+    choices.push_back(groom.ribbons ? groom.ribbons->lastChoice() : HairPrimitiveChoice{});
   return choices;
 }
 

@@ -82,12 +82,11 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler,
-                                      sampler,   // shadow first depth, 4 slots
+                                      sampler,                            // shadow first depth, 4 slots
                                       {Type::eStorageBuffer, compute}});  // hidden vertices
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eStorageBuffer, 5},
-                              {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
+                             {{Type::eStorageBuffer, 5}, {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
   uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eStorageBuffer,

@@ -23,12 +23,13 @@ HairOcclusion::HairOcclusion(const Device& device, const RenderTarget& target) :
            .tileSize = kTileSize};
   tiles_ = Buffer(device, vk::DeviceSize(grid_.tiles.x) * grid_.tiles.y * sizeof(float),
                   vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
-  sampler_ = vk::raii::Sampler(device.device(), vk::SamplerCreateInfo{.magFilter = vk::Filter::eNearest,
-                                                                      .minFilter = vk::Filter::eNearest,
-                                                                      .mipmapMode = vk::SamplerMipmapMode::eNearest,
-                                                                      .addressModeU = vk::SamplerAddressMode::eClampToEdge,
-                                                                      .addressModeV = vk::SamplerAddressMode::eClampToEdge,
-                                                                      .addressModeW = vk::SamplerAddressMode::eClampToEdge});
+  sampler_ =
+      vk::raii::Sampler(device.device(), vk::SamplerCreateInfo{.magFilter = vk::Filter::eNearest,
+                                                               .minFilter = vk::Filter::eNearest,
+                                                               .mipmapMode = vk::SamplerMipmapMode::eNearest,
+                                                               .addressModeU = vk::SamplerAddressMode::eClampToEdge,
+                                                               .addressModeV = vk::SamplerAddressMode::eClampToEdge,
+                                                               .addressModeW = vk::SamplerAddressMode::eClampToEdge});
   setLayout_ = makeSetLayout(device, {{Type::eCombinedImageSampler, compute}, {Type::eStorageBuffer, compute}});
   pipeline_ = makeComputePipeline(device, target.multisampled() ? "hair_occlusion_msaa.comp" : "hair_occlusion.comp",
                                   setLayout_, sizeof(Grid));
@@ -59,7 +60,8 @@ void HairOcclusion::record(const vk::raii::CommandBuffer& commands) const {
                                Grid{.tiles = grid_.tiles, .tileSize = grid_.tileSize});
   commands.dispatch((grid_.tiles.x + kWorkgroup - 1) / kWorkgroup, (grid_.tiles.y + kWorkgroup - 1) / kWorkgroup, 1);
   imageBarrier(commands, depth, range, Layout::eShaderReadOnlyOptimal, Layout::eDepthAttachmentOptimal,
-               Stage::eComputeShader, Access::eShaderSampledRead, Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
+               Stage::eComputeShader, Access::eShaderSampledRead,
+               Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
                Access::eDepthStencilAttachmentRead | Access::eDepthStencilAttachmentWrite);
   const vk::MemoryBarrier2 tilesWritten{.srcStageMask = Stage::eComputeShader,
                                         .srcAccessMask = Access::eShaderStorageWrite,

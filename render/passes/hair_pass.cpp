@@ -105,12 +105,12 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},  // draw order
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 5: PrimitiveDraws
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 6: opaque depth tiles
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 7: hidden vertices
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 8: visible segments per strand
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 9: their bits
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 10: first segments in drawing order
+                                      {Type::eStorageBuffer, Stage::eCompute},                   // 5: PrimitiveDraws
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 6: opaque depth tiles
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 7: hidden vertices
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 8: visible segments per strand
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 9: their bits
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 10: first segments in drawing order
                                       {Type::eStorageBuffer, Stage::eCompute},    // 11: the draws' indices
                                       {Type::eStorageBuffer, Stage::eCompute}});  // 12: the vertices to shade
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
@@ -149,7 +149,8 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   writeStorageBuffer(device, set_, 5, draws_);
   // Until setOcclusion: one tile over any screen, at the far plane, which hides nothing.
   const float farPlane = 1.0f;
-  noOcclusion_ = Buffer::withData(device, std::as_bytes(std::span(&farPlane, 1)), vk::BufferUsageFlagBits::eStorageBuffer);
+  noOcclusion_ =
+      Buffer::withData(device, std::as_bytes(std::span(&farPlane, 1)), vk::BufferUsageFlagBits::eStorageBuffer);
   setOcclusion(noOcclusion_, {.tiles = {1, 1}, .tileSize = std::numeric_limits<std::int32_t>::max()});
 }
 
@@ -195,8 +196,8 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   writeStorageBuffer(*device_, set_, 11, indices_);
   const vk::DeviceSize strandWords = std::max<vk::DeviceSize>(strands.strandCount, 1) * sizeof(std::uint32_t);
   const vk::DeviceSize segmentWords = (strands.verticesPerStrand + 30) / 32;
-  visibleCounts_ = Buffer(*device_, strandWords, vk::BufferUsageFlagBits::eStorageBuffer,
-                          vk::MemoryPropertyFlagBits::eDeviceLocal);
+  visibleCounts_ =
+      Buffer(*device_, strandWords, vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
   visibleBits_ = Buffer(*device_, strandWords * segmentWords, vk::BufferUsageFlagBits::eStorageBuffer,
                         vk::MemoryPropertyFlagBits::eDeviceLocal);
   firstSegments_ = Buffer(*device_, 2 * strandWords, vk::BufferUsageFlagBits::eStorageBuffer,

@@ -125,7 +125,7 @@ struct HairPrimitiveChoice {
 /// The farthest depth of the opaque scene per square tile of the frame (HairOcclusion), which
 /// `record` tests the strands against.
 struct HairOcclusionTiles {
-  glm::uvec2 tiles{1, 1};  ///< across and down, covering the view's extent
+  glm::uvec2 tiles{1, 1};      ///< across and down, covering the view's extent
   std::uint32_t tileSize = 8;  ///< pixels
 };
 
@@ -217,15 +217,15 @@ private:
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
-  Buffer order_;    ///< uint per strand, host-visible
-  Buffer indices_;  ///< two triangles per visible segment over the 2 × strands × Nd ribbon vertices, then a line per segment
-  Buffer draws_;    ///< PrimitiveDraws (hair_pass.cpp), host-visible
-  Buffer hidden_;          ///< uint per dense vertex: 1 where both its segments are hidden
-  Buffer shadeList_;       ///< HairLightingPass::setShadeList's layout
-  Buffer visibleCounts_;   ///< uint per strand
-  Buffer visibleBits_;     ///< a bit per segment, per strand
-  Buffer firstSegments_;   ///< per strand in drawing order: the visible segments and shaded vertices before it
-  Buffer noOcclusion_;  ///< one tile at the far plane
+  Buffer order_;          ///< uint per strand, host-visible
+  Buffer indices_;        ///< per visible segment two ribbon triangles, then per visible segment a line
+  Buffer draws_;          ///< PrimitiveDraws (hair_pass.cpp), host-visible
+  Buffer hidden_;         ///< uint per dense vertex: 1 where both its segments are hidden
+  Buffer shadeList_;      ///< HairLightingPass::setShadeList's layout
+  Buffer visibleCounts_;  ///< uint per strand
+  Buffer visibleBits_;    ///< a bit per segment, per strand
+  Buffer firstSegments_;  ///< per strand in drawing order: the visible segments and shaded vertices before it
+  Buffer noOcclusion_;    ///< one tile at the far plane
   HairOcclusionTiles occlusion_;
   std::uint32_t strandCount_ = 0;
   std::uint32_t indexCount_ = 0;

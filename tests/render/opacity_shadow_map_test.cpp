@@ -351,7 +351,8 @@ TEST_F(OpacityShadowMapTest, TheComputeBuilderGivesTheSameMapFrameAfterFrame) {
   const Groom groom = wavyBall(200, kVertices, 0.05, 0.06, 3);
   const Buffer positions = upload(groom);
   const BoundingSphere sphere = *boundingSphere(groom.positions);
-  const auto map = build(positions, groom, {.builder = OpacityShadowBuilder::kCompute, .resolution = 128}, kLight, sphere);
+  const auto map =
+      build(positions, groom, {.builder = OpacityShadowBuilder::kCompute, .resolution = 128}, kLight, sphere);
   ASSERT_TRUE(map);
   const std::vector<float> first = map->readOpacity();
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { map->record(commands); });

@@ -48,6 +48,8 @@ extern "C" void* LLVMGetPointerToGlobal(void* engine, void* global) {
 
 namespace mane::testing {
 
-std::size_t jitCompiles() { return compiles.load(std::memory_order_relaxed); }
+std::size_t jitCompiles() {
+  return compiles.load(std::memory_order_relaxed);
+}
 
 }  // namespace mane::testing

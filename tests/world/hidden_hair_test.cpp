@@ -75,8 +75,8 @@ TEST_F(HiddenHair, NaluLooksTheSameWithTheHiddenHairLeftOut) {
     // Without the opaque depth only the segments off the screen are left out (the hair's ends
     // below the frame); with it, those behind the head and shoulders too.
     EXPECT_GT(hidden.hiddenShare, everything.hiddenShare + 0.2) << samples << "× MSAA";
-    std::cout << samples << "× MSAA: " << hidden.hiddenShare << " of the vertices hidden, "
-              << everything.hiddenShare << " off the screen\n";
+    std::cout << samples << "× MSAA: " << hidden.hiddenShare << " of the vertices hidden, " << everything.hiddenShare
+              << " off the screen\n";
   }
 }
 
