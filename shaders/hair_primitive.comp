@@ -4,7 +4,8 @@
 // the segments left out because the opaque scene hides them ("Hidden strands"), in three steps.
 // kStep 0, one invocation per dense strand: sums the strand's widths on screen at its vertices and
 //   the part of them lines of the minimum width would not cover, counts the vertices wider than
-//   that; marks its segments visible or hidden, and its vertices hidden where both their segments are.
+//   that; marks its segments visible or hidden, and counts its vertices hidden, those whose
+//   segments both are.
 // kStep 1, one workgroup: enables the line draw when lines may be drawn and lose at most
 //   kLineCoverageLoss of the width, the ribbon draw otherwise, and zeroes the sums for the next
 //   frame; adds up the visible segments in drawing order (each strand's first index) and sets
@@ -63,29 +64,25 @@ layout(set = 0, binding = 5, std430) buffer Primitives {
 layout(set = 0, binding = 6, std430) readonly buffer OpaqueDepth {
   float tileMaxDepth[];
 };
-// 1 where both segments of the vertex are hidden, else 0: written by step 0, read by step 2.
-layout(set = 0, binding = 7, std430) buffer Hidden {
-  uint hidden[];
-};
 // Per strand: its visible segments (low 16 bits) and vertices to shade, those with a visible
 // segment (high 16 bits; Nd ≤ 4096), and a bit per segment (set: visible), segmentWords() words.
-layout(set = 0, binding = 8, std430) buffer VisibleSegments {
+layout(set = 0, binding = 7, std430) buffer VisibleSegments {
   uint visibleCounts[];
 };
-layout(set = 0, binding = 9, std430) buffer SegmentBits {
+layout(set = 0, binding = 8, std430) buffer SegmentBits {
   uint visibleBits[];
 };
 // Per strand in drawing order: the visible segments (x) and the vertices to shade (y) of the
 // strands drawn before it.
-layout(set = 0, binding = 10, std430) buffer FirstSegments {
+layout(set = 0, binding = 9, std430) buffer FirstSegments {
   uvec2 firstSegments[];
 };
 // The draws' index buffer: the ribbons' indices from 0, the lines' from hair.counts.w.
-layout(set = 0, binding = 11, std430) writeonly buffer Indices {
+layout(set = 0, binding = 10, std430) writeonly buffer Indices {
   uint indices[];
 };
 // The vertices HairLightingPass shades, after its indirect dispatch (xyz) and their count (w).
-layout(set = 0, binding = 12, std430) buffer ShadeList {
+layout(set = 0, binding = 11, std430) buffer ShadeList {
   uvec4 dispatch;
   uint shaded[];
 } shadeList;
@@ -213,10 +210,16 @@ void writeIndices() {
   bool lines = primitives.lines.instanceCount != 0u;
   uint next = firstSegments[k].x;
   uint words = segmentWords();
-  // Its vertices that a visible segment uses, to be shaded.
+  // Its vertices that a visible segment uses, to be shaded: vertex i joins segments i − 1 and i.
   uint shadedNext = firstSegments[k].y;
-  for (uint vertex = strand * hair.counts.y; vertex < (strand + 1u) * hair.counts.y; ++vertex)
-    if (hidden[vertex] == 0u) shadeList.shaded[shadedNext++] = vertex;
+  uint first = strand * hair.counts.y, end = first + hair.counts.y;
+  bool previousVisible = false;  // the root has no segment before it
+  for (uint vertex = first; vertex < end; ++vertex) {
+    uint i = vertex - first;
+    bool visible = vertex + 1u < end && (visibleBits[strand * words + i / 32u] & 1u << (i % 32u)) != 0u;
+    if (previousVisible || visible) shadeList.shaded[shadedNext++] = vertex;
+    previousVisible = visible;
+  }
   for (uint word = 0u; word < words; ++word) {
     uint bits = visibleBits[strand * words + word];
     while (bits != 0u) {
@@ -269,9 +272,7 @@ void main() {
     if (vertex > first) {
       uint segment = vertex - 1u - first;
       bool segmentIsHidden = segmentHidden(previous, point);
-      bool previousHidden = previousSegmentHidden && segmentIsHidden;
-      hidden[vertex - 1u] = previousHidden ? 1u : 0u;
-      hiddenCount += previousHidden ? 1u : 0u;
+      hiddenCount += previousSegmentHidden && segmentIsHidden ? 1u : 0u;
       previousSegmentHidden = segmentIsHidden;
       visible += segmentIsHidden ? 0u : 1u;
       bits |= segmentIsHidden ? 0u : 1u << (segment % 32u);
@@ -288,8 +289,7 @@ void main() {
       add64(lost, uint(round((lineWidths - 1.0) * kWidthUnits)));
     }
   }
-  hidden[end - 1u] = previousSegmentHidden ? 1u : 0u;  // the tip has no segment after it
-  hiddenCount += previousSegmentHidden ? 1u : 0u;
+  hiddenCount += previousSegmentHidden ? 1u : 0u;  // the tip has no segment after it
   if (hiddenCount != 0u) atomicAdd(primitives.sums.hiddenVertices, hiddenCount);
   visibleCounts[strand] = visible | (hair.counts.y - hiddenCount) << 16u;
   // The add that wraps the low word carries one into the high word.

@@ -107,12 +107,11 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                       {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},  // draw order
                                       {Type::eStorageBuffer, Stage::eCompute},                   // 5: PrimitiveDraws
                                       {Type::eStorageBuffer, Stage::eCompute},    // 6: opaque depth tiles
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 7: hidden vertices
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 8: visible segments per strand
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 9: their bits
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 10: first segments in drawing order
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 11: the draws' indices
-                                      {Type::eStorageBuffer, Stage::eCompute}});  // 12: the vertices to shade
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 7: visible segments per strand
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 8: their bits
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 9: first segments in drawing order
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 10: the draws' indices
+                                      {Type::eStorageBuffer, Stage::eCompute}});  // 11: the vertices to shade
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
   const auto drawPipeline = [&](bool lines) {
     return makeGraphicsPipeline(
@@ -136,7 +135,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u});
   choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
   indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u});
-  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 12}});
+  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 11}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -193,7 +192,7 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   for (std::uint32_t s = 0; s < strands.strandCount; ++s) order[s] = s;
   writeStorageBuffer(*device_, set_, 4, order_);
   indices_ = strandIndices(*device_, strands.strandCount, strands.verticesPerStrand);
-  writeStorageBuffer(*device_, set_, 11, indices_);
+  writeStorageBuffer(*device_, set_, 10, indices_);
   const vk::DeviceSize strandWords = std::max<vk::DeviceSize>(strands.strandCount, 1) * sizeof(std::uint32_t);
   const vk::DeviceSize segmentWords = (strands.verticesPerStrand + 30) / 32;
   visibleCounts_ =
@@ -202,15 +201,12 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
                         vk::MemoryPropertyFlagBits::eDeviceLocal);
   firstSegments_ = Buffer(*device_, 2 * strandWords, vk::BufferUsageFlagBits::eStorageBuffer,
                           vk::MemoryPropertyFlagBits::eDeviceLocal);
-  writeStorageBuffer(*device_, set_, 8, visibleCounts_);
-  writeStorageBuffer(*device_, set_, 9, visibleBits_);
-  writeStorageBuffer(*device_, set_, 10, firstSegments_);
+  writeStorageBuffer(*device_, set_, 7, visibleCounts_);
+  writeStorageBuffer(*device_, set_, 8, visibleBits_);
+  writeStorageBuffer(*device_, set_, 9, firstSegments_);
   const std::size_t vertices = std::size_t(strands.strandCount) * strands.verticesPerStrand;
-  hidden_ = Buffer(*device_, std::max<vk::DeviceSize>(vertices, 1) * sizeof(std::uint32_t),
-                   vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
-  writeStorageBuffer(*device_, set_, 7, hidden_);
   shadeList_ = HairLightingPass::everyVertex(*device_, static_cast<std::uint32_t>(vertices));
-  writeStorageBuffer(*device_, set_, 12, shadeList_);
+  writeStorageBuffer(*device_, set_, 11, shadeList_);
   strandCount_ = strands.strandCount;
   indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;

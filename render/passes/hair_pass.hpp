@@ -220,7 +220,6 @@ private:
   Buffer order_;          ///< uint per strand, host-visible
   Buffer indices_;        ///< per visible segment two ribbon triangles, then per visible segment a line
   Buffer draws_;          ///< PrimitiveDraws (hair_pass.cpp), host-visible
-  Buffer hidden_;         ///< uint per dense vertex: 1 where both its segments are hidden
   Buffer shadeList_;      ///< HairLightingPass::setShadeList's layout
   Buffer visibleCounts_;  ///< uint per strand
   Buffer visibleBits_;    ///< a bit per segment, per strand
