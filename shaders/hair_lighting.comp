@@ -19,7 +19,7 @@ layout(set = 0, binding = 0, std430) readonly buffer HairLighting {
   vec4 ambient;                                 // rgb: ambient radiance × the groom's white-furnace albedo
   vec4 lightDirection[kHairLightingMaxLights];  // xyz: unit vector towards the light
   vec4 lightRadiance[kHairLightingMaxLights];   // rgb: perpendicular irradiance (colour × intensity)
-  uvec4 counts;                                 // x: lights, y: vertices per strand, z: vertices in all
+  uvec4 counts;                                 // x: lights, y: vertices per strand
   HairShadowUniforms shadows;
 } lighting;
 

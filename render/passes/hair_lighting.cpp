@@ -65,7 +65,7 @@ Result<std::unique_ptr<HairLightingPass>> HairLightingPass::create(const Device&
 HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut, const HairShadows& shadows,
                                    const Buffer& positions, const Buffer& tangents, std::uint32_t vertexCount,
                                    std::uint32_t verticesPerStrand)
-    : device_(&device), shadows_(&shadows), vertexCount_(vertexCount), verticesPerStrand_(verticesPerStrand) {
+    : device_(&device), shadows_(&shadows), verticesPerStrand_(verticesPerStrand) {
   using Type = vk::DescriptorType;
   const auto compute = vk::ShaderStageFlags(vk::ShaderStageFlagBits::eCompute);
   const std::pair sampler{Type::eCombinedImageSampler, compute};
@@ -83,7 +83,7 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler,                            // shadow first depth, 4 slots
-                                      {Type::eStorageBuffer, compute}});  // hidden vertices
+                                      {Type::eStorageBuffer, compute}});  // the shade list
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
                              {{Type::eStorageBuffer, 5}, {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
@@ -139,7 +139,7 @@ Result<void> HairLightingPass::update(const glm::mat4& viewProjection, std::span
   }
   uniforms.eye = hairEye(viewProjection);
   uniforms.ambient = glm::vec4(ambient * ambientAlbedo_, 0.0f);
-  uniforms.counts = glm::uvec4(static_cast<std::uint32_t>(count), verticesPerStrand_, vertexCount_, 0u);
+  uniforms.counts = glm::uvec4(static_cast<std::uint32_t>(count), verticesPerStrand_, 0u, 0u);
   uniforms.shadows = shadows;
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
   return {};

@@ -72,8 +72,8 @@ public:
   static constexpr std::uint32_t kWorkgroupSize = 64;  ///< local_size_x of shaders/hair_lighting.comp
 
   /// Records the dispatch. Before it: the positions and tangents written by a compute shader
-  /// (StrandInterpolationPass::record), the shadow maps built (HairShadows::record) and the hidden
-  /// vertices marked (HairPass::record), where set. After
+  /// (StrandInterpolationPass::record), the shadow maps built (HairShadows::record) and the shade
+  /// list written (HairPass::record), where set. After
   /// it, radiance() is visible to vertex-shader storage reads.
   void record(const vk::raii::CommandBuffer& commands) const;
 
@@ -87,7 +87,6 @@ private:
   const Device* device_;
   const HairShadows* shadows_;
   glm::vec3 ambientAlbedo_{0.0f};
-  std::uint32_t vertexCount_;
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
   Buffer uniforms_;
