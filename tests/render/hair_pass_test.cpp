@@ -303,6 +303,49 @@ void expectHiddenLeftHalf(HairPassTest& test, vk::SampleCountFlagBits samples, f
   EXPECT_EQ(rightDiffering, 0u) << "a visible strand was drawn differently";
 }
 
+// Segments off the screen: the parallel strands (roots at y = −49.75 pixels, tips at +50.25,
+// vertices 12.5 pixels apart) seen through a band 40 pixels high from y = 30 down to −10, so that
+// three segments at the root end lie wholly below it and one at the tip wholly above. The band is
+// compared with the same rows of a view 160 pixels high that holds the whole strands (the same
+// pixel grid, 60 rows more on either side), where nothing is off the screen: the same pixels,
+// with 4 vertices of each strand left out (three at the root, one at the tip) instead of none.
+void expectOffScreenLeftOut(HairPassTest& test, vk::SampleCountFlagBits samples, float widthPixels) {
+  const MarschnerLut& table = test.lut(blondeHairParams());
+  const HairGroomSettings groom{.width = widthPixels * kMetresPerPixel, .opacity = 1.0f, .minimumPixelWidth = 1.0f};
+  const std::array lights{DirectionalLight{.direction = {0, 0, 1}}};
+  // Rows 0 .. rows − 1 from world y = top downwards, a pixel of kMetresPerPixel, centred in x.
+  const auto band = [&](float topPixels, std::uint32_t rows) {
+    const vk::Extent2D extent{kCoverageExtent.width, rows};
+    const float halfWidth = 0.5f * kMetresPerPixel * float(extent.width);
+    const float top = topPixels * kMetresPerPixel;
+    glm::mat4 projection =
+        glm::orthoRH_ZO(-halfWidth, halfWidth, top - float(rows) * kMetresPerPixel, top, 0.01f, 3.0f);
+    projection[1][1] = -projection[1][1];
+    return HairView{projection * glm::lookAtRH(glm::vec3(0, 0, 1), glm::vec3(0), glm::vec3(0, 1, 0)), extent};
+  };
+  const float bandTop = 30.0f;
+  const Pixels whole =
+      test.render(table, parallelStrands(), samples, band(bandTop + 60.0f, 160), lights, glm::vec3(0.1f), groom);
+  EXPECT_EQ(test.lastChoice.hiddenVertices, 0u);
+  const Pixels cut = test.render(table, parallelStrands(), samples, band(bandTop, 40), lights, glm::vec3(0.1f), groom);
+  EXPECT_EQ(test.lastChoice.hiddenVertices, 4u * kStrands) << "three at the root, one at the tip, of every strand";
+  std::size_t differing = 0;
+  double drawn = 0.0;
+  for (std::size_t i = 0; i < cut.size(); ++i) {
+    differing += cut[i] != whole[i + 60 * kCoverageExtent.width] ? 1 : 0;
+    drawn += cut[i].a;
+  }
+  EXPECT_EQ(differing, 0u) << "pixels of the band differ from the same rows of the whole view";
+  EXPECT_GT(drawn, 0.0);
+}
+
+TEST_F(HairPassTest, SegmentsOffTheScreenAreLeftOutAndTheRestDrawnAsInALargerView) {
+  expectOffScreenLeftOut(*this, vk::SampleCountFlagBits::e1, 3.3f);  // ribbons
+  EXPECT_EQ(lastChoice.primitive, HairPrimitive::kRibbons);
+  expectOffScreenLeftOut(*this, vk::SampleCountFlagBits::e4, 0.3f);  // lines
+  EXPECT_EQ(lastChoice.primitive, HairPrimitive::kLines);
+}
+
 TEST_F(HairPassTest, StrandsBehindTheOpaqueDepthAreNeitherDrawnNorShaded) {
   expectHiddenLeftHalf(*this, vk::SampleCountFlagBits::e1, 3.3f);  // ribbons
   EXPECT_EQ(lastChoice.primitive, HairPrimitive::kRibbons);
