@@ -143,8 +143,9 @@ void BM_NaluFrame(benchmark::State& state) {
     }
     passMs["main pass"].push_back(mainPass);
     double hidden = 0.0, vertices = 0.0;
+    const std::vector<render::HairPrimitiveChoice> choices = (*renderer)->hairChoices();
     for (std::size_t g = 0; g < statics.grooms.size(); ++g) {
-      hidden += (*renderer)->hairChoices()[g].hiddenVertices;
+      hidden += choices[g].hiddenVertices;
       vertices += double(statics.grooms[g].layout.strands.size()) * statics.grooms[g].layout.vertexCount;
     }
     hiddenShare.push_back(vertices > 0.0 ? hidden / vertices : 0.0);
