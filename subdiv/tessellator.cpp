@@ -3,14 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <system_error>
 #include <thread>
 #include <utility>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/mat4x4.hpp>
 
 #include "subdiv/detail/flat_index_map.hpp"
@@ -106,6 +109,35 @@ public:
     return std::sqrt(0.5 * (aa + bb) + std::sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab));
   }
 
+  /// The largest of pixelsPerUnit(p)² · inverseSquaredScales[k] over points[k], or nothing
+  /// when a point is not in front of the camera. The same Jacobian as pixelsPerUnit, written
+  /// for a loop over many points: one division and one square root a point.
+  std::optional<double> largestSquaredGrowth(std::span<const glm::dvec3> points,
+                                             std::span<const double> inverseSquaredScales) const {
+    const glm::dvec4 mx = glm::row(viewProjection_, 0), my = glm::row(viewProjection_, 1),
+                     mw = glm::row(viewProjection_, 3);
+    const double hx2 = halfViewport_.x * halfViewport_.x, hy2 = halfViewport_.y * halfViewport_.y,
+                 hxy = halfViewport_.x * halfViewport_.y;
+    double largest = 0.0;
+    double nearestW = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const glm::dvec3& p = points[k];
+      const double x = mx.x * p.x + mx.y * p.y + mx.z * p.z + mx.w;
+      const double y = my.x * p.x + my.y * p.y + my.z * p.z + my.w;
+      const double w = mw.x * p.x + mw.y * p.y + mw.z * p.z + mw.w;
+      nearestW = std::min(nearestW, w);
+      const double inverseW = 1.0 / w;
+      const double nx = x * inverseW, ny = y * inverseW, inverseW2 = inverseW * inverseW;
+      const double aa = (xx_ - 2.0 * nx * xw_ + nx * nx * ww_) * hx2 * inverseW2;
+      const double bb = (yy_ - 2.0 * ny * yw_ + ny * ny * ww_) * hy2 * inverseW2;
+      const double ab = (xy_ - ny * xw_ - nx * yw_ + nx * ny * ww_) * hxy * inverseW2;
+      const double squared = 0.5 * (aa + bb) + std::sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab);
+      largest = std::max(largest, squared * inverseSquaredScales[k]);
+    }
+    if (!(nearestW > 0.0)) return std::nullopt;
+    return largest;
+  }
+
 private:
   glm::dmat4 viewProjection_{1.0};
   glm::dvec2 halfViewport_{0.5};
@@ -179,7 +211,8 @@ struct AdaptiveTessellator::Impl {
 
   // What keepsTarget needs of the last tessellation.
   std::vector<glm::dvec3> pointPositions;  ///< per location, as last evaluated
-  std::vector<double> pointScales;         ///< per location, pixels per unit in the view tessellated for
+  /// Per location, 1 / s² for its scale s (pixels per unit) in the view tessellated for.
+  std::vector<double> inverseSquaredScales;
   std::vector<CulledSamples> culled;
   bool keepable = false;  ///< no error was left unmeasured behind the camera
 
@@ -462,7 +495,7 @@ struct AdaptiveTessellator::Impl {
     evaluatedRevision = surface->revision();
     statistics.pointsEvaluated = staleLocations.size();
     pointPositions.resize(locations.size());
-    if (uvsToo) pointScales.resize(locations.size());
+    if (uvsToo) inverseSquaredScales.resize(locations.size());
     mesh.positions.resize(count);
     mesh.normals.resize(count);
     mesh.meanCurvature.resize(count);
@@ -483,7 +516,10 @@ struct AdaptiveTessellator::Impl {
                              const std::uint32_t first = location.firstVertex;
                              pointPositions[l] = glm::dvec3(sample.position);
                              // The scales a kept tessellation is measured against (keepsTarget).
-                             if (uvsToo) pointScales[l] = projector.project(pointPositions[l]).pixelsPerUnit;
+                             if (uvsToo) {
+                               const double scale = projector.project(pointPositions[l]).pixelsPerUnit;
+                               inverseSquaredScales[l] = 1.0 / (scale * scale);
+                             }
                              mesh.positions[first] = sample.position;
                              mesh.normals[first] = sample.normal;
                              mesh.meanCurvature[first] = sample.curvature.mean;
@@ -532,22 +568,31 @@ struct AdaptiveTessellator::Impl {
     numberVertices(mesh);
     evaluateVertices(mesh, threads, true);
     // A point behind the camera has no scale (0).
-    keepable &= std::find(pointScales.begin(), pointScales.end(), 0.0) == pointScales.end();
+    keepable &= std::none_of(inverseSquaredScales.begin(), inverseSquaredScales.end(),
+                             [](double inverse) { return std::isinf(inverse); });
   }
 
   /// The largest growth of any point's scale from the view tessellated for to `view` (see
   /// keepsTarget), or nothing when the triangles cannot be kept in `view` whatever it is: no
   /// tessellation to keep, an error left unmeasured behind the camera, a point now behind it, or
   /// a cell left coarse outside the view that has come into it.
-  std::optional<double> scaleGrowth(const ScreenView& view) const {
-    if (!keepable || pointScales.empty()) return std::nullopt;
+  std::optional<double> scaleGrowth(const ScreenView& view, unsigned threads) const {
+    if (!keepable || inverseSquaredScales.empty()) return std::nullopt;
     const Projector candidate(glm::dmat4(view.viewProjection), glm::dvec2(view.viewportSize));
-    double largestGrowth = 0.0;
-    for (std::size_t l = 0; l < pointScales.size(); ++l) {
-      const ProjectedPoint point = candidate.project(pointPositions[l]);
-      if (!point.inFront) return std::nullopt;
-      largestGrowth = std::max(largestGrowth, point.pixelsPerUnit / pointScales[l]);
+    const std::size_t count = pointPositions.size();
+    const std::size_t workers = detail::workerCount(count, threads, kMinPointsPerWorker);
+    // Per range, combined after: the largest of the ranges' largest is the same whatever the split.
+    std::vector<std::optional<double>> largestPerRange(workers);
+    detail::forEachRange(count, workers, [&](std::size_t w, std::size_t begin, std::size_t end) {
+      largestPerRange[w] = candidate.largestSquaredGrowth(std::span(pointPositions).subspan(begin, end - begin),
+                                                          std::span(inverseSquaredScales).subspan(begin, end - begin));
+    });
+    double largestSquared = 0.0;
+    for (const std::optional<double>& largest : largestPerRange) {
+      if (!largest) return std::nullopt;
+      largestSquared = std::max(largestSquared, *largest);
     }
+    const double largestGrowth = std::sqrt(largestSquared);
     if (!keepsWithin(largestGrowth)) return largestGrowth;  // refused whatever the culled cells say
     // The coarse cells outside the view must stay outside it: the same test refine made.
     for (const CulledSamples& samples : culled) {
@@ -605,9 +650,11 @@ struct AdaptiveTessellator::Preparation {
     tessellation->surface = &*snapshot;
     pending = toAdopt;
     calls = 0;
-    const auto work = [this, view] { tessellation->tessellate(view, mesh, kPreparingThreads); };
+    auto work = [this, view, token = detail::BackgroundThreadToken()] {
+      tessellation->tessellate(view, mesh, kPreparingThreads);
+    };
     try {
-      thread = std::jthread(work);
+      thread = std::jthread(std::move(work));
     } catch (const std::system_error&) {
       work();  // no thread to be had: the same tessellation, made now
     }
@@ -649,7 +696,7 @@ Result<FrameUpdate> AdaptiveTessellator::update(const ScreenView& view, Tessella
     preparation_->finish();
     return FrameUpdate::kTessellated;
   }
-  std::optional<double> growth = impl_->scaleGrowth(view);
+  std::optional<double> growth = impl_->scaleGrowth(view, threads);
   const bool preparing = preparation_->pending;
   if (preparing && (++preparation_->calls >= kPreparedCalls || !keepsWithin(growth))) {
     Preparation& prepared = *preparation_;
@@ -660,7 +707,7 @@ Result<FrameUpdate> AdaptiveTessellator::update(const ScreenView& view, Tessella
     std::swap(impl_, prepared.tessellation);
     std::swap(mesh, prepared.mesh);
     impl_->evaluateVertices(mesh, threads, false);
-    growth = impl_->scaleGrowth(view);
+    growth = impl_->scaleGrowth(view, threads);
     if (keepsWithin(growth)) return FrameUpdate::kAdopted;
   }
   if (!keepsWithin(growth)) {
@@ -682,7 +729,7 @@ Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned
 }
 
 bool AdaptiveTessellator::keepsTarget(const ScreenView& view) const {
-  return keepsWithin(impl_->scaleGrowth(view));
+  return keepsWithin(impl_->scaleGrowth(view, 1));
 }
 
 const TessellationStatistics& AdaptiveTessellator::statistics() const {

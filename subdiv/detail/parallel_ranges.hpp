@@ -5,18 +5,43 @@
 // the thread count.
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <system_error>
 #include <thread>
+#include <utility>
 #include <vector>
+
+#include "subdiv/detail/worker_pool.hpp"
 
 namespace mane::subdiv::detail {
 
+/// Threads that subdiv runs beside its callers' loops (a tessellation being prepared).
+inline std::atomic<unsigned> backgroundThreads{0};
+
+/// Counts a background thread for as long as it lives (moved into the thread's function).
+class BackgroundThreadToken {
+public:
+  BackgroundThreadToken() { backgroundThreads.fetch_add(1, std::memory_order_relaxed); }
+  BackgroundThreadToken(BackgroundThreadToken&& other) noexcept : counted_(std::exchange(other.counted_, false)) {}
+  BackgroundThreadToken& operator=(BackgroundThreadToken&&) = delete;
+  ~BackgroundThreadToken() {
+    if (counted_) backgroundThreads.fetch_sub(1, std::memory_order_relaxed);
+  }
+
+private:
+  bool counted_ = true;
+};
+
 /// The workers `threads` asks for over `count` items: at least 1, at most one per
-/// `minimumPerWorker` items (a thread costs tens of microseconds to start).
+/// `minimumPerWorker` items (handing a range to another thread costs tens of microseconds),
+/// and one fewer for each background thread running, which takes one of the caller's cores
+/// (on 2 cores, a frame's loop on two threads beside a preparing thread took twice as long).
 [[nodiscard]] inline std::size_t workerCount(std::size_t count, unsigned threads, std::size_t minimumPerWorker) {
   const std::size_t useful = std::max<std::size_t>(1, count / std::max<std::size_t>(1, minimumPerWorker));
-  return std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, useful);
+  const std::size_t asked = threads == 0 ? 1 : threads;
+  const std::size_t busy = backgroundThreads.load(std::memory_order_relaxed);
+  return std::clamp<std::size_t>(asked > busy ? asked - busy : 1, 1, useful);
 }
 
 /// The first item of range `w` of `workers` over `count` items.
@@ -25,13 +50,24 @@ namespace mane::subdiv::detail {
 }
 
 /// Calls `work(range, begin, end)` for ranges 0..workers−1 of [0, count), the calling thread
-/// taking range 0 (and any that no new thread could be started for), and returns when all are done.
+/// taking range 0, and returns when all are done. The other ranges run on kept threads
+/// (runOnKeptThreads), else on threads started for them, else on the calling thread.
 template <typename Work>
 void forEachRange(std::size_t count, std::size_t workers, const Work& work) {
   if (workers <= 1) {
     work(std::size_t(0), std::size_t(0), count);
     return;
   }
+  struct Loop {
+    const Work* work;
+    std::size_t count, workers;
+  };
+  const Loop loop{&work, count, workers};
+  const auto range = [](const void* context, std::size_t w) {
+    const Loop& l = *static_cast<const Loop*>(context);
+    (*l.work)(w, rangeBegin(l.count, l.workers, w), rangeBegin(l.count, l.workers, w + 1));
+  };
+  if (runOnKeptThreads(workers, range, &loop)) return;
   std::vector<std::jthread> pool;
   pool.reserve(workers - 1);
   std::size_t inlineFrom = workers;
