@@ -63,7 +63,7 @@ Image::Image(const Device& device, const ImageSettings& settings)
                                                   .format = settings.format,
                                                   .extent = {settings.extent.width, settings.extent.height, 1},
                                                   .mipLevels = settings.mipLevels,
-                                                  .arrayLayers = 1,
+                                                  .arrayLayers = settings.layers,
                                                   .samples = settings.samples,
                                                   .tiling = vk::ImageTiling::eOptimal,
                                                   .usage = settings.usage,
@@ -71,10 +71,11 @@ Image::Image(const Device& device, const ImageSettings& settings)
   allocation_ = Allocation(device, image_.getMemoryRequirements(), vk::MemoryPropertyFlagBits::eDeviceLocal);
   image_.bindMemory(*allocation_.memory(), 0);
   view_ = vk::raii::ImageView(
-      device.device(), vk::ImageViewCreateInfo{.image = *image_,
-                                               .viewType = vk::ImageViewType::e2D,
-                                               .format = settings.format,
-                                               .subresourceRange = {settings.aspect, 0, settings.mipLevels, 0, 1}});
+      device.device(),
+      vk::ImageViewCreateInfo{.image = *image_,
+                              .viewType = settings.layers > 1 ? vk::ImageViewType::e2DArray : vk::ImageViewType::e2D,
+                              .format = settings.format,
+                              .subresourceRange = {settings.aspect, 0, settings.mipLevels, 0, settings.layers}});
 }
 
 void imageBarrier(const vk::raii::CommandBuffer& commands, vk::Image image, const vk::ImageSubresourceRange& range,
@@ -96,8 +97,9 @@ void imageBarrier(const vk::raii::CommandBuffer& commands, vk::Image image, cons
 void transition(const vk::raii::CommandBuffer& commands, const Image& image, vk::ImageLayout from, vk::ImageLayout to,
                 vk::PipelineStageFlags2 srcStage, vk::AccessFlags2 srcAccess, vk::PipelineStageFlags2 dstStage,
                 vk::AccessFlags2 dstAccess) {
-  imageBarrier(commands, *image.image(), {image.settings().aspect, 0, image.settings().mipLevels, 0, 1}, from, to,
-               srcStage, srcAccess, dstStage, dstAccess);
+  imageBarrier(commands, *image.image(),
+               {image.settings().aspect, 0, image.settings().mipLevels, 0, image.settings().layers}, from, to, srcStage,
+               srcAccess, dstStage, dstAccess);
 }
 
 Image Image::texture(const Device& device, std::uint32_t width, std::uint32_t height,

@@ -56,6 +56,7 @@ struct ImageSettings {
   vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
   std::uint32_t mipLevels = 1;
   vk::ImageAspectFlags aspect = vk::ImageAspectFlagBits::eColor;
+  std::uint32_t layers = 1;  ///< more than 1: an array image, viewed as a 2D array
 };
 
 class Image {

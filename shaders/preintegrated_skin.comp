@@ -8,7 +8,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, rgba16f) uniform writeonly image2D table;
+layout(set = 0, binding = 0, r16f) uniform writeonly image2DArray table;  // layers R, G, B, A
 
 const int kGaussians = 6;
 const int kNodes = 12;      // kSkinQuadratureNodes
@@ -98,5 +98,6 @@ void main() {
   vec2 x = skinLutParameter(texel, size);
   vec3 rgb = diffuse(2.0 * x.x - 1.0, x.y * bake.scales.x);
   float a = encodedBeckmann(x.x, x.y * bake.scales.y);
-  imageStore(table, ivec2(texel), vec4(rgb, a));
+  for (int channel = 0; channel < 3; ++channel) imageStore(table, ivec3(texel, channel), vec4(rgb[channel]));
+  imageStore(table, ivec3(texel, 3), vec4(a));
 }

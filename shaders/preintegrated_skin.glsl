@@ -2,9 +2,9 @@
 // (render/luts/preintegrated_skin_lut.hpp; the maths is render/luts/preintegrated_skin.hpp and
 // render/luts/skin_specular.hpp).
 //
-//   one RGBA16F sampler2D, texel centre i of n at parameter s = i/(n − 1), likewise t:
-//   rgb = pre-integrated diffuse D at N·L = 2s − 1, 1/r = t · maxCurvature (1/mm)
-//   a   = 0.5 · Beckmann(N·H = s, α = t)^0.1 (decode: pow(2a, 10))
+//   one R16F sampler2DArray, texel centre i of n at parameter s = i/(n − 1), likewise t:
+//   layers 0–2 = pre-integrated diffuse D per R, G, B at N·L = 2s − 1, 1/r = t · maxCurvature (1/mm)
+//   layer 3    = 0.5 · Beckmann(N·H = s, α = t)^0.1 (decode: pow(2a, 10))
 //
 // Include after `#extension GL_GOOGLE_include_directive : require`.
 
@@ -22,19 +22,20 @@ vec2 skinLutCoordinates(vec2 x, float size) {
   return (0.5 + clamp(x, 0.0, 1.0) * (size - 1.0)) / size;
 }
 
-// Diffuse light per unit irradiance, per RGB, for a light at N·L on skin of curvature
-// `curvature` (1/r in 1/mm: a mesh's 1/r in world units divided by millimetres per unit). It
-// replaces max(N·L, 0) of Lambert; curvatures past the table's maxCurvature read its last row.
-vec3 preintegratedSkinDiffuse(sampler2D lut, float nDotL, float curvature, float maxCurvature) {
-  vec2 size = vec2(textureSize(lut, 0));
+// Diffuse light per unit irradiance of colour channel `channel` (0–2: R, G, B) for a light at
+// N·L on skin of curvature `curvature` (1/r in 1/mm: a mesh's 1/r in world units divided by
+// millimetres per unit). It replaces max(N·L, 0) of Lambert; curvatures past the table's
+// maxCurvature read its last row.
+float preintegratedSkinDiffuse(sampler2DArray lut, int channel, float nDotL, float curvature, float maxCurvature) {
+  float size = float(textureSize(lut, 0).x);
   vec2 x = vec2(0.5 * nDotL + 0.5, curvature / maxCurvature);
-  return textureLod(lut, skinLutCoordinates(x, size.x), 0.0).rgb;
+  return textureLod(lut, vec3(skinLutCoordinates(x, size), float(channel)), 0.0).r;
 }
 
 // Beckmann's normalised distribution (1/sr) at N·H for roughness α ∈ (0, 1], from the table.
-float preintegratedSkinBeckmann(sampler2D lut, float nDotH, float roughness) {
-  vec2 size = vec2(textureSize(lut, 0));
-  float encoded = textureLod(lut, skinLutCoordinates(vec2(nDotH, roughness), size.x), 0.0).a;
+float preintegratedSkinBeckmann(sampler2DArray lut, float nDotH, float roughness) {
+  float size = float(textureSize(lut, 0).x);
+  float encoded = textureLod(lut, vec3(skinLutCoordinates(vec2(nDotH, roughness), size), 3.0), 0.0).r;
   return pow(2.0 * encoded, 10.0);
 }
 
@@ -48,7 +49,7 @@ float skinSchlickFresnel(float cosTheta, float f0) {
 // Kelemen/Szirmay-Kalos specular, 1/sr: ρs · D(N·H) · F(H·V) / |L + V|²; multiply by N·L and the
 // light's irradiance. Unit vectors in one space; ρs as in render/luts/skin_specular.hpp (π times
 // GPU Gems 3's, whose Beckmann term leaves out 1/π).
-float kelemenSzirmayKalos(sampler2D lut, vec3 normal, vec3 toLight, vec3 toEye, float roughness, float rhoS) {
+float kelemenSzirmayKalos(sampler2DArray lut, vec3 normal, vec3 toLight, vec3 toEye, float roughness, float rhoS) {
   if (dot(normal, toLight) <= 0.0 || dot(normal, toEye) <= 0.0) return 0.0;
   vec3 h = toLight + toEye;
   float h2 = dot(h, h);

@@ -8,7 +8,7 @@
 layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // sRGB, decoded by the sampler
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
 layout(set = 1, binding = 2) uniform sampler2D specularMap;  // skin: red scales ρs
-layout(set = 1, binding = 3) uniform sampler2D skinTable;    // skin: pre-integrated diffuse + Beckmann
+layout(set = 1, binding = 3) uniform sampler2DArray skinTable;  // skin: pre-integrated diffuse + Beckmann
 layout(set = 1, binding = 4) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
 
 // Mirrors MaterialUniforms in render/passes/surface_pass.cpp.
@@ -68,9 +68,9 @@ void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, 
     vec3 toLight = frame.lightDirection[i].xyz;
     vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? hairShadow : 1.0);
     if (!kTextureSpaceDiffusion) {
-      vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, dot(normalR, toLight), inCurvature, draw.skin.z).r,
-                            preintegratedSkinDiffuse(skinTable, dot(normalG, toLight), inCurvature, draw.skin.z).g,
-                            preintegratedSkinDiffuse(skinTable, dot(normalB, toLight), inCurvature, draw.skin.z).b);
+      vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, 0, dot(normalR, toLight), inCurvature, draw.skin.z),
+                            preintegratedSkinDiffuse(skinTable, 1, dot(normalG, toLight), inCurvature, draw.skin.z),
+                            preintegratedSkinDiffuse(skinTable, 2, dot(normalB, toLight), inCurvature, draw.skin.z));
       diffuse += radiance * scattered;
     }
     specular += radiance * kelemenSzirmayKalos(skinTable, detail, toLight, toEye, draw.skin.x, rhoS) *

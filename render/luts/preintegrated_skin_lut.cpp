@@ -69,7 +69,8 @@ Result<PreintegratedSkinLut> PreintegratedSkinLut::create(const Device& device,
         Image(device, ImageSettings{.extent = {settings.size, settings.size},
                                     .format = kFormat,
                                     .usage = vk::ImageUsageFlagBits::eStorage | vk::ImageUsageFlagBits::eSampled |
-                                             vk::ImageUsageFlagBits::eTransferSrc});
+                                             vk::ImageUsageFlagBits::eTransferSrc,
+                                    .layers = kLayers});
     lut.sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eClampToEdge, 1.0f);
     lut.bake();
   } catch (const std::exception& error) {
@@ -122,7 +123,7 @@ void PreintegratedSkinLut::bake() {
 Result<std::vector<glm::vec4>> PreintegratedSkinLut::readTexels() const {
   const vk::Extent2D extent = table_.extent();
   const std::size_t texels = std::size_t(extent.width) * extent.height;
-  const vk::DeviceSize bytes = texels * 8;  // four half floats
+  const vk::DeviceSize bytes = texels * kLayers * 2;  // a half float per layer
   try {
     const Buffer host(*device_, bytes, vk::BufferUsageFlagBits::eTransferDst,
                       vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -130,9 +131,10 @@ Result<std::vector<glm::vec4>> PreintegratedSkinLut::readTexels() const {
       transition(commands, table_, Layout::eShaderReadOnlyOptimal, Layout::eTransferSrcOptimal,
                  Stage::eFragmentShader | Stage::eComputeShader, Access::eShaderSampledRead, Stage::eCopy,
                  Access::eTransferRead);
-      commands.copyImageToBuffer(*table_.image(), Layout::eTransferSrcOptimal, *host.buffer(),
-                                 vk::BufferImageCopy{.imageSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, 1},
-                                                     .imageExtent = {extent.width, extent.height, 1}});
+      commands.copyImageToBuffer(
+          *table_.image(), Layout::eTransferSrcOptimal, *host.buffer(),
+          vk::BufferImageCopy{.imageSubresource = {vk::ImageAspectFlagBits::eColor, 0, 0, kLayers},
+                              .imageExtent = {extent.width, extent.height, 1}});
       transition(commands, table_, Layout::eTransferSrcOptimal, Layout::eShaderReadOnlyOptimal, Stage::eCopy,
                  Access::eTransferRead, Stage::eFragmentShader | Stage::eComputeShader, Access::eShaderSampledRead);
       const vk::MemoryBarrier2 toHost{.srcStageMask = Stage::eCopy,
@@ -143,12 +145,13 @@ Result<std::vector<glm::vec4>> PreintegratedSkinLut::readTexels() const {
     });
     std::vector<glm::vec4> result(texels);
     const std::byte* data = host.mapped().data();
-    for (std::size_t i = 0; i < texels; ++i) {
-      std::uint16_t h[4];
-      std::memcpy(h, data + 8 * i, sizeof(h));
-      result[i] = glm::vec4(glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]),
-                            glm::unpackHalf1x16(h[3]));
-    }
+    // The layers one after another, each texel by texel.
+    for (std::size_t layer = 0; layer < kLayers; ++layer)
+      for (std::size_t i = 0; i < texels; ++i) {
+        std::uint16_t h;
+        std::memcpy(&h, data + 2 * (layer * texels + i), sizeof(h));
+        result[i][int(layer)] = glm::unpackHalf1x16(h);
+      }
     return result;
   } catch (const std::exception& error) {
     return fail(std::string("pre-integrated skin table: read-back failed: ") + error.what());

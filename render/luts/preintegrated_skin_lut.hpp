@@ -5,14 +5,19 @@
 // PreintegratedSkinSettings. A skin pass samples it with the functions of
 // shaders/preintegrated_skin.glsl: one texture serves diffuse and specular.
 //
-// Format: RGBA16F. The values stored lie in [0, 1] (the diffuse term, and 0.5·D^0.1 of the
-// Beckmann term but for its peak at α < 0.018), where half floats step by ≤ 2^-11: storage errors
-// ≤ 4.9e-4 even where a write rounds toward zero (Vulkan leaves the rounding to the device), about the 256-texel
-// table's own bilinear error and inside the 1e-3 the tests ask; the decoded Beckmann term keeps ≤ 1 %. Vulkan requires
-// storage and linear filtering of this format on every device, while linear filtering of
-// RGBA32F is optional; 32-bit texels would double the memory (1 MiB at 256²) for precision
-// the lookups cannot use. No mip maps: the table varies smoothly except along 1/r ≈ 0, where
-// a minified lookup should not blur the terminator.
+// Format: R16F, four layers of a 2D array, one per channel (R, G, B, A). A skin fragment reads
+// each diffuse channel at an N·L of its own (blurred normals) and the Beckmann term at N·H, so
+// every lookup uses one channel, and lavapipe filters one channel for less than four (the
+// surfaces of the frame bench's demo content: 40.9 → 38.8 ms, three alternating runs). Every
+// Vulkan device filters R16F linearly; storing to it takes shaderStorageImageExtendedFormats,
+// which lavapipe and desktop GPUs have (create() names the format where a device lacks it).
+// The values stored lie in [0, 1] (the diffuse term, and 0.5·D^0.1 of the Beckmann term but for
+// its peak at α < 0.018), where half floats step by ≤ 2^-11: storage errors ≤ 4.9e-4 even where
+// a write rounds toward zero (Vulkan leaves the rounding to the device), about the 256-texel
+// table's own bilinear error and inside the 1e-3 the tests ask; the decoded Beckmann term keeps
+// ≤ 1 %. 32-bit texels would double the memory for precision the lookups cannot use. No mip
+// maps: the table varies smoothly except along 1/r ≈ 0, where a minified lookup should not blur
+// the terminator.
 
 #include <cstdint>
 #include <vector>
@@ -27,7 +32,8 @@ namespace mane::render {
 
 class PreintegratedSkinLut {
 public:
-  static constexpr vk::Format kFormat = vk::Format::eR16G16B16A16Sfloat;
+  static constexpr vk::Format kFormat = vk::Format::eR16Sfloat;
+  static constexpr std::uint32_t kLayers = 4;  ///< R, G, B, A
 
   /// Bakes the table for `settings` and waits for the GPU. Errors: invalid settings (validate()),
   /// a device that cannot store to or linearly filter kFormat, or a Vulkan failure.
@@ -36,7 +42,7 @@ public:
   PreintegratedSkinLut(PreintegratedSkinLut&&) noexcept = default;
   PreintegratedSkinLut& operator=(PreintegratedSkinLut&&) noexcept = default;
 
-  /// The table, SHADER_READ_ONLY layout: a sampler2D.
+  /// The table, SHADER_READ_ONLY layout: a sampler2DArray.
   const vk::raii::ImageView& view() const { return table_.view(); }
   /// Bilinear, clamped to the edges: what shaders/preintegrated_skin.glsl expects.
   const vk::raii::Sampler& sampler() const { return sampler_; }

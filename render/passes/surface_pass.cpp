@@ -235,8 +235,7 @@ SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& materia
     for (std::size_t i = 0; i < kSkinGaussianCount; ++i)
       uniforms.profile[i] = glm::vec4(glm::vec3(profile.gaussians[i].weight), float(profile.gaussians[i].variance));
   } else {
-    // Never read by Lambert materials, but every binding must hold a valid image.
-    writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
+    writeSampledImage(*device_, gpu.descriptors, 3, unreadSkinTable(), sampler_);
   }
   // Until setDiffusedIrradiance: likewise valid and unread.
   writeSampledImage(*device_, gpu.descriptors, 4, gpu.albedo, sampler_);
@@ -254,6 +253,21 @@ const PreintegratedSkinLut& SurfacePass::skinTable(SkinIntegrationRange range) {
     table = std::make_unique<PreintegratedSkinLut>(std::move(*baked));
   }
   return *table;
+}
+
+const Image& SurfacePass::unreadSkinTable() {
+  if (!unreadSkinTable_) {
+    unreadSkinTable_ = std::make_unique<Image>(*device_, ImageSettings{.extent = {1, 1},
+                                                                       .format = PreintegratedSkinLut::kFormat,
+                                                                       .usage = vk::ImageUsageFlagBits::eSampled,
+                                                                       .layers = PreintegratedSkinLut::kLayers});
+    device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      transition(commands, *unreadSkinTable_, vk::ImageLayout::eUndefined, vk::ImageLayout::eShaderReadOnlyOptimal,
+                 vk::PipelineStageFlagBits2::eNone, vk::AccessFlagBits2::eNone,
+                 vk::PipelineStageFlagBits2::eFragmentShader, vk::AccessFlagBits2::eShaderSampledRead);
+    });
+  }
+  return *unreadSkinTable_;
 }
 
 void SurfacePass::setDiffusedIrradiance(std::size_t material, const vk::raii::ImageView& view,

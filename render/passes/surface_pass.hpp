@@ -143,10 +143,14 @@ private:
   GpuMaterial uploadMaterial(const MaterialData& material);
   /// The table for `range`, baked on first use.
   const PreintegratedSkinLut& skinTable(SkinIntegrationRange range);
+  /// What materials that never read the skin table bind in its place, made on first use: the
+  /// binding must hold an image of the type the shader declares, a 2D array.
+  const Image& unreadSkinTable();
 
   const Device* device_;
   const HairShadows* shadows_;
   std::array<std::unique_ptr<PreintegratedSkinLut>, 2> skinTables_;  ///< Penner, curvature-dependent
+  std::unique_ptr<Image> unreadSkinTable_;
   vk::raii::DescriptorSetLayout frameLayout_{nullptr};
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};
   vk::raii::DescriptorSetLayout thicknessLayout_{nullptr};
