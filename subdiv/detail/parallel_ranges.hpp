@@ -49,9 +49,10 @@ private:
   return count * w / workers;
 }
 
-/// Calls `work(range, begin, end)` for ranges 0..workers−1 of [0, count), the calling thread
-/// taking range 0, and returns when all are done. The other ranges run on kept threads
-/// (runOnKeptThreads), else on threads started for them, else on the calling thread.
+/// Calls `work(range, begin, end)` for ranges 0..workers−1 of [0, count), each on one thread,
+/// and returns when all are done: on the calling thread and kept threads (runOnKeptThreads),
+/// else on threads started for them, else on the calling thread alone. A range's output must
+/// depend on its index, never on the thread that runs it.
 template <typename Work>
 void forEachRange(std::size_t count, std::size_t workers, const Work& work) {
   if (workers <= 1) {

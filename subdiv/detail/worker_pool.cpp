@@ -49,42 +49,59 @@ public:
 
   ~KeptThreads() {
     stopping_.store(true, std::memory_order_relaxed);
-    loop_.fetch_add(kNextLoop, std::memory_order_release);
-    loop_.notify_all();
+    state_.fetch_add(std::uint64_t(1) << kLoopShift, std::memory_order_release);
+    state_.notify_all();
     threads_.clear();  // joins
   }
 
-  bool run(std::size_t workers, Task task, const void* context) {
-    if (workers > kMaxWorkers) return false;
+  bool run(std::size_t ranges, Task task, const void* context) {
+    if (ranges > kMaxRanges) return false;
     if (busy_.exchange(true, std::memory_order_acquire)) return false;
     const Release release{busy_};
     try {
-      while (threads_.size() + 1 < workers) {
-        const std::size_t worker = threads_.size() + 1;
-        threads_.emplace_back([this, worker, seen = loop_.load(std::memory_order_relaxed)] { serve(worker, seen); });
-      }
+      while (threads_.size() + 1 < ranges)
+        threads_.emplace_back([this, loop = loopOf(state_.load(std::memory_order_relaxed))] { serve(loop); });
     } catch (const std::system_error&) {
       return false;  // the threads started wait for a later loop
     }
     keepOffCallersCpu();
     task_ = task;
     context_ = context;
-    unfinished_.store(workers - 1, std::memory_order_relaxed);
-    // The loop's number and its worker count change together, so no thread can pair one
-    // loop's count with another's number.
-    const std::uint64_t previous = loop_.load(std::memory_order_relaxed);
-    loop_.store((previous & ~kWorkerMask) + kNextLoop + workers, std::memory_order_release);
-    loop_.notify_all();
-    task(context, 0);
+    unfinished_.store(ranges, std::memory_order_relaxed);
+    const std::uint64_t loop = loopOf(state_.load(std::memory_order_relaxed)) + 1;
+    state_.store(loop << kLoopShift | std::uint64_t(ranges) << kRangesShift, std::memory_order_release);
+    state_.notify_all();
+    runRanges(loop);
     waitFor(unfinished_, [](std::size_t left) { return left == 0; });
     return true;
   }
 
 private:
-  // loop_ holds the loop's number above its worker count.
-  static constexpr std::uint64_t kWorkerMask = 0xff;
-  static constexpr std::uint64_t kNextLoop = kWorkerMask + 1;
-  static constexpr std::size_t kMaxWorkers = kWorkerMask;
+  // state_ holds the loop's number (bits 16 and up), its range count (bits 8–15) and the next
+  // range to claim (bits 0–7): one word, so that no thread claims a range of a loop it did not
+  // see published.
+  static constexpr int kRangesShift = 8;
+  static constexpr int kLoopShift = 16;
+  static constexpr std::uint64_t kByte = 0xff;
+  static constexpr std::size_t kMaxRanges = kByte;
+
+  static std::uint64_t loopOf(std::uint64_t state) {
+    return state >> kLoopShift;
+  }
+
+  /// Claims and runs ranges of loop `loop` until none is left to claim. Ranges go to whichever
+  /// thread is free, so a kept thread that the system is slow to run delays the loop by no more
+  /// than the range it has claimed: the caller runs the rest.
+  void runRanges(std::uint64_t loop) {
+    std::uint64_t state = state_.load(std::memory_order_acquire);
+    while (loopOf(state) == loop && (state & kByte) < (state >> kRangesShift & kByte)) {
+      if (!state_.compare_exchange_weak(state, state + 1, std::memory_order_acq_rel, std::memory_order_acquire))
+        continue;
+      task_(context_, static_cast<std::size_t>(state & kByte));
+      if (unfinished_.fetch_sub(1, std::memory_order_acq_rel) == 1) unfinished_.notify_one();
+      state = state_.load(std::memory_order_acquire);
+    }
+  }
 
   /// Linux wakes a sleeping thread on the CPU of the thread that wakes it, where it waits for
   /// the caller's own range to end: a frame's loop, run after the threads slept through the
@@ -102,13 +119,13 @@ private:
 #endif
   }
 
-  void serve(std::size_t worker, std::uint64_t seen) {
+  void serve(std::uint64_t seenLoop) {
     for (;;) {
-      seen = waitFor(loop_, [seen](std::uint64_t loop) { return loop != seen; });
+      const std::uint64_t state =
+          waitFor(state_, [seenLoop](std::uint64_t current) { return loopOf(current) != seenLoop; });
       if (stopping_.load(std::memory_order_relaxed)) return;
-      if (worker >= (seen & kWorkerMask)) continue;  // not one of this loop's workers
-      task_(context_, worker);
-      if (unfinished_.fetch_sub(1, std::memory_order_acq_rel) == 1) unfinished_.notify_one();
+      seenLoop = loopOf(state);
+      runRanges(seenLoop);
     }
   }
 
@@ -119,10 +136,10 @@ private:
   };
 
   std::atomic<bool> busy_{false};  ///< set by the one caller whose loop the threads run
-  std::atomic<std::uint64_t> loop_{0};
-  std::atomic<std::size_t> unfinished_{0};
+  std::atomic<std::uint64_t> state_{0};
+  std::atomic<std::size_t> unfinished_{0};  ///< ranges of the loop not yet run
   std::atomic<bool> stopping_{false};
-  // Written by the caller before it publishes the loop, read by the loop's workers.
+  // Written by the caller before it publishes the loop, read by the threads that claim its ranges.
   Task task_ = nullptr;
   const void* context_ = nullptr;
 #if defined(__linux__)

@@ -7,10 +7,11 @@
 
 namespace mane::subdiv::detail {
 
-/// Calls task(context, w) for w in [1, workers) on kept threads and task(context, 0) on the
-/// calling thread, and returns true once all have returned. Returns false, having called
-/// nothing, when the kept threads are busy with another caller's loop (a loop nested in one,
-/// or another thread's) or no thread could be started: the caller then runs the loop itself.
-bool runOnKeptThreads(std::size_t workers, void (*task)(const void* context, std::size_t worker), const void* context);
+/// Calls task(context, r) once for each range r in [0, ranges), on the calling thread and kept
+/// threads, whichever claims r first, and returns true once all have returned. Returns false,
+/// having called nothing, when the kept threads are busy with another caller's loop (a loop
+/// nested in one, or another thread's) or no thread could be started: the caller then runs the
+/// loop itself.
+bool runOnKeptThreads(std::size_t ranges, void (*task)(const void* context, std::size_t range), const void* context);
 
 }  // namespace mane::subdiv::detail

@@ -1,7 +1,7 @@
 // The kept threads behind forEachRange (subdiv/detail/worker_pool.hpp): every range runs
 // exactly once per loop, loop after loop, with or without the threads sleeping between
-// loops; a loop started inside a loop, or on another thread meanwhile, is refused and runs
-// on threads of its own; a background thread takes one worker from the loops beside it.
+// loops; a loop started inside a loop is refused and runs on threads of its own; a background
+// thread takes one worker from the loops beside it.
 
 #include <array>
 #include <atomic>
@@ -19,23 +19,23 @@ namespace mane::subdiv::detail {
 namespace {
 
 struct Calls {
-  std::array<std::atomic<int>, 8> perWorker{};
+  std::array<std::atomic<int>, 8> perRange{};
 };
 
-void countCall(const void* context, std::size_t worker) {
+void countCall(const void* context, std::size_t range) {
   auto& calls = *static_cast<Calls*>(const_cast<void*>(context));
-  calls.perWorker[worker].fetch_add(1);
+  calls.perRange[range].fetch_add(1);
 }
 
-TEST(KeptThreads, EveryWorkerRunsOncePerLoopLoopAfterLoop) {
+TEST(KeptThreads, EveryRangeRunsOncePerLoopLoopAfterLoop) {
   Calls calls;
   constexpr int kLoops = 2000;
   for (int loop = 0; loop < kLoops; ++loop) {
-    // Worker counts that change from loop to loop: threads outside a loop must sit it out.
-    const std::size_t workers = 2 + static_cast<std::size_t>(loop % 3);
-    ASSERT_TRUE(runOnKeptThreads(workers, countCall, &calls));
-    for (std::size_t w = 0; w < calls.perWorker.size(); ++w)
-      ASSERT_EQ(calls.perWorker[w].exchange(0), w < workers ? 1 : 0) << "loop " << loop << ", worker " << w;
+    // Range counts that change from loop to loop, more than the kept threads at times.
+    const std::size_t ranges = 2 + static_cast<std::size_t>(loop % 5);
+    ASSERT_TRUE(runOnKeptThreads(ranges, countCall, &calls));
+    for (std::size_t r = 0; r < calls.perRange.size(); ++r)
+      ASSERT_EQ(calls.perRange[r].exchange(0), r < ranges ? 1 : 0) << "loop " << loop << ", range " << r;
   }
 }
 
@@ -44,7 +44,7 @@ TEST(KeptThreads, LoopsAfterTheThreadsSleptRunEveryWorker) {
   for (int loop = 0; loop < 5; ++loop) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));  // past the polling: the threads sleep
     ASSERT_TRUE(runOnKeptThreads(3, countCall, &calls));
-    for (std::size_t w = 0; w < 3; ++w) ASSERT_EQ(calls.perWorker[w].exchange(0), 1);
+    for (std::size_t r = 0; r < 3; ++r) ASSERT_EQ(calls.perRange[r].exchange(0), 1);
   }
 }
 
