@@ -59,8 +59,12 @@ public:
     if (busy_.exchange(true, std::memory_order_acquire)) return false;
     const Release release{busy_};
     try {
-      while (threads_.size() + 1 < ranges)
+      while (threads_.size() + 1 < ranges) {
         threads_.emplace_back([this, loop = loopOf(state_.load(std::memory_order_relaxed))] { serve(loop); });
+#if defined(__linux__)
+        callerCpu_ = -1;  // the new thread is not barred from any CPU yet
+#endif
+      }
     } catch (const std::system_error&) {
       return false;  // the threads started wait for a later loop
     }
@@ -151,9 +155,9 @@ private:
 
 }  // namespace
 
-bool runOnKeptThreads(std::size_t workers, Task task, const void* context) {
+bool runOnKeptThreads(std::size_t ranges, Task task, const void* context) {
   static KeptThreads threads;
-  return threads.run(workers, task, context);
+  return threads.run(ranges, task, context);
 }
 
 }  // namespace mane::subdiv::detail
