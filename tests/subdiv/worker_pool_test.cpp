@@ -31,7 +31,7 @@ TEST(KeptThreads, EveryRangeRunsOncePerLoopLoopAfterLoop) {
   Calls calls;
   constexpr int kLoops = 2000;
   for (int loop = 0; loop < kLoops; ++loop) {
-    // Range counts that change from loop to loop, more than the kept threads at times.
+    // Range counts that change from loop to loop: no thread may run a range of a loop twice.
     const std::size_t ranges = 2 + static_cast<std::size_t>(loop % 5);
     ASSERT_TRUE(runOnKeptThreads(ranges, countCall, &calls));
     for (std::size_t r = 0; r < calls.perRange.size(); ++r)
