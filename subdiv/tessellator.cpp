@@ -13,7 +13,6 @@
 #include <utility>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_access.hpp>
 #include <glm/mat4x4.hpp>
 
 #include "subdiv/detail/flat_index_map.hpp"
@@ -98,40 +97,23 @@ public:
 
   /// The scale at a point in front of the camera, given its clip coordinates.
   double pixelsPerUnit(const glm::dvec4& clip) const {
-    // The pixel position's Jacobian has rows a = (M_x − ndc_x·M_w)·(width/2)/w and likewise b
-    // for y, M_r being row r of the matrix without its translation: the scale is its largest
-    // singular value, the square root of the larger eigenvalue of [a·a a·b; a·b b·b].
-    const double nx = clip.x / clip.w, ny = clip.y / clip.w;
-    const double sx = halfViewport_.x / clip.w, sy = halfViewport_.y / clip.w;
-    const double aa = (xx_ - 2.0 * nx * xw_ + nx * nx * ww_) * sx * sx;
-    const double bb = (yy_ - 2.0 * ny * yw_ + ny * ny * ww_) * sy * sy;
-    const double ab = (xy_ - ny * xw_ - nx * yw_ + nx * ny * ww_) * sx * sy;
-    return std::sqrt(0.5 * (aa + bb) + std::sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab));
+    return std::sqrt(
+        squaredScale(clip.x / clip.w, clip.y / clip.w, halfViewport_.x / clip.w, halfViewport_.y / clip.w));
   }
 
   /// The largest of pixelsPerUnit(p)² · inverseSquaredScales[k] over points[k], or nothing
-  /// when a point is not in front of the camera. The same Jacobian as pixelsPerUnit, written
-  /// for a loop over many points: one division and one square root a point.
+  /// when a point is not in front of the camera: for a loop over many points, one division and
+  /// one square root a point.
   std::optional<double> largestSquaredGrowth(std::span<const glm::dvec3> points,
                                              std::span<const double> inverseSquaredScales) const {
-    const glm::dvec4 mx = glm::row(viewProjection_, 0), my = glm::row(viewProjection_, 1),
-                     mw = glm::row(viewProjection_, 3);
-    const double hx2 = halfViewport_.x * halfViewport_.x, hy2 = halfViewport_.y * halfViewport_.y,
-                 hxy = halfViewport_.x * halfViewport_.y;
     double largest = 0.0;
     double nearestW = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const glm::dvec3& p = points[k];
-      const double x = mx.x * p.x + mx.y * p.y + mx.z * p.z + mx.w;
-      const double y = my.x * p.x + my.y * p.y + my.z * p.z + my.w;
-      const double w = mw.x * p.x + mw.y * p.y + mw.z * p.z + mw.w;
-      nearestW = std::min(nearestW, w);
-      const double inverseW = 1.0 / w;
-      const double nx = x * inverseW, ny = y * inverseW, inverseW2 = inverseW * inverseW;
-      const double aa = (xx_ - 2.0 * nx * xw_ + nx * nx * ww_) * hx2 * inverseW2;
-      const double bb = (yy_ - 2.0 * ny * yw_ + ny * ny * ww_) * hy2 * inverseW2;
-      const double ab = (xy_ - ny * xw_ - nx * yw_ + nx * ny * ww_) * hxy * inverseW2;
-      const double squared = 0.5 * (aa + bb) + std::sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab);
+      const glm::dvec4 clip = viewProjection_ * glm::dvec4(points[k], 1.0);
+      nearestW = std::min(nearestW, clip.w);
+      const double inverseW = 1.0 / clip.w;
+      const double squared =
+          squaredScale(clip.x * inverseW, clip.y * inverseW, halfViewport_.x * inverseW, halfViewport_.y * inverseW);
       largest = std::max(largest, squared * inverseSquaredScales[k]);
     }
     if (!(nearestW > 0.0)) return std::nullopt;
@@ -139,6 +121,18 @@ public:
   }
 
 private:
+  /// The square of the scale at normalised device coordinates (nx, ny), where a clip unit spans
+  /// (sx, sy) pixels: the pixel position's Jacobian has rows a = (M_x − nx·M_w)·sx and
+  /// b = (M_y − ny·M_w)·sy, M_r being row r of the matrix without its translation, and the
+  /// scale is its largest singular value, the square root of the larger eigenvalue of
+  /// [a·a a·b; a·b b·b].
+  double squaredScale(double nx, double ny, double sx, double sy) const {
+    const double aa = (xx_ - 2.0 * nx * xw_ + nx * nx * ww_) * sx * sx;
+    const double bb = (yy_ - 2.0 * ny * yw_ + ny * ny * ww_) * sy * sy;
+    const double ab = (xy_ - ny * xw_ - nx * yw_ + nx * ny * ww_) * sx * sy;
+    return 0.5 * (aa + bb) + std::sqrt(0.25 * (aa - bb) * (aa - bb) + ab * ab);
+  }
+
   glm::dmat4 viewProjection_{1.0};
   glm::dvec2 halfViewport_{0.5};
   glm::dvec3 rowX_{0.0}, rowY_{0.0}, rowW_{0.0};
@@ -567,7 +561,7 @@ struct AdaptiveTessellator::Impl {
     });
     numberVertices(mesh);
     evaluateVertices(mesh, threads, true);
-    // A point behind the camera has no scale (0).
+    // A point behind the camera has no scale (0), so no finite inverse.
     keepable &= std::none_of(inverseSquaredScales.begin(), inverseSquaredScales.end(),
                              [](double inverse) { return std::isinf(inverse); });
   }
