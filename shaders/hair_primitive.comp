@@ -5,7 +5,8 @@
 // kStep 0, one invocation per dense strand: sums the strand's widths on screen at its vertices and
 //   the part of them lines of the minimum width would not cover, counts the vertices wider than
 //   that; marks its segments visible or hidden, and counts its vertices hidden, those whose
-//   segments both are.
+//   segments both are. It also writes each vertex as hair_line.vert draws it: its clip
+//   position and coverage.
 // kStep 1, one workgroup: enables the line draw when lines may be drawn and lose at most
 //   kLineCoverageLoss of the width, the ribbon draw otherwise, and zeroes the sums for the next
 //   frame; adds up the visible segments in drawing order (each strand's first index) and sets
@@ -89,6 +90,13 @@ layout(set = 0, binding = 11, std430) buffer ShadeList {
 layout(set = 0, binding = 4, std430) readonly buffer DrawOrder {
   uint order[];  // strand indices in the order they are drawn
 };
+// The line draw's vertex attributes (hair_line.vert), per dense vertex.
+layout(set = 0, binding = 12, std430) writeonly buffer LineClips {
+  vec4 lineClips[];
+};
+layout(set = 0, binding = 13, std430) writeonly buffer LineCoverage {
+  float lineCoverage[];
+};
 
 shared uvec2 partialSums[64];
 
@@ -116,6 +124,7 @@ struct ScreenPoint {
   vec2 low, high;  // pixel box of the three
   float nearest;   // smallest depth z/w of the three
   bool inFront;    // all three in front of the eye (w > 0)
+  vec4 centre;     // clip position of the centre, as hair.vert computes a ribbon edge
 };
 
 ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {
@@ -127,6 +136,7 @@ ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {
   point.inFront = true;
   for (int side = -1; side <= 1; ++side) {
     vec4 clip = hair.viewProjection * vec4(centre + ribbon.side * (float(side) * drawn), 1.0);
+    if (side == 0) point.centre = clip;
     point.inFront = point.inFront && clip.w > 0.0;
     vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * hair.viewport.xy;
     point.low = min(point.low, pixel);
@@ -225,8 +235,7 @@ void writeIndices() {
     while (bits != 0u) {
       int bit = findLSB(bits);
       bits &= bits - 1u;
-      uint i = word * 32u + uint(bit);      // the segment from vertex i to i + 1
-      uint vertex = k * hair.counts.y + i;  // as the vertex shader numbers it: by drawing order
+      uint vertex = first + word * 32u + uint(bit);  // the segment from this vertex to the next
       if (lines) {
         indices[hair.counts.w + 2u * next] = vertex;
         indices[hair.counts.w + 2u * next + 1u] = vertex + 1u;
@@ -269,6 +278,10 @@ void main() {
     HairRibbon ribbon = hairRibbon(position, tangents[vertex].xyz);
     // A vertex is hidden when both segments it joins are.
     ScreenPoint point = screenPoint(position.xyz, ribbon);
+    // Written whichever draw is chosen: a branch on the uniforms alone would make lavapipe compile
+    // this shader again every frame (tests/support/jit_compile_counter.hpp).
+    lineClips[vertex] = point.centre;
+    lineCoverage[vertex] = ribbon.halfWidth / max(ribbon.halfWidth, ribbon.minimumHalfWidth);
     if (vertex > first) {
       uint segment = vertex - 1u - first;
       bool segmentIsHidden = segmentHidden(previous, point);

@@ -92,7 +92,8 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eStorageBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   radiance_ = Buffer(device, vk::DeviceSize(vertexCount) * sizeof(glm::vec4),
-                     vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc,
+                     vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer |
+                         vk::BufferUsageFlagBits::eTransferSrc,
                      vk::MemoryPropertyFlagBits::eDeviceLocal);
   std::memset(uniforms_.mapped().data(), 0, sizeof(LightingUniforms));
   writeStorageBuffer(device, set_, 0, uniforms_);
@@ -154,22 +155,23 @@ void HairLightingPass::record(const vk::raii::CommandBuffer& commands) const {
                                              .srcAccessMask = Access::eShaderStorageWrite,
                                              .dstStageMask = Stage::eComputeShader,
                                              .dstAccessMask = Access::eShaderStorageRead},
-                          vk::MemoryBarrier2{.srcStageMask = Stage::eVertexShader,
+                          vk::MemoryBarrier2{.srcStageMask = Stage::eVertexShader | Stage::eVertexAttributeInput,
                                              .dstStageMask = Stage::eComputeShader,
                                              .dstAccessMask = Access::eShaderStorageWrite}};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = before.size(), .pMemoryBarriers = before.data()});
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, {*set_}, {});
   commands.dispatchIndirect(*shadeList_->buffer(), 0);
-  const vk::BufferMemoryBarrier2 after{.srcStageMask = Stage::eComputeShader,
-                                       .srcAccessMask = Access::eShaderStorageWrite,
-                                       .dstStageMask = Stage::eVertexShader | Stage::eCopy,
-                                       .dstAccessMask = Access::eShaderStorageRead | Access::eTransferRead,
-                                       .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                       .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                       .buffer = *radiance_.buffer(),
-                                       .offset = 0,
-                                       .size = VK_WHOLE_SIZE};
+  const vk::BufferMemoryBarrier2 after{
+      .srcStageMask = Stage::eComputeShader,
+      .srcAccessMask = Access::eShaderStorageWrite,
+      .dstStageMask = Stage::eVertexShader | Stage::eVertexAttributeInput | Stage::eCopy,
+      .dstAccessMask = Access::eShaderStorageRead | Access::eVertexAttributeRead | Access::eTransferRead,
+      .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+      .buffer = *radiance_.buffer(),
+      .offset = 0,
+      .size = VK_WHOLE_SIZE};
   commands.pipelineBarrier2(vk::DependencyInfo{.bufferMemoryBarrierCount = 1, .pBufferMemoryBarriers = &after});
 }
 

@@ -74,7 +74,7 @@ public:
   /// Records the dispatch. Before it: the positions and tangents written by a compute shader
   /// (StrandInterpolationPass::record), the shadow maps built (HairShadows::record) and the shade
   /// list written (HairPass::record), where set. After
-  /// it, radiance() is visible to vertex-shader storage reads.
+  /// it, radiance() is visible to vertex-shader storage reads and to vertex attribute reads.
   void record(const vk::raii::CommandBuffer& commands) const;
 
   /// vec4 per vertex: rgb radiance towards the eye, a the first light's shadow transmittance.

@@ -65,10 +65,11 @@ constexpr vk::DeviceSize kLineDrawOffset = offsetof(PrimitiveDraws, lines);
 constexpr std::uint32_t kPrimitiveWorkgroup = 64;  // local_size_x of hair_primitive.comp
 constexpr std::uint32_t kMaxWorkgroupsX = 65535;   // the least maxComputeWorkGroupCount[0]
 
-// The ribbon indices, then the line indices. Ribbons: two triangles per segment over the vertices
-// 2 × (k × Nd + i) + side of the vertex shader, counter-clockwise seen from the side s points to:
-// (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +). Lines: one per segment over k × Nd + i. The
-// count fits 32 bits (setStrands checks), and so does every index, as 2·Nd ≤ 8·(Nd − 1).
+// The ribbon indices, then the line indices, of every segment. Ribbons: two triangles per segment
+// over the vertices 2 × (s × Nd + i) + side of hair.vert, counter-clockwise seen from the side the
+// ribbon's s points to: (i, −)(i+1, −)(i+1, +) and (i, −)(i+1, +)(i, +). Lines: one per segment
+// over s × Nd + i. The count fits 32 bits (setStrands checks), and so does every index, as
+// 2·Nd ≤ 8·(Nd − 1).
 Buffer strandIndices(const Device& device, std::uint32_t strands, std::uint32_t verticesPerStrand) {
   std::vector<std::uint32_t> indices;
   indices.reserve(std::size_t(strands) * (verticesPerStrand - 1) * 8);
@@ -111,13 +112,24 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                       {Type::eStorageBuffer, Stage::eCompute},    // 8: their bits
                                       {Type::eStorageBuffer, Stage::eCompute},    // 9: first segments in drawing order
                                       {Type::eStorageBuffer, Stage::eCompute},    // 10: the draws' indices
-                                      {Type::eStorageBuffer, Stage::eCompute}});  // 11: the vertices to shade
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 11: the vertices to shade
+                                      {Type::eStorageBuffer, Stage::eCompute},    // 12: the lines' clip positions
+                                      {Type::eStorageBuffer, Stage::eCompute}});  // 13: and coverage
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
+  // The lines' vertex attributes (hair_line.vert): clip position, coverage, radiance.
+  std::vector<vk::VertexInputBindingDescription> lineBindings{{0, sizeof(glm::vec4), vk::VertexInputRate::eVertex},
+                                                              {1, sizeof(float), vk::VertexInputRate::eVertex},
+                                                              {2, sizeof(glm::vec4), vk::VertexInputRate::eVertex}};
+  std::vector<vk::VertexInputAttributeDescription> lineAttributes{{0, 0, vk::Format::eR32G32B32A32Sfloat, 0},
+                                                                  {1, 1, vk::Format::eR32Sfloat, 0},
+                                                                  {2, 2, vk::Format::eR32G32B32A32Sfloat, 0}};
   const auto drawPipeline = [&](bool lines) {
     return makeGraphicsPipeline(
         device, GraphicsPipelineSettings{
-                    .vertexShader = "hair.vert",
+                    .vertexShader = lines ? "hair_line.vert" : "hair.vert",
                     .fragmentShader = "hair.frag",
+                    .vertexBindings = lines ? lineBindings : std::vector<vk::VertexInputBindingDescription>{},
+                    .vertexAttributes = lines ? lineAttributes : std::vector<vk::VertexInputAttributeDescription>{},
                     .topology = lines ? vk::PrimitiveTopology::eLineList : vk::PrimitiveTopology::eTriangleList,
                     .dynamicLineWidth = lines,
                     .cullMode = vk::CullModeFlagBits::eNone,
@@ -127,15 +139,14 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                     .depthTest = depth,
                     .depthWrite = false,
                     .samples = settings.samples,
-                    .setLayouts = {*setLayout_},
-                    .constants = {lines ? 1u : 0u}});
+                    .setLayouts = {*setLayout_}});
   };
   ribbonPipeline_ = drawPipeline(false);
   linePipeline_ = drawPipeline(true);
   countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u});
   choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
   indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u});
-  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 11}});
+  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 13}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -207,6 +218,14 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   const std::size_t vertices = std::size_t(strands.strandCount) * strands.verticesPerStrand;
   shadeList_ = HairLightingPass::everyVertex(*device_, static_cast<std::uint32_t>(vertices));
   writeStorageBuffer(*device_, set_, 11, shadeList_);
+  const vk::BufferUsageFlags lineUsage =
+      vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
+  const vk::DeviceSize lineVertices = std::max<vk::DeviceSize>(vertices, 1);
+  lineClips_ = Buffer(*device_, lineVertices * sizeof(glm::vec4), lineUsage, vk::MemoryPropertyFlagBits::eDeviceLocal);
+  lineCoverage_ = Buffer(*device_, lineVertices * sizeof(float), lineUsage, vk::MemoryPropertyFlagBits::eDeviceLocal);
+  writeStorageBuffer(*device_, set_, 12, lineClips_);
+  writeStorageBuffer(*device_, set_, 13, lineCoverage_);
+  radiance_ = strands.radiance;
   strandCount_ = strands.strandCount;
   indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;
@@ -279,10 +298,11 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
   // In: the strands from the interpolation dispatch, the occlusion tiles, and the sums the previous
   // choice zeroed. The steps below rewrite the draw commands and indices after the previous
   // frame's draws have read them.
-  const vk::MemoryBarrier2 before{.srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect | Stage::eIndexInput,
-                                  .srcAccessMask = Access::eShaderStorageWrite,
-                                  .dstStageMask = Stage::eComputeShader,
-                                  .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+  const vk::MemoryBarrier2 before{
+      .srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect | Stage::eIndexInput | Stage::eVertexAttributeInput,
+      .srcAccessMask = Access::eShaderStorageWrite,
+      .dstStageMask = Stage::eComputeShader,
+      .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &before});
   // Each step reads what the one before wrote.
   const vk::MemoryBarrier2 stepDone{.srcStageMask = Stage::eComputeShader,
@@ -301,12 +321,13 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
   step(choosePipeline_, 1, 1);
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &stepDone});
   step(indexPipeline_, groupsX, (groups + groupsX - 1) / groupsX);
-  const vk::MemoryBarrier2 written{
-      .srcStageMask = Stage::eComputeShader,
-      .srcAccessMask = Access::eShaderStorageWrite,
-      .dstStageMask = Stage::eDrawIndirect | Stage::eIndexInput | Stage::eComputeShader | Stage::eHost,
-      .dstAccessMask =
-          Access::eIndirectCommandRead | Access::eIndexRead | Access::eShaderStorageRead | Access::eHostRead};
+  const vk::MemoryBarrier2 written{.srcStageMask = Stage::eComputeShader,
+                                   .srcAccessMask = Access::eShaderStorageWrite,
+                                   .dstStageMask = Stage::eDrawIndirect | Stage::eIndexInput |
+                                                   Stage::eVertexAttributeInput | Stage::eComputeShader | Stage::eHost,
+                                   .dstAccessMask = Access::eIndirectCommandRead | Access::eIndexRead |
+                                                    Access::eVertexAttributeRead | Access::eShaderStorageRead |
+                                                    Access::eHostRead};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &written});
 }
 
@@ -333,6 +354,7 @@ void HairPass::draw(const vk::raii::CommandBuffer& commands) const {
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *linePipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *linePipeline_.layout, 0, {*set_}, {});
   commands.setLineWidth(lineWidth_);
+  commands.bindVertexBuffers(0, {*lineClips_.buffer(), *lineCoverage_.buffer(), radiance_}, {0, 0, 0});
   commands.drawIndexedIndirect(*draws_.buffer(), kLineDrawOffset, 1, sizeof(vk::DrawIndexedIndirectCommand));
 }
 

@@ -7,10 +7,11 @@
 // (render/passes/strand_interpolation.hpp): per vertex a vec4 position (xyz metres, w = t along
 // the strand, 0 root .. 1 tip), a vec4 unit tangent (xyz, root → tip) and a vec4 radiance (rgb,
 // HairLightingPass::radiance()), strand-major, Nd vertices per strand. Any buffers with
-// STORAGE_BUFFER usage in that layout work (tests make their own).
+// STORAGE_BUFFER usage in that layout work (tests make their own); the radiance buffer also needs
+// VERTEX_BUFFER usage, as the line draw reads it as a vertex attribute.
 //
 // Ribbon expansion (vertex pulling). One indexed draw of two triangles per segment and no vertex
-// buffers: the vertex shader finds its strand vertex and side from the index (2 per strand vertex,
+// buffers: hair.vert finds its strand vertex and side from the index (2 per strand vertex,
 // so lavapipe's vertex cache shades each once where a plain draw of 6 corners per segment shaded
 // every strand vertex 12 times), reads its position and tangent, and pushes it sideways along
 // s = normalize(t × ωe) (ωe: towards the eye), perpendicular to the strand and to the view, by half
@@ -42,7 +43,11 @@
 // loses nothing; nalu's, whose nearest roots are up to about 1.2 pixels wide, loses well under
 // 1 %. `draw` records both draws as indirect draws and the choice gives one of them no instance,
 // so the frame needs no read-back. Lines are drawn only where their area is exact: rectangular
-// lines (strictLines), at width 1 or with the wideLines feature within its range.
+// lines (strictLines), at width 1 or with the wideLines feature within its range. The compute
+// step that measures the widths also writes every vertex's clip position and coverage, which the
+// line draw takes as vertex attributes (shaders/hair_line.vert) with the radiance: lavapipe runs
+// vertex shaders on one thread, where pulling the strands from storage buffers took about 8 of
+// the nalu line draw's 29 ms.
 //
 // Hidden strands. Long hair falls behind the head and shoulders, and out of the frame: in nalu
 // about half of the dense vertices. The Renderer splits the main pass around the hair, so the
@@ -185,8 +190,8 @@ public:
   /// Records the draw inside a dynamic rendering scope with the formats and sample count of
   /// HairPassSettings (viewport and scissor are set to the view's extent), after `record` in the
   /// same submission. Nothing is drawn before setStrands. The strand buffers' writes must be
-  /// visible to vertex-shader storage reads (StrandInterpolationPass::record's and
-  /// HairLightingPass::record's barriers do that).
+  /// visible to vertex-shader storage reads, and the radiance's to vertex attribute reads
+  /// (StrandInterpolationPass::record's and HairLightingPass::record's barriers do that).
   void draw(const vk::raii::CommandBuffer& commands) const;
 
   /// The choice of the last submission that ran `record`, once it has finished.
@@ -225,6 +230,9 @@ private:
   Buffer visibleBits_;    ///< a bit per segment, per strand
   Buffer firstSegments_;  ///< per strand in drawing order: the visible segments and shaded vertices before it
   Buffer noOcclusion_;    ///< one tile at the far plane
+  Buffer lineClips_;      ///< vec4 per vertex: the line draw's clip positions, written by `record`
+  Buffer lineCoverage_;   ///< float per vertex: and its coverage
+  vk::Buffer radiance_;   ///< the strands' radiance, the line draw's third vertex attribute
   HairOcclusionTiles occlusion_;
   std::uint32_t strandCount_ = 0;
   std::uint32_t indexCount_ = 0;

@@ -68,9 +68,10 @@ struct FixedColourHair {
 
 FixedColourHair fixedColourHair(const Device& device, const StrandData& data, std::span<const glm::vec4> radiance) {
   const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
-  FixedColourHair hair{.positions = Buffer::withData(device, std::as_bytes(std::span(data.positions)), usage),
-                       .tangents = Buffer::withData(device, std::as_bytes(std::span(data.tangents)), usage),
-                       .colours = Buffer::withData(device, std::as_bytes(radiance), usage)};
+  FixedColourHair hair{
+      .positions = Buffer::withData(device, std::as_bytes(std::span(data.positions)), usage),
+      .tangents = Buffer::withData(device, std::as_bytes(std::span(data.tangents)), usage),
+      .colours = Buffer::withData(device, std::as_bytes(radiance), usage | vk::BufferUsageFlagBits::eVertexBuffer)};
   auto pass = HairPass::create(device, {});
   if (!pass) throw std::runtime_error(pass.error().message);
   hair.pass = std::move(*pass);
