@@ -92,7 +92,7 @@ Groom makeGroom(const Device& device) {
       tangents.emplace_back(tangent, 0.0f);
     }
   }
-  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
+  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer;
   return {Buffer::withData(device, std::as_bytes(std::span(positions)), usage),
           Buffer::withData(device, std::as_bytes(std::span(tangents)), usage)};
 }

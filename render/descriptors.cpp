@@ -56,6 +56,17 @@ void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set
                                        {});
 }
 
+void writeUniformTexelBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                             const vk::raii::BufferView& view) {
+  const vk::BufferView handle = *view;
+  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
+                                                              .dstBinding = binding,
+                                                              .descriptorCount = 1,
+                                                              .descriptorType = vk::DescriptorType::eUniformTexelBuffer,
+                                                              .pTexelBufferView = &handle},
+                                       {});
+}
+
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler) {
   writeSampledImage(device, set, binding, image.view(), sampler);

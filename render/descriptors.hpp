@@ -25,6 +25,8 @@ void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set
                         const Buffer& buffer);
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler);
+void writeUniformTexelBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                             const vk::raii::BufferView& view);
 /// A combined image sampler of `view` in SHADER_READ_ONLY layout.
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const vk::raii::ImageView& view, const vk::raii::Sampler& sampler);

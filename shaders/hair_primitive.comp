@@ -25,12 +25,10 @@ const float kLineCoverageLoss = 0.01;
 const float kWidthUnits = 4096.0;
 const float kLargestWidth = 1024.0;
 
-layout(set = 0, binding = 1, std430) readonly buffer Positions {
-  vec4 positions[];  // xyz metres, w = t along the strand
-};
-layout(set = 0, binding = 2, std430) readonly buffer Tangents {
-  vec4 tangents[];  // xyz unit tangent root → tip
-};
+// The strands as texel buffers, not storage buffers: lavapipe loads a storage buffer lane by lane
+// (render/passes/hair_pass.hpp, "Lines").
+layout(set = 0, binding = 14) uniform samplerBuffer positionTexels;  // xyz metres, w = t along the strand
+layout(set = 0, binding = 15) uniform samplerBuffer tangentTexels;   // xyz unit tangent root → tip
 
 // VkDrawIndexedIndirectCommand.
 struct IndexedDraw {
@@ -274,8 +272,8 @@ void main() {
   ScreenPoint previous;
   bool previousSegmentHidden = true;  // the root has no segment before it
   for (uint vertex = first; vertex < end; ++vertex) {
-    vec4 position = positions[vertex];
-    HairRibbon ribbon = hairRibbon(position, tangents[vertex].xyz);
+    vec4 position = texelFetch(positionTexels, int(vertex));
+    HairRibbon ribbon = hairRibbon(position, texelFetch(tangentTexels, int(vertex)).xyz);
     // A vertex is hidden when both segments it joins are.
     ScreenPoint point = screenPoint(position.xyz, ribbon);
     // Written whichever draw is chosen: a branch on the uniforms alone would make lavapipe compile

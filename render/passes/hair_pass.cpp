@@ -101,20 +101,22 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   using Stage = vk::ShaderStageFlagBits;
   using Type = vk::DescriptorType;
   setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment | Stage::eCompute},
-                                      // 1–3 alike: setStrands writes them in one update.
-                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
-                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
-                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},
-                                      {Type::eStorageBuffer, Stage::eVertex | Stage::eCompute},  // draw order
-                                      {Type::eStorageBuffer, Stage::eCompute},                   // 5: PrimitiveDraws
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 6: opaque depth tiles
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 7: visible segments per strand
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 8: their bits
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 9: first segments in drawing order
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 10: the draws' indices
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 11: the vertices to shade
-                                      {Type::eStorageBuffer, Stage::eCompute},    // 12: the lines' clip positions
-                                      {Type::eStorageBuffer, Stage::eCompute}});  // 13: and coverage
+                                      // 1–3, hair.vert's strands, alike: setStrands writes them in one update.
+                                      {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eStorageBuffer, Stage::eVertex},
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 4: draw order
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 5: PrimitiveDraws
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 6: opaque depth tiles
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 7: visible segments per strand
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 8: their bits
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 9: first segments in drawing order
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 10: the draws' indices
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 11: the vertices to shade
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 12: the lines' clip positions
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 13: and coverage
+                                      {Type::eUniformTexelBuffer, Stage::eCompute},    // 14: positions
+                                      {Type::eUniformTexelBuffer, Stage::eCompute}});  // 15: tangents
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
   // The lines' vertex attributes (hair_line.vert): clip position, coverage, radiance.
   std::vector<vk::VertexInputBindingDescription> lineBindings{{0, sizeof(glm::vec4), vk::VertexInputRate::eVertex},
@@ -146,7 +148,8 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u});
   choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
   indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u});
-  pool_ = makeDescriptorPool(device, 1, {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 13}});
+  pool_ = makeDescriptorPool(device, 1,
+                             {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 13}, {Type::eUniformTexelBuffer, 2}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -185,6 +188,12 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
     return fail("hair strands: " + std::to_string(strands.strandCount) + " strands × " +
                 std::to_string(strands.verticesPerStrand) + " vertices need " + std::to_string(8 * segments) +
                 " ribbon and line indices, more than a draw can reach (2^32 − 1)");
+
+  const std::uint64_t vertexCount = std::uint64_t(strands.strandCount) * strands.verticesPerStrand;
+  if (vertexCount > device_->limits().maxTexelBufferElements)
+    return fail("hair strands: " + std::to_string(vertexCount) +
+                " vertices are more than this device's texel buffers hold (" +
+                std::to_string(device_->limits().maxTexelBufferElements) + ")");
 
   const std::array buffers{vk::DescriptorBufferInfo{.buffer = strands.positions, .offset = 0, .range = VK_WHOLE_SIZE},
                            vk::DescriptorBufferInfo{.buffer = strands.tangents, .offset = 0, .range = VK_WHOLE_SIZE},
@@ -226,6 +235,16 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   writeStorageBuffer(*device_, set_, 12, lineClips_);
   writeStorageBuffer(*device_, set_, 13, lineCoverage_);
   radiance_ = strands.radiance;
+  const auto texels = [&](vk::Buffer buffer) {
+    return vk::raii::BufferView(
+        device_->device(),
+        vk::BufferViewCreateInfo{
+            .buffer = buffer, .format = vk::Format::eR32G32B32A32Sfloat, .offset = 0, .range = VK_WHOLE_SIZE});
+  };
+  positionTexels_ = texels(strands.positions);
+  tangentTexels_ = texels(strands.tangents);
+  writeUniformTexelBuffer(*device_, set_, 14, positionTexels_);
+  writeUniformTexelBuffer(*device_, set_, 15, tangentTexels_);
   strandCount_ = strands.strandCount;
   indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;

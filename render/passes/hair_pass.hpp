@@ -7,8 +7,8 @@
 // (render/passes/strand_interpolation.hpp): per vertex a vec4 position (xyz metres, w = t along
 // the strand, 0 root .. 1 tip), a vec4 unit tangent (xyz, root → tip) and a vec4 radiance (rgb,
 // HairLightingPass::radiance()), strand-major, Nd vertices per strand. Any buffers with
-// STORAGE_BUFFER usage in that layout work (tests make their own); the radiance buffer also needs
-// VERTEX_BUFFER usage, as the line draw reads it as a vertex attribute.
+// STORAGE_BUFFER usage in that layout work (tests make their own). The positions and tangents
+// also need UNIFORM_TEXEL_BUFFER usage, and the radiance VERTEX_BUFFER usage: see "Lines".
 //
 // Ribbon expansion (vertex pulling). One indexed draw of two triangles per segment and no vertex
 // buffers: hair.vert finds its strand vertex and side from the index (2 per strand vertex,
@@ -47,7 +47,9 @@
 // step that measures the widths also writes every vertex's clip position and coverage, which the
 // line draw takes as vertex attributes (shaders/hair_line.vert) with the radiance: lavapipe runs
 // vertex shaders on one thread, where pulling the strands from storage buffers took about 2 ms of
-// the nalu frame's line draw.
+// the nalu frame's line draw. That step reads the strands through texel buffers: lavapipe
+// (Mesa 22.3) loads a storage buffer lane by lane in a loop, where a texel fetch gathers all lanes
+// at once (nalu's frame: about 2 ms less).
 //
 // Hidden strands. Long hair falls behind the head and shoulders, and out of the frame: in nalu
 // about half of the dense vertices. The Renderer splits the main pass around the hair, so the
@@ -158,7 +160,8 @@ public:
   HairPass& operator=(const HairPass&) = delete;
 
   /// Points the pass at `strands`. Errors (nothing changed): null buffers, fewer than 2
-  /// vertices per strand, or more ribbon indices than one draw can count (2³² − 1).
+  /// vertices per strand, more ribbon indices than one draw can count (2³² − 1), or more
+  /// vertices than the device's texel buffers hold (maxTexelBufferElements).
   [[nodiscard]] Result<void> setStrands(const HairStrands& strands);
 
   /// The order to draw the strands in, first to last: a permutation of 0..strandCount − 1
@@ -233,6 +236,8 @@ private:
   Buffer lineClips_;      ///< vec4 per vertex: the line draw's clip positions, written by `record`
   Buffer lineCoverage_;   ///< float per vertex: and its coverage
   vk::Buffer radiance_;   ///< the strands' radiance, the line draw's third vertex attribute
+  vk::raii::BufferView positionTexels_{nullptr};  ///< the strands' positions and tangents as RGBA32F texel buffers
+  vk::raii::BufferView tangentTexels_{nullptr};
   HairOcclusionTiles occlusion_;
   std::uint32_t strandCount_ = 0;
   std::uint32_t indexCount_ = 0;

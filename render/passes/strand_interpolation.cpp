@@ -126,7 +126,9 @@ StrandInterpolationPass::StrandInterpolationPass(const Device& device, const Den
   frames_ = Buffer::withData(device, std::as_bytes(layout.guideFrames), storage);
   strands_ = Buffer::withData(device, std::as_bytes(layout.strands), storage);
   const vk::DeviceSize outputBytes = vk::DeviceSize(vertexTotal()) * kVertexStride;
-  const auto outputUsage = storage | vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eTransferSrc;
+  // Texel buffers too: HairPass's compute step reads them as such (render/passes/hair_pass.hpp).
+  const auto outputUsage = storage | vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eTransferSrc |
+                           vk::BufferUsageFlagBits::eUniformTexelBuffer;
   const vk::MemoryPropertyFlags outputMemory = hostReadable_ ? hostMemory : vk::MemoryPropertyFlagBits::eDeviceLocal;
   positions_ = Buffer(device, outputBytes, outputUsage, outputMemory);
   tangents_ = Buffer(device, outputBytes, outputUsage, outputMemory);

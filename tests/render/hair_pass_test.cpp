@@ -67,7 +67,7 @@ struct FixedColourHair {
 };
 
 FixedColourHair fixedColourHair(const Device& device, const StrandData& data, std::span<const glm::vec4> radiance) {
-  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer;
+  const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer;
   FixedColourHair hair{
       .positions = Buffer::withData(device, std::as_bytes(std::span(data.positions)), usage),
       .tangents = Buffer::withData(device, std::as_bytes(std::span(data.tangents)), usage),
@@ -115,7 +115,7 @@ public:
         device(),
         {.colorFormat = RenderTarget::kHdrFormat, .depthFormat = RenderTarget::kDepthFormat, .samples = samples});
     EXPECT_TRUE(pass.has_value()) << pass.error().message;
-    const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
+    const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer;
     const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
     const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
     auto shadows = HairShadows::create(device());
