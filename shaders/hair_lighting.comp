@@ -10,18 +10,47 @@
 
 const int kHairLightingMaxLights = 4;
 
-// A storage buffer, not a uniform block: lavapipe (Mesa 22.3) folds uniform-block values that
-// decide a branch or a loop's trip count (the light count, the shadow slots) into the shader,
-// and does it again, with a full LLVM compile, each time the block is bound: every frame. Its
-// layout is std140's (every member is a vec4 or made of them).
-layout(set = 0, binding = 0, std430) readonly buffer HairLighting {
+// The frame's lighting, read from a texel buffer of HairLightingPass's LightingUniforms (std140:
+// every member a vec4 or made of them, so vec4 k is texel k). Not a uniform block: lavapipe
+// (Mesa 22.3) folds uniform-block values that decide a branch or a loop's trip count (the light
+// count, the shadow slots) into the shader, and does it again, with a full LLVM compile, each time
+// the block is bound: every frame. Not a storage buffer either: lavapipe loads one lane by lane
+// in a loop, where a texel fetch gathers the lanes at once (about 1 ms a frame in nalu).
+layout(set = 0, binding = 0) uniform usamplerBuffer lightingTexels;
+
+struct HairLighting {
   vec4 eye;                                     // w = 1: eye position (metres); w = 0: unit direction towards the eye
   vec4 ambient;                                 // rgb: ambient radiance × the groom's white-furnace albedo
   vec4 lightDirection[kHairLightingMaxLights];  // xyz: unit vector towards the light
   vec4 lightRadiance[kHairLightingMaxLights];   // rgb: perpendicular irradiance (colour × intensity)
   uvec4 counts;                                 // x: lights, y: vertices per strand
   HairShadowUniforms shadows;
-} lighting;
+};
+
+vec4 lightingVector(int texel) {
+  return uintBitsToFloat(texelFetch(lightingTexels, texel));
+}
+
+HairLighting readLighting() {
+  HairLighting lighting;
+  lighting.eye = lightingVector(0);
+  lighting.ambient = lightingVector(1);
+  for (int i = 0; i < kHairLightingMaxLights; ++i) {
+    lighting.lightDirection[i] = lightingVector(2 + i);
+    lighting.lightRadiance[i] = lightingVector(2 + kHairLightingMaxLights + i);
+  }
+  int texel = 2 + 2 * kHairLightingMaxLights;
+  lighting.counts = texelFetch(lightingTexels, texel++);
+  for (int m = 0; m < 4; ++m) {
+    lighting.shadows.maps[m].lightFromWorld =
+        mat4(lightingVector(texel), lightingVector(texel + 1), lightingVector(texel + 2), lightingVector(texel + 3));
+    lighting.shadows.maps[m].depth = lightingVector(texel + 4);
+    lighting.shadows.maps[m].texels = lightingVector(texel + 5);
+    texel += 6;
+  }
+  lighting.shadows.count = texelFetch(lightingTexels, texel);
+  return lighting;
+}
 
 layout(std430, set = 0, binding = 1) readonly buffer Positions { vec4 positions[]; };  // xyz metres, w = t
 layout(std430, set = 0, binding = 2) readonly buffer Tangents { vec4 tangents[]; };    // xyz unit, root → tip
@@ -41,6 +70,7 @@ layout(local_size_x = 64) in;
 void main() {
   if (gl_GlobalInvocationID.x >= shadeList.dispatch.w) return;
   uint vertex = shadeList.shaded[gl_GlobalInvocationID.x];
+  HairLighting lighting = readLighting();
   vec3 position = positions[vertex].xyz;
   vec3 tangent = tangents[vertex].xyz;
   // The angle the tangent turns over this vertex's share of the strand, half a segment each way.

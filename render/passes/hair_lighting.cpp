@@ -14,7 +14,7 @@ namespace {
 constexpr std::uint32_t kWorkgroupSize = HairLightingPass::kWorkgroupSize;
 constexpr std::uint32_t kFirstShadowBinding = 6;
 
-// std140 mirror of HairLighting in shaders/hair_lighting.comp.
+// HairLighting in shaders/hair_lighting.comp, which reads vec4 k as texel k of a texel buffer.
 struct LightingUniforms {
   glm::vec4 eye;
   glm::vec4 ambient;
@@ -69,7 +69,7 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   using Type = vk::DescriptorType;
   const auto compute = vk::ShaderStageFlags(vk::ShaderStageFlagBits::eCompute);
   const std::pair sampler{Type::eCombinedImageSampler, compute};
-  setLayout_ = makeSetLayout(device, {{Type::eStorageBuffer, compute},  // the uniforms: see the shader
+  setLayout_ = makeSetLayout(device, {{Type::eUniformTexelBuffer, compute},  // the uniforms: see the shader
                                       {Type::eStorageBuffer, compute},
                                       {Type::eStorageBuffer, compute},
                                       {Type::eStorageBuffer, compute},
@@ -86,17 +86,24 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       {Type::eStorageBuffer, compute}});  // the shade list
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eStorageBuffer, 5}, {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
+                             {{Type::eStorageBuffer, 4},
+                              {Type::eUniformTexelBuffer, 1},
+                              {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
-  uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eStorageBuffer,
+  uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eUniformTexelBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   radiance_ = Buffer(device, vk::DeviceSize(vertexCount) * sizeof(glm::vec4),
                      vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer |
                          vk::BufferUsageFlagBits::eTransferSrc,
                      vk::MemoryPropertyFlagBits::eDeviceLocal);
   std::memset(uniforms_.mapped().data(), 0, sizeof(LightingUniforms));
-  writeStorageBuffer(device, set_, 0, uniforms_);
+  // Words, not floats, so the counts pass unchanged; the shader casts the rest back to floats.
+  uniformTexels_ = vk::raii::BufferView(
+      device.device(),
+      vk::BufferViewCreateInfo{
+          .buffer = *uniforms_.buffer(), .format = vk::Format::eR32G32B32A32Uint, .offset = 0, .range = VK_WHOLE_SIZE});
+  writeUniformTexelBuffer(device, set_, 0, uniformTexels_);
   writeStorageBuffer(device, set_, 1, positions);
   writeStorageBuffer(device, set_, 2, tangents);
   writeStorageBuffer(device, set_, 3, radiance_);

@@ -90,7 +90,8 @@ private:
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
   Buffer uniforms_;
-  Buffer everyVertex_;  ///< the shade list until setShadeList
+  vk::raii::BufferView uniformTexels_{nullptr};  ///< uniforms_ as RGBA32UI texels, how the shader reads them
+  Buffer everyVertex_;                           ///< the shade list until setShadeList
   const Buffer* shadeList_ = nullptr;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
