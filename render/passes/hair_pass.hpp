@@ -72,11 +72,12 @@
 // "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the
 // order setDrawOrder gives (the Renderer sorts strands every frame by the distance of their
 // guide's middle from the eye: render/hair_order.hpp). Why sorting and not an order-independent
-// method: on lavapipe it costs nothing on the GPU (one index read per vertex; the sort is of
-// guides, thousands, on the CPU), where weighted blended OIT (McGuire & Bavoil, JCGT 2013) needs
-// two more colour targets and a full-screen composite (≈ 20 ms at 720p, shared/LAVAPIPE.md) and
-// still only approximates the front-to-back weighting by a depth heuristic; a per-pixel linked
-// list (TressFX's PPLL) needs atomics and memory per fragment. What sorting gets right and wrong:
+// method: on lavapipe it costs nothing on the GPU (the index buffer is written in that order
+// anyway; the sort is of guides, thousands, on the CPU), where weighted blended OIT (McGuire &
+// Bavoil, JCGT 2013) needs two more colour targets and a full-screen composite (≈ 20 ms at 720p,
+// shared/LAVAPIPE.md) and still only approximates the front-to-back weighting by a depth
+// heuristic; a per-pixel linked list (TressFX's PPLL) needs atomics and memory per fragment. What
+// sorting gets right and wrong:
 //  - Coverage: the accumulated alpha 1 − Π(1 − α_i) does not depend on the order at all.
 //  - Colour: exact where strands are separated in depth as whole strands (layers of hair, a
 //    fringe in front of a face). Where two strands cross in depth along their lengths, the
