@@ -321,7 +321,7 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
       .srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect | Stage::eIndexInput | Stage::eVertexAttributeInput,
       .srcAccessMask = Access::eShaderStorageWrite,
       .dstStageMask = Stage::eComputeShader,
-      .dstAccessMask = Access::eShaderStorageRead | Access::eShaderStorageWrite};
+      .dstAccessMask = Access::eShaderStorageRead | Access::eShaderSampledRead | Access::eShaderStorageWrite};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &before});
   // Each step reads what the one before wrote.
   const vk::MemoryBarrier2 stepDone{.srcStageMask = Stage::eComputeShader,

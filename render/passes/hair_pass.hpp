@@ -49,7 +49,7 @@
 // vertex shaders on one thread, where pulling the strands from storage buffers took about 2 ms of
 // the nalu frame's line draw. That step reads the strands through texel buffers: lavapipe
 // (Mesa 22.3) loads a storage buffer lane by lane in a loop, where a texel fetch gathers all lanes
-// at once (nalu's frame: about 2 ms less).
+// at once (nalu's frame: about 1 ms less).
 //
 // Hidden strands. Long hair falls behind the head and shoulders, and out of the frame: in nalu
 // about half of the dense vertices. The Renderer splits the main pass around the hair, so the
