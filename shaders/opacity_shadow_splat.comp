@@ -17,6 +17,12 @@ layout(set = 0, binding = 2, std430) buffer Increments {
 
 const float kFixedOne = 65536.0;
 
+// Adds `weight` to `slice`'s increment of `texel`.
+void add(ivec2 texel, uint slice, uint weight) {
+  uint size = uint(build.weights.z);
+  atomicAdd(increments[(uint(texel.y) * size + uint(texel.x)) * 16u + slice], weight);
+}
+
 void main() {
   uint segment = gl_GlobalInvocationID.x;
   if (segment >= build.counts.z) return;
@@ -50,9 +56,10 @@ void main() {
     float minor = alongX ? p.y : p.x;
     int rowLow = rectangular ? int(ceil(minor - halfSpan - 0.5)) : int(floor(minor));
     int rowHigh = rectangular ? int(floor(minor + halfSpan - 0.5)) : rowLow;
-    for (int row = max(rowLow, 0); row <= min(rowHigh, size - 1); ++row) {
-      ivec2 texel = alongX ? ivec2(column, row) : ivec2(row, column);
-      atomicAdd(increments[(uint(texel.y) * uint(size) + uint(texel.x)) * 16u + slice], fixedWeight);
-    }
+    // At most two rows, as the span across is 2·halfSpan ≤ √2 texels: two tests rather than a
+    // loop, which lavapipe runs about 7 % slower here.
+    int row = max(rowLow, 0), lastRow = min(rowHigh, size - 1);
+    if (row <= lastRow) add(alongX ? ivec2(column, row) : ivec2(row, column), slice, fixedWeight);
+    if (row + 1 <= lastRow) add(alongX ? ivec2(column, row + 1) : ivec2(row + 1, column), slice, fixedWeight);
   }
 }
