@@ -56,6 +56,11 @@ void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set
                                        {});
 }
 
+vk::raii::BufferView makeTexelView(const Device& device, vk::Buffer buffer, vk::Format format) {
+  return vk::raii::BufferView(device.device(),
+                              vk::BufferViewCreateInfo{.buffer = buffer, .format = format, .range = VK_WHOLE_SIZE});
+}
+
 void writeUniformTexelBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                              const vk::raii::BufferView& view) {
   const vk::BufferView handle = *view;

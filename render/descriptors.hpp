@@ -25,6 +25,8 @@ void writeStorageBuffer(const Device& device, const vk::raii::DescriptorSet& set
                         const Buffer& buffer);
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                        const Image& image, const vk::raii::Sampler& sampler);
+/// A view of the whole of `buffer` (which needs UNIFORM_TEXEL_BUFFER usage) as texels of `format`.
+vk::raii::BufferView makeTexelView(const Device& device, vk::Buffer buffer, vk::Format format);
 void writeUniformTexelBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                              const vk::raii::BufferView& view);
 /// A combined image sampler of `view` in SHADER_READ_ONLY layout.

@@ -99,10 +99,7 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                      vk::MemoryPropertyFlagBits::eDeviceLocal);
   std::memset(uniforms_.mapped().data(), 0, sizeof(LightingUniforms));
   // Words, not floats, so the counts pass unchanged; the shader casts the rest back to floats.
-  uniformTexels_ = vk::raii::BufferView(
-      device.device(),
-      vk::BufferViewCreateInfo{
-          .buffer = *uniforms_.buffer(), .format = vk::Format::eR32G32B32A32Uint, .offset = 0, .range = VK_WHOLE_SIZE});
+  uniformTexels_ = makeTexelView(device, *uniforms_.buffer(), vk::Format::eR32G32B32A32Uint);
   writeUniformTexelBuffer(device, set_, 0, uniformTexels_);
   writeStorageBuffer(device, set_, 1, positions);
   writeStorageBuffer(device, set_, 2, tangents);

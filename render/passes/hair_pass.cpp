@@ -189,9 +189,9 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
                 std::to_string(strands.verticesPerStrand) + " vertices need " + std::to_string(8 * segments) +
                 " ribbon and line indices, more than a draw can reach (2^32 − 1)");
 
-  const std::uint64_t vertexCount = std::uint64_t(strands.strandCount) * strands.verticesPerStrand;
-  if (vertexCount > device_->limits().maxTexelBufferElements)
-    return fail("hair strands: " + std::to_string(vertexCount) +
+  const std::uint64_t vertices = std::uint64_t(strands.strandCount) * strands.verticesPerStrand;
+  if (vertices > device_->limits().maxTexelBufferElements)
+    return fail("hair strands: " + std::to_string(vertices) +
                 " vertices are more than this device's texel buffers hold (" +
                 std::to_string(device_->limits().maxTexelBufferElements) + ")");
 
@@ -224,7 +224,6 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   writeStorageBuffer(*device_, set_, 7, visibleCounts_);
   writeStorageBuffer(*device_, set_, 8, visibleBits_);
   writeStorageBuffer(*device_, set_, 9, firstSegments_);
-  const std::size_t vertices = std::size_t(strands.strandCount) * strands.verticesPerStrand;
   shadeList_ = HairLightingPass::everyVertex(*device_, static_cast<std::uint32_t>(vertices));
   writeStorageBuffer(*device_, set_, 11, shadeList_);
   const vk::BufferUsageFlags lineUsage =
@@ -235,14 +234,8 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   writeStorageBuffer(*device_, set_, 12, lineClips_);
   writeStorageBuffer(*device_, set_, 13, lineCoverage_);
   radiance_ = strands.radiance;
-  const auto texels = [&](vk::Buffer buffer) {
-    return vk::raii::BufferView(
-        device_->device(),
-        vk::BufferViewCreateInfo{
-            .buffer = buffer, .format = vk::Format::eR32G32B32A32Sfloat, .offset = 0, .range = VK_WHOLE_SIZE});
-  };
-  positionTexels_ = texels(strands.positions);
-  tangentTexels_ = texels(strands.tangents);
+  positionTexels_ = makeTexelView(*device_, strands.positions, vk::Format::eR32G32B32A32Sfloat);
+  tangentTexels_ = makeTexelView(*device_, strands.tangents, vk::Format::eR32G32B32A32Sfloat);
   writeUniformTexelBuffer(*device_, set_, 14, positionTexels_);
   writeUniformTexelBuffer(*device_, set_, 15, tangentTexels_);
   strandCount_ = strands.strandCount;
