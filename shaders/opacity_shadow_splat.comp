@@ -17,10 +17,9 @@ layout(set = 0, binding = 2, std430) buffer Increments {
 
 const float kFixedOne = 65536.0;
 
-// Adds `weight` to `slice`'s increment of `texel`.
-void add(ivec2 texel, uint slice, uint weight) {
-  uint size = uint(build.weights.z);
-  atomicAdd(increments[(uint(texel.y) * size + uint(texel.x)) * 16u + slice], weight);
+// Adds `weight` to `slice`'s increment of `texel` in a map of size × size texels.
+void add(ivec2 texel, int size, uint slice, uint weight) {
+  atomicAdd(increments[(uint(texel.y) * uint(size) + uint(texel.x)) * 16u + slice], weight);
 }
 
 void main() {
@@ -59,7 +58,7 @@ void main() {
     // At most two rows, as the span across is 2·halfSpan ≤ √2 texels: two tests rather than a
     // loop, which lavapipe runs about 7 % slower here.
     int row = max(rowLow, 0), lastRow = min(rowHigh, size - 1);
-    if (row <= lastRow) add(alongX ? ivec2(column, row) : ivec2(row, column), slice, fixedWeight);
-    if (row + 1 <= lastRow) add(alongX ? ivec2(column, row + 1) : ivec2(row + 1, column), slice, fixedWeight);
+    if (row <= lastRow) add(alongX ? ivec2(column, row) : ivec2(row, column), size, slice, fixedWeight);
+    if (row + 1 <= lastRow) add(alongX ? ivec2(column, row + 1) : ivec2(row + 1, column), size, slice, fixedWeight);
   }
 }
