@@ -227,6 +227,7 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
 }
 
 Result<void> LimitSurface::updatePositions(std::span<const glm::vec3> cagePositions, unsigned threads) {
+  const detail::ForegroundWork foreground(threads);  // a preparing tessellation waits
   if (cagePositions.size() != impl_->cage.positions.size())
     return fail("the deformed cage has " + std::to_string(cagePositions.size()) + " vertices; the limit surface has " +
                 std::to_string(impl_->cage.positions.size()));

@@ -38,9 +38,10 @@ constexpr double kKeptErrorGrowth = 0.10;
 // it has about 1/0.7 ≈ 1.4 times the triangles the view needs (the count goes with the scale).
 constexpr double kKeptFinestScale = 0.7;
 
-// update prepares the next tessellation on one thread beside the caller's frames and adopts it
-// this many calls later: 83 ms at 60 frames a second, where a tessellation of the LeePerrySmith
-// head filling a 1280×720 image takes 20–50 ms on one thread of this project's 2-core machine.
+// update prepares the next tessellation in the background, between the caller's frames, and
+// adopts it this many calls later: 83 ms at 60 frames a second, where a tessellation of the
+// LeePerrySmith head filling a 1280×720 image takes 20–50 ms on one thread of this project's
+// 2-core machine.
 constexpr int kPreparedCalls = 5;
 // It prepares when the largest growth of a scale, extrapolated from its rate over the last
 // kGrowthSpan calls (an even number: an animation that alternates between two poses every
@@ -50,7 +51,13 @@ constexpr int kPreparedCalls = 5;
 constexpr std::size_t kGrowthSpan = 4;
 constexpr double kPrepareErrorGrowth = 0.07;
 constexpr double kPrepareFinestScale = 0.75;
-constexpr unsigned kPreparingThreads = 1;
+// The preparing threads give their cores to the caller's loops (detail::yieldToForeground)
+// between faces and every so many limit points, cells, lines or triangle corners: about 0.1 ms
+// of work.
+constexpr std::size_t kPointsBetweenYields = 64;
+constexpr std::size_t kCellsBetweenYields = 4096;
+constexpr std::size_t kLinesBetweenYields = 256;
+constexpr std::size_t kCornersBetweenYields = 4096;
 
 /// Whether a tessellation whose points' scales grew by at most `growth` (Impl::scaleGrowth)
 /// still keeps within the target and is not too fine.
@@ -301,6 +308,7 @@ struct AdaptiveTessellator::Impl {
     worker.measuredBehindCamera = false;
     worker.positionEvaluations = 0;
     for (auto face = std::uint32_t(begin); face < end; ++face) {
+      detail::yieldToForeground();
       const ProjectedPoint corners[4] = {evaluate(worker, face, 0, 0), evaluate(worker, face, kGrid, 0),
                                          evaluate(worker, face, kGrid, kGrid), evaluate(worker, face, 0, kGrid)};
       refine(worker, face, 0, 0, kGrid, corners, {});
@@ -327,7 +335,9 @@ struct AdaptiveTessellator::Impl {
   void collectLinePoints() {
     linePoints.resize(sides->lineCount());
     for (auto& points : linePoints) points.clear();
-    for (const Cell& cell : cells) {
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (c % kCellsBetweenYields == 0) detail::yieldToForeground();
+      const Cell& cell = cells[c];
       const std::int64_t i1 = cell.i0 + cell.size, j1 = cell.j0 + cell.size;
       const auto add = [&](int side, std::int64_t from, std::int64_t to) {
         const detail::SideOnLine& s = sides->side(cell.face, side);
@@ -339,7 +349,9 @@ struct AdaptiveTessellator::Impl {
       if (j1 == kGrid) add(2, cell.i0, i1);
       if (cell.i0 == 0) add(3, cell.j0, j1);
     }
-    for (auto& points : linePoints) {
+    for (std::size_t l = 0; l < linePoints.size(); ++l) {
+      if (l % kLinesBetweenYields == 0) detail::yieldToForeground();
+      std::vector<std::int64_t>& points = linePoints[l];
       std::sort(points.begin(), points.end());
       points.erase(std::unique(points.begin(), points.end()), points.end());
     }
@@ -426,7 +438,10 @@ struct AdaptiveTessellator::Impl {
     // Most cells make 2 to 4 triangles: room for 3 each spares the growing vector's copies
     // into fresh memory, which is dear where page faults are (see Preparation::warm).
     worker.corners.reserve((firstCellOfFace[end] - firstCellOfFace[begin]) * 9);
-    for (auto face = std::uint32_t(begin); face < end; ++face) triangulateFace(worker, face);
+    for (auto face = std::uint32_t(begin); face < end; ++face) {
+      detail::yieldToForeground();
+      triangulateFace(worker, face);
+    }
   }
 
   std::uint32_t vertexFor(const Corner& corner) {
@@ -465,7 +480,10 @@ struct AdaptiveTessellator::Impl {
     mesh.cornerPtexCoordinates.clear();
     std::size_t next = 0;
     for (const Worker& worker : workers)
-      for (const Corner& corner : worker.corners) mesh.indices[next++] = vertexFor(corner);
+      for (const Corner& corner : worker.corners) {
+        if (next % kCornersBetweenYields == 0) detail::yieldToForeground();
+        mesh.indices[next++] = vertexFor(corner);
+      }
     if (!settings.keepPtexCoordinates) return;
     for (const Worker& worker : workers)
       for (std::size_t k = 0; k < worker.corners.size(); ++k) {
@@ -502,6 +520,7 @@ struct AdaptiveTessellator::Impl {
     detail::forEachRange(stale, detail::workerCount(stale, threads, kMinPointsPerWorker),
                          [&](std::size_t, std::size_t begin, std::size_t end) {
                            for (std::size_t k = begin; k < end; ++k) {
+                             if (k % kPointsBetweenYields == 0) detail::yieldToForeground();
                              const std::uint32_t l = staleLocations[k];
                              const Location& location = locations[l];
                              const double u = toUv(location.point.i), v = toUv(location.point.j);
@@ -622,7 +641,7 @@ Result<AdaptiveTessellator> AdaptiveTessellator::create(const LimitSurface& surf
       std::make_unique<Impl>(surface, settings, std::make_shared<const detail::PtexSides>(surface.cage())));
 }
 
-/// The next tessellation, which update prepares on a thread of its own from a snapshot of the
+/// The next tessellation, which update prepares in the background from a snapshot of the
 /// surface. Once adopted, it holds the storage of the tessellation it replaced, for the next.
 struct AdaptiveTessellator::Preparation {
   std::optional<LimitSurface> snapshot;
@@ -632,9 +651,11 @@ struct AdaptiveTessellator::Preparation {
   int calls = 0;         ///< update calls since it started
   std::jthread thread;   ///< declared last, so joined first
 
-  /// Tessellates a snapshot of the surface for `view` on the preparing thread, to be adopted
+  ~Preparation() { finish(); }  // whatever foreground work runs meanwhile
+
+  /// Tessellates a snapshot of the surface for `view` in the background, to be adopted
   /// (`pending`) or only to warm the storage (`warm`).
-  void run(const Impl& current, const ScreenView& view, bool toAdopt) {
+  void run(const Impl& current, const ScreenView& view, unsigned threads, bool toAdopt) {
     finish();
     if (snapshot)
       *snapshot = *current.surface;  // in the storage of the last
@@ -644,28 +665,33 @@ struct AdaptiveTessellator::Preparation {
     tessellation->surface = &*snapshot;
     pending = toAdopt;
     calls = 0;
-    auto work = [this, view, token = detail::BackgroundThreadToken()] {
-      tessellation->tessellate(view, mesh, kPreparingThreads);
-    };
+    auto work = [this, view, threads] { tessellation->tessellate(view, mesh, threads); };
     try {
-      thread = std::jthread(std::move(work));
+      thread = std::jthread([work] {
+        const detail::BackgroundScope background;
+        work();
+      });
     } catch (const std::system_error&) {
       work();  // no thread to be had: the same tessellation, made now
     }
   }
 
-  void start(const Impl& current, const ScreenView& view) { run(current, view, true); }
+  void start(const Impl& current, const ScreenView& view, unsigned threads) { run(current, view, threads, true); }
 
-  /// Tessellates the surface for `view` on the preparing thread and drops the result, so that
+  /// Tessellates the surface for `view` in the background and drops the result, so that
   /// the first tessellation prepared for adoption finds its storage allocated and touched: on
   /// this project's 2-core VM a page fault costs about 11 µs, and the first tessellation of the
   /// head at near took 80–110 ms on one thread against 30 ms for the next, longer than the
   /// kPreparedCalls frames it has before it is adopted.
-  void warm(const Impl& current, const ScreenView& view) { run(current, view, false); }
+  void warm(const Impl& current, const ScreenView& view, unsigned threads) { run(current, view, threads, false); }
 
   /// Waits for the tessellation to be made.
   void finish() {
-    if (thread.joinable()) thread.join();
+    if (thread.joinable()) {
+      // The foreground work this is called in must not pause the threads it waits for.
+      const detail::WaitingForBackground waiting;
+      thread.join();
+    }
     pending = false;
   }
 };
@@ -676,16 +702,18 @@ AdaptiveTessellator& AdaptiveTessellator::operator=(AdaptiveTessellator&&) noexc
 AdaptiveTessellator::~AdaptiveTessellator() = default;
 
 void AdaptiveTessellator::tessellate(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
+  const detail::ForegroundWork foreground(threads);
   if (preparation_) preparation_->finish();  // made for the tessellation this one replaces: dropped
   impl_->tessellate(view, mesh, threads);
 }
 
 Result<FrameUpdate> AdaptiveTessellator::update(const ScreenView& view, TessellatedMesh& mesh, unsigned threads) {
+  const detail::ForegroundWork foreground(threads);
   if (!preparation_) preparation_ = std::make_unique<Preparation>();
   if (impl_->vertices.empty()) {
-    // The preparing thread warms its storage while this one tessellates; both are done before
+    // The background warms its storage (between this tessellation's loops) and is done before
     // the call returns, so no later frame shares a core with the warming.
-    preparation_->warm(*impl_, view);
+    preparation_->warm(*impl_, view, threads);
     impl_->tessellate(view, mesh, threads);  // not tessellate(), which would wait for the warming first
     preparation_->finish();
     return FrameUpdate::kTessellated;
@@ -710,11 +738,12 @@ Result<FrameUpdate> AdaptiveTessellator::update(const ScreenView& view, Tessella
   }
   if (auto updated = updateVertices(mesh, threads); !updated) return std::unexpected(updated.error());
   if (!impl_->recordGrowthAndPredictLoss(*growth) || preparing) return FrameUpdate::kKept;
-  preparation_->start(*impl_, view);
+  preparation_->start(*impl_, view, threads);
   return FrameUpdate::kPrepared;
 }
 
 Result<void> AdaptiveTessellator::updateVertices(TessellatedMesh& mesh, unsigned threads) {
+  const detail::ForegroundWork foreground(threads);
   if (impl_->vertices.empty() || mesh.positions.size() != impl_->vertices.size())
     return fail("updating the vertices of a tessellation: the mesh has " + std::to_string(mesh.positions.size()) +
                 " vertices, the last tessellation " + std::to_string(impl_->vertices.size()));

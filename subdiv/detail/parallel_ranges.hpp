@@ -5,43 +5,20 @@
 // the thread count.
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <system_error>
 #include <thread>
-#include <utility>
 #include <vector>
 
 #include "subdiv/detail/worker_pool.hpp"
 
 namespace mane::subdiv::detail {
 
-/// Threads that subdiv runs beside its callers' loops (a tessellation being prepared).
-inline std::atomic<unsigned> backgroundThreads{0};
-
-/// Counts a background thread for as long as it lives (moved into the thread's function).
-class BackgroundThreadToken {
-public:
-  BackgroundThreadToken() { backgroundThreads.fetch_add(1, std::memory_order_relaxed); }
-  BackgroundThreadToken(BackgroundThreadToken&& other) noexcept : counted_(std::exchange(other.counted_, false)) {}
-  BackgroundThreadToken& operator=(BackgroundThreadToken&&) = delete;
-  ~BackgroundThreadToken() {
-    if (counted_) backgroundThreads.fetch_sub(1, std::memory_order_relaxed);
-  }
-
-private:
-  bool counted_ = true;
-};
-
 /// The workers `threads` asks for over `count` items: at least 1, at most one per
-/// `minimumPerWorker` items (handing a range to another thread costs tens of microseconds),
-/// and one fewer for each background thread running, which takes one of the caller's cores
-/// (on 2 cores, a frame's loop on two threads beside a preparing thread took twice as long).
+/// `minimumPerWorker` items (handing a range to another thread costs tens of microseconds).
 [[nodiscard]] inline std::size_t workerCount(std::size_t count, unsigned threads, std::size_t minimumPerWorker) {
   const std::size_t useful = std::max<std::size_t>(1, count / std::max<std::size_t>(1, minimumPerWorker));
-  const std::size_t asked = threads == 0 ? 1 : threads;
-  const std::size_t busy = backgroundThreads.load(std::memory_order_relaxed);
-  return std::clamp<std::size_t>(asked > busy ? asked - busy : 1, 1, useful);
+  return std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, useful);
 }
 
 /// The first item of range `w` of `workers` over `count` items.
@@ -74,8 +51,11 @@ void forEachRange(std::size_t count, std::size_t workers, const Work& work) {
   std::size_t inlineFrom = workers;
   for (std::size_t w = 1; w < workers; ++w) {
     try {
-      pool.emplace_back(
-          [&work, w, b = rangeBegin(count, workers, w), e = rangeBegin(count, workers, w + 1)] { work(w, b, e); });
+      pool.emplace_back([&work, w, b = rangeBegin(count, workers, w), e = rangeBegin(count, workers, w + 1),
+                         background = inBackground] {
+        inBackground = background;
+        work(w, b, e);
+      });
     } catch (const std::system_error&) {
       inlineFrom = w;  // no more threads available: the calling thread runs the rest
       break;

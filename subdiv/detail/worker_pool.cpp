@@ -39,7 +39,8 @@ T waitFor(const std::atomic<T>& value, const Ready& ready) {
 
 class KeptThreads {
 public:
-  KeptThreads() {
+  /// `background`: the threads work in the background (inBackground), for background callers.
+  explicit KeptThreads(bool background) : background_(background) {
 #if defined(__linux__)
     if (sched_getaffinity(0, sizeof allowed_, &allowed_) != 0) CPU_ZERO(&allowed_);
 #endif
@@ -124,6 +125,7 @@ private:
   }
 
   void serve(std::uint64_t seenLoop) {
+    inBackground = background_;
     for (;;) {
       const std::uint64_t state =
           waitFor(state_, [seenLoop](std::uint64_t current) { return loopOf(current) != seenLoop; });
@@ -143,6 +145,7 @@ private:
   std::atomic<std::uint64_t> state_{0};
   std::atomic<std::size_t> unfinished_{0};  ///< ranges of the loop not yet run
   std::atomic<bool> stopping_{false};
+  const bool background_;
   // Written by the caller before it publishes the loop, read by the threads that claim its ranges.
   Task task_ = nullptr;
   const void* context_ = nullptr;
@@ -156,8 +159,10 @@ private:
 }  // namespace
 
 bool runOnKeptThreads(std::size_t ranges, Task task, const void* context) {
-  static KeptThreads threads;
-  return threads.run(ranges, task, context);
+  // Apart, so that a frame's loops and a preparation's run side by side: the preparation's
+  // threads pause at their next checkpoint while the frame's run.
+  static KeptThreads foreground(false), background(true);
+  return (inBackground ? background : foreground).run(ranges, task, context);
 }
 
 }  // namespace mane::subdiv::detail
