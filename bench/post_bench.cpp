@@ -5,8 +5,8 @@
 //     defaults (linear exposure, no glow, no auto gain) — the frame as it was before the chain.
 //   BM_PostChain/<glow>/<auto gain>/<tone map>/<god rays>: the same with the chain's passes that
 //     the arguments switch on (downsample, auto gain, four glow blurs, god rays around a light at
-//     frame uv (0.5, 0.4): bright pass, polar transform, radial blur, inverse) and the specialised
-//     output pass (tone map 1: Reinhard).
+//     frame uv (0.5, 0.4): bright pass, polar transform, radial blur, inverse), the overlay they
+//     hand to the output pass, and the specialised output pass (tone map 1: Reinhard).
 //
 // Counters, from GPU timestamps of the same frames (median of the iterations): each pass's
 // milliseconds, and `vs_output` = (post passes + output) / output: what the chain costs relative to
@@ -96,7 +96,9 @@ void frame(Shared& s, const PostSettings& settings) {
         s.post->recordGodRays(commands, settings, {0.5f, 0.4f});
         s.timer->end(commands);
       }
-      s.post->recordHandOff(commands);
+      s.timer->begin(commands, "overlay");
+      s.post->recordHandOff(commands, settings, 1.0f);
+      s.timer->end(commands);
     }
     transition(commands, s.target->output(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
                Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);

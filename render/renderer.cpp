@@ -365,7 +365,9 @@ void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameIn
     post_.recordGodRays(commands, frame.post, *light);
     timer_.end(commands);
   }
-  post_.recordHandOff(commands);
+  timer_.begin(commands, "post overlay");
+  post_.recordHandOff(commands, frame.post, frame.exposure);
+  timer_.end(commands);
 }
 
 Result<void> Renderer::updateFurLeans(std::size_t fur, std::span<const glm::vec3> leans) {

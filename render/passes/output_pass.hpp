@@ -1,10 +1,11 @@
 #pragma once
-// HDR colour → the 8-bit sRGB output image (shaders/output.frag): the post chain's glow mixed in
-// and its god rays added (render/passes/post_chain.hpp), a gain — FrameInput::exposure, or the automatic gain — and a
-// tone map: the linear scale, clamped, or Reinhard's L/(1 + L) (Reinhard et al. 2002, eq. 3); the sRGB attachment
-// applies the transfer curve. Each combination of tone map, auto gain and glow is its own specialised pipeline, made
-// the first time a frame asks for it; the default one (linear, no auto gain, no glow, no god rays: the plain exposure
-// scale) is made up front.
+// HDR colour → the 8-bit sRGB output image (shaders/output.frag): the post chain's overlay applied
+// (render/passes/post_chain.hpp: the gain — FrameInput::exposure, or the automatic gain — with the
+// glow mixed in and the god rays added), or without the chain the exposure alone, then a tone map:
+// the linear scale, clamped, or Reinhard's L/(1 + L) (Reinhard et al. 2002, eq. 3); the sRGB
+// attachment applies the transfer curve. Each combination of tone map and use of the overlay is
+// its own specialised pipeline, made the first time a frame asks for it; the default one (linear,
+// no chain: the plain exposure scale) is made up front.
 
 #include <array>
 
@@ -17,7 +18,7 @@ namespace mane::render {
 
 class OutputPass {
 public:
-  /// `post` (which must outlive the pass) provides the glow and the exposure state.
+  /// `post` (which must outlive the pass) provides the overlay.
   OutputPass(const Device& device, const RenderTarget& target, const PostChain& post);
 
   /// Reads target.hdr() (in SHADER_READ_ONLY layout) and, as `post` asks, the post chain's results
@@ -27,13 +28,13 @@ public:
               const PostSettings& post);
 
 private:
-  const Pipeline& pipelineFor(const PostSettings& post, bool godRays);
+  const Pipeline& pipelineFor(ToneMapping toneMapping, PostChain::OverlayUse overlay);
 
   const Device* device_;
   const PostChain* post_;
   vk::raii::DescriptorSetLayout layout_{nullptr};
-  /// [tone mapping][auto gain][glow][god rays]
-  std::array<Pipeline, 16> pipelines_;
+  /// [tone mapping][overlay use]
+  std::array<Pipeline, 6> pipelines_;
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -44,6 +45,17 @@ struct RayBlurConstants {
   float weights[32];
 };
 static_assert(kGodRayTaps <= 32);
+
+// Push constants of shaders/post_overlay.comp.
+struct OverlayConstants {
+  float exposure;
+  float glowStrength;
+  float godRays;
+};
+
+// The overlay keeps the gain in full precision (the frame's scale): a float format the output
+// pass can filter.
+constexpr vk::Format kOverlayFormat = vk::Format::eR32G32B32A32Sfloat;
 
 vk::Extent2D toExtent(glm::uvec2 size) {
   return {size.x, size.y};
@@ -154,12 +166,18 @@ PostChain::PostChain(const Device& device, const Image& frame)
   const vk::ImageUsageFlags common = Usage::eStorage | Usage::eTransferSrc | Usage::eTransferDst;
   downsampled_ = image(quarter, common);
   across_ = image(quarter, common);
-  glow_ = image(quarter, common | Usage::eSampled);
+  glow_ = image(quarter, common);
   tiny_ = image(postTinySize(quarter), common);
   rayBright_ = image(quarter, common);
   polar_ = image(godRayPolarSize(quarter), common);
   polarBlurred_ = image(godRayPolarSize(quarter), common);
-  godRays_ = image(quarter, common | Usage::eSampled);
+  godRays_ = image(quarter, common);
+  if (!(device.physicalDevice().getFormatProperties(kOverlayFormat).optimalTilingFeatures &
+        vk::FormatFeatureFlagBits::eSampledImageFilterLinear))
+    throw std::runtime_error("post chain: the device cannot filter R32G32B32A32_SFLOAT images, the overlay's format");
+  overlay_ = Image(device, ImageSettings{.extent = toExtent(quarter),
+                                         .format = kOverlayFormat,
+                                         .usage = Usage::eStorage | Usage::eSampled | Usage::eTransferDst});
   exposure_ = Buffer(device, sizeof(PostExposure), vk::BufferUsageFlagBits::eStorageBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   resetExposure();
@@ -171,6 +189,7 @@ PostChain::PostChain(const Device& device, const Image& frame)
   sampledLayout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, compute}, storage});
   storageLayout_ = makeSetLayout(device, {storage, storage});
   adaptLayout_ = makeSetLayout(device, {storage, {vk::DescriptorType::eStorageBuffer, compute}});
+  overlayLayout_ = makeSetLayout(device, {storage, storage, {vk::DescriptorType::eStorageBuffer, compute}, storage});
 
   const auto radius = std::uint32_t(kernel_.size() - 1);
   downsamplePipeline_ = makeComputePipeline(device, "post_downsample.comp", sampledLayout_);
@@ -186,10 +205,10 @@ PostChain::PostChain(const Device& device, const Image& frame)
   rayUnpolarPipeline_ =
       makeComputePipeline(device, "post_ray_unpolar.comp", storageLayout_, sizeof(RayCentreConstants));
 
-  pool_ = makeDescriptorPool(device, 11,
+  pool_ = makeDescriptorPool(device, 12,
                              {{vk::DescriptorType::eCombinedImageSampler, 1},
-                              {vk::DescriptorType::eStorageImage, 21},
-                              {vk::DescriptorType::eStorageBuffer, 1}});
+                              {vk::DescriptorType::eStorageImage, 24},
+                              {vk::DescriptorType::eStorageBuffer, 2}});
   downsampleSet_ = allocateSet(device, pool_, sampledLayout_);
   writeSampledImage(device, downsampleSet_, 0, frame, sampler_);
   writeGeneralImage(device, downsampleSet_, 1, downsampled_);
@@ -211,14 +230,19 @@ PostChain::PostChain(const Device& device, const Image& frame)
   rayBlurSet_ = pair(polar_, polarBlurred_);
   rayUnpolarSets_[0] = pair(polar_, godRays_);
   rayUnpolarSets_[1] = pair(polarBlurred_, godRays_);
+  overlaySet_ = allocateSet(device, pool_, overlayLayout_);
+  writeGeneralImage(device, overlaySet_, 0, glow_);
+  writeGeneralImage(device, overlaySet_, 1, godRays_);
+  writeStorageBuffer(device, overlaySet_, 2, exposure_);
+  writeGeneralImage(device, overlaySet_, 3, overlay_);
   initialiseImages();
 }
 
-// GENERAL from the start, and black: the output pass may sample the glow before any glow ran.
+// GENERAL from the start, and black.
 void PostChain::initialiseImages() {
   device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     for (const Image* image :
-         {&downsampled_, &across_, &glow_, &tiny_, &rayBright_, &polar_, &polarBlurred_, &godRays_}) {
+         {&downsampled_, &across_, &glow_, &tiny_, &rayBright_, &polar_, &polarBlurred_, &godRays_, &overlay_}) {
       transition(commands, *image, Layout::eUndefined, Layout::eGeneral, Stage::eNone, Access::eNone, Stage::eClear,
                  Access::eTransferWrite);
       commands.clearColorImage(*image->image(), Layout::eGeneral,
@@ -245,7 +269,7 @@ PostExposure PostChain::readExposure() const {
   return state;
 }
 
-glm::vec2 PostChain::glowUvScale() const {
+glm::vec2 PostChain::overlayUvScale() const {
   const vk::Extent2D quarter = glow_.extent();
   return {float(frameSize_.width) / float(kPostDownsampleFactor * quarter.width),
           float(frameSize_.height) / float(kPostDownsampleFactor * quarter.height)};
@@ -270,7 +294,7 @@ void PostChain::record(const vk::raii::CommandBuffer& commands, const PostSettin
   if (settings.autoGain) recordAutoGain(commands, settings, exposure);
   if (settings.glowStrength > 0.0f) recordGlow(commands);
   if (settings.godRays > 0.0f && godRayLight) recordGodRays(commands, settings, *godRayLight);
-  recordHandOff(commands);
+  recordHandOff(commands, settings, exposure);
 }
 
 void PostChain::recordDownsample(const vk::raii::CommandBuffer& commands) {
@@ -338,7 +362,22 @@ void PostChain::recordGodRays(const vk::raii::CommandBuffer& commands, const Pos
   godRaysRecorded_ = true;
 }
 
-void PostChain::recordHandOff(const vk::raii::CommandBuffer& commands) const {
+void PostChain::recordHandOff(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure) {
+  const bool glows = settings.glowStrength > 0.0f;
+  const bool godRays = settings.godRays > 0.0f && godRaysRecorded_;
+  overlayUse_ = glows || godRays ? OverlayUse::kFiltered : settings.autoGain ? OverlayUse::kScale : OverlayUse::kNone;
+  if (overlayUse_ != OverlayUse::kNone) {
+    computeToCompute(commands);  // the steps before wrote what this reads
+    Pipeline& pipeline =
+        overlayPipelines_[4 * std::size_t(settings.autoGain) + 2 * std::size_t(glows) + std::size_t(godRays)];
+    if (!*pipeline.pipeline)
+      pipeline = makeComputePipeline(*device_, "post_overlay.comp", overlayLayout_, sizeof(OverlayConstants),
+                                     {std::uint32_t(settings.autoGain), std::uint32_t(glows), std::uint32_t(godRays)});
+    const OverlayConstants constants{
+        .exposure = exposure, .glowStrength = settings.glowStrength, .godRays = godRays ? settings.godRays : 0.0f};
+    commands.pushConstants<OverlayConstants>(*pipeline.layout, vk::ShaderStageFlagBits::eCompute, 0, constants);
+    dispatch(commands, pipeline, overlaySet_, overlay_.extent());
+  }
   const vk::MemoryBarrier2 toReaders{
       .srcStageMask = Stage::eComputeShader,
       .srcAccessMask = Access::eShaderStorageWrite,

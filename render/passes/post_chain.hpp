@@ -22,6 +22,11 @@
 //     occluders, 0), a polar image around the light (one column per angle, one row per copy
 //     texel of radius), a blur down each column away from the light with decaying weights, and the
 //     inverse transform to the copy's grid; the output pass adds it × PostSettings::godRays.
+//  5. Hand-off (shaders/post_overlay.comp): the gain, the glow's share and the god rays folded
+//     into one image on the copy's grid, the overlay (rgb to add, alpha the frame's scale), so that
+//     the full-size output pass takes one bilinear sample and reads no buffer: on lavapipe each
+//     bilinear sample there cost about a third of the plain output pass, the gain's buffer read
+//     half of one (bench/post_bench.cpp).
 // The seed's AGC averaged luminance linearly and divided by it; the log-average is Reinhard's, which
 // the seed names as the better-balanced alternative (a few very bright pixels, like the sun, pull a
 // linear mean far more).
@@ -32,6 +37,7 @@
 // The numbers (sizes, the kernel) and CPU references of every step: render/passes/post_reference.hpp.
 // Cost on lavapipe: bench/post_bench.cpp.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -85,30 +91,38 @@ public:
   /// `exposure` multiplies the gain (exposure compensation). Next frame starts from the state this
   /// leaves, so record it once per frame.
   void recordAutoGain(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
-  /// Step 2, after recordDownsample: the four blurs into glow().
+  /// Step 2, after recordDownsample: the four blurs into the glow (readGlow()).
   void recordGlow(const vk::raii::CommandBuffer& commands) const;
   /// Step 4, after recordDownsample: god rays around `lightUv` (frame uv) into godRays(), with
   /// settings.godRayThreshold and godRayDecay. `blur` false skips the radial blur: the bare polar
   /// round trip, for tests. The output pass adds them this frame (godRaysRecorded()).
   void recordGodRays(const vk::raii::CommandBuffer& commands, const PostSettings& settings, glm::vec2 lightUv,
                      bool blur = true);
-  /// Makes the glow and the exposure state visible to fragment shaders (and the state to the host).
-  void recordHandOff(const vk::raii::CommandBuffer& commands) const;
+  /// Step 5, last: folds what `settings` asked this frame (the auto gain or `exposure`, the glow,
+  /// the god rays where recordGodRays ran) into overlay() and makes it, and the exposure state,
+  /// visible to fragment shaders (and the state to the host).
+  void recordHandOff(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
 
-  /// The blurred copy, GENERAL layout; bilinear-sample it with sampler().
-  const Image& glow() const { return glow_; }
-  /// The god rays on the downsampled copy's grid, GENERAL layout; sampled like glow().
-  const Image& godRays() const { return godRays_; }
-  /// Whether recordGodRays ran since the last recordDownsample: the output pass adds godRays() only then.
+  /// What the output pass reads of overlay() (shaders/output.frag's kOverlay).
+  enum class OverlayUse : std::uint32_t {
+    kNone,      ///< nothing: the exposure alone scales the frame
+    kScale,     ///< alpha alone, the same in every texel: the auto gain
+    kFiltered,  ///< bilinear samples: alpha scales the frame, rgb is added (glow, god rays)
+  };
+  /// The use of the overlay the last recordHandOff made (kNone before any).
+  OverlayUse overlayUse() const { return overlayUse_; }
+  /// rgb: g·(s·glow + r·rays), alpha: g·(1 − s), on the downsampled copy's grid, GENERAL layout
+  /// (shaders/post_overlay.comp); bilinear-sample it with sampler().
+  const Image& overlay() const { return overlay_; }
+  /// Whether recordGodRays ran since the last recordDownsample.
   bool godRaysRecorded() const { return godRaysRecorded_; }
   /// The light in the downsampled copy's texel coordinates, for frame uv `lightUv`.
   glm::vec2 godRayCentre(glm::vec2 lightUv) const;
-  /// The auto gain's state (PostExposure), a storage buffer.
-  const Buffer& exposureState() const { return exposure_; }
   /// Bilinear, clamped to the edge.
   const vk::raii::Sampler& sampler() const { return sampler_; }
-  /// Scale from frame uv to glow() uv: the copy covers 4·its size pixels, a little more than the frame.
-  glm::vec2 glowUvScale() const;
+  /// Scale from frame uv to overlay() uv: the copy covers 4·its size pixels, a little more than
+  /// the frame.
+  glm::vec2 overlayUvScale() const;
   /// The blur weights w[0…R] (glowKernel()).
   const std::vector<float>& glowWeights() const { return kernel_; }
 
@@ -140,13 +154,16 @@ private:
   Image polar_;         ///< their polar image, godRayPolarSize(copy)
   Image polarBlurred_;  ///< blurred along the radius
   Image godRays_;       ///< back on the copy's grid
+  Image overlay_;       ///< what the output pass applies, RGBA32F
   bool godRaysRecorded_ = false;
+  OverlayUse overlayUse_ = OverlayUse::kNone;
   Buffer exposure_;  ///< PostExposure, host-visible so tests can read it
   vk::raii::Sampler sampler_{nullptr};
 
   vk::raii::DescriptorSetLayout sampledLayout_{nullptr};  ///< sampled source, storage destination
   vk::raii::DescriptorSetLayout storageLayout_{nullptr};  ///< storage source, storage destination
   vk::raii::DescriptorSetLayout adaptLayout_{nullptr};    ///< storage tiny image, storage buffer
+  vk::raii::DescriptorSetLayout overlayLayout_{nullptr};  ///< glow, god rays, storage buffer, overlay
   Pipeline downsamplePipeline_;
   Pipeline blurPipelines_[2];  ///< along x, along y
   Pipeline tinyPipeline_;
@@ -155,6 +172,8 @@ private:
   Pipeline rayPolarPipeline_;
   Pipeline rayBlurPipeline_;
   Pipeline rayUnpolarPipeline_;
+  /// [auto gain][glow][god rays], each made the first time a frame asks for it
+  std::array<Pipeline, 8> overlayPipelines_;
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet downsampleSet_{nullptr};
   vk::raii::DescriptorSet acrossSets_[2]{vk::raii::DescriptorSet(nullptr), vk::raii::DescriptorSet(nullptr)};
@@ -164,6 +183,7 @@ private:
   vk::raii::DescriptorSet rayBrightSet_{nullptr};
   vk::raii::DescriptorSet rayPolarSet_{nullptr};
   vk::raii::DescriptorSet rayBlurSet_{nullptr};
+  vk::raii::DescriptorSet overlaySet_{nullptr};
   vk::raii::DescriptorSet rayUnpolarSets_[2]{vk::raii::DescriptorSet(nullptr),
                                              vk::raii::DescriptorSet(nullptr)};  ///< from polar_, from polarBlurred_
 };

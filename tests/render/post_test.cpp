@@ -310,7 +310,7 @@ TEST_F(PostChainTest, PolarRoundTripReturnsTheImageAwayFromTheCentre) {
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     chain.recordDownsample(commands);
     chain.recordGodRays(commands, settings, lightUv, false);
-    chain.recordHandOff(commands);
+    chain.recordHandOff(commands, settings, 1.0f);
   });
   auto quarter = chain.readDownsampled();
   auto back = chain.readGodRays();
@@ -645,6 +645,57 @@ TEST_F(PostRendering, GodRaysOffLeaveTheOutputBitIdentical) {
   }
 }
 
+// The output pass against the formula it applies to the chain's results, pixel by pixel: the
+// frame (a uniform sky, B) mixed with the glow by s, the god rays × r added, times the gain (the
+// exposure, or the auto gain the chain measured), clamped and sRGB-encoded; the glow and the rays
+// read back and bilinear-sampled on the CPU at each pixel's centre. ±1 code (the encode and the
+// sampler's sub-texel precision may round either way).
+TEST_F(PostRendering, OutputAppliesTheGainGlowAndGodRaysAsTheirFormulasSay) {
+  // Sizes that 4 does not divide: the copy covers a little more than the frame.
+  constexpr std::uint32_t kWidth = 66, kHeight = 50;
+  auto renderer = makeRenderer({kWidth, kHeight}, false);
+  const auto bilinear = [](const HdrImage& image, glm::dvec2 uv) {
+    const glm::dvec2 at = uv * glm::dvec2(image.width, image.height) - 0.5;
+    const glm::dvec2 low = glm::floor(at), t = at - low;
+    const auto texel = [&](double x, double y) {
+      return glm::dvec3(image.at(std::uint32_t(std::clamp(x, 0.0, double(image.width - 1))),
+                                 std::uint32_t(std::clamp(y, 0.0, double(image.height - 1)))));
+    };
+    return glm::mix(glm::mix(texel(low.x, low.y), texel(low.x + 1, low.y), t.x),
+                    glm::mix(texel(low.x, low.y + 1), texel(low.x + 1, low.y + 1), t.x), t.y);
+  };
+  for (const bool autoGain : {false, true}) {
+    const PostSettings post{
+        .autoGain = autoGain, .glowStrength = 0.4f, .resetAdaptation = true, .godRays = 1.5f, .godRayThreshold = 0.3f};
+    const FrameInput sky{
+        .camera = {.position = {0, 0, 6}, .target = {0, 0, 0}},
+        .lights = {DirectionalLight{.direction = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f)), .intensity = 0.0f}},
+        .background = glm::vec3(0.9f, 0.6f, 0.3f),
+        .exposure = 0.7f,
+        .post = post};
+    const std::vector<std::uint8_t> rgba = draw(*renderer, sky);
+    const PostChain& chain = renderer->post();
+    auto glow = chain.readGlow();
+    auto rays = chain.readGodRays();
+    ASSERT_TRUE(glow.has_value() && rays.has_value() && rgba.size() == std::size_t(kWidth) * kHeight * 4);
+    const double gain = autoGain ? chain.readExposure().gain : 0.7;
+    const glm::dvec3 frame(roundToHalf(0.9f), roundToHalf(0.6f), roundToHalf(0.3f));
+    const double s = post.glowStrength, r = post.godRays;
+    double brightestRay = 0.0;
+    for (std::uint32_t y = 0; y < kHeight; ++y)
+      for (std::uint32_t x = 0; x < kWidth; ++x) {
+        const glm::dvec2 uv = glm::dvec2((x + 0.5) / kWidth, (y + 0.5) / kHeight) * glm::dvec2(chain.overlayUvScale());
+        const glm::dvec3 ray = bilinear(*rays, uv);
+        brightestRay = std::max(brightestRay, luminance(ray));
+        const glm::dvec3 expected = gain * ((1.0 - s) * frame + s * bilinear(*glow, uv) + r * ray);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(rgba[(std::size_t(y) * kWidth + x) * 4 + std::size_t(c)], 255.0 * srgbEncode(expected[c]), 1.0)
+              << "pixel " << x << ", " << y << " channel " << c << (autoGain ? " auto gain" : " exposure");
+      }
+    EXPECT_GT(brightestRay, 0.05) << "the rays add something to check";
+  }
+}
+
 TEST_F(PostRendering, PostPassesAreTimedOnlyWhenAskedFor) {
   auto renderer = makeRenderer({32, 32}, true);
   std::vector<PassTiming> timings;
@@ -657,7 +708,8 @@ TEST_F(PostRendering, PostPassesAreTimedOnlyWhenAskedFor) {
   if (timings.empty()) GTEST_SKIP() << "the device has no timestamps";
   EXPECT_EQ(names(), (std::vector<std::string>{"surfaces", "output"})) << "the default adds no passes";
   draw(*renderer, litQuad(1.0f, {.autoGain = true, .glowStrength = 0.5f}), &timings);
-  EXPECT_EQ(names(), (std::vector<std::string>{"surfaces", "post downsample", "auto gain", "glow", "output"}));
+  EXPECT_EQ(names(),
+            (std::vector<std::string>{"surfaces", "post downsample", "auto gain", "glow", "post overlay", "output"}));
   for (const PassTiming& timing : timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
   // The passes run one after another in the order recorded: the first begins the frame, and each
   // begins no earlier than the one before it ended.
@@ -680,7 +732,8 @@ TEST_F(PostRendering, RejectsBadSettingsByName) {
   EXPECT_NE(errorOf({.frameSeconds = NAN}).find("frameSeconds"), std::string::npos);
   EXPECT_NE(errorOf({.godRays = -1.0f}).find("godRays"), std::string::npos);
   EXPECT_NE(errorOf({.godRayDecay = 0.0f}).find("godRayDecay"), std::string::npos);
-  EXPECT_EQ(errorOf({.godRays = 1.0f, .godRayLight = 1}), "the god rays stream from light 1, but the frame has 0 lights");
+  EXPECT_EQ(errorOf({.godRays = 1.0f, .godRayLight = 1}),
+            "the god rays stream from light 1, but the frame has 0 lights");
 }
 
 // A light's disc is the cone of its angular radius r around the direction to it. Straight ahead
@@ -693,12 +746,12 @@ TEST_F(PostRendering, ALightsDiscIsACircleOfItsAngularRadiusBehindTheScene) {
   auto renderer = makeRenderer({128, 96}, true);
   const float radius = glm::radians(5.0f);
   const glm::vec3 colour(1.0f, 0.5f, 0.25f);
-  FrameInput frame{.camera = {.position = {0, 0, 6}, .target = {0, 0, 0}},
-                   .lights = {DirectionalLight{
-                       .direction = {0, 0, -1}, .color = colour, .intensity = 0.0f, .discRadius = radius,
-                       .discRadiance = 2.0f}},
-                   .background = glm::vec3(0.0f),
-                   .exposure = 0.25f};
+  FrameInput frame{
+      .camera = {.position = {0, 0, 6}, .target = {0, 0, 0}},
+      .lights = {DirectionalLight{
+          .direction = {0, 0, -1}, .color = colour, .intensity = 0.0f, .discRadius = radius, .discRadiance = 2.0f}},
+      .background = glm::vec3(0.0f),
+      .exposure = 0.25f};
   const std::vector<std::uint8_t> disc = draw(*renderer, frame);
   ASSERT_EQ(disc.size(), std::size_t(128 * 96 * 4));
   const double halfCovered = 255.0 * srgbEncode(0.5 * 2.0 * 0.25);
