@@ -3,8 +3,7 @@
 // vertical blur: one column per angle), towards the light: out(j) = Σ_{k: j − k·step ≥ 0} w[k] ·
 // in(j − k·step) with w[k] ∝ decay^k, tapered (godRayWeights), so light only moves outwards and
 // fades; taps that would reach past the light add nothing, so each ray keeps the light it had
-// (radialBlur in render/passes/post_reference.hpp). Taps and step are specialisation constants:
-// a fixed loop.
+// (radialBlur in render/passes/post_reference.hpp). Taps and step are specialisation constants.
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -23,7 +22,15 @@ void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, imageSize(polar)))) return;
   vec4 sum = vec4(0.0);
-  for (int k = 0; k < kTaps && texel.y - k * kStep >= 0; ++k)
-    sum += kernel.weights[k / 4][k % 4] * imageLoad(polar, ivec2(texel.x, texel.y - k * kStep));
+  // Every tap, those past the light weighted 0 (they read the light's row): a loop of fixed
+  // length, which lavapipe ran about a fifth faster than one that ends at the light (god rays in
+  // nalu's frame, 19 → 15 ms in a slow spell); also faster than this loop for the workgroups
+  // clear of the light with the other for the rest. The sums are the same: the polar image holds
+  // finite values, so the extra terms add 0.
+  for (int k = 0; k < kTaps; ++k) {
+    int row = texel.y - k * kStep;
+    float weight = row >= 0 ? kernel.weights[k / 4][k % 4] : 0.0;
+    sum += weight * imageLoad(polar, ivec2(texel.x, max(row, 0)));
+  }
   imageStore(blurred, texel, sum);
 }
