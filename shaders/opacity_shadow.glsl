@@ -30,10 +30,14 @@ float opacityShadowMapOpacity(sampler2DArray slices, OpacityShadow osm, vec3 wor
   float s = clamp(p.z, 0.0, 1.0) * osm.depth.x;  // in slice spacings from the light-side plane
   int below = int(floor(s));                      // planes `below` and `below + 1`
   vec2 uv = p.xy * 0.5 + 0.5;
-  if (below >= int(osm.depth.x)) return opacityShadowSlice(slices, uv, int(osm.depth.x) - 1);
-  float near = below == 0 ? 0.0 : opacityShadowSlice(slices, uv, below - 1);
-  float far = opacityShadowSlice(slices, uv, below);
-  return mix(near, far, s - float(below));
+  // Both lookups at every point, the cases chosen after: no lookup inside a branch, which lavapipe
+  // runs slower.
+  int last = int(osm.depth.x) - 1;
+  int farSlice = min(below, last);
+  float far = opacityShadowSlice(slices, uv, farSlice);
+  float near = opacityShadowSlice(slices, uv, max(farSlice - 1, 0));
+  float between = mix(below == 0 ? 0.0 : near, far, s - float(below));
+  return below > last ? far : between;
 }
 
 // One texel of a deep opacity map at depth z: 0 at the texel's first hair z0, layer k at
