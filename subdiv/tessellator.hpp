@@ -122,19 +122,20 @@ public:
 
   /// The per-frame update of a moving surface seen by a moving camera, after
   /// LimitSurface::updatePositions: the last triangles while they keep within the target
-  /// (keepsTarget), their vertices moved with the surface (updateVertices). When the growth of
-  /// the points' scales, extrapolated from the last few calls, would use up the 10 % allowed
-  /// within about ten calls (or has used 7 % of it, or every scale has shrunk below 0.75), it
-  /// copies the surface and tessellates the copy for this view in the background, on `threads`
-  /// threads of its own that pause while this object's and LimitSurface's calls on more than
-  /// one thread run, so that those frames keep every core; on the 5th call after that, or sooner if the kept triangles
-  /// stop keeping within the target, it waits for that tessellation, makes it the current one and moves its vertices to
-  /// the surface as it is then. It tessellates on the calling threads only when there is no tessellation yet, or when
-  /// even the prepared one does not keep within the target (a camera that jumped). What it does depends on the calls
-  /// alone (views and surfaces), never on timing, so the meshes are as deterministic as tessellate's. The first call,
-  /// which tessellates, also tessellates once in the background meanwhile and drops the result, so that the first
-  /// prepared tessellation finds its storage ready. Errors: as updateVertices (`mesh` must be
-  /// what the last call left).
+  /// (keepsTarget), their vertices moved with the surface (updateVertices). When the growth of the
+  /// points' scales, extrapolated from the last few calls, would use up the 10 % allowed within
+  /// about ten calls (or has used 7 % of it, or every scale has shrunk below 0.75), it copies the
+  /// surface and tessellates the copy for this view in the background, on `threads` threads of its
+  /// own that pause while this object's and LimitSurface's calls on more than one thread run, so
+  /// that those frames keep every core; on the 5th call after that, or sooner if the kept triangles
+  /// stop keeping within the target, it waits for that tessellation, makes it the current one and
+  /// moves its vertices to the surface as it is then. It tessellates on the calling threads only
+  /// when there is no tessellation yet, or when even the prepared one does not keep within the
+  /// target (a camera that jumped). What it does depends on the calls alone (views and surfaces),
+  /// never on timing, so the meshes are as deterministic as tessellate's. The first call, which
+  /// tessellates, also tessellates once in the background and drops the result, so that the first
+  /// prepared tessellation finds its storage ready. Errors: as updateVertices (`mesh` must be what
+  /// the last call left).
   [[nodiscard]] Result<FrameUpdate> update(const ScreenView& view, TessellatedMesh& mesh, unsigned threads = 1);
 
   [[nodiscard]] const TessellationStatistics& statistics() const;

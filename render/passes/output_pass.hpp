@@ -21,9 +21,9 @@ public:
   /// `post` (which must outlive the pass) provides the overlay.
   OutputPass(const Device& device, const RenderTarget& target, const PostChain& post);
 
-  /// Reads target.hdr() (in SHADER_READ_ONLY layout) and, as `post` asks, the post chain's results
-  /// (recorded before, this frame; god rays only where the chain recorded them), and writes target.output() (in
-  /// COLOR_ATTACHMENT layout).
+  /// Reads target.hdr() (in SHADER_READ_ONLY layout) and, where `post` runs the chain, its
+  /// overlay (recorded before, this frame: PostChain::recordHandOff), and writes target.output()
+  /// (in COLOR_ATTACHMENT layout).
   void record(const vk::raii::CommandBuffer& commands, const RenderTarget& target, float exposure,
               const PostSettings& post);
 

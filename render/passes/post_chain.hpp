@@ -24,9 +24,9 @@
 //     inverse transform to the copy's grid; the output pass adds it × PostSettings::godRays.
 //  5. Hand-off (shaders/post_overlay.comp): the gain, the glow's share and the god rays folded
 //     into one image on the copy's grid, the overlay (rgb to add, alpha the frame's scale), so that
-//     the full-size output pass takes one bilinear sample and reads no buffer: on lavapipe each
-//     bilinear sample there cost about a third of the plain output pass, the gain's buffer read
-//     half of one (bench/post_bench.cpp).
+//     the full-size output pass takes one bilinear sample and reads no buffer: on lavapipe, with
+//     the plain output pass at 6.8 ms, the glow's sample there added 7.8 ms, the god rays' 9.1 and
+//     the gain's buffer read 3.7 (bench/post_bench.cpp, 1280×720, a slow spell of this machine).
 // The seed's AGC averaged luminance linearly and divided by it; the log-average is Reinhard's, which
 // the seed names as the better-balanced alternative (a few very bright pixels, like the sun, pull a
 // linear mean far more).
@@ -71,7 +71,9 @@ public:
   static constexpr vk::Format kFormat = vk::Format::eR16G16B16A16Sfloat;
 
   /// The images and pipelines for frames the size of `frame`, which the passes sample (in
-  /// SHADER_READ_ONLY layout when recorded); it must outlive the chain. Throws on a Vulkan failure.
+  /// SHADER_READ_ONLY layout when recorded); it must outlive the chain. Throws on a Vulkan
+  /// failure, or on a device that cannot filter RGBA32F images (the overlay's format; lavapipe
+  /// and desktop GPUs can).
   PostChain(const Device& device, const Image& frame);
 
   /// Whether `settings` needs any of the passes here (glow, auto gain or god rays); the defaults
@@ -93,9 +95,10 @@ public:
   void recordAutoGain(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure);
   /// Step 2, after recordDownsample: the four blurs into the glow (readGlow()).
   void recordGlow(const vk::raii::CommandBuffer& commands) const;
-  /// Step 4, after recordDownsample: god rays around `lightUv` (frame uv) into godRays(), with
-  /// settings.godRayThreshold and godRayDecay. `blur` false skips the radial blur: the bare polar
-  /// round trip, for tests. The output pass adds them this frame (godRaysRecorded()).
+  /// Step 4, after recordDownsample: god rays around `lightUv` (frame uv), with
+  /// settings.godRayThreshold and godRayDecay (readGodRays()). `blur` false skips the radial
+  /// blur: the bare polar round trip, for tests. The hand-off adds them this frame
+  /// (godRaysRecorded()).
   void recordGodRays(const vk::raii::CommandBuffer& commands, const PostSettings& settings, glm::vec2 lightUv,
                      bool blur = true);
   /// Step 5, last: folds what `settings` asked this frame (the auto gain or `exposure`, the glow,
