@@ -37,6 +37,11 @@ bool FlatStencils::readsOnlyEarlierPoints() const {
   return true;
 }
 
+bool FlatStencils::readsFlagged(std::size_t s, std::span<const char> flags) const {
+  return std::any_of(sources_.begin() + offsets_[s], sources_.begin() + offsets_[s + 1],
+                     [&](std::uint32_t source) { return flags[source] != 0; });
+}
+
 namespace {
 
 /// A running weighted sum of points, added to in a fixed order.

@@ -27,11 +27,15 @@ public:
   FlatStencils(const OpenSubdiv::Far::StencilTableReal<double>& table, std::size_t firstDestination);
 
   [[nodiscard]] std::size_t size() const { return offsets_.empty() ? 0 : offsets_.size() - 1; }
+  /// Where stencil 0 writes in the array `apply` is given.
+  [[nodiscard]] std::size_t firstDestination() const { return firstDestination_; }
   [[nodiscard]] std::size_t weightCount() const { return sources_.size(); }
   /// Weights stored after equal lists were shared.
   [[nodiscard]] std::size_t distinctWeightCount() const { return weights_.size(); }
   /// True when every source lies below the first destination, which `apply` needs.
   [[nodiscard]] bool readsOnlyEarlierPoints() const;
+  /// Whether stencil s reads a point whose flag (indexed like `apply`'s array) is set.
+  [[nodiscard]] bool readsFlagged(std::size_t s, std::span<const char> flags) const;
 
   /// points[firstDestination + s] = Σ weight · points[source] for stencils s in [begin, end).
   /// The sources must lie outside every destination of the table (true of OpenSubdiv's refined

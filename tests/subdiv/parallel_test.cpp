@@ -3,6 +3,7 @@
 // and 4 workers must give the same bytes. The oracle is the single-threaded result.
 
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -61,6 +62,61 @@ TEST(ParallelSubdivision, DeformingCageUpdateIsBitIdenticalForAnyThreadCount) {
       reference = samples;
     else
       EXPECT_TRUE(sameBytes(samples, reference)) << threads << " threads";
+  }
+}
+
+// An update recomputes only the points that read a moved cage vertex, directly or through
+// another point (the search kept while the same vertices move); the surface stays, bit for bit,
+// the one built from the moved cage: when part of the cage moves, the same part moves again,
+// single vertices one to three rings from a pole move (the pole's end-cap points read refined
+// points around it), and nothing moves.
+TEST(ParallelSubdivision, UpdatesMovingPartOfTheCageGiveTheRebuiltSurfaceBitForBit) {
+  const Cage cage = denseSphere();
+  auto surface = LimitSurface::create(cage);
+  ASSERT_TRUE(surface.has_value()) << surface.error().message;
+  const auto samplesOf = [](const LimitSurface& limit) {
+    std::vector<glm::dvec3> samples;
+    for (std::uint32_t face = 0; face < limit.ptexFaceCount(); face += 5)
+      // Near every corner too, where the patches of end caps (local points) lie.
+      for (const glm::dvec2 uv : {glm::dvec2(0.4, 0.8), glm::dvec2(0.01, 0.01), glm::dvec2(0.99, 0.01),
+                                  glm::dvec2(0.01, 0.99), glm::dvec2(0.99, 0.99)}) {
+        const LimitSample sample = limit.evaluate(face, uv.x, uv.y);
+        samples.emplace_back(sample.position);
+        samples.emplace_back(sample.normal);
+        samples.emplace_back(sample.curvature.mean, sample.curvature.gaussian, 0.0);
+      }
+    return samples;
+  };
+  // uvSphere numbers the south pole 0, then 128 vertices per latitude circle from the south.
+  const auto onCircle = [](std::size_t circle, std::size_t s) { return 1 + (circle - 1) * 128 + s; };
+  std::vector<glm::vec3> positions = cage.positions;
+  const auto moveUpperPart = [&](glm::vec3 by) {
+    for (glm::vec3& p : positions)
+      if (p.z > 0.4f) p += by * (1.0f + p.x);
+  };
+  const struct {
+    const char* what;
+    std::function<void()> move;
+  } steps[] = {{"the upper part moves",
+                [&] {
+                  moveUpperPart({0.01f, 0.0f, 0.02f});
+                }},
+               {"the upper part moves again",
+                [&] {
+                  moveUpperPart({0.0f, -0.03f, 0.01f});
+                }},
+               {"a vertex next to the pole moves", [&] { positions[onCircle(1, 0)].x += 0.01f; }},
+               {"a vertex two rings out moves", [&] { positions[onCircle(2, 5)].y += 0.01f; }},
+               {"a vertex three rings out moves", [&] { positions[onCircle(3, 9)].z += 0.01f; }},
+               {"nothing moves", [] {}}};
+  for (const auto& step : steps) {
+    step.move();
+    ASSERT_TRUE(surface->updatePositions(positions, 2).has_value()) << step.what;
+    Cage moved = cage;
+    moved.positions = positions;
+    auto rebuilt = LimitSurface::create(moved);
+    ASSERT_TRUE(rebuilt.has_value()) << rebuilt.error().message;
+    EXPECT_TRUE(sameBytes(samplesOf(*surface), samplesOf(*rebuilt))) << step.what;
   }
 }
 
