@@ -78,9 +78,8 @@ void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set,
 }
 
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
-                       const vk::raii::ImageView& view, const vk::raii::Sampler& sampler) {
-  const vk::DescriptorImageInfo info{
-      .sampler = *sampler, .imageView = *view, .imageLayout = vk::ImageLayout::eShaderReadOnlyOptimal};
+                       const vk::raii::ImageView& view, const vk::raii::Sampler& sampler, vk::ImageLayout layout) {
+  const vk::DescriptorImageInfo info{.sampler = *sampler, .imageView = *view, .imageLayout = layout};
   device.device().updateDescriptorSets(
       vk::WriteDescriptorSet{.dstSet = *set,
                              .dstBinding = binding,

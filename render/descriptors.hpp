@@ -29,8 +29,10 @@ void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set,
 vk::raii::BufferView makeTexelView(const Device& device, vk::Buffer buffer, vk::Format format);
 void writeUniformTexelBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                              const vk::raii::BufferView& view);
-/// A combined image sampler of `view` in SHADER_READ_ONLY layout.
+/// A combined image sampler of `view` in `layout` (GENERAL for an image compute passes also
+/// write as a storage image).
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
-                       const vk::raii::ImageView& view, const vk::raii::Sampler& sampler);
+                       const vk::raii::ImageView& view, const vk::raii::Sampler& sampler,
+                       vk::ImageLayout layout = vk::ImageLayout::eShaderReadOnlyOptimal);
 
 }  // namespace mane::render

@@ -23,15 +23,7 @@ OutputPass::OutputPass(const Device& device, const RenderTarget& target, const P
   set_ = allocateSet(device, pool_, layout_);
   writeSampledImage(device, set_, 0, target.hdr(), sampler_);
   // The overlay stays in GENERAL layout (the post chain writes it as a storage image).
-  const vk::DescriptorImageInfo overlay{
-      .sampler = *post.sampler(), .imageView = *post.overlay().view(), .imageLayout = vk::ImageLayout::eGeneral};
-  device.device().updateDescriptorSets(
-      vk::WriteDescriptorSet{.dstSet = *set_,
-                             .dstBinding = 1,
-                             .descriptorCount = 1,
-                             .descriptorType = vk::DescriptorType::eCombinedImageSampler,
-                             .pImageInfo = &overlay},
-      {});
+  writeSampledImage(device, set_, 1, post.overlay().view(), post.sampler(), vk::ImageLayout::eGeneral);
   pipelineFor(ToneMapping::kLinear, PostChain::OverlayUse::kNone);
 }
 

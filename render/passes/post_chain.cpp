@@ -61,19 +61,16 @@ vk::Extent2D toExtent(glm::uvec2 size) {
   return {size.x, size.y};
 }
 
-// A storage image (or, with a sampler, a combined image sampler) in GENERAL layout.
+// A storage image in GENERAL layout.
 void writeGeneralImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
-                       const Image& image, const vk::raii::Sampler* sampler = nullptr) {
-  const vk::DescriptorImageInfo info{
-      .sampler = sampler ? **sampler : vk::Sampler{}, .imageView = *image.view(), .imageLayout = Layout::eGeneral};
-  device.device().updateDescriptorSets(
-      vk::WriteDescriptorSet{
-          .dstSet = *set,
-          .dstBinding = binding,
-          .descriptorCount = 1,
-          .descriptorType = sampler ? vk::DescriptorType::eCombinedImageSampler : vk::DescriptorType::eStorageImage,
-          .pImageInfo = &info},
-      {});
+                       const Image& image) {
+  const vk::DescriptorImageInfo info{.imageView = *image.view(), .imageLayout = Layout::eGeneral};
+  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
+                                                              .dstBinding = binding,
+                                                              .descriptorCount = 1,
+                                                              .descriptorType = vk::DescriptorType::eStorageImage,
+                                                              .pImageInfo = &info},
+                                       {});
 }
 
 // A pass's storage writes reach the next pass's reads; its reads finish before the next writes.
