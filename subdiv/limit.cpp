@@ -151,10 +151,14 @@ struct LimitSurface::Impl {
     return {&topology->refinedStencils, &topology->localStencils};
   }
 
+  void copyCagePoints() {
+    std::transform(cage.positions.begin(), cage.positions.end(), points.begin(),
+                   [](const glm::vec3& p) { return glm::dvec3(p); });
+  }
+
   /// Every point from the cage.
   void computePoints() {
-    const std::size_t cageCount = cage.positions.size();
-    for (std::size_t v = 0; v < cageCount; ++v) points[v] = glm::dvec3(cage.positions[v]);
+    copyCagePoints();
     for (const detail::FlatStencils* stencils : tables()) stencils->apply(points, 0, stencils->size());
   }
 
@@ -163,8 +167,7 @@ struct LimitSurface::Impl {
   /// read cage points only and local points read cage and refined points, so each stage's
   /// destinations split freely among threads.
   void recomputeMovedPoints(unsigned threads, const std::vector<char>& moved) {
-    const std::size_t cageCount = cage.positions.size();
-    for (std::size_t v = 0; v < cageCount; ++v) points[v] = glm::dvec3(cage.positions[v]);
+    copyCagePoints();
     if (moved != staleFor) findStaleRuns(moved);
     for (std::size_t t = 0; t < 2; ++t) {
       const detail::FlatStencils& stencils = *tables()[t];
