@@ -90,9 +90,13 @@ TEST(ParallelSubdivision, UpdatesMovingPartOfTheCageGiveTheRebuiltSurfaceBitForB
   // uvSphere numbers the south pole 0, then 128 vertices per latitude circle from the south.
   const auto onCircle = [](std::size_t circle, std::size_t s) { return 1 + (circle - 1) * 128 + s; };
   std::vector<glm::vec3> positions = cage.positions;
+  // The same vertices each time (the rest cage's upper part), each by a different amount, so that
+  // the second move reuses the stale stencils the first found.
+  std::vector<std::size_t> upperPart;
+  for (std::size_t v = 0; v < cage.positions.size(); ++v)
+    if (cage.positions[v].z > 0.4f) upperPart.push_back(v);
   const auto moveUpperPart = [&](glm::vec3 by) {
-    for (glm::vec3& p : positions)
-      if (p.z > 0.4f) p += by * (1.0f + p.x);
+    for (std::size_t v : upperPart) positions[v] += by * (2.0f + positions[v].x);
   };
   const struct {
     const char* what;
@@ -103,7 +107,7 @@ TEST(ParallelSubdivision, UpdatesMovingPartOfTheCageGiveTheRebuiltSurfaceBitForB
                 }},
                {"the upper part moves again",
                 [&] {
-                  moveUpperPart({0.0f, -0.03f, 0.01f});
+                  moveUpperPart({0.02f, -0.03f, 0.01f});
                 }},
                {"a vertex next to the pole moves", [&] { positions[onCircle(1, 0)].x += 0.01f; }},
                {"a vertex two rings out moves", [&] { positions[onCircle(2, 5)].y += 0.01f; }},
