@@ -15,11 +15,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -680,6 +682,21 @@ TEST_F(HairPassTest, RejectsBadStrandsAndGroomSettings) {
                                  .radiance = *buffer.buffer(),
                                  .verticesPerStrand = 1})
                    .has_value());
+  // Counts alone decide these two (nothing is read from the buffers): 2 vertices a strand.
+  const auto tooMany = [&](std::uint32_t strands) {
+    const auto set = (*pass)->setStrands({.positions = *buffer.buffer(),
+                                          .tangents = *buffer.buffer(),
+                                          .radiance = *buffer.buffer(),
+                                          .strandCount = strands,
+                                          .verticesPerStrand = 2});
+    return set.has_value() ? std::string() : set.error().message;
+  };
+  EXPECT_NE(tooMany(1u << 29).find("2^32"), std::string::npos) << "8 indices a segment";
+  // One vertex more than a texel buffer holds, where the indices still fit.
+  const std::uint64_t texels = device().limits().maxTexelBufferElements;
+  if (4 * texels + 8 <= std::numeric_limits<std::uint32_t>::max()) {
+    EXPECT_NE(tooMany(std::uint32_t(texels / 2 + 1)).find("texel buffers"), std::string::npos);
+  }
   const HairView view{orthographicView(kShadingExtent, kMetresPerPixel), kShadingExtent};
   EXPECT_FALSE((*pass)->update(view, {.width = 0.0f}).has_value());
   EXPECT_FALSE((*pass)->update(view, {.width = std::nanf("")}).has_value());
