@@ -69,7 +69,7 @@ Pipeline makeGraphicsPipeline(const Device& device, const GraphicsPipelineSettin
   const vk::PipelineMultisampleStateCreateInfo multisample{.rasterizationSamples = settings.samples};
   const vk::PipelineDepthStencilStateCreateInfo depthStencil{.depthTestEnable = settings.depthTest,
                                                              .depthWriteEnable = settings.depthWrite,
-                                                             .depthCompareOp = vk::CompareOp::eLessOrEqual};
+                                                             .depthCompareOp = settings.depthCompare};
 
   vk::PipelineColorBlendAttachmentState blend{.colorWriteMask =
                                                   vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |

@@ -37,6 +37,7 @@ struct GraphicsPipelineSettings {
   vk::Format depthFormat = vk::Format::eUndefined;
   bool depthTest = false;
   bool depthWrite = false;
+  vk::CompareOp depthCompare = vk::CompareOp::eLessOrEqual;  ///< passes when (fragment OP stored)
   vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
   std::vector<vk::DescriptorSetLayout> setLayouts;
   std::vector<vk::PushConstantRange> pushConstants;

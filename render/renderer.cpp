@@ -16,7 +16,9 @@ vk::SampleCountFlagBits sampleCount(std::uint32_t samples) {
 
 Renderer::Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows)
     : device_(&device),
-      target_(device, {.extent = settings.extent, .samples = sampleCount(settings.msaaSamples)}),
+      target_(
+          device,
+          {.extent = settings.extent, .samples = sampleCount(settings.msaaSamples), .skinGBuffer = settings.deferSkin}),
       occlusion_(device, target_),
       hideOccludedHair_(settings.hideOccludedHair),
       shadows_(std::move(shadows)),
@@ -24,7 +26,9 @@ Renderer::Renderer(const Device& device, const RendererSettings& settings, std::
       discs_(device, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
       post_(device, target_.hdr()),
       output_(device, target_, post_),
-      timer_(device, 16) {}
+      timer_(device, 16) {
+  if (!target_.skinGBuffer().empty()) surfaces_.setSkinGBuffer(target_.skinGBuffer());
+}
 
 Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const RendererSettings& settings) {
   if (settings.extent.width == 0 || settings.extent.height == 0)
@@ -290,16 +294,26 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   surfaces_.update(frame, target_.aspect());
 
   timer_.begin(commands, "surfaces");
-  // Main pass: previous contents are discarded and cleared. With hair, it stops after the
-  // surfaces and furs, whose depth then hides the strands behind them (HairOcclusion), and goes on
-  // with the hair chosen, shaded and drawn over them, depth-tested against them
-  // (render/passes/hair_pass.hpp).
+  const glm::vec4 background(frame.background, 1.0f);
+  // The skin's G-buffer and depth first where it is deferred (render/passes/surface_pass.hpp,
+  // "Deferred skin"); the main pass lights it before anything else.
+  const bool skinDeferred = surfaces_.defersSkin(frame);
+  if (skinDeferred) {
+    target_.beginSkinGBuffer(commands);
+    surfaces_.drawSkinGBuffer(commands, frame);
+    commands.endRendering();
+  }
+  // Main pass: previous contents are discarded and cleared (but the deferred skin's depth). With
+  // hair, it stops after the surfaces and furs, whose depth then hides the strands behind them
+  // (HairOcclusion), and goes on with the hair chosen, shaded and drawn over them, depth-tested
+  // against them (render/passes/hair_pass.hpp).
   if (hair)
-    target_.beginOpaque(commands, glm::vec4(frame.background, 1.0f));
+    target_.beginOpaque(commands, background, skinDeferred);
   else
-    target_.beginScene(commands, glm::vec4(frame.background, 1.0f));
+    target_.beginScene(commands, background, skinDeferred);
+  if (skinDeferred) surfaces_.drawSkinLighting(commands, frame);
   discs_.draw(commands, frame.camera, frame.lights, target_.extent());
-  surfaces_.draw(commands, frame);
+  surfaces_.draw(commands, frame, skinDeferred);
   furs_.draw(commands);
   if (hair) {
     commands.endRendering();

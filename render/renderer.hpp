@@ -37,6 +37,10 @@ struct RendererSettings {
   /// shading and drawing (HairPass, "Hidden strands"). They would be depth-tested away anyway:
   /// the image is the same either way.
   bool hideOccludedHair = true;
+  /// Whether single-sample frames light pre-integrated skin once per pixel after drawing it into
+  /// a G-buffer (render/passes/surface_pass.hpp, "Deferred skin") rather than in the fragment
+  /// shader: the same image, for 59 MB of G-buffer at 1280×720.
+  bool deferSkin = true;
 };
 
 class Renderer {
@@ -88,6 +92,8 @@ public:
   /// and how many of its vertices it hid (HairPass::lastChoice); a groom not drawn yet has the
   /// defaults. After render() has returned.
   std::vector<HairPrimitiveChoice> hairChoices() const;
+  /// Whether render() lights `frame`'s skin deferred (RendererSettings::deferSkin; after setScene).
+  bool defersSkin(const FrameInput& frame) const { return surfaces_.defersSkin(frame); }
   /// The HDR post chain: its glow, its auto gain state (render/passes/post_chain.hpp).
   const PostChain& post() const { return post_; }
   const Device& device() const { return *device_; }

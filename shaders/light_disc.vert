@@ -10,5 +10,5 @@ layout(location = 0) out vec2 outNdc;
 void main() {
   vec2 corner = vec2(gl_VertexIndex & 1, gl_VertexIndex >> 1);
   outNdc = mix(disc.bounds.xy, disc.bounds.zw, corner);
-  gl_Position = vec4(outNdc, 0.0, 1.0);
+  gl_Position = vec4(outNdc, 1.0, 1.0);  // the far plane: behind anything drawn before it
 }

@@ -67,6 +67,7 @@ LightDiscPass::LightDiscPass(const Device& device, vk::Format colorFormat, vk::F
                       .colorFormats = {colorFormat},
                       .blend = Blend::kAdditive,
                       .depthFormat = depthFormat,
+                      .depthTest = depthFormat != vk::Format::eUndefined,
                       .samples = samples,
                       .pushConstants = {{vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment, 0,
                                          sizeof(LightDiscConstants)}}})) {}

@@ -4,9 +4,9 @@
 // of radiance color × discRadiance. That is not the radiance a disc of that size needs to give
 // the light's irradiance (intensity over the solid angle: thousands for a sun of half a degree):
 // the god rays, which stream from the disc where it shows, blur the bright part of the image
-// linearly, and such a disc would saturate all of it within their reach. Drawn first in the main
-// pass, added to the background, so whatever the scene puts in front covers it and blended hair
-// lies over it.
+// linearly, and such a disc would saturate all of it within their reach. Drawn at the far plane,
+// depth-tested but not written, first in the main pass (or after the deferred skin), added to the
+// background, so whatever the scene puts in front covers it and blended hair lies over it.
 
 #include <optional>
 #include <span>

@@ -7,6 +7,7 @@
 
 #include "render/descriptors.hpp"
 #include "render/luts/skin_profile.hpp"
+#include "render/render_target.hpp"
 
 namespace mane::render {
 namespace {
@@ -80,6 +81,8 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
   const std::pair texture{vk::DescriptorType::eCombinedImageSampler, fragment};
   materialLayout_ = makeSetLayout(
       device, {texture, texture, texture, texture, texture, {vk::DescriptorType::eUniformBuffer, fragment}});
+  static_assert(RenderTarget::kGBufferImages == 4, "shaders/skin_deferred.frag reads four images");
+  gBufferLayout_ = makeSetLayout(device, {texture, texture, texture, texture});
   // A mesh's thickness table: its grid, nearest surface voxels, pair thicknesses.
   thicknessLayout_ = makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, fragment},
                                             {vk::DescriptorType::eStorageBuffer, fragment},
@@ -112,6 +115,19 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
 
 void SurfacePass::buildPipelines() {
   using Stage = vk::ShaderStageFlagBits;
+  // Every pipeline draws the meshes' vertices through surface.vert.
+  const GraphicsPipelineSettings meshes{
+      .vertexShader = "surface.vert",
+      .vertexBindings = {{.binding = 0, .stride = sizeof(Vertex), .inputRate = vk::VertexInputRate::eVertex}},
+      .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)},
+                           {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
+                           {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)},
+                           {3, 0, vk::Format::eR32Sfloat, offsetof(Vertex, curvature)}},
+      .dynamicCulling = true,
+      .depthFormat = formats_.depth,
+      .depthTest = true,
+      .depthWrite = true,
+      .pushConstants = {{Stage::eVertex, 0, sizeof(glm::mat4)}}};
   std::array<bool, kShadings * kTranslucencyMethods> used{};
   used[0] = true;  // Lambert: its layout binds the frame set even when nothing is drawn
   for (const GpuMaterial& material : materials_) used[pipelineFor(material)] = true;
@@ -119,33 +135,43 @@ void SurfacePass::buildPipelines() {
     pipelines_[variant] = {};
     if (!used[variant]) continue;
     const std::size_t shading = variant / kTranslucencyMethods;
+    GraphicsPipelineSettings settings = meshes;
+    settings.fragmentShader = "surface.frag";
+    settings.colorFormats = {formats_.color};
+    settings.samples = formats_.samples;
+    settings.setLayouts = {*frameLayout_, *materialLayout_, *thicknessLayout_};
     // Constants 0, 1: the hair shadow maps (shaders/hair_shadows.glsl); 2: skin; 3: its diffuse
     // light from the texture-space diffusion instead of the pre-integrated table; 4: the
     // translucency method (shaders/translucency.glsl).
-    SpecializationConstants constants = shadows_->shaderConstants();
-    constants.push_back(shading != 0 ? 1u : 0u);
-    constants.push_back(shading == 2 ? 1u : 0u);
-    constants.push_back(static_cast<std::uint32_t>(variant % kTranslucencyMethods));
-    pipelines_[variant] = makeGraphicsPipeline(
-        *device_,
-        GraphicsPipelineSettings{
-            .vertexShader = "surface.vert",
-            .fragmentShader = "surface.frag",
-            .vertexBindings = {{.binding = 0, .stride = sizeof(Vertex), .inputRate = vk::VertexInputRate::eVertex}},
-            .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, position)},
-                                 {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(Vertex, normal)},
-                                 {2, 0, vk::Format::eR32G32Sfloat, offsetof(Vertex, uv)},
-                                 {3, 0, vk::Format::eR32Sfloat, offsetof(Vertex, curvature)}},
-            .dynamicCulling = true,
-            .colorFormats = {formats_.color},
-            .depthFormat = formats_.depth,
-            .depthTest = true,
-            .depthWrite = true,
-            .samples = formats_.samples,
-            .setLayouts = {*frameLayout_, *materialLayout_, *thicknessLayout_},
-            .pushConstants = {{Stage::eVertex, 0, sizeof(glm::mat4)}},
-            .constants = constants});
+    settings.constants = shadows_->shaderConstants();
+    settings.constants.push_back(shading != 0 ? 1u : 0u);
+    settings.constants.push_back(shading == 2 ? 1u : 0u);
+    settings.constants.push_back(static_cast<std::uint32_t>(variant % kTranslucencyMethods));
+    pipelines_[variant] = makeGraphicsPipeline(*device_, settings);
   }
+  skinGBufferPipeline_ = {};
+  skinShadingPipeline_ = {};
+  if (formats_.samples != vk::SampleCountFlagBits::e1 || std::none_of(materials_.begin(), materials_.end(), deferrable))
+    return;
+  GraphicsPipelineSettings gBuffer = meshes;
+  gBuffer.fragmentShader = "skin_gbuffer.frag";
+  gBuffer.colorFormats.assign(RenderTarget::kGBufferImages, RenderTarget::kGBufferFormat);
+  gBuffer.setLayouts = {*frameLayout_, *materialLayout_};
+  // As the forward pipeline of deferrable skin: no translucency, the pre-integrated table.
+  gBuffer.constants = shadows_->shaderConstants();
+  gBuffer.constants.insert(gBuffer.constants.end(), {1u, 0u, 0u});
+  skinGBufferPipeline_ = makeGraphicsPipeline(*device_, gBuffer);
+  // Over the screen at the far plane (the viewport's depth range, set when drawn): its depth test
+  // passes where the G-buffer pass left skin nearer than that.
+  skinShadingPipeline_ = makeGraphicsPipeline(
+      *device_, GraphicsPipelineSettings{.vertexShader = "fullscreen.vert",
+                                         .fragmentShader = "skin_deferred.frag",
+                                         .colorFormats = {formats_.color},
+                                         .depthFormat = formats_.depth,
+                                         .depthTest = true,
+                                         .depthCompare = vk::CompareOp::eGreater,
+                                         .setLayouts = {*frameLayout_, *materialLayout_, *gBufferLayout_},
+                                         .constants = gBuffer.constants});
 }
 
 void SurfacePass::refreshShadows() {
@@ -376,7 +402,7 @@ void SurfacePass::update(const FrameInput& frame, float aspect) {
   std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));
 }
 
-void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const {
+void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame, bool skinDeferred) const {
   // Every pipeline shares one layout.
   const vk::PipelineLayout layout = *pipelines_[0].layout;
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*frameSet_}, {});
@@ -385,21 +411,82 @@ void SurfacePass::draw(const vk::raii::CommandBuffer& commands, const FrameInput
     const GpuMesh& mesh = meshes_[instance.mesh];
     const GpuMaterial& material = materials_[instance.material];
     if (material.shading == SurfaceShading::kFur && frame.furShells) continue;  // the fur pass draws its skin
+    if (skinDeferred && deferrable(material)) continue;                         // drawn into the G-buffer
     const Pipeline& pipeline = pipelines_[pipelineFor(material)];
     if (bound != &pipeline) commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
     bound = &pipeline;
     const Thickness* thickness = thicknessOf(mesh, material);
     commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 1,
                                 {*material.descriptors, thickness ? *thickness->set : *emptyThickness_}, {});
-    commands.pushConstants<glm::mat4>(layout, vk::ShaderStageFlagBits::eVertex, 0, instance.model);
-    commands.setCullMode(material.doubleSided ? vk::CullModeFlagBits::eNone : vk::CullModeFlagBits::eBack);
-    // A mirroring model matrix turns the mesh's counter-clockwise faces clockwise.
-    commands.setFrontFace(glm::determinant(glm::mat3(instance.model)) < 0.0f ? vk::FrontFace::eClockwise
-                                                                             : vk::FrontFace::eCounterClockwise);
-    commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
-    commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
-    commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);
+    drawMesh(commands, layout, instance);
   }
+}
+
+void SurfacePass::drawMesh(const vk::raii::CommandBuffer& commands, vk::PipelineLayout layout,
+                           const MeshInstance& instance) const {
+  const GpuMesh& mesh = meshes_[instance.mesh];
+  commands.pushConstants<glm::mat4>(layout, vk::ShaderStageFlagBits::eVertex, 0, instance.model);
+  commands.setCullMode(materials_[instance.material].doubleSided ? vk::CullModeFlagBits::eNone
+                                                                 : vk::CullModeFlagBits::eBack);
+  // A mirroring model matrix turns the mesh's counter-clockwise faces clockwise.
+  commands.setFrontFace(glm::determinant(glm::mat3(instance.model)) < 0.0f ? vk::FrontFace::eClockwise
+                                                                           : vk::FrontFace::eCounterClockwise);
+  commands.bindVertexBuffers(0, {*mesh.vertices.buffer()}, {vk::DeviceSize{0}});
+  commands.bindIndexBuffer(*mesh.indices.buffer(), 0, vk::IndexType::eUint32);
+  commands.drawIndexed(mesh.indexCount, 1, 0, 0, 0);
+}
+
+bool SurfacePass::deferrable(const GpuMaterial& material) {
+  return material.shading == SurfaceShading::kSkin && material.skin.diffusion != SkinDiffusion::kTextureSpace &&
+         material.translucency.method == TranslucencyMethod::kNone;
+}
+
+std::optional<std::size_t> SurfacePass::deferredMaterial(const FrameInput& frame) const {
+  std::optional<std::size_t> found;
+  for (const MeshInstance& instance : frame.instances) {
+    if (!deferrable(materials_[instance.material])) continue;
+    if (found && *found != instance.material) return std::nullopt;
+    found = instance.material;
+  }
+  return found;
+}
+
+void SurfacePass::setSkinGBuffer(std::span<const Image> gBuffer) {
+  if (gBuffer.size() != RenderTarget::kGBufferImages)
+    throw std::invalid_argument("setSkinGBuffer: the G-buffer needs " + std::to_string(RenderTarget::kGBufferImages) +
+                                " images, got " + std::to_string(gBuffer.size()));
+  gBufferPool_ =
+      makeDescriptorPool(*device_, 1, {{vk::DescriptorType::eCombinedImageSampler, RenderTarget::kGBufferImages}});
+  gBufferSet_ = allocateSet(*device_, gBufferPool_, gBufferLayout_);
+  for (std::size_t i = 0; i < gBuffer.size(); ++i)
+    writeSampledImage(*device_, gBufferSet_, static_cast<std::uint32_t>(i), gBuffer[i], sampler_);
+  gBufferExtent_ = gBuffer.front().extent();
+}
+
+bool SurfacePass::defersSkin(const FrameInput& frame) const {
+  return *skinShadingPipeline_.pipeline && *gBufferSet_ && deferredMaterial(frame).has_value();
+}
+
+void SurfacePass::drawSkinGBuffer(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const {
+  const vk::PipelineLayout layout = *skinGBufferPipeline_.layout;
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *skinGBufferPipeline_.pipeline);
+  const GpuMaterial& material = materials_[*deferredMaterial(frame)];
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*frameSet_, *material.descriptors}, {});
+  for (const MeshInstance& instance : frame.instances)
+    if (deferrable(materials_[instance.material])) drawMesh(commands, layout, instance);
+}
+
+void SurfacePass::drawSkinLighting(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const {
+  const GpuMaterial& material = materials_[*deferredMaterial(frame)];
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *skinShadingPipeline_.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *skinShadingPipeline_.layout, 0,
+                              {*frameSet_, *material.descriptors, *gBufferSet_}, {});
+  commands.setViewport(0, vk::Viewport{.width = float(gBufferExtent_.width),
+                                       .height = float(gBufferExtent_.height),
+                                       .minDepth = 1.0f,
+                                       .maxDepth = 1.0f});
+  commands.draw(3, 1, 0, 0);
+  setViewportAndScissor(commands, gBufferExtent_);
 }
 
 }  // namespace mane::render

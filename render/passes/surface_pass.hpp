@@ -25,10 +25,24 @@
 // diffuse irradiance (Jimenez et al. 2010), T being skin's profile transmittance or exp(−σd).
 // A mesh's table is built on the CPU the first frame that draws it with a voxel material
 // (seconds at N = 50: see VoxelThicknessLut), once per resolution, and kept with the scene.
+//
+// Deferred skin (single-sample targets that keep a G-buffer: RenderTargetSettings::skinGBuffer).
+// lavapipe runs a fragment shader on whole 4 × 4 blocks of every triangle it touches: on nalu's
+// head at 1280×720, whose triangles cover about 5 pixels each, a pipeline-statistics query counted
+// 4.4 shader invocations per covered pixel. So where a frame's pre-integrated skin (without
+// translucency) uses one material, it is drawn first into the G-buffer and the depth by
+// shaders/skin_gbuffer.frag, which does only what needs screen derivatives (the normal map's frame,
+// the textures' mip levels). The main pass then lights it with shaders/skin_deferred.frag on a
+// triangle over the screen at the far plane, depth-tested "greater" against the skin, so that the
+// rasterizer skips the blocks without skin and lights each skin pixel once, before drawing the
+// other surfaces over it. Both halves run the forward shader's operations on the same values (the
+// G-buffer is RGBA32F), so the image is the same.
 
 #include <array>
 #include <map>
 #include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "render/frame.hpp"
@@ -100,9 +114,21 @@ public:
   }
 
   /// Draws every instance (Renderer::render has checked them with canDraw) but those with a fur material while
-  /// FrameInput::furShells is on (the fur pass draws them); call inside a dynamic rendering scope with matching
-  /// formats.
-  void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
+  /// FrameInput::furShells is on (the fur pass draws them), and with `skinDeferred` those
+  /// drawSkinGBuffer drew; call inside a dynamic rendering scope with matching formats.
+  void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame, bool skinDeferred = false) const;
+
+  /// The G-buffer (RenderTarget::skinGBuffer) the deferred skin writes and reads; it must
+  /// outlive the pass. Between frames.
+  void setSkinGBuffer(std::span<const Image> gBuffer);
+  /// Whether the frame's skin is deferred (see "Deferred skin"): a G-buffer is set, and the
+  /// frame's pre-integrated skin instances without translucency, at least one, share a material.
+  [[nodiscard]] bool defersSkin(const FrameInput& frame) const;
+  /// Draws those instances into the G-buffer; inside RenderTarget::beginSkinGBuffer's scope.
+  void drawSkinGBuffer(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
+  /// Lights the G-buffer's skin; first in the scene pass begun with afterSkin
+  /// (RenderTarget::beginScene), whose depth is still the G-buffer pass's.
+  void drawSkinLighting(const vk::raii::CommandBuffer& commands, const FrameInput& frame) const;
 
 private:
   // A thickness table of a mesh and the descriptor set (set 2) that binds it.
@@ -160,6 +186,13 @@ private:
   static constexpr std::size_t kShadings = 3;
   static constexpr std::size_t kTranslucencyMethods = 3;
   static std::size_t pipelineFor(const GpuMaterial& material);
+  /// Binds `instance`'s mesh and model, sets its culling, and draws it (the pipeline and the
+  /// material's sets are bound).
+  void drawMesh(const vk::raii::CommandBuffer& commands, vk::PipelineLayout layout, const MeshInstance& instance) const;
+  /// Pre-integrated skin without translucency: what the deferred skin draws.
+  static bool deferrable(const GpuMaterial& material);
+  /// The one material of the frame's deferrable instances; none when they have none or several.
+  std::optional<std::size_t> deferredMaterial(const FrameInput& frame) const;
   /// The table of `mesh` at `material`'s voxel resolution; nullptr for other methods and until
   /// prepareThickness built it.
   const Thickness* thicknessOf(const GpuMesh& mesh, const GpuMaterial& material) const;
@@ -171,6 +204,14 @@ private:
   };
   Formats formats_{};
   std::array<Pipeline, kShadings * kTranslucencyMethods> pipelines_;  ///< one layout; unused ones empty
+  // The deferred skin: its G-buffer pass, its lighting (sets: frame, material, G-buffer), and
+  // the G-buffer's set (empty until setSkinGBuffer) with its images' size.
+  Pipeline skinGBufferPipeline_;
+  Pipeline skinShadingPipeline_;
+  vk::raii::DescriptorSetLayout gBufferLayout_{nullptr};
+  vk::raii::DescriptorPool gBufferPool_{nullptr};
+  vk::raii::DescriptorSet gBufferSet_{nullptr};
+  vk::Extent2D gBufferExtent_{};
   LightDepthMap lightDepth_;
   // Bound for meshes drawn without a table: valid, never read.
   Buffer emptyGrid_;

@@ -1,0 +1,46 @@
+// Skin under the frame's lights (render/passes/surface_pass.hpp, "Skin"), shared by the forward
+// pass (shaders/surface.frag) and the deferred one (shaders/skin_gbuffer.frag, then
+// shaders/skin_deferred.frag), so that both give a shaded point the same bits. Declares the skin
+// table and the material block of set 1. Include after frame_uniforms.glsl.
+#include "preintegrated_skin.glsl"
+
+layout(set = 1, binding = 3) uniform sampler2DArray skinTable;  // skin: pre-integrated diffuse + Beckmann
+
+// Mirrors MaterialUniforms in render/passes/surface_pass.cpp.
+layout(set = 1, binding = 5, std140) uniform Material {
+  vec4 baseColor;
+  ivec4 flags;       // x: has normal map
+  vec4 skin;         // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
+  vec4 blur;         // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
+  vec4 extinction;   // rgb: σ, 1/m (translucency of materials other than skin)
+  vec4 profile[6];   // skin: d'Eon's Gaussians, rgb weight, a variance (mm²)
+} draw;
+
+// Skin's diffuse light from texture-space diffusion (ambient and lights already in it, blurred;
+// render/passes/skin_diffusion.hpp) rather than from the pre-integrated table.
+layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
+
+// Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
+// `specular` to their specular radiance, at `position` (metres) with the geometric and the detail
+// (normal-mapped) normals, ρs scaled by the specular map, and curvature 1/r in 1/mm. The first
+// light is attenuated by `hairShadow`.
+void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float curvature, float hairShadow,
+                inout vec3 diffuse, out vec3 specular) {
+  vec3 toEye = normalize(frame.cameraPosition.xyz - position);
+  vec3 normalR = normalize(mix(detail, geometric, draw.blur.r));
+  vec3 normalG = normalize(mix(detail, geometric, draw.blur.g));
+  vec3 normalB = normalize(mix(detail, geometric, draw.blur.b));
+  specular = vec3(0.0);
+  for (int i = 0; i < frame.lightCount.x; ++i) {
+    vec3 toLight = frame.lightDirection[i].xyz;
+    vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? hairShadow : 1.0);
+    if (!kTextureSpaceDiffusion) {
+      vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, 0, dot(normalR, toLight), curvature, draw.skin.z),
+                            preintegratedSkinDiffuse(skinTable, 1, dot(normalG, toLight), curvature, draw.skin.z),
+                            preintegratedSkinDiffuse(skinTable, 2, dot(normalB, toLight), curvature, draw.skin.z));
+      diffuse += radiance * scattered;
+    }
+    specular += radiance * kelemenSzirmayKalos(skinTable, detail, toLight, toEye, draw.skin.x, rhoS) *
+                max(dot(detail, toLight), 0.0);
+  }
+}
