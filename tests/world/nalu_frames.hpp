@@ -38,14 +38,18 @@ inline std::optional<World> naluIntoItsAnimation() {
 }
 
 /// The frame of `world` a renderer made with `settings` draws, as RGBA8 (empty on failure, which
-/// is recorded); `inspect` sees the renderer after it.
+/// is recorded), with the hair shadows in `shadows` mode (the scene's by default); `inspect`
+/// sees the renderer after it.
 inline std::vector<std::uint8_t> renderFrame(const render::Device& device, World& world,
                                              const render::RendererSettings& settings,
-                                             const std::function<void(const render::Renderer&)>& inspect = {}) {
+                                             const std::function<void(const render::Renderer&)>& inspect = {},
+                                             std::optional<render::HairShadowMode> shadows = std::nullopt) {
   auto renderer = render::Renderer::create(device, settings);
   EXPECT_TRUE(renderer.has_value()) << renderer.error().message;
   if (!renderer) return {};
-  EXPECT_TRUE((*renderer)->setScene(world.staticScene()).has_value());
+  render::StaticScene statics = world.staticScene();
+  if (shadows) statics.hairShadows.mode = *shadows;
+  EXPECT_TRUE((*renderer)->setScene(statics).has_value());
   auto uploaded = uploadFrameState(world, **renderer);
   EXPECT_TRUE(uploaded.has_value()) << uploaded.error().message;
   auto rendered = (*renderer)->render(world.frameInput());
