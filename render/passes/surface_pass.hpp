@@ -33,9 +33,9 @@
 // translucency) uses one material, it is drawn first into the G-buffer and the depth by
 // shaders/skin_gbuffer.frag, which does only what needs screen derivatives (the normal map's frame,
 // the textures' mip levels). The main pass then lights it with shaders/skin_deferred.frag on a
-// triangle over the screen at the far plane, depth-tested "greater" against the skin, so that the
-// rasterizer skips the blocks without skin and lights each skin pixel once, before drawing the
-// other surfaces over it. Both halves run the forward shader's operations on the same values (the
+// triangle over the screen at the far plane, depth-tested "greater" against the skin, so that
+// lavapipe skips the shading of the blocks without skin and lights each skin pixel once, before
+// drawing the other surfaces over it. Both halves run the forward shader's operations on the same values (the
 // G-buffer is RGBA32F), so the image is the same.
 
 #include <array>
