@@ -151,8 +151,8 @@ void SurfacePass::buildPipelines() {
   }
   skinGBufferPipeline_ = {};
   skinShadingPipeline_ = {};
-  if (formats_.samples != vk::SampleCountFlagBits::e1 || std::none_of(materials_.begin(), materials_.end(), deferrable))
-    return;
+  // Only with a G-buffer to draw into (single-sample targets alone keep one).
+  if (!*gBufferSet_ || std::none_of(materials_.begin(), materials_.end(), deferrable)) return;
   GraphicsPipelineSettings gBuffer = meshes;
   gBuffer.fragmentShader = "skin_gbuffer.frag";
   gBuffer.colorFormats.assign(RenderTarget::kGBufferImages, RenderTarget::kGBufferFormat);

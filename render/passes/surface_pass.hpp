@@ -119,7 +119,8 @@ public:
   void draw(const vk::raii::CommandBuffer& commands, const FrameInput& frame, bool skinDeferred = false) const;
 
   /// The G-buffer (RenderTarget::skinGBuffer) the deferred skin writes and reads; it must
-  /// outlive the pass. Between frames.
+  /// outlive the pass. Before setScene, which builds the deferred skin's pipelines only when a
+  /// G-buffer is set.
   void setSkinGBuffer(std::span<const Image> gBuffer);
   /// Whether the frame's skin is deferred (see "Deferred skin"): a G-buffer is set, and the
   /// frame's pre-integrated skin instances without translucency, at least one, share a material.

@@ -31,9 +31,9 @@ inline constexpr std::uint32_t kWaiterUnit = 0x10000;
 
 /// On a background thread, waits while foreground work runs and nobody waits for the
 /// background; elsewhere returns at once. Background work calls it often, so that a frame's
-/// work beside it has every core. On this project's 2-core VM, a
-/// frame's loop on two threads beside a preparing thread took twice as long as alone, and on
-/// one thread as long as a frame on one thread.
+/// work beside it has every core. On this project's 2-core VM, a frame's loop on two threads
+/// beside a preparing thread took twice as long as alone, and on one thread as long as a frame
+/// on one thread.
 inline void yieldToForeground() {
   if (!inBackground) return;
   for (std::uint32_t gate = backgroundGate.load(std::memory_order_acquire);
