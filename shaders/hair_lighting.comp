@@ -52,32 +52,30 @@ HairLighting readLighting() {
   return lighting;
 }
 
-layout(std430, set = 0, binding = 1) readonly buffer Positions { vec4 positions[]; };  // xyz metres, w = t
-layout(std430, set = 0, binding = 2) readonly buffer Tangents { vec4 tangents[]; };    // xyz unit, root → tip
 layout(std430, set = 0, binding = 3) writeonly buffer Radiance { vec4 radiance[]; };   // rgb; a: shadow transmittance
 layout(set = 0, binding = 4) uniform sampler2D longitudinalLut;
 layout(set = 0, binding = 5) uniform sampler2DArray azimuthalLut;
 // The vertices to shade (HairPass: those with a segment that can be seen); the others keep
-// whatever radiance they had, which no drawn segment uses. `dispatch` is the indirect dispatch:
-// xyz its workgroups, w the vertices listed.
-layout(std430, set = 0, binding = 14) readonly buffer ShadeList {
-  uvec4 dispatch;
-  uint shaded[];
-} shadeList;
+// whatever radiance they had, which no drawn segment uses. Words 0-2 are the indirect dispatch's
+// workgroups, word 3 the vertices listed, then the list. The vertices come in as texel buffers:
+// lavapipe loads a storage buffer lane by lane at per-lane addresses, a texel fetch at once.
+layout(set = 0, binding = 14) uniform usamplerBuffer shadeList;
+layout(set = 0, binding = 1) uniform samplerBuffer positions;  // xyz metres, w = t
+layout(set = 0, binding = 2) uniform samplerBuffer tangents;   // xyz unit, root → tip
 
 layout(local_size_x = 64) in;
 
 void main() {
-  if (gl_GlobalInvocationID.x >= shadeList.dispatch.w) return;
-  uint vertex = shadeList.shaded[gl_GlobalInvocationID.x];
+  if (gl_GlobalInvocationID.x >= texelFetch(shadeList, 3).x) return;
+  uint vertex = texelFetch(shadeList, 4 + int(gl_GlobalInvocationID.x)).x;
   HairLighting lighting = readLighting();
-  vec3 position = positions[vertex].xyz;
-  vec3 tangent = tangents[vertex].xyz;
+  vec3 position = texelFetch(positions, int(vertex)).xyz;
+  vec3 tangent = texelFetch(tangents, int(vertex)).xyz;
   // The angle the tangent turns over this vertex's share of the strand, half a segment each way.
   uint along = vertex % lighting.counts.y;
   float spread = 0.0;
-  if (along > 0u) spread += 0.5 * acos(clamp(dot(tangent, tangents[vertex - 1u].xyz), -1.0, 1.0));
-  if (along + 1u < lighting.counts.y) spread += 0.5 * acos(clamp(dot(tangent, tangents[vertex + 1u].xyz), -1.0, 1.0));
+  if (along > 0u) spread += 0.5 * acos(clamp(dot(tangent, texelFetch(tangents, int(vertex - 1u)).xyz), -1.0, 1.0));
+  if (along + 1u < lighting.counts.y) spread += 0.5 * acos(clamp(dot(tangent, texelFetch(tangents, int(vertex + 1u)).xyz), -1.0, 1.0));
 
   vec3 toEye = normalize(lighting.eye.xyz - lighting.eye.w * position);
   float shadow = hairShadowTransmittance(lighting.shadows, position);

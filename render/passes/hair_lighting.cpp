@@ -50,10 +50,11 @@ Result<std::unique_ptr<HairLightingPass>> HairLightingPass::create(const Device&
     return fail("hair lighting: " + std::to_string(vertices) + " vertices need " + std::to_string(bytes) +
                 " bytes of positions and of tangents; the buffers hold " + std::to_string(positions.size()) + " and " +
                 std::to_string(tangents.size()));
-  if (bytes > device.limits().maxStorageBufferRange ||
+  // The shade list is read as texels too: its 4-word header, then a word per vertex.
+  if (bytes > device.limits().maxStorageBufferRange || vertices + 4 > device.limits().maxTexelBufferElements ||
       (vertices + kWorkgroupSize - 1) / kWorkgroupSize > device.limits().maxComputeWorkGroupCount[0])
     return fail("hair lighting: " + std::to_string(vertices) +
-                " vertices exceed the device's storage buffer range or dispatch size");
+                " vertices exceed the device's storage or texel buffer range or dispatch size");
   try {
     return std::unique_ptr<HairLightingPass>(new HairLightingPass(
         device, lut, shadows, positions, tangents, static_cast<std::uint32_t>(vertices), verticesPerStrand));
@@ -70,8 +71,8 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   const auto compute = vk::ShaderStageFlags(vk::ShaderStageFlagBits::eCompute);
   const std::pair sampler{Type::eCombinedImageSampler, compute};
   setLayout_ = makeSetLayout(device, {{Type::eUniformTexelBuffer, compute},  // the uniforms: see the shader
-                                      {Type::eStorageBuffer, compute},
-                                      {Type::eStorageBuffer, compute},
+                                      {Type::eUniformTexelBuffer, compute},
+                                      {Type::eUniformTexelBuffer, compute},
                                       {Type::eStorageBuffer, compute},
                                       sampler,
                                       sampler,  // the LUTs
@@ -82,12 +83,12 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler,
-                                      sampler,                            // shadow first depth, 4 slots
-                                      {Type::eStorageBuffer, compute}});  // the shade list
+                                      sampler,                                 // shadow first depth, 4 slots
+                                      {Type::eUniformTexelBuffer, compute}});  // the shade list
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eStorageBuffer, 4},
-                              {Type::eUniformTexelBuffer, 1},
+                             {{Type::eStorageBuffer, 1},
+                              {Type::eUniformTexelBuffer, 4},
                               {Type::eCombinedImageSampler, 2 + HairShadows::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
@@ -101,8 +102,10 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   // Words, not floats, so the counts pass unchanged; the shader casts the rest back to floats.
   uniformTexels_ = makeTexelView(device, *uniforms_.buffer(), vk::Format::eR32G32B32A32Uint);
   writeUniformTexelBuffer(device, set_, 0, uniformTexels_);
-  writeStorageBuffer(device, set_, 1, positions);
-  writeStorageBuffer(device, set_, 2, tangents);
+  positionTexels_ = makeTexelView(device, *positions.buffer(), vk::Format::eR32G32B32A32Sfloat);
+  tangentTexels_ = makeTexelView(device, *tangents.buffer(), vk::Format::eR32G32B32A32Sfloat);
+  writeUniformTexelBuffer(device, set_, 1, positionTexels_);
+  writeUniformTexelBuffer(device, set_, 2, tangentTexels_);
   writeStorageBuffer(device, set_, 3, radiance_);
   everyVertex_ = everyVertex(device, vertexCount);
   setShadeList(everyVertex_);
@@ -116,7 +119,8 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
 }
 
 void HairLightingPass::setShadeList(const Buffer& shadeList) {
-  writeStorageBuffer(*device_, set_, 14, shadeList);
+  shadeListTexels_ = makeTexelView(*device_, *shadeList.buffer(), vk::Format::eR32Uint);
+  writeUniformTexelBuffer(*device_, set_, 14, shadeListTexels_);
   shadeList_ = &shadeList;
 }
 
@@ -124,7 +128,8 @@ Buffer HairLightingPass::everyVertex(const Device& device, std::uint32_t vertice
   std::vector<std::uint32_t> list{(vertices + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1, vertices};
   for (std::uint32_t v = 0; v < vertices; ++v) list.push_back(v);
   return Buffer::withData(device, std::as_bytes(std::span(list)),
-                          vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer);
+                          vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndirectBuffer |
+                              vk::BufferUsageFlagBits::eUniformTexelBuffer);
 }
 
 void HairLightingPass::refreshShadows() {

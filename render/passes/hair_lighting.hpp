@@ -38,7 +38,8 @@ public:
   static constexpr std::size_t kMaxLights = 4;
 
   /// Shades the strands in `positions` and `tangents` (StrandInterpolationPass layout: vec4 per
-  /// vertex, strand-major, `verticesPerStrand` per strand) with `lut`'s model, receiving
+  /// vertex, strand-major, `verticesPerStrand` per strand; read as texel buffers, so they need
+  /// UNIFORM_TEXEL_BUFFER usage, as does a shade list) with `lut`'s model, receiving
   /// `shadows` (its maps as they are now: create the pass after HairShadows::setGrooms); all
   /// three must outlive the pass. Errors: no vertices, fewer than 2 per strand,
   /// buffers smaller than the strands, a Vulkan failure.
@@ -62,8 +63,8 @@ public:
 
   /// The vertices to shade (HairPass::shadeList); the others keep their radiance. The list's
   /// layout: a VkDispatchIndirectCommand of workgroups of kWorkgroupSize, the count of vertices
-  /// listed, then their indices (uint each). It must outlive the pass. Until then every vertex
-  /// is shaded.
+  /// listed, then their indices (uint each); UNIFORM_TEXEL_BUFFER usage. It must outlive the
+  /// pass. Until then every vertex is shaded.
   void setShadeList(const Buffer& shadeList);
 
   /// A shade list of every vertex 0 .. vertices − 1.
@@ -91,6 +92,9 @@ private:
   Buffer radiance_;
   Buffer uniforms_;
   vk::raii::BufferView uniformTexels_{nullptr};  ///< uniforms_ as RGBA32UI texels, how the shader reads them
+  vk::raii::BufferView positionTexels_{nullptr};
+  vk::raii::BufferView tangentTexels_{nullptr};
+  vk::raii::BufferView shadeListTexels_{nullptr};
   Buffer everyVertex_;                           ///< the shade list until setShadeList
   const Buffer* shadeList_ = nullptr;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};

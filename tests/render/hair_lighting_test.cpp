@@ -73,7 +73,8 @@ struct Strands {
 class HairLightingTest : public testing::VulkanTest {
 protected:
   Buffer upload(std::span<const glm::vec4> values) {
-    return Buffer::withData(device(), std::as_bytes(values), vk::BufferUsageFlagBits::eStorageBuffer);
+    return Buffer::withData(device(), std::as_bytes(values),
+                            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer);
   }
 
   std::vector<glm::vec4> readBack(const Buffer& buffer) {
@@ -253,7 +254,8 @@ TEST_F(HairLightingTest, RejectsStrandsItCannotShade) {
   const MarschnerLut& table = lut(darkHairParams());
   auto shadows = HairShadows::create(device());
   ASSERT_TRUE(shadows.has_value());
-  const Buffer small(device(), 64, vk::BufferUsageFlagBits::eStorageBuffer, vk::MemoryPropertyFlagBits::eDeviceLocal);
+  const Buffer small(device(), 64, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer,
+                     vk::MemoryPropertyFlagBits::eDeviceLocal);
   EXPECT_FALSE(HairLightingPass::create(device(), table, **shadows, small, small, 0, 4).has_value()) << "no strands";
   EXPECT_FALSE(HairLightingPass::create(device(), table, **shadows, small, small, 1, 1).has_value()) << "1 vertex";
   const auto tooFew = HairLightingPass::create(device(), table, **shadows, small, small, 2, 4);
