@@ -91,11 +91,11 @@ private:
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
   Buffer uniforms_;
-  vk::raii::BufferView uniformTexels_{nullptr};  ///< uniforms_ as RGBA32UI texels, how the shader reads them
-  vk::raii::BufferView positionTexels_{nullptr};
-  vk::raii::BufferView tangentTexels_{nullptr};
-  vk::raii::BufferView shadeListTexels_{nullptr};
-  Buffer everyVertex_;                           ///< the shade list until setShadeList
+  vk::raii::BufferView uniformTexels_{nullptr};    ///< uniforms_ as RGBA32UI texels, how the shader reads them
+  vk::raii::BufferView positionTexels_{nullptr};   ///< the strands' positions, RGBA32F texels
+  vk::raii::BufferView tangentTexels_{nullptr};    ///< and their tangents
+  vk::raii::BufferView shadeListTexels_{nullptr};  ///< the shade list, R32UI texels
+  Buffer everyVertex_;                             ///< the shade list until setShadeList
   const Buffer* shadeList_ = nullptr;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};

@@ -254,7 +254,8 @@ TEST_F(HairLightingTest, RejectsStrandsItCannotShade) {
   const MarschnerLut& table = lut(darkHairParams());
   auto shadows = HairShadows::create(device());
   ASSERT_TRUE(shadows.has_value());
-  const Buffer small(device(), 64, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer,
+  const Buffer small(device(), 64,
+                     vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer,
                      vk::MemoryPropertyFlagBits::eDeviceLocal);
   EXPECT_FALSE(HairLightingPass::create(device(), table, **shadows, small, small, 0, 4).has_value()) << "no strands";
   EXPECT_FALSE(HairLightingPass::create(device(), table, **shadows, small, small, 1, 1).has_value()) << "1 vertex";
