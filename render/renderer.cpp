@@ -89,6 +89,7 @@ Result<void> validateScene(const StaticScene& scene, const vk::PhysicalDeviceLim
     const std::string name = "material " + std::to_string(m);
     if (auto ok = checkTexture(scene.materials[m].albedo, name + " albedo"); !ok) return ok;
     if (auto ok = checkTexture(scene.materials[m].normalMap, name + " normal map"); !ok) return ok;
+    if (auto ok = checkTexture(scene.materials[m].specularMap, name + " specular map"); !ok) return ok;
   }
   return {};
 }

@@ -7,9 +7,8 @@
 #include "frame_uniforms.glsl"
 #include "cotangent_frame.glsl"
 
-layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // sRGB, decoded by the sampler
+layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // rgb sRGB, decoded by the sampler; a scales ρs
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
-layout(set = 1, binding = 2) uniform sampler2D specularMap;  // red scales ρs
 #include "skin_lights.glsl"
 
 layout(location = 0) in vec3 inWorldPosition;
@@ -34,7 +33,8 @@ void main() {
   vec3 detail = normalize(cotangentFrame(normal, inWorldPosition, inUv) * mapped);
   normal = draw.flags.x != 0 ? detail : normal;
   outPosition = vec4(inWorldPosition, inCurvature);
-  outGeometric = vec4(geometric, draw.skin.y * texture(specularMap, inUv).r);
+  vec4 albedo = texture(albedoMap, inUv);
+  outGeometric = vec4(geometric, draw.skin.y * albedo.a);
   outDetail = vec4(normal, 0.0);
-  outAlbedo = vec4(texture(albedoMap, inUv).rgb * draw.baseColor.rgb, 0.0);
+  outAlbedo = vec4(albedo.rgb * draw.baseColor.rgb, 0.0);
 }

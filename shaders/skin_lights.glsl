@@ -4,10 +4,10 @@
 // table and the material block of set 1. Include after frame_uniforms.glsl.
 #include "preintegrated_skin.glsl"
 
-layout(set = 1, binding = 3) uniform sampler2DArray skinTable;  // skin: pre-integrated diffuse + Beckmann
+layout(set = 1, binding = 2) uniform sampler2DArray skinTable;  // skin: pre-integrated diffuse + Beckmann
 
 // Mirrors MaterialUniforms in render/passes/surface_pass.cpp.
-layout(set = 1, binding = 5, std140) uniform Material {
+layout(set = 1, binding = 4, std140) uniform Material {
   vec4 baseColor;
   ivec4 flags;       // x: has normal map
   vec4 skin;         // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)

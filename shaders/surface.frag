@@ -5,10 +5,9 @@
 #include "frame_uniforms.glsl"
 #include "cotangent_frame.glsl"
 
-layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // sRGB, decoded by the sampler
+layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // rgb sRGB, decoded by the sampler; a: skin, scales ρs
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
-layout(set = 1, binding = 2) uniform sampler2D specularMap;  // skin: red scales ρs
-layout(set = 1, binding = 4) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
+layout(set = 1, binding = 3) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
 #include "skin_lights.glsl"
 #include "translucency.glsl"
 
@@ -41,9 +40,11 @@ vec3 translucency(vec3 geometric) {
   return translucentLight(transmittance(thickness), geometric);
 }
 
-// Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights.
-void shadeSkin(vec3 geometric, vec3 detail, float hairShadow, out vec3 diffuse, out vec3 specular) {
-  float rhoS = draw.skin.y * texture(specularMap, inUv).r;
+// Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights,
+// with ρs scaled by the specular map.
+void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float hairShadow, out vec3 diffuse,
+               out vec3 specular) {
+  float rhoS = draw.skin.y * specularMap;
   diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : frame.ambient.rgb) +
             translucency(geometric);
   skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, hairShadow, diffuse, specular);
@@ -59,11 +60,12 @@ void main() {
     mapped.y = -mapped.y;
     normal = normalize(cotangentFrame(normal, inWorldPosition, inUv) * mapped);
   }
-  vec3 albedo = texture(albedoMap, inUv).rgb * draw.baseColor.rgb;
+  vec4 albedoTexel = texture(albedoMap, inUv);
+  vec3 albedo = albedoTexel.rgb * draw.baseColor.rgb;
   float hairShadow = hairShadowTransmittance(frame.hairShadows, inWorldPosition);
   if (kSkin) {
     vec3 diffuse, specular;
-    shadeSkin(geometric, normal, hairShadow, diffuse, specular);
+    shadeSkin(geometric, normal, albedoTexel.a, hairShadow, diffuse, specular);
     outColor = vec4(albedo * diffuse + specular, 1.0);
     return;
   }

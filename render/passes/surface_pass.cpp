@@ -9,6 +9,8 @@
 #include "render/luts/skin_profile.hpp"
 #include "render/render_target.hpp"
 
+#include <stb_image_resize.h>
+
 namespace mane::render {
 namespace {
 
@@ -37,7 +39,7 @@ constexpr std::uint32_t kFirstShadowBinding = 1;
 constexpr std::uint32_t kLightDepthBinding = kFirstShadowBinding + HairShadows::kBindings;
 static_assert(kLightDepthBinding == 9, "shaders/light_depth.glsl binds the map at 9");
 
-// std140 mirror of the Material block of shaders/surface.frag (set 1, binding 5).
+// std140 mirror of the Material block of shaders/skin_lights.glsl (set 1, binding 4).
 struct MaterialUniforms {
   glm::vec4 baseColor{1.0f};
   glm::ivec4 flags{0};                      // x: normal map
@@ -58,6 +60,36 @@ Image textureOrDefault(const Device& device, const std::optional<TextureData>& t
   return Image::texture(device, 1, 1, fallback, format);
 }
 
+// The albedo texture (sRGB) with the specular map's red in its alpha, so that skin takes both in
+// one lookup: in the skin's G-buffer pass a lookup of its own cost lavapipe about 2 ms of nalu's
+// frame. Alpha is not sRGB-decoded, so the map filters as it did in a UNORM texture of its own.
+// A specular map of another size is resampled to the albedo's; without one, alpha is 1.
+Image albedoWithSpecular(const Device& device, const std::optional<TextureData>& albedo,
+                         const std::optional<TextureData>& specular) {
+  const auto given = [](const std::optional<TextureData>& texture) {
+    return texture && texture->width > 0 && texture->height > 0;
+  };
+  static constexpr std::uint8_t kWhite[4] = {255, 255, 255, 255};
+  if (!given(albedo) && !given(specular)) return Image::texture(device, 1, 1, kWhite, vk::Format::eR8G8B8A8Srgb);
+  const TextureData& shape = given(albedo) ? *albedo : *specular;
+  const std::size_t texels = std::size_t(shape.width) * shape.height;
+  std::vector<std::uint8_t> rgba(texels * 4, 255);
+  if (given(albedo)) std::copy_n(albedo->rgba.begin(), texels * 4, rgba.begin());
+  std::vector<std::uint8_t> resized;
+  std::span<const std::uint8_t> red;
+  if (given(specular)) {
+    red = specular->rgba;
+    if (specular->width != shape.width || specular->height != shape.height) {
+      resized.resize(texels * 4);
+      stbir_resize_uint8(specular->rgba.data(), int(specular->width), int(specular->height), 0, resized.data(),
+                         int(shape.width), int(shape.height), 0, 4);
+      red = resized;
+    }
+  }
+  for (std::size_t i = 0; i < texels; ++i) rgba[4 * i + 3] = red.empty() ? 255 : red[4 * i];
+  return Image::texture(device, shape.width, shape.height, rgba, vk::Format::eR8G8B8A8Srgb);
+}
+
 }  // namespace
 
 SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::Format colorFormat,
@@ -76,11 +108,11 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
                                         shadow,
                                         shadow,    // hair shadow first depth, 4 slots
                                         shadow});  // light 0's depth map of translucent surfaces
-  // albedo, normal map, specular map, pre-integrated skin table, diffused irradiance, constants
+  // albedo (specular map in alpha), normal map, pre-integrated skin table, diffused irradiance, constants
   const vk::ShaderStageFlags fragment = Stage::eFragment;
   const std::pair texture{vk::DescriptorType::eCombinedImageSampler, fragment};
-  materialLayout_ = makeSetLayout(
-      device, {texture, texture, texture, texture, texture, {vk::DescriptorType::eUniformBuffer, fragment}});
+  materialLayout_ =
+      makeSetLayout(device, {texture, texture, texture, texture, {vk::DescriptorType::eUniformBuffer, fragment}});
   static_assert(RenderTarget::kGBufferImages == 4, "shaders/skin_deferred.frag reads four images");
   gBufferLayout_ = makeSetLayout(device, {texture, texture, texture, texture});
   // A mesh's thickness table: its grid, nearest surface voxels, pair thicknesses.
@@ -235,11 +267,9 @@ void SurfacePass::replaceMesh(std::size_t mesh, const MeshData& data) {
 }
 
 SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& material) {
-  static constexpr std::uint8_t kWhite[4] = {255, 255, 255, 255};
   static constexpr std::uint8_t kFlatNormal[4] = {128, 128, 255, 255};
-  GpuMaterial gpu{.albedo = textureOrDefault(*device_, material.albedo, kWhite, vk::Format::eR8G8B8A8Srgb),
+  GpuMaterial gpu{.albedo = albedoWithSpecular(*device_, material.albedo, material.specularMap),
                   .normalMap = textureOrDefault(*device_, material.normalMap, kFlatNormal, vk::Format::eR8G8B8A8Unorm),
-                  .specularMap = textureOrDefault(*device_, material.specularMap, kWhite, vk::Format::eR8G8B8A8Unorm),
                   .shading = material.shading,
                   .skin = material.skin,
                   .translucency = material.translucency,
@@ -247,13 +277,12 @@ SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& materia
                   .descriptors = allocateSet(*device_, materialPool_, materialLayout_)};
   writeSampledImage(*device_, gpu.descriptors, 0, gpu.albedo, sampler_);
   writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
-  writeSampledImage(*device_, gpu.descriptors, 2, gpu.specularMap, sampler_);
   MaterialUniforms uniforms{.baseColor = glm::vec4(material.baseColor, 1.0f),
                             .flags = glm::ivec4(material.normalMap ? 1 : 0, 0, 0, 0),
                             .extinction = glm::vec4(material.translucency.extinction, 0.0f)};
   if (material.shading == SurfaceShading::kSkin) {
     const PreintegratedSkinLut& table = skinTable(material.skin.range);
-    writeSampledImage(*device_, gpu.descriptors, 3, table.view(), table.sampler());
+    writeSampledImage(*device_, gpu.descriptors, 2, table.view(), table.sampler());
     const SkinProfile& profile = table.settings().profile;
     uniforms.skin =
         glm::vec4(material.skin.roughness, material.skin.specularIntensity, float(table.settings().maxCurvature), 0.0f);
@@ -261,13 +290,13 @@ SurfacePass::GpuMaterial SurfacePass::uploadMaterial(const MaterialData& materia
     for (std::size_t i = 0; i < kSkinGaussianCount; ++i)
       uniforms.profile[i] = glm::vec4(glm::vec3(profile.gaussians[i].weight), float(profile.gaussians[i].variance));
   } else {
-    writeSampledImage(*device_, gpu.descriptors, 3, unreadSkinTable(), sampler_);
+    writeSampledImage(*device_, gpu.descriptors, 2, unreadSkinTable(), sampler_);
   }
   // Until setDiffusedIrradiance: likewise valid and unread.
-  writeSampledImage(*device_, gpu.descriptors, 4, gpu.albedo, sampler_);
+  writeSampledImage(*device_, gpu.descriptors, 3, gpu.albedo, sampler_);
   gpu.uniforms =
       Buffer::withData(*device_, std::as_bytes(std::span(&uniforms, 1)), vk::BufferUsageFlagBits::eUniformBuffer);
-  writeUniformBuffer(*device_, gpu.descriptors, 5, gpu.uniforms);
+  writeUniformBuffer(*device_, gpu.descriptors, 4, gpu.uniforms);
   return gpu;
 }
 
@@ -298,7 +327,7 @@ const Image& SurfacePass::unreadSkinTable() {
 
 void SurfacePass::setDiffusedIrradiance(std::size_t material, const vk::raii::ImageView& view,
                                         const vk::raii::Sampler& sampler) {
-  writeSampledImage(*device_, materials_.at(material).descriptors, 4, view, sampler);
+  writeSampledImage(*device_, materials_.at(material).descriptors, 3, view, sampler);
 }
 
 std::size_t SurfacePass::pipelineFor(const GpuMaterial& material) {

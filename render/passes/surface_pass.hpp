@@ -152,9 +152,8 @@ private:
     std::map<int, Thickness> thickness;  ///< by voxel resolution
   };
   struct GpuMaterial {
-    Image albedo;
+    Image albedo;  ///< sRGB; alpha: the specular map's red (albedoWithSpecular)
     Image normalMap;
-    Image specularMap;
     Buffer uniforms;  ///< MaterialUniforms
     SurfaceShading shading = SurfaceShading::kLambert;
     SkinParameters skin;

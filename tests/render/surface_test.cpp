@@ -208,6 +208,33 @@ TEST_F(Surface, NormalMapTiltTowardsPlusYLightsFromPlusY) {
   expectTiltedNormal(*this, {128, 204, 229, 255}, {0, 1, 0}, 1);
 }
 
+// The same with a uniform specular map of red 128: ρs scaled by 128/255. The map rides in the
+// albedo texture's alpha; once with a black 4x4 albedo texture (the 2x2 map resampled to its
+// size) and once with none (the albedo from the base colour).
+TEST_F(Surface, SkinSpecularMapScalesRhoS) {
+  const glm::dvec3 toLight = glm::normalize(glm::dvec3(0.0, 0.1, 1.0));
+  const DirectionalLight light{.direction = glm::vec3(toLight), .intensity = 1.0f};
+  const std::vector<std::uint8_t> specular(2 * 2 * 4, 128);
+  const std::vector<std::uint8_t> black{[] {
+    std::vector<std::uint8_t> texels(4 * 4 * 4, 0);
+    for (std::size_t i = 3; i < texels.size(); i += 4) texels[i] = 255;
+    return texels;
+  }()};
+  const double radiance =
+      kelemenSzirmayKalos(glm::dvec3(0, 0, 1), toLight, glm::dvec3(0, 0, 1), 0.3, 5.0 * 128.0 / 255.0) * toLight.z;
+  ASSERT_GT(radiance, 0.05);
+  for (const bool albedoTexture : {true, false}) {
+    MaterialData skin{.baseColor = glm::vec3(albedoTexture ? 1.0f : 0.0f),
+                      .shading = SurfaceShading::kSkin,
+                      .skin = {.roughness = 0.3f, .specularIntensity = 5.0f},
+                      .specularMap = TextureData{.width = 2, .height = 2, .rgba = specular}};
+    if (albedoTexture) skin.albedo = TextureData{.width = 4, .height = 4, .rgba = black};
+    const Shot shot = render(skin, light, glm::vec3(0.0f));
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(shot.centre()[c], 255.0 * srgbEncode(radiance), 2.0) << "albedo texture " << albedoTexture;
+  }
+}
+
 // A 4x4 albedo texture whose quarters are 2x2 blocks of one sRGB colour each, on the quad under
 // a light along the normal: each quarter of the quad shows its colour, decoded from sRGB to
 // linear by the sampler, lit with E = 1 and encoded back, so the output equals the texel. This
@@ -258,6 +285,11 @@ TEST_F(Surface, RejectsMalformedSceneData) {
       {.materials = {MaterialData{.albedo = TextureData{.width = 2, .height = 2, .rgba = shortTexels}}}});
   ASSERT_FALSE(badTexture.has_value());
   EXPECT_NE(badTexture.error().message.find("material 0 albedo"), std::string::npos) << badTexture.error().message;
+  const auto badSpecular = (*renderer)->setScene(
+      {.materials = {MaterialData{.specularMap = TextureData{.width = 2, .height = 2, .rgba = shortTexels}}}});
+  ASSERT_FALSE(badSpecular.has_value());
+  EXPECT_NE(badSpecular.error().message.find("material 0 specular map"), std::string::npos)
+      << badSpecular.error().message;
 
   ASSERT_TRUE((*renderer)->setScene({.meshes = {MeshData{kPositions, kNormals, kUvs, kIndices}}}).has_value());
   const auto noMaterial = (*renderer)->render({.instances = {{.mesh = 0, .material = 0}}});
