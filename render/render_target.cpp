@@ -53,8 +53,8 @@ void RenderTarget::beginSkinGBuffer(const vk::raii::CommandBuffer& commands) con
   for (std::size_t i = 0; i < kGBufferImages; ++i) {
     transition(commands, skinGBuffer_.at(i), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
                Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-    // Not cleared: the lighting reads only where the skin wrote depth, and so every target. Clearing
-    // the four 32-bit targets (59 MB at 1280×720) took lavapipe about 10 ms a frame.
+    // Not cleared: the lighting reads only where the skin wrote depth, and so every target.
+    // Clearing the four 32-bit targets (59 MB at 1280×720) took lavapipe about 10 ms a frame.
     colors[i] = {.imageView = *skinGBuffer_[i].view(),
                  .imageLayout = Layout::eColorAttachmentOptimal,
                  .loadOp = vk::AttachmentLoadOp::eDontCare,

@@ -7,7 +7,8 @@
 #include "frame_uniforms.glsl"
 #include "cotangent_frame.glsl"
 
-layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // rgb sRGB, decoded by the sampler; a scales ρs
+// rgb: sRGB, decoded by the sampler; a: the specular map, scales ρs
+layout(set = 1, binding = 0) uniform sampler2D albedoMap;
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
 #include "skin_lights.glsl"
 

@@ -5,7 +5,8 @@
 #include "frame_uniforms.glsl"
 #include "cotangent_frame.glsl"
 
-layout(set = 1, binding = 0) uniform sampler2D albedoMap;  // rgb sRGB, decoded by the sampler; a: skin, scales ρs
+// rgb: sRGB, decoded by the sampler; a: the specular map (skin: scales ρs)
+layout(set = 1, binding = 0) uniform sampler2D albedoMap;
 layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
 layout(set = 1, binding = 3) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
 #include "skin_lights.glsl"

@@ -108,7 +108,8 @@ SurfacePass::SurfacePass(const Device& device, const HairShadows& shadows, vk::F
                                         shadow,
                                         shadow,    // hair shadow first depth, 4 slots
                                         shadow});  // light 0's depth map of translucent surfaces
-  // albedo (specular map in alpha), normal map, pre-integrated skin table, diffused irradiance, constants
+  // albedo (the specular map in its alpha), normal map, pre-integrated skin table, diffused
+  // irradiance, constants
   const vk::ShaderStageFlags fragment = Stage::eFragment;
   const std::pair texture{vk::DescriptorType::eCombinedImageSampler, fragment};
   materialLayout_ =
