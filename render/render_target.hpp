@@ -63,8 +63,9 @@ public:
 
   /// The deferred skin's G-buffer pass, before the scene pass (render/passes/surface_pass.hpp,
   /// "Deferred skin"): discards the G-buffer's and the depth's old contents and begins dynamic
-  /// rendering into the G-buffer (cleared to 0) and the depth (cleared to 1, kept). End it with
-  /// commands.endRendering(), then begin the scene pass with afterSkin.
+  /// rendering into the G-buffer (not cleared: only the pixels the skin writes are read) and the
+  /// depth (cleared to 1, kept). End it with commands.endRendering(), then begin the scene pass
+  /// with afterSkin.
   void beginSkinGBuffer(const vk::raii::CommandBuffer& commands) const;
 
 private:

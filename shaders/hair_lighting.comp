@@ -55,13 +55,19 @@ HairLighting readLighting() {
 layout(std430, set = 0, binding = 3) writeonly buffer Radiance { vec4 radiance[]; };   // rgb; a: shadow transmittance
 layout(set = 0, binding = 4) uniform sampler2D longitudinalLut;
 layout(set = 0, binding = 5) uniform sampler2DArray azimuthalLut;
-// The vertices to shade (HairPass: those with a segment that can be seen); the others keep
-// whatever radiance they had, which no drawn segment uses. Words 0-2 are the indirect dispatch's
-// workgroups, word 3 the vertices listed, then the list. The vertices come in as texel buffers:
-// lavapipe loads a storage buffer lane by lane at per-lane addresses, a texel fetch at once.
-layout(set = 0, binding = 14) uniform usamplerBuffer shadeList;
+// The strands and the shade list come in as texel buffers: lavapipe loads a storage buffer lane
+// by lane at per-lane addresses, a texel fetch at once.
 layout(set = 0, binding = 1) uniform samplerBuffer positions;  // xyz metres, w = t
 layout(set = 0, binding = 2) uniform samplerBuffer tangents;   // xyz unit, root → tip
+// The vertices to shade (HairPass: those with a segment that can be seen); the others keep
+// whatever radiance they had, which no drawn segment uses. Words 0-2 are the indirect dispatch's
+// workgroups, word 3 the vertices listed, then the list.
+layout(set = 0, binding = 14) uniform usamplerBuffer shadeList;
+
+// Half the angle between `tangent` and the tangent at vertex `other`.
+float halfTurn(vec3 tangent, uint other) {
+  return 0.5 * acos(clamp(dot(tangent, texelFetch(tangents, int(other)).xyz), -1.0, 1.0));
+}
 
 layout(local_size_x = 64) in;
 
@@ -74,8 +80,8 @@ void main() {
   // The angle the tangent turns over this vertex's share of the strand, half a segment each way.
   uint along = vertex % lighting.counts.y;
   float spread = 0.0;
-  if (along > 0u) spread += 0.5 * acos(clamp(dot(tangent, texelFetch(tangents, int(vertex - 1u)).xyz), -1.0, 1.0));
-  if (along + 1u < lighting.counts.y) spread += 0.5 * acos(clamp(dot(tangent, texelFetch(tangents, int(vertex + 1u)).xyz), -1.0, 1.0));
+  if (along > 0u) spread += halfTurn(tangent, vertex - 1u);
+  if (along + 1u < lighting.counts.y) spread += halfTurn(tangent, vertex + 1u);
 
   vec3 toEye = normalize(lighting.eye.xyz - lighting.eye.w * position);
   float shadow = hairShadowTransmittance(lighting.shadows, position);

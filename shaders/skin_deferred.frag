@@ -3,9 +3,9 @@
 // Deferred skin, step 2 (render/passes/surface_pass.hpp, "Deferred skin"): a triangle over the
 // screen at the far plane whose depth test (greater) passes only where shaders/skin_gbuffer.frag
 // drew skin; lavapipe's fragment code tests the depth first and skips the shading of the 4 × 4
-// blocks where it passes nowhere, so each skin pixel is lit once, as shaders/surface.frag lights a skin fragment (no
-// translucency, pre-integrated diffuse). A compute pass would not do: lavapipe runs the lanes a
-// branch masks off, so it would light every pixel of the screen.
+// blocks where it passes nowhere, so each skin pixel is lit once, as shaders/surface.frag lights
+// a skin fragment (no translucency, pre-integrated diffuse). A compute pass would not do:
+// lavapipe runs the lanes a branch masks off, so it would light every pixel of the screen.
 #include "frame_uniforms.glsl"
 #include "skin_lights.glsl"
 

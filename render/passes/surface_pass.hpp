@@ -35,8 +35,8 @@
 // the textures' mip levels). The main pass then lights it with shaders/skin_deferred.frag on a
 // triangle over the screen at the far plane, depth-tested "greater" against the skin, so that
 // lavapipe skips the shading of the blocks without skin and lights each skin pixel once, before
-// drawing the other surfaces over it. Both halves run the forward shader's operations on the same values (the
-// G-buffer is RGBA32F), so the image is the same.
+// drawing the other surfaces over it. Both halves run the forward shader's operations on the
+// same values (the G-buffer is RGBA32F), so the image is the same.
 
 #include <array>
 #include <map>

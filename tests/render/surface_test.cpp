@@ -208,18 +208,20 @@ TEST_F(Surface, NormalMapTiltTowardsPlusYLightsFromPlusY) {
   expectTiltedNormal(*this, {128, 204, 229, 255}, {0, 1, 0}, 1);
 }
 
-// The same with a uniform specular map of red 128: ρs scaled by 128/255. The map rides in the
-// albedo texture's alpha; once with a black 4x4 albedo texture (the 2x2 map resampled to its
-// size) and once with none (the albedo from the base colour).
+// The same with a uniform specular map of red 128 (its other channels 0 and 255, which must not
+// count): ρs scaled by 128/255. The map rides in the albedo texture's alpha; once with a black
+// 4x4 albedo texture (the 2x2 map resampled to its size) and once with none (the albedo from the
+// base colour).
 TEST_F(Surface, SkinSpecularMapScalesRhoS) {
   const glm::dvec3 toLight = glm::normalize(glm::dvec3(0.0, 0.1, 1.0));
   const DirectionalLight light{.direction = glm::vec3(toLight), .intensity = 1.0f};
-  const std::vector<std::uint8_t> specular(2 * 2 * 4, 128);
-  const std::vector<std::uint8_t> black{[] {
+  constexpr std::array<std::uint8_t, 2 * 2 * 4> specular{128, 0, 255, 255, 128, 0, 255, 255,
+                                                         128, 0, 255, 255, 128, 0, 255, 255};
+  const std::vector<std::uint8_t> black = [] {
     std::vector<std::uint8_t> texels(4 * 4 * 4, 0);
     for (std::size_t i = 3; i < texels.size(); i += 4) texels[i] = 255;
     return texels;
-  }()};
+  }();
   const double radiance =
       kelemenSzirmayKalos(glm::dvec3(0, 0, 1), toLight, glm::dvec3(0, 0, 1), 0.3, 5.0 * 128.0 / 255.0) * toLight.z;
   ASSERT_GT(radiance, 0.05);
