@@ -17,27 +17,34 @@ GpuTimer::GpuTimer(const Device& device, std::uint32_t maxPasses)
 
 void GpuTimer::reset(const vk::raii::CommandBuffer& commands) {
   passes_.clear();
+  queries_ = 0;
+  ended_ = false;
   if (supported_) commands.resetQueryPool(*pool_, 0, 2 * capacity_);
+}
+
+void GpuTimer::writeTimestamp(const vk::raii::CommandBuffer& commands) {
+  if (supported_) commands.writeTimestamp2(vk::PipelineStageFlagBits2::eAllCommands, *pool_, queries_);
+  ++queries_;
 }
 
 void GpuTimer::begin(const vk::raii::CommandBuffer& commands, std::string pass) {
   if (passes_.size() == capacity_) throw std::logic_error("GpuTimer: more passes than its capacity");
-  if (supported_)
-    commands.writeTimestamp2(vk::PipelineStageFlagBits2::eAllCommands, *pool_,
-                             static_cast<std::uint32_t>(2 * passes_.size()));
-  passes_.push_back(std::move(pass));
+  if (!ended_) writeTimestamp(commands);
+  ended_ = false;
+  passes_.push_back({std::move(pass), queries_ - 1, queries_ - 1});
 }
 
 void GpuTimer::end(const vk::raii::CommandBuffer& commands) {
-  if (supported_)
-    commands.writeTimestamp2(vk::PipelineStageFlagBits2::eAllCommands, *pool_,
-                             static_cast<std::uint32_t>(2 * passes_.size() - 1));
+  if (passes_.empty() || ended_) throw std::logic_error("GpuTimer: end without a pass begun");
+  writeTimestamp(commands);
+  passes_.back().endQuery = queries_ - 1;
+  ended_ = true;
 }
 
 std::vector<PassTiming> GpuTimer::results() const {
   std::vector<PassTiming> timings;
   if (!supported_ || passes_.empty()) return timings;
-  const auto count = static_cast<std::uint32_t>(2 * passes_.size());
+  const std::uint32_t count = queries_;
   const auto [result, ticks] =
       pool_.getResults<std::uint64_t>(0, count, count * sizeof(std::uint64_t), sizeof(std::uint64_t),
                                       vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
@@ -45,10 +52,10 @@ std::vector<PassTiming> GpuTimer::results() const {
   const double nanosecondsPerTick = device_->limits().timestampPeriod;
   for (std::size_t i = 0; i < passes_.size(); ++i) {
     // Counters narrower than 64 bits wrap; the masked difference is still the elapsed ticks.
-    const std::uint64_t elapsed = (ticks[2 * i + 1] - ticks[2 * i]) & validMask_;
-    const std::uint64_t start = (ticks[2 * i] - ticks[0]) & validMask_;
+    const std::uint64_t elapsed = (ticks[passes_[i].endQuery] - ticks[passes_[i].beginQuery]) & validMask_;
+    const std::uint64_t start = (ticks[passes_[i].beginQuery] - ticks[0]) & validMask_;
     timings.push_back(
-        {passes_[i], double(elapsed) * nanosecondsPerTick * 1e-6, double(start) * nanosecondsPerTick * 1e-6});
+        {passes_[i].name, double(elapsed) * nanosecondsPerTick * 1e-6, double(start) * nanosecondsPerTick * 1e-6});
   }
   return timings;
 }
