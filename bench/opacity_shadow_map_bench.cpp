@@ -72,7 +72,8 @@ void BM_OpacityShadowMap(benchmark::State& state) {
       orExit(render::Device::create(render::deviceSettingsFromEnvironment()));
   const std::vector<glm::vec4> positions = groom();
   const render::Buffer buffer =
-      render::Buffer::withData(*device, std::as_bytes(std::span(positions)), vk::BufferUsageFlagBits::eStorageBuffer);
+      render::Buffer::withData(*device, std::as_bytes(std::span(positions)),
+                               vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer);
   render::OpacityShadowSettings settings{.resolution = 512};
   if (state.range(0) == 1) settings.builder = render::OpacityShadowBuilder::kCompute;
   if (state.range(0) == 2) settings.mode = render::OpacityShadowMode::kDeepOpacityMap;

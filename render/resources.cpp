@@ -38,7 +38,7 @@ Allocation::~Allocation() {
 
 Buffer::Buffer(const Device& device, vk::DeviceSize size, vk::BufferUsageFlags usage,
                vk::MemoryPropertyFlags properties)
-    : buffer_(device.device(), vk::BufferCreateInfo{.size = size, .usage = usage}), size_(size) {
+    : buffer_(device.device(), vk::BufferCreateInfo{.size = size, .usage = usage}), size_(size), usage_(usage) {
   allocation_ = Allocation(device, buffer_.getMemoryRequirements(), properties);
   buffer_.bindMemory(*allocation_.memory(), 0);
   if (properties & vk::MemoryPropertyFlagBits::eHostVisible)

@@ -39,6 +39,7 @@ public:
 
   const vk::raii::Buffer& buffer() const { return buffer_; }
   vk::DeviceSize size() const { return size_; }
+  vk::BufferUsageFlags usage() const { return usage_; }
   /// The mapped bytes of a host-visible buffer, empty otherwise.
   std::span<std::byte> mapped() const { return mapped_; }
 
@@ -46,6 +47,7 @@ private:
   vk::raii::Buffer buffer_{nullptr};
   Allocation allocation_;
   vk::DeviceSize size_ = 0;
+  vk::BufferUsageFlags usage_{};
   std::span<std::byte> mapped_;
 };
 

@@ -13,11 +13,16 @@ layout(push_constant) uniform Build {
   uvec4 counts;         // x strands, y vertices per strand, z segments
 } build;
 
-// Segment `segment`'s two ends in light space.
-void segmentEnds(uint segment, out vec4 a, out vec4 b) {
+// The vertex segment `segment` starts at; it ends at the next one.
+uint segmentStart(uint segment) {
   uint perStrand = build.counts.y - 1u;
   uint strand = segment / perStrand;
-  uint first = strand * build.counts.y + (segment - strand * perStrand);
+  return strand * build.counts.y + (segment - strand * perStrand);
+}
+
+// Segment `segment`'s two ends in light space.
+void segmentEnds(uint segment, out vec4 a, out vec4 b) {
+  uint first = segmentStart(segment);
   a = build.lightFromWorld * vec4(positions[first].xyz, 1.0);
   b = build.lightFromWorld * vec4(positions[first + 1u].xyz, 1.0);
 }

@@ -22,11 +22,16 @@ void add(ivec2 texel, int size, uint slice, uint weight) {
   atomicAdd(increments[(uint(texel.y) * uint(size) + uint(texel.x)) * 16u + slice], weight);
 }
 
+// The same positions as the storage buffer `positions`, read as a texel buffer: lavapipe loads a
+// storage buffer lane by lane at per-lane addresses, where a texel fetch gathers them at once.
+layout(set = 0, binding = 4) uniform samplerBuffer positionTexels;
+
 void main() {
   uint segment = gl_GlobalInvocationID.x;
   if (segment >= build.counts.z) return;
-  vec4 a, b;
-  segmentEnds(segment, a, b);
+  int vertex = int(segmentStart(segment));
+  vec4 a = build.lightFromWorld * vec4(texelFetch(positionTexels, vertex).xyz, 1.0);
+  vec4 b = build.lightFromWorld * vec4(texelFetch(positionTexels, vertex + 1).xyz, 1.0);
   float resolution = build.weights.z;
   vec3 pa = vec3((a.xy * 0.5 + 0.5) * resolution, a.z);
   vec3 pb = vec3((b.xy * 0.5 + 0.5) * resolution, b.z);

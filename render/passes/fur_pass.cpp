@@ -318,7 +318,8 @@ Result<void> FurPass::setMesh(const MeshData& mesh) {
     leans_ = Buffer(*device_, count * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer,
                     vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
     std::memset(leans_.mapped().data(), 0, count * sizeof(glm::vec4));
-    shadowStrands_ = Buffer(*device_, 2 * count * sizeof(glm::vec4), vk::BufferUsageFlagBits::eStorageBuffer,
+    shadowStrands_ = Buffer(*device_, 2 * count * sizeof(glm::vec4),
+                            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer,
                             vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   } catch (const vk::SystemError& error) {
     return fail(std::string("fur mesh: Vulkan error while uploading it: ") + error.what());

@@ -97,6 +97,13 @@ Result<void> validate(const Device& device, const OpacityShadowStrands& strands,
     return fail("Opacity shadow map: " + std::to_string(segments) + " segments are more than one draw or dispatch (" +
                 std::to_string(std::uint64_t(limits.maxComputeWorkGroupCount[0]) * kSplatGroup) + ") holds.");
   if (s.builder == OpacityShadowBuilder::kCompute) {
+    if (!(strands.positions->usage() & vk::BufferUsageFlagBits::eUniformTexelBuffer))
+      return fail(
+          "Opacity shadow map: the compute builder reads the positions as a texel buffer, but their buffer was "
+          "made without UNIFORM_TEXEL_BUFFER usage.");
+    if (vertices > limits.maxTexelBufferElements)
+      return fail("Opacity shadow map: " + std::to_string(vertices) + " vertices are more than the device's texel " +
+                  "buffers hold (" + std::to_string(limits.maxTexelBufferElements) + ").");
     const std::uint64_t bytes = std::uint64_t(s.resolution) * s.resolution * OpacityShadowMap::kSlices * 4;
     if (bytes > limits.maxStorageBufferRange)
       return fail("Opacity shadow map: the compute builder's " + std::to_string(bytes) +
@@ -272,7 +279,8 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
                                                                .maxLod = 0.0f});
 
   // 0 positions, 1 first depth (deep layers pass), and for the compute builder 2 slice increments,
-  // 3 slices. Every binding is written (lavapipe reads all of a bound set's descriptors).
+  // 3 slices, 4 the positions again as texels. Every binding is written (lavapipe reads all of a
+  // bound set's descriptors).
   const auto computeStage = vk::ShaderStageFlagBits::eCompute;
   const std::pair<vk::DescriptorType, vk::ShaderStageFlags> positionsBinding{vk::DescriptorType::eStorageBuffer,
                                                                              computeStage | kGraphicsStages};
@@ -281,14 +289,20 @@ OpacityShadowMap::OpacityShadowMap(const Device& device, const OpacityShadowStra
   setLayout_ = compute ? makeSetLayout(device, {positionsBinding,
                                                 depthBinding,
                                                 {vk::DescriptorType::eStorageBuffer, computeStage},
-                                                {vk::DescriptorType::eStorageImage, computeStage}})
+                                                {vk::DescriptorType::eStorageImage, computeStage},
+                                                {vk::DescriptorType::eUniformTexelBuffer, computeStage}})
                        : makeSetLayout(device, {positionsBinding, depthBinding});
   pool_ = makeDescriptorPool(device, 1,
                              {{vk::DescriptorType::eStorageBuffer, 2},
                               {vk::DescriptorType::eCombinedImageSampler, 1},
-                              {vk::DescriptorType::eStorageImage, 1}});
+                              {vk::DescriptorType::eStorageImage, 1},
+                              {vk::DescriptorType::eUniformTexelBuffer, 1}});
   set_ = allocateSet(device, pool_, setLayout_);
   writeStorageBuffer(device, set_, 0, *strands.positions);
+  if (compute) {
+    positionTexels_ = makeTexelView(device, *strands.positions->buffer(), vk::Format::eR32G32B32A32Sfloat);
+    writeUniformTexelBuffer(device, set_, 4, positionTexels_);
+  }
   const vk::DescriptorImageInfo depth{
       .sampler = *nearest_, .imageView = *firstDepth_.view, .imageLayout = Layout::eShaderReadOnlyOptimal};
   device.device().updateDescriptorSets(

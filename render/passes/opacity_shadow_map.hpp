@@ -120,7 +120,8 @@ struct OpacityShadowSettings {
 
 /// The strands the map is built from: strand-major vec4 positions (xyz metres, w ignored), as
 /// StrandInterpolationPass::positions() holds them. The buffer needs STORAGE_BUFFER usage (the
-/// passes read it as a storage buffer) and must outlive the map.
+/// passes read it as a storage buffer), and UNIFORM_TEXEL_BUFFER usage as well for the compute
+/// builder (its splat reads it as a texel buffer), and must outlive the map.
 struct OpacityShadowStrands {
   const Buffer* positions = nullptr;
   std::uint32_t strandCount = 0;
@@ -231,7 +232,8 @@ private:
 
   ArrayImage opacity_;
   ArrayImage firstDepth_;
-  Buffer increments_;  ///< kCompute: 16 fixed-point slice increments per texel
+  Buffer increments_;
+  vk::raii::BufferView positionTexels_{nullptr};  ///< the compute builder's: the positions as RGBA32F texels  ///< kCompute: 16 fixed-point slice increments per texel
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::Sampler nearest_{nullptr};
   vk::raii::DescriptorSetLayout setLayout_{nullptr};

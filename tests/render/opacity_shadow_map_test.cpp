@@ -111,7 +111,8 @@ class OpacityShadowMapTest : public testing::VulkanTest {
 protected:
   Buffer upload(const Groom& groom) {
     return Buffer::withData(device(), std::as_bytes(std::span(groom.positions)),
-                            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer);
+                            vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer |
+                                vk::BufferUsageFlagBits::eUniformTexelBuffer);
   }
 
   std::unique_ptr<OpacityShadowMap> build(const Buffer& positions, const Groom& groom,
@@ -541,6 +542,12 @@ TEST_F(OpacityShadowMapTest, BadInputGivesClearErrors) {
               HasSubstr("compute builder"));
   EXPECT_THAT(error(good, {.mode = OpacityShadowMode::kDepthShadowMap, .builder = OpacityShadowBuilder::kCompute}),
               HasSubstr("compute builder"));
+  // The compute builder's splat reads the positions as a texel buffer; the graphics builder does not.
+  const Buffer storageOnly =
+      Buffer::withData(device(), std::as_bytes(std::span(groom.positions)), vk::BufferUsageFlagBits::eStorageBuffer);
+  EXPECT_THAT(error({&storageOnly, 10, 4}, {.builder = OpacityShadowBuilder::kCompute}),
+              HasSubstr("UNIFORM_TEXEL_BUFFER"));
+  EXPECT_TRUE(OpacityShadowMap::create(device(), {&storageOnly, 10, 4}, {.builder = OpacityShadowBuilder::kGraphics}));
 
   auto map = OpacityShadowMap::create(device(), good);
   ASSERT_TRUE(map.has_value()) << map.error().message;

@@ -189,7 +189,8 @@ TEST_F(SkinIrradianceTest, HairShadowsDimTheFirstLightAsTheirLookupSays) {
       strands.emplace_back(x, -0.01f + 0.04f * float(v) / (kVertices - 1), z, 0.0f);
   }
   const Buffer positions =
-      Buffer::withData(device(), std::as_bytes(std::span(strands)), vk::BufferUsageFlagBits::eStorageBuffer);
+      Buffer::withData(device(), std::as_bytes(std::span(strands)),
+                       vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer);
   auto shadows = HairShadows::create(device());
   ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
   const std::array grooms{HairShadows::Groom{
