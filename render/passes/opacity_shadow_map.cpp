@@ -397,7 +397,7 @@ void OpacityShadowMap::record(const vk::raii::CommandBuffer& commands) const {
   const vk::MemoryBarrier2 positionsReady{.srcStageMask = Stage::eComputeShader | Stage::eAllTransfer,
                                           .srcAccessMask = Access::eShaderStorageWrite | Access::eTransferWrite,
                                           .dstStageMask = Stage::eVertexShader | Stage::eComputeShader,
-                                          .dstAccessMask = Access::eShaderStorageRead};
+                                          .dstAccessMask = Access::eShaderStorageRead | Access::eShaderSampledRead};
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &positionsReady});
   if (settings_.builder == OpacityShadowBuilder::kCompute)
     recordCompute(commands);

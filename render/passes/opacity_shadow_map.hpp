@@ -232,8 +232,8 @@ private:
 
   ArrayImage opacity_;
   ArrayImage firstDepth_;
-  Buffer increments_;
-  vk::raii::BufferView positionTexels_{nullptr};  ///< the compute builder's: the positions as RGBA32F texels  ///< kCompute: 16 fixed-point slice increments per texel
+  Buffer increments_;                             ///< kCompute: 16 fixed-point slice increments per texel
+  vk::raii::BufferView positionTexels_{nullptr};  ///< kCompute: the positions as RGBA32F texels
   vk::raii::Sampler sampler_{nullptr};
   vk::raii::Sampler nearest_{nullptr};
   vk::raii::DescriptorSetLayout setLayout_{nullptr};

@@ -112,7 +112,7 @@ protected:
   Buffer upload(const Groom& groom) {
     return Buffer::withData(device(), std::as_bytes(std::span(groom.positions)),
                             vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer |
-                                vk::BufferUsageFlagBits::eUniformTexelBuffer);
+                                vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eTransferSrc);
   }
 
   std::unique_ptr<OpacityShadowMap> build(const Buffer& positions, const Groom& groom,
@@ -359,6 +359,42 @@ TEST_F(OpacityShadowMapTest, TheComputeBuilderGivesTheSameMapFrameAfterFrame) {
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { map->record(commands); });
   EXPECT_TRUE(map->readOpacity() == first);
   EXPECT_GT(*std::max_element(first.begin(), first.end()), 0.0f) << "the map is not empty";
+}
+
+// The compute builder's increments carry over from frame to frame (the resolve zeroes what it
+// reads): where the hair has moved away, the map must go back to zero, as a new map's would be.
+TEST_F(OpacityShadowMapTest, TheComputeBuilderClearsWhereTheHairHasLeft) {
+  const auto shifted = [](Groom groom, float x) {
+    for (glm::vec4& p : groom.positions) p.x += x;
+    return groom;
+  };
+  const Groom left = shifted(wavyBall(200, kVertices, 0.05, 0.06, 3), -0.12f);
+  const Groom right = shifted(left, 0.24f);
+  const Buffer leftPositions = upload(left), rightPositions = upload(right);
+  const Buffer moving = upload(left);
+  const BoundingSphere sphere{{0.0f, 0.0f, 0.0f}, 0.3f};  // holds the groom on either side
+  const OpacityShadowSettings settings{.builder = OpacityShadowBuilder::kCompute, .resolution = 128};
+  const auto expectedLeft = build(leftPositions, left, settings, kLight, sphere);
+  const auto expectedRight = build(rightPositions, right, settings, kLight, sphere);
+  const auto map = build(moving, left, settings, kLight, sphere);
+  ASSERT_TRUE(expectedLeft && expectedRight && map);
+  const std::vector<float> leftMap = expectedLeft->readOpacity(), rightMap = expectedRight->readOpacity();
+  std::size_t onlyLeft = 0;
+  for (std::size_t i = 0; i < leftMap.size(); ++i) onlyLeft += leftMap[i] > 0.0f && rightMap[i] == 0.0f ? 1 : 0;
+  ASSERT_GT(onlyLeft, 1000u) << "the two places should shade different texels";
+  EXPECT_TRUE(map->readOpacity() == leftMap);
+
+  // Moves the strands to `from`'s place and builds the map again, in one submission.
+  const auto moveAndBuild = [&](const Buffer& from) {
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      commands.copyBuffer(*from.buffer(), *moving.buffer(), vk::BufferCopy{.size = from.size()});
+      map->record(commands);
+    });
+    return map->readOpacity();
+  };
+  EXPECT_TRUE(moveAndBuild(rightPositions) == rightMap) << "the first frame after the move";
+  EXPECT_TRUE(moveAndBuild(rightPositions) == rightMap) << "the second";
+  EXPECT_TRUE(moveAndBuild(leftPositions) == leftMap) << "and back";
 }
 
 TEST_F(OpacityShadowMapTest, SliceBoundariesSitAtTheirAnalyticDepths) {
