@@ -40,11 +40,14 @@ struct RayCentreConstants {
   glm::ivec2 extent;
 };
 
-// Push constants of shaders/post_ray_blur.comp: w[k] = weights[k / 4][k % 4].
+// Push constants of shaders/post_ray_blur.comp, which runs one invocation per polar column.
 struct RayBlurConstants {
-  float weights[32];
+  glm::ivec2 extent;
+  float decay;
+  float firstWeight;   // w[0] of godRayWeights
+  float decayPastEnd;  // decay^kGodRayTaps
 };
-static_assert(kGodRayTaps <= 32);
+constexpr std::uint32_t kRayBlurColumns = 32;  // local_size_x of shaders/post_ray_blur.comp
 
 // Push constants of shaders/post_overlay.comp.
 struct OverlayConstants {
@@ -347,11 +350,14 @@ void PostChain::recordGodRays(const vk::raii::CommandBuffer& commands, const Pos
   dispatch(commands, rayPolarPipeline_, rayPolarSet_, {used.x, used.y});
   computeToCompute(commands);
   if (blur) {
-    RayBlurConstants constants{};
-    const std::vector<float> weights = godRayWeights(settings.godRayDecay);
-    for (std::size_t k = 0; k < weights.size(); ++k) constants.weights[k] = weights[k];
+    const RayBlurConstants constants{.extent = glm::ivec2(used),
+                                     .decay = settings.godRayDecay,
+                                     .firstWeight = godRayWeights(settings.godRayDecay)[0],
+                                     .decayPastEnd = float(std::pow(double(settings.godRayDecay), kGodRayTaps))};
+    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *rayBlurPipeline_.pipeline);
+    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *rayBlurPipeline_.layout, 0, {*rayBlurSet_}, {});
     commands.pushConstants<RayBlurConstants>(*rayBlurPipeline_.layout, compute, 0, constants);
-    dispatch(commands, rayBlurPipeline_, rayBlurSet_, {used.x, used.y});
+    commands.dispatch((used.x + kRayBlurColumns - 1) / kRayBlurColumns, 1, 1);
     computeToCompute(commands);
   }
   commands.pushConstants<RayCentreConstants>(*rayUnpolarPipeline_.layout, compute, 0, polarConstants);
@@ -401,6 +407,10 @@ Result<HdrImage> PostChain::readGodRayBright() const {
 
 Result<HdrImage> PostChain::readGodRayPolar() const {
   return readOrFail(*device_, polar_, "god rays' polar image");
+}
+
+Result<HdrImage> PostChain::readGodRayPolarBlurred() const {
+  return readOrFail(*device_, polarBlurred_, "god rays' blurred polar image");
 }
 
 Result<HdrImage> PostChain::readGodRays() const {

@@ -135,6 +135,7 @@ public:
   [[nodiscard]] Result<HdrImage> readTiny() const;
   [[nodiscard]] Result<HdrImage> readGodRayBright() const;
   [[nodiscard]] Result<HdrImage> readGodRayPolar() const;
+  [[nodiscard]] Result<HdrImage> readGodRayPolarBlurred() const;
   [[nodiscard]] Result<HdrImage> readGodRays() const;
   PostExposure readExposure() const;
   /// Forgets the adaptation: the next auto gain snaps to its frame. Between frames.

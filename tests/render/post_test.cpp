@@ -6,9 +6,10 @@
 //  - end to end through the Renderer: Reinhard on known HDR values through the 8-bit sRGB output,
 //    auto gain that brings a scene twice as bright to the same displayed luminance, adaptation
 //    whose per-frame gain change stays under the bound that τ and Δt set, the passes' timers;
-//  - god rays: the GPU polar round trip returns the image away from the light, the radial blur of
-//    one bright texel spreads only along its ray, outwards, and god rays that are off (or whose
-//    light is behind the camera or off screen) leave the output bit-identical.
+//  - god rays: the GPU polar round trip returns the image away from the light, the GPU's radial
+//    blur (running sums) matches the CPU's direct sum, the blur of one bright texel spreads only
+//    along its ray, outwards, and god rays that are off (or whose light is behind the camera or
+//    off screen) leave the output bit-identical.
 
 #include <algorithm>
 #include <array>
@@ -359,6 +360,52 @@ float checkOnRay(const HdrImage& rays, glm::vec2 light, glm::vec2 source) {
       reach = std::max(reach, t - sourceDistance);
     }
   return reach;
+}
+
+// The GPU's radial blur walks each ray with running sums instead of summing its taps
+// (shaders/post_ray_blur.comp); against the CPU's direct sum of the same polar image (read back)
+// over a noise frame, with the light off centre so that rays of every length are blurred. Each
+// texel within a half-float store of the reference (2⁻¹⁰ relative), plus 10⁻⁵ of the brightest
+// input for the running sums' fp32 rounding; a weight off by 1 % fails it.
+TEST_F(PostChainTest, RadialBlurByRunningSumsMatchesTheDirectSum) {
+  HdrImage frame = blank(1024, 768);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> brightness(0.0f, 4.0f);
+  for (glm::vec4& texel : frame.texels)
+    texel = glm::vec4(brightness(random), brightness(random), brightness(random), 1);
+  const Image uploaded = uploadHdr(device(), frame);
+  PostChain chain(device(), uploaded);
+  const glm::vec2 lightUv(0.3f, 0.65f);
+  const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 0.0f, .godRayDecay = 0.96f};
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    chain.recordDownsample(commands);
+    chain.recordGodRays(commands, settings, lightUv, true);
+    chain.recordHandOff(commands, settings, 1.0f);
+  });
+  auto quarter = chain.readDownsampled();
+  auto polar = chain.readGodRayPolar();
+  auto blurred = chain.readGodRayPolarBlurred();
+  ASSERT_TRUE(quarter.has_value() && polar.has_value() && blurred.has_value());
+  const glm::uvec2 used = godRayPolarExtent({quarter->width, quarter->height}, chain.godRayCentre(lightUv));
+  ASSERT_GT(used.y, std::uint32_t(2 * kGodRayTaps * kGodRayStep)) << "rays longer than the taps reach";
+  HdrImage inUse = blank(used.x, used.y);
+  float peak = 0.0f;
+  for (std::uint32_t j = 0; j < used.y; ++j)
+    for (std::uint32_t i = 0; i < used.x; ++i) {
+      inUse.texels[std::size_t(j) * used.x + i] = polar->at(i, j);
+      peak = std::max(peak, polar->at(i, j).r);
+    }
+  const HdrImage cpu = radialBlur(inUse, godRayWeights(settings.godRayDecay));
+  std::size_t outside = 0;
+  double worst = 0.0;
+  for (std::uint32_t j = 0; j < used.y; ++j)
+    for (std::uint32_t i = 0; i < used.x; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const double expected = cpu.at(i, j)[c], difference = std::abs(blurred->at(i, j)[c] - expected);
+        worst = std::max(worst, difference / std::max(expected, 1e-3));
+        if (difference > kHalfStore * expected + 1e-5 * peak) ++outside;
+      }
+  EXPECT_EQ(outside, 0u) << "of " << used.x * used.y * 3 << " values; worst relative difference " << worst;
 }
 
 // One bright copy texel (a 4×4 block of 50 in a black frame), the light 26 texels away: the blur
