@@ -23,8 +23,14 @@ void GpuTimer::reset(const vk::raii::CommandBuffer& commands) {
 }
 
 void GpuTimer::writeTimestamp(const vk::raii::CommandBuffer& commands) {
+  if (queries_ == 2 * capacity_) throw std::logic_error("GpuTimer: more timestamps than its capacity");
   if (supported_) commands.writeTimestamp2(vk::PipelineStageFlagBits2::eAllCommands, *pool_, queries_);
   ++queries_;
+}
+
+void GpuTimer::handOff(const vk::raii::CommandBuffer& commands) {
+  writeTimestamp(commands);
+  ended_ = false;
 }
 
 void GpuTimer::begin(const vk::raii::CommandBuffer& commands, std::string pass) {

@@ -25,6 +25,12 @@ public:
   /// Starts timing `pass`: from the previous pass's end where that was the last call, else from now.
   void begin(const vk::raii::CommandBuffer& commands, std::string pass);
   void end(const vk::raii::CommandBuffer& commands);
+  /// Writes a timestamp that times nothing, for what it makes lavapipe do: it bins the draws of a
+  /// rendering scope and rasterizes none of them before a flush, and a timestamp flushes without
+  /// waiting, so its raster threads rasterize the draws before it while the recording thread
+  /// bins those after it. No pass ends there: inside a rendering scope lavapipe records when the
+  /// last tile of the work after the timestamp starts, not when the work before it ended.
+  void handOff(const vk::raii::CommandBuffer& commands);
   /// After the frame's commands finished: the time of each pass. Empty where the device has
   /// no timestamps.
   std::vector<PassTiming> results() const;

@@ -294,21 +294,39 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   }
   surfaces_.update(frame, target_.aspect());
 
-  timer_.begin(commands, "surfaces");
   const glm::vec4 background(frame.background, 1.0f);
+  // The hair's hiding (HairOcclusion), choice and shading, outside any rendering scope.
+  const auto lightHair = [&] {
+    timer_.begin(commands, "hair lighting");
+    if (hideOccludedHair_) occlusion_.record(commands);
+    for (std::size_t g = 0; g < hair_.size(); ++g) {
+      if (drawn[g]) hair_[g].ribbons->record(commands);  // first: it marks the vertices not to shade
+      if (shaded[g]) hair_[g].lighting->record(commands);
+    }
+    timer_.end(commands);
+  };
   // The skin's G-buffer and depth first where it is deferred (render/passes/surface_pass.hpp,
-  // "Deferred skin"); the main pass lights it before anything else.
+  // "Deferred skin"); the main pass lights it before anything else. With hair, the strands are
+  // then hidden behind the skin's depth alone, chosen and shaded before the main pass, which
+  // draws them last: one pass, in which a timestamp after the surfaces makes lavapipe rasterize
+  // them on its raster threads while this thread bins the hair's lines (GpuTimer::handOff), 6–9
+  // ms on one core in nalu's frame. Without the G-buffer, the main pass stops after the surfaces
+  // and furs, whose depth then hides the strands (render/passes/hair_pass.hpp, "Hidden strands").
   const bool skinDeferred = surfaces_.defersSkin(frame);
+  const bool hairBeforeMainPass = hair && skinDeferred;
+  timer_.begin(commands, hairBeforeMainPass ? "skin g-buffer" : "surfaces");
   if (skinDeferred) {
     target_.beginSkinGBuffer(commands);
     surfaces_.drawSkinGBuffer(commands, frame);
     commands.endRendering();
   }
-  // Main pass: previous contents are discarded and cleared (but the deferred skin's depth). With
-  // hair, it stops after the surfaces and furs, whose depth then hides the strands behind them
-  // (HairOcclusion), and goes on with the hair chosen, shaded and drawn over them, depth-tested
-  // against them (render/passes/hair_pass.hpp).
-  if (hair)
+  if (hairBeforeMainPass) {
+    timer_.end(commands);
+    lightHair();
+    timer_.begin(commands, "main pass");
+  }
+  // Main pass: previous contents are discarded and cleared (but the deferred skin's depth).
+  if (hair && !hairBeforeMainPass)
     target_.beginOpaque(commands, background, skinDeferred);
   else
     target_.beginScene(commands, background, skinDeferred);
@@ -317,17 +335,15 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   surfaces_.draw(commands, frame, skinDeferred);
   furs_.draw(commands);
   if (hair) {
-    commands.endRendering();
-    timer_.end(commands);
-    timer_.begin(commands, "hair lighting");
-    if (hideOccludedHair_) occlusion_.record(commands);
-    for (std::size_t g = 0; g < hair_.size(); ++g) {
-      if (drawn[g]) hair_[g].ribbons->record(commands);  // first: it marks the vertices not to shade
-      if (shaded[g]) hair_[g].lighting->record(commands);
+    if (!hairBeforeMainPass) {
+      commands.endRendering();
+      timer_.end(commands);
+      lightHair();
+      timer_.begin(commands, "hair");
+      target_.resumeScene(commands);
+    } else {
+      timer_.handOff(commands);
     }
-    timer_.end(commands);
-    timer_.begin(commands, "hair");
-    target_.resumeScene(commands);
     for (std::size_t g = 0; g < hair_.size(); ++g)
       if (drawn[g]) hair_[g].ribbons->draw(commands);
   }

@@ -1,9 +1,9 @@
 #pragma once
 // The opaque scene's depth, reduced to the farthest value per square tile of the frame, for
-// HairPass to hide the strands behind it (hair_pass.hpp, "Hidden strands"). It runs between the
-// two halves of the main pass: after the surfaces and furs have written their depth, before the
-// hair is chosen, shaded and drawn (shaders/hair_occlusion.glsl: one invocation per tile, every
-// sample of every pixel in it).
+// HairPass to hide the strands behind it (hair_pass.hpp, "Hidden strands"). It runs after the
+// deferred skin's G-buffer pass, or else between the two halves of the main pass, after the
+// surfaces and furs have written their depth; before the hair is chosen, shaded and drawn
+// (shaders/hair_occlusion.glsl: one invocation per tile, every sample of every pixel in it).
 
 #include <glm/vec2.hpp>
 
@@ -23,7 +23,7 @@ public:
   /// For the depth of `target`, which must outlive the pass.
   HairOcclusion(const Device& device, const RenderTarget& target);
 
-  /// Records the reduction outside a rendering scope, after the opaque draws: the depth image
+  /// Records the reduction outside a rendering scope, after opaque draws: the depth image
   /// goes from depth-attachment to shader-read layout and back, and the tiles are made visible
   /// to compute-shader reads.
   void record(const vk::raii::CommandBuffer& commands) const;

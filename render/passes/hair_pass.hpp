@@ -52,8 +52,9 @@
 // at once (nalu's frame: about 1 ms less).
 //
 // Hidden strands. Long hair falls behind the head and shoulders, and out of the frame: in nalu
-// about half of the dense vertices. The Renderer splits the main pass around the hair, so the
-// opaque scene's depth is known before the hair is shaded and drawn, and reduces it to the
+// about half of the dense vertices. The Renderer knows opaque depth before the hair is shaded
+// and drawn (the skin's, from its G-buffer pass, where the skin is deferred; else that of the
+// surfaces and furs, as it splits the main pass around the hair), and reduces it to the
 // farthest depth per 8 × 8 pixel tile (HairOcclusion). `record` then tests every segment: it is
 // hidden when its pixel box on screen (its ends and the ribbon's edges, 1.5 pixels more each way
 // for the line width and rounding) lies off the screen, or only over tiles whose farthest opaque

@@ -88,7 +88,7 @@ case $case in
     # IHDR (bytes 16..23): width and height, big-endian, as asked with --size.
     [ "$(od -An -tx1 -j16 -N8 "$png" | tr -d ' \n')" = "000000a00000005a" ] || fail "$png is not 160x90"
     grep -q "wrote .*\.png" "$scratch/log" || fail "no 'wrote' line"
-    grep -q "^surfaces " "$scratch/log" || fail "no per-pass time for surfaces"
+    grep -q "^main pass " "$scratch/log" || fail "no per-pass time for the main pass"
     ;;
   cape-sequence)
     # A simulated sequence: cloth uploaded every frame, frames numbered, the timing table.

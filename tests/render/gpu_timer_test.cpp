@@ -45,6 +45,28 @@ TEST_F(GpuTimerTest, BackToBackPassesShareTheirBoundaryTimestamp) {
   }
 }
 
+// A hand-off writes a timestamp that no pass begins or ends at: the pass around it spans it, the
+// next pass writes its own beginning, and hand-offs count against the timer's room.
+TEST_F(GpuTimerTest, AHandOffTimesNothing) {
+  GpuTimer timer(device(), 3);
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    timer.reset(commands);
+    timer.begin(commands, "around");
+    timer.handOff(commands);
+    timer.end(commands);
+    timer.handOff(commands);
+    timer.begin(commands, "after");
+    timer.end(commands);
+    EXPECT_THROW(timer.handOff(commands), std::logic_error) << "six timestamps fill the room of three passes";
+  });
+  const std::vector<PassTiming> timings = timer.results();
+  ASSERT_EQ(timings.size(), 2u);
+  EXPECT_EQ(timings[0].pass, "around");
+  EXPECT_EQ(timings[1].pass, "after");
+  EXPECT_GE(timings[0].milliseconds, 0.0);
+  EXPECT_GE(timings[1].startMilliseconds, timings[0].startMilliseconds + timings[0].milliseconds);
+}
+
 TEST_F(GpuTimerTest, EndWithoutABegunPassIsAnError) {
   GpuTimer timer(device(), 1);
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {

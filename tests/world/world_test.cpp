@@ -419,7 +419,7 @@ TEST(WorldSettling, NaluHairHangsBeforeTheFirstFrame) {
 
 TEST_F(WorldRender, GroomsAreInterpolatedOnTheGpuAndDrawnOverTheSurfaces) {
   // nalu without assets: the procedural groom on the fallback sphere. The same frame with and
-  // without the guides uploaded: with them, the strand and hair passes run and hair pixels
+  // without the guides uploaded: with them, the strand and hair lighting passes run and hair pixels
   // differ from the bare frame; a guide count that does not match is refused by name.
   auto scene = loadScene(kNalu);
   ASSERT_TRUE(scene.has_value());
@@ -450,7 +450,7 @@ TEST_F(WorldRender, GroomsAreInterpolatedOnTheGpuAndDrawnOverTheSurfaces) {
   std::vector<std::string> passes;
   for (const render::PassTiming& timing : timings) passes.push_back(timing.pass);
   EXPECT_NE(std::find(passes.begin(), passes.end(), "strands"), passes.end());
-  EXPECT_NE(std::find(passes.begin(), passes.end(), "hair"), passes.end());
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "hair lighting"), passes.end());
   std::size_t changed = 0;
   for (std::size_t p = 0; p < bare.size(); p += 4)
     if (std::abs(int(withHair[p]) - int(bare[p])) + std::abs(int(withHair[p + 1]) - int(bare[p + 1])) > 8) ++changed;
