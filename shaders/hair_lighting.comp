@@ -17,39 +17,31 @@ const int kHairLightingMaxLights = 4;
 // the block is bound: every frame. Not a storage buffer either, as it was: read this way, nalu's
 // hair lighting takes about 1 ms less on lavapipe.
 layout(set = 0, binding = 0) uniform usamplerBuffer lightingTexels;
-
-struct HairLighting {
-  vec4 eye;                                     // w = 1: eye position (metres); w = 0: unit direction towards the eye
-  vec4 ambient;                                 // rgb: ambient radiance × the groom's white-furnace albedo
-  vec4 lightDirection[kHairLightingMaxLights];  // xyz: unit vector towards the light
-  vec4 lightRadiance[kHairLightingMaxLights];   // rgb: perpendicular irradiance (colour × intensity)
-  uvec4 counts;                                 // x: lights, y: vertices per strand
-  HairShadowUniforms shadows;
-};
+const int kEyeTexel = 0;      // w = 1: eye position (metres); w = 0: unit direction towards the eye
+const int kAmbientTexel = 1;  // rgb: ambient radiance × the groom's white-furnace albedo
+const int kLightDirectionTexel = 2;                          // + light i: xyz unit vector towards it
+const int kLightRadianceTexel = 2 + kHairLightingMaxLights;  // + light i: rgb perpendicular irradiance
+const int kCountsTexel = 2 + 2 * kHairLightingMaxLights;     // x: lights, y: vertices per strand
+const int kShadowsTexel = kCountsTexel + 1;                  // HairShadowUniforms: 6 per map, then the count
+const int kShadowCountTexel = kShadowsTexel + 6 * 4;
 
 vec4 lightingVector(int texel) {
   return uintBitsToFloat(texelFetch(lightingTexels, texel));
 }
 
-HairLighting readLighting() {
-  HairLighting lighting;
-  lighting.eye = lightingVector(0);
-  lighting.ambient = lightingVector(1);
-  for (int i = 0; i < kHairLightingMaxLights; ++i) {
-    lighting.lightDirection[i] = lightingVector(2 + i);
-    lighting.lightRadiance[i] = lightingVector(2 + kHairLightingMaxLights + i);
-  }
-  int texel = 2 + 2 * kHairLightingMaxLights;
-  lighting.counts = texelFetch(lightingTexels, texel++);
-  for (int m = 0; m < 4; ++m) {
-    lighting.shadows.maps[m].lightFromWorld =
+// The maps that exist (kHairShadowMaps, a specialisation constant): hairShadowTransmittance looks
+// up no slot after them.
+HairShadowUniforms readShadows() {
+  HairShadowUniforms shadows;
+  for (uint m = 0u; m < kHairShadowMaps; ++m) {
+    int texel = kShadowsTexel + 6 * int(m);
+    shadows.maps[m].lightFromWorld =
         mat4(lightingVector(texel), lightingVector(texel + 1), lightingVector(texel + 2), lightingVector(texel + 3));
-    lighting.shadows.maps[m].depth = lightingVector(texel + 4);
-    lighting.shadows.maps[m].texels = lightingVector(texel + 5);
-    texel += 6;
+    shadows.maps[m].depth = lightingVector(texel + 4);
+    shadows.maps[m].texels = lightingVector(texel + 5);
   }
-  lighting.shadows.count = texelFetch(lightingTexels, texel);
-  return lighting;
+  shadows.count = texelFetch(lightingTexels, kShadowCountTexel);
+  return shadows;
 }
 
 layout(std430, set = 0, binding = 3) writeonly buffer Radiance { vec4 radiance[]; };   // rgb; a: shadow transmittance
@@ -74,21 +66,25 @@ layout(local_size_x = 64) in;
 void main() {
   if (gl_GlobalInvocationID.x >= texelFetch(shadeList, 3).x) return;
   uint vertex = texelFetch(shadeList, 4 + int(gl_GlobalInvocationID.x)).x;
-  HairLighting lighting = readLighting();
   vec3 position = texelFetch(positions, int(vertex)).xyz;
   vec3 tangent = texelFetch(tangents, int(vertex)).xyz;
+  uvec4 counts = texelFetch(lightingTexels, kCountsTexel);
   // The angle the tangent turns over this vertex's share of the strand, half a segment each way.
-  uint along = vertex % lighting.counts.y;
+  uint along = vertex % counts.y;
   float spread = 0.0;
   if (along > 0u) spread += halfTurn(tangent, vertex - 1u);
-  if (along + 1u < lighting.counts.y) spread += halfTurn(tangent, vertex + 1u);
+  if (along + 1u < counts.y) spread += halfTurn(tangent, vertex + 1u);
 
-  vec3 toEye = normalize(lighting.eye.xyz - lighting.eye.w * position);
-  float shadow = hairShadowTransmittance(lighting.shadows, position);
-  vec3 result = lighting.ambient.rgb;
-  for (uint i = 0u; i < lighting.counts.x; ++i) {
-    vec3 scattered = hairScattering(longitudinalLut, azimuthalLut, lighting.lightDirection[i].xyz, toEye, tangent, spread);
-    result += scattered * lighting.lightRadiance[i].rgb * (i == 0u ? shadow : 1.0);
+  vec4 eye = lightingVector(kEyeTexel);
+  vec3 toEye = normalize(eye.xyz - eye.w * position);
+  float shadow = hairShadowTransmittance(readShadows(), position);
+  vec3 result = lightingVector(kAmbientTexel).rgb;
+  // Each light's vectors fetched where they are used: indexing an array of them by the loop's
+  // counter made lavapipe load them lane by lane (hair lighting about 3 ms slower in nalu's frame).
+  for (uint i = 0u; i < counts.x; ++i) {
+    vec3 toLight = lightingVector(kLightDirectionTexel + int(i)).xyz;
+    vec3 scattered = hairScattering(longitudinalLut, azimuthalLut, toLight, toEye, tangent, spread);
+    result += scattered * lightingVector(kLightRadianceTexel + int(i)).rgb * (i == 0u ? shadow : 1.0);
   }
   radiance[vertex] = vec4(result, shadow);
 }

@@ -14,7 +14,7 @@ namespace {
 constexpr std::uint32_t kWorkgroupSize = HairLightingPass::kWorkgroupSize;
 constexpr std::uint32_t kFirstShadowBinding = 6;
 
-// HairLighting in shaders/hair_lighting.comp, which reads vec4 k as texel k of a texel buffer.
+// Read by shaders/hair_lighting.comp as a texel buffer, vec4 k as texel k (its k*Texel constants).
 struct LightingUniforms {
   glm::vec4 eye;
   glm::vec4 ambient;
