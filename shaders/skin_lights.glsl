@@ -31,16 +31,25 @@ void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float cu
   vec3 normalG = normalize(mix(detail, geometric, draw.blur.g));
   vec3 normalB = normalize(mix(detail, geometric, draw.blur.b));
   specular = vec3(0.0);
-  for (int i = 0; i < frame.lightCount.x; ++i) {
+  // The test at the end: lavapipe (Mesa 22.3) runs a loop's body once more, every lane masked off,
+  // lookups and all, before a test at the top ends the loop (about 2 ms of nalu's main pass). The
+  // selections keep a frame without lights unlit.
+  int i = 0;
+  do {
     vec3 toLight = frame.lightDirection[i].xyz;
     vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? hairShadow : 1.0);
+    vec3 lit = diffuse;
     if (!kTextureSpaceDiffusion) {
       vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, 0, dot(normalR, toLight), curvature, draw.skin.z),
                             preintegratedSkinDiffuse(skinTable, 1, dot(normalG, toLight), curvature, draw.skin.z),
                             preintegratedSkinDiffuse(skinTable, 2, dot(normalB, toLight), curvature, draw.skin.z));
-      diffuse += radiance * scattered;
+      lit += radiance * scattered;
     }
-    specular += radiance * kelemenSzirmayKalos(skinTable, detail, toLight, toEye, draw.skin.x, rhoS) *
-                max(dot(detail, toLight), 0.0);
-  }
+    vec3 shone = specular + radiance * kelemenSzirmayKalos(skinTable, detail, toLight, toEye, draw.skin.x, rhoS) *
+                                max(dot(detail, toLight), 0.0);
+    bool on = i < frame.lightCount.x;
+    diffuse = on ? lit : diffuse;
+    specular = on ? shone : specular;
+    ++i;
+  } while (i < frame.lightCount.x);
 }
