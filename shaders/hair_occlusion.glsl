@@ -33,17 +33,30 @@ void main() {
 #if HAIR_OCCLUSION_SAMPLES == 1
   // Four texels a read: the 2 × 2 block whose shared corner is at (x + 1, y + 1). Past the
   // image's edge the sampler clamps, repeating texels of the tile.
+  // Loops that test at the end, as a tile holds at least one pixel: lavapipe (Mesa 22.3) runs a
+  // loop's body once more, every lane masked off, before a test at the top ends it.
   vec2 texel = 1.0 / vec2(size);
-  for (int y = first.y; y < end.y; y += 2)
-    for (int x = first.x; x < end.x; x += 2) {
+  int y = first.y;
+  do {
+    int x = first.x;
+    do {
       vec4 block = textureGather(opaqueDepth, vec2(x + 1, y + 1) * texel);
       farthest = max(farthest, max(max(block.x, block.y), max(block.z, block.w)));
-    }
+      x += 2;
+    } while (x < end.x);
+    y += 2;
+  } while (y < end.y);
 #else
-  for (int y = first.y; y < end.y; ++y)
-    for (int x = first.x; x < end.x; ++x)
+  int y = first.y;
+  do {
+    int x = first.x;
+    do {
       for (int s = 0; s < HAIR_OCCLUSION_SAMPLES; ++s)
         farthest = max(farthest, texelFetch(opaqueDepth, ivec2(x, y), s).r);
+      ++x;
+    } while (x < end.x);
+    ++y;
+  } while (y < end.y);
 #endif
   tileMaxDepth[tile.y * grid.tiles.x + tile.x] = farthest;
 }

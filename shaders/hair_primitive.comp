@@ -158,9 +158,17 @@ bool segmentHidden(ScreenPoint a, ScreenPoint b) {
   ivec2 first = ivec2(low) / int(hair.occlusion.z);
   ivec2 last = ivec2(high) / int(hair.occlusion.z);
   if ((last.x - first.x + 1) * (last.y - first.y + 1) > kMostTiles) return false;
-  for (int y = first.y; y <= last.y; ++y)
-    for (int x = first.x; x <= last.x; ++x)
+  // The box holds a tile; loops that test at the end (lavapipe runs a body once more, masked,
+  // before a test at the top ends a loop).
+  int y = first.y;
+  do {
+    int x = first.x;
+    do {
       if (tileMaxDepth[uint(y) * hair.occlusion.x + uint(x)] >= nearest) return false;
+      ++x;
+    } while (x <= last.x);
+    ++y;
+  } while (y <= last.y);
   return true;
 }
 
@@ -271,7 +279,8 @@ void main() {
   uint words = segmentWords();
   ScreenPoint previous;
   bool previousSegmentHidden = true;  // the root has no segment before it
-  for (uint vertex = first; vertex < end; ++vertex) {
+  uint vertex = first;
+  do {  // a strand has at least two vertices; tested at the end, as segmentHidden's loops
     vec4 position = texelFetch(positionTexels, int(vertex));
     HairRibbon ribbon = hairRibbon(position, texelFetch(tangentTexels, int(vertex)).xyz);
     // A vertex is hidden when both segments it joins are.
@@ -299,7 +308,8 @@ void main() {
       ++wide;
       add64(lost, uint(round((lineWidths - 1.0) * kWidthUnits)));
     }
-  }
+    ++vertex;
+  } while (vertex < end);
   hiddenCount += previousSegmentHidden ? 1u : 0u;  // the tip has no segment after it
   if (hiddenCount != 0u) atomicAdd(primitives.sums.hiddenVertices, hiddenCount);
   visibleCounts[strand] = visible | (hair.counts.y - hiddenCount) << 16u;

@@ -52,7 +52,10 @@ void main() {
   int size = int(resolution);
   int first = max(int(ceil(low - 0.5)), 0);
   int last = min(int(ceil(high - 0.5)) - 1, size - 1);
-  for (int column = first; column <= last; ++column) {
+  // Tested at the end (`continue` goes there): lavapipe runs a loop's body once more, every lane
+  // masked off, before a test at the top ends it.
+  int column = first;
+  if (first <= last) do {
     float t = (float(column) + 0.5 - start) / major;
     vec3 p = pa + t * delta;
     if (p.z < 0.0 || p.z > 1.0) continue;
@@ -65,5 +68,5 @@ void main() {
     int row = max(rowLow, 0), lastRow = min(rowHigh, size - 1);
     if (row <= lastRow) add(alongX ? ivec2(column, row) : ivec2(row, column), size, slice, fixedWeight);
     if (row + 1 <= lastRow) add(alongX ? ivec2(column, row + 1) : ivec2(row + 1, column), size, slice, fixedWeight);
-  }
+  } while (++column <= last);
 }
