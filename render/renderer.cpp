@@ -335,14 +335,14 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   surfaces_.draw(commands, frame, skinDeferred);
   furs_.draw(commands);
   if (hair) {
-    if (!hairBeforeMainPass) {
+    if (hairBeforeMainPass) {
+      timer_.handOff(commands);
+    } else {
       commands.endRendering();
       timer_.end(commands);
       lightHair();
       timer_.begin(commands, "hair");
       target_.resumeScene(commands);
-    } else {
-      timer_.handOff(commands);
     }
     for (std::size_t g = 0; g < hair_.size(); ++g)
       if (drawn[g]) hair_[g].ribbons->draw(commands);

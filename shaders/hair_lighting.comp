@@ -82,8 +82,8 @@ void main() {
   // Each light's vectors fetched where they are used: indexing an array of them by the loop's
   // counter made lavapipe load them lane by lane. And the test at the end of the loop: lavapipe
   // (Mesa 22.3) runs the body once more, every lane masked off, lookups and all, before a test at
-  // the top ends the loop; the selection keeps a frame without lights unlit. Together about 3 ms
-  // of nalu's hair lighting.
+  // the top ends the loop; the selection keeps a frame without lights unlit. Together 2–3 ms of
+  // nalu's hair lighting.
   uint i = 0u;
   do {
     vec3 toLight = lightingVector(kLightDirectionTexel + int(i)).xyz;

@@ -30,11 +30,11 @@ void main() {
   ivec2 first = ivec2(tile * grid.tileSize);
   ivec2 end = min(first + int(grid.tileSize), size);
   float farthest = 0.0;
+  // Loops that test at the end, as a tile holds at least one pixel: lavapipe (Mesa 22.3) runs a
+  // loop's body once more, every lane masked off, before a test at the top ends it.
 #if HAIR_OCCLUSION_SAMPLES == 1
   // Four texels a read: the 2 × 2 block whose shared corner is at (x + 1, y + 1). Past the
   // image's edge the sampler clamps, repeating texels of the tile.
-  // Loops that test at the end, as a tile holds at least one pixel: lavapipe (Mesa 22.3) runs a
-  // loop's body once more, every lane masked off, before a test at the top ends it.
   vec2 texel = 1.0 / vec2(size);
   int y = first.y;
   do {

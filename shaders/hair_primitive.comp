@@ -158,8 +158,8 @@ bool segmentHidden(ScreenPoint a, ScreenPoint b) {
   ivec2 first = ivec2(low) / int(hair.occlusion.z);
   ivec2 last = ivec2(high) / int(hair.occlusion.z);
   if ((last.x - first.x + 1) * (last.y - first.y + 1) > kMostTiles) return false;
-  // The box holds a tile; loops that test at the end (lavapipe runs a body once more, masked,
-  // before a test at the top ends a loop).
+  // The box holds a tile. Loops that test at the end: lavapipe (Mesa 22.3) runs a loop's body
+  // once more, every lane masked off, before a test at the top ends it.
   int y = first.y;
   do {
     int x = first.x;

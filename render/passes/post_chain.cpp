@@ -17,8 +17,6 @@ using Stage = vk::PipelineStageFlagBits2;
 using Access = vk::AccessFlagBits2;
 using Layout = vk::ImageLayout;
 
-constexpr std::uint32_t kWorkgroupSide = 8;  // local_size_x/y of the 2D post shaders
-
 // Push constants of shaders/post_blur.comp: w[k] = weights[k / 4][k % 4].
 struct BlurConstants {
   float weights[12];
@@ -280,11 +278,11 @@ glm::vec2 PostChain::godRayCentre(glm::vec2 lightUv) const {
 }
 
 void PostChain::dispatch(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline,
-                         const vk::raii::DescriptorSet& set, vk::Extent2D size) const {
+                         const vk::raii::DescriptorSet& set, vk::Extent2D size, vk::Extent2D workgroup) const {
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline.layout, 0, {*set}, {});
-  commands.dispatch((size.width + kWorkgroupSide - 1) / kWorkgroupSide,
-                    (size.height + kWorkgroupSide - 1) / kWorkgroupSide, 1);
+  commands.dispatch((size.width + workgroup.width - 1) / workgroup.width,
+                    (size.height + workgroup.height - 1) / workgroup.height, 1);
 }
 
 void PostChain::record(const vk::raii::CommandBuffer& commands, const PostSettings& settings, float exposure,
@@ -354,10 +352,8 @@ void PostChain::recordGodRays(const vk::raii::CommandBuffer& commands, const Pos
                                      .decay = settings.godRayDecay,
                                      .firstWeight = godRayWeights(settings.godRayDecay)[0],
                                      .decayPastEnd = float(std::pow(double(settings.godRayDecay), kGodRayTaps))};
-    commands.bindPipeline(vk::PipelineBindPoint::eCompute, *rayBlurPipeline_.pipeline);
-    commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *rayBlurPipeline_.layout, 0, {*rayBlurSet_}, {});
     commands.pushConstants<RayBlurConstants>(*rayBlurPipeline_.layout, compute, 0, constants);
-    commands.dispatch((used.x + kRayBlurColumns - 1) / kRayBlurColumns, 1, 1);
+    dispatch(commands, rayBlurPipeline_, rayBlurSet_, {used.x, 1}, {kRayBlurColumns, 1});
     computeToCompute(commands);
   }
   commands.pushConstants<RayCentreConstants>(*rayUnpolarPipeline_.layout, compute, 0, polarConstants);

@@ -142,8 +142,10 @@ public:
   void resetExposure();
 
 private:
+  /// One invocation per texel of `size`, in workgroups of `workgroup` invocations (8 × 8: the
+  /// local size of the 2D post shaders).
   void dispatch(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline, const vk::raii::DescriptorSet& set,
-                vk::Extent2D size) const;
+                vk::Extent2D size, vk::Extent2D workgroup = {8, 8}) const;
   void initialiseImages();
 
   const Device* device_;
