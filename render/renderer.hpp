@@ -33,9 +33,9 @@ struct RendererSettings {
   vk::Extent2D extent{1280, 720};
   /// 1 or 4 (lavapipe offers no other counts).
   std::uint32_t msaaSamples = 1;
-  /// Whether hair segments that lie wholly behind the opaque scene are left out of the hair's
-  /// shading and drawing (HairPass, "Hidden strands"). They would be depth-tested away anyway:
-  /// the image is the same either way.
+  /// Whether hair segments that lie wholly behind the opaque scene (behind the skin alone where
+  /// it is deferred) are left out of the hair's shading and drawing (HairPass, "Hidden strands").
+  /// They would be depth-tested away anyway: the image is the same either way.
   bool hideOccludedHair = true;
   /// Whether single-sample frames light pre-integrated skin once per pixel after drawing it into
   /// a G-buffer (render/passes/surface_pass.hpp, "Deferred skin") rather than in the fragment
