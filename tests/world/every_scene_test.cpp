@@ -1,7 +1,7 @@
-// Every scene file shipped in scenes/ (issue 8: "every scene in scenes/ loads and renders one
-// small frame"): scene file → World (assets through the resolver, procedural fallbacks where they
-// are missing) → Renderer on lavapipe with validation on → one 96×54 frame with the scene's own
-// post settings, its cloth, hair and fur uploaded as `mane render` does.
+// Every scene file shipped in scenes/ loads and renders one small frame: scene file → World (assets
+// through the resolver, procedural fallbacks where they are missing) → Renderer on lavapipe with
+// validation on → one 96×54 frame with the scene's own post settings, its cloth, hair and fur
+// uploaded as `mane render` does.
 //
 // The oracle is independent of how the scene should look: a frame with nothing drawn is one
 // colour (the background, tone-mapped; glow and auto gain keep a uniform image uniform, and a
@@ -10,19 +10,25 @@
 // drawn with at most kSmokeDenseStrands strands, voxel translucency tables of kSmokeVoxelResolution³
 // cells, the subdivided meshes tessellated for the small frame. (Malformed scene files are
 // tests/scenes/scene_tests.cpp's and the CLI test's.) Two more frames of each scene's animation
-// must compile no shader on lavapipe.
+// must compile no shader on lavapipe, and the three frames must match their golden hashes.
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "physics/hash.hpp"
 #include "render/renderer.hpp"
 #include "scenes/renderer_upload.hpp"
 #include "scenes/world.hpp"
@@ -146,6 +152,41 @@ TEST_P(EveryScene, LaterFramesCompileNoShaderOnLavapipe) {
     EXPECT_EQ(mane::testing::jitCompiles() - before, 0u)
         << "shaders compiled again for frame " << frame << ": does one branch on uniform values alone?";
   }
+}
+
+// The first three frames of each scene, byte for byte: the FNV-1a hash of each frame's RGBA
+// bytes against tests/golden/frames/<scene>.txt, written by the binary before a change that must
+// not move a pixel (a refactor). An intended change of the picture regenerates them with
+// MANE_UPDATE_GOLDEN=1, after the pictures have been looked at. Pinned to lavapipe, like the
+// golden images.
+TEST_P(EveryScene, RendersItsGoldenFramesByteForByte) {
+  if (device().info().name.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not lavapipe";
+  auto smoke = loadSmokeScene(GetParam(), device());
+  ASSERT_TRUE(smoke.has_value()) << smoke.error().message;
+  std::string hashes;
+  for (int frame = 0; frame < 3; ++frame) {
+    if (frame > 0) {
+      ASSERT_TRUE(smoke->world.advance(1.0 / 30.0, 1).has_value());
+    }
+    ASSERT_TRUE(renderCurrentFrame(*smoke).has_value());
+    auto pixels = smoke->renderer->readOutput();
+    ASSERT_TRUE(pixels.has_value()) << pixels.error().message;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx",
+                  static_cast<unsigned long long>(physics::fnv1a(std::as_bytes(std::span(*pixels)))));
+    hashes += std::string(hex) + "\n";
+  }
+  const std::filesystem::path golden =
+      std::filesystem::path(MANE_SOURCE_DIR) / "tests/golden/frames" / (GetParam().stem().string() + ".txt");
+  if (std::getenv("MANE_UPDATE_GOLDEN")) {
+    std::filesystem::create_directories(golden.parent_path());
+    std::ofstream(golden) << hashes;
+    GTEST_SKIP() << "wrote " << golden;
+  }
+  std::ifstream file(golden);
+  ASSERT_TRUE(file) << golden << ": missing; write it with MANE_UPDATE_GOLDEN=1";
+  const std::string expected((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(hashes, expected) << "the frames of " << GetParam().filename() << " changed (hashes of frames 0, 1, 2)";
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EveryScene, ::testing::ValuesIn(sceneFiles()), [](const auto& info) {
