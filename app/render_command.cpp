@@ -12,9 +12,9 @@
 #include "app/commands.hpp"
 #include "app/mp4_encoding.hpp"
 #include "app/scene_loading.hpp"
-#include "scenes/renderer_upload.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
+#include "scenes/frame_loop.hpp"
 
 namespace mane::app {
 namespace {
@@ -57,8 +57,9 @@ void printTimingTable(const std::vector<std::vector<render::PassTiming>>& frames
   for (const auto& frame : frames) {
     double end = 0.0;
     for (const auto& timing : frame) {
-      if (!samples.contains(timing.pass)) order.push_back(timing.pass);
-      samples[timing.pass].push_back(timing.milliseconds);
+      const std::string pass(timing.pass.name());
+      if (!samples.contains(pass)) order.push_back(pass);
+      samples[pass].push_back(timing.milliseconds);
       end = std::max(end, timing.startMilliseconds + timing.milliseconds);
     }
     if (!frame.empty()) samples[span].push_back(end);
@@ -102,7 +103,9 @@ void run(const RenderOptions& options) {
   std::cout << "device: " << (*device)->info().name << '\n';
   auto renderer = render::Renderer::create(**device, {.extent = {width, height}, .msaaSamples = options.msaa});
   if (!renderer) return failWith(renderer.error().message);
-  if (auto uploaded = (*renderer)->setScene(world->staticScene()); !uploaded) return failWith(uploaded.error().message);
+  auto loop = scenes::FrameLoop::create(*world, **renderer, {.imageSize = {width, height}, .threads = options.threads});
+  if (!loop) return failWith(loop.error().message);
+  if (auto set = loop->setScene(world->staticScene()); !set) return failWith(set.error().message);
 
   const std::filesystem::path outDir = options.out;
   const std::string stem =
@@ -111,17 +114,10 @@ void run(const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < options.frames; ++frame) {
     if (frame > 0)
-      if (auto advanced = world->advance(1.0 / options.fps, options.threads); !advanced)
-        return failWith(advanced.error().message);
-    if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
-      return failWith(uploaded.error().message);
+      if (auto advanced = loop->advance(1.0 / options.fps); !advanced) return failWith(advanced.error().message);
     render::FrameInput frameInput = world->frameInput();
     frameInput.post.frameSeconds = float(1.0 / options.fps);
-    if (auto refined =
-            scenes::refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
-        !refined)
-      return failWith(refined.error().message);
-    auto frameTimings = (*renderer)->render(frameInput);
+    auto frameTimings = loop->renderFrame(frameInput);
     if (!frameTimings) return failWith(frameTimings.error().message);
     timings.push_back(*frameTimings);
     auto pixels = (*renderer)->readOutput();

@@ -1,7 +1,7 @@
 // `mane view`: the scene in a window (GLFW + Vulkan swapchain) with an orbit camera.
 // Mouse: left drag orbits, right drag turns the key light, wheel zooms. Keys (kKeyHelp): pause and
 // step the simulation, turn the key light, switch techniques and post effects, quit. The frame time and the toggles'
-// states are drawn in the image's top-left corner (render/passes/text_overlay.hpp) and the window title.
+// states are drawn in the image's top-left corner (render/passes/text_overlay_pass.hpp) and the window title.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -20,11 +20,11 @@
 
 #include "app/commands.hpp"
 #include "app/scene_loading.hpp"
-#include "scenes/renderer_upload.hpp"
-#include "render/passes/text_overlay.hpp"
+#include "render/passes/text_overlay_pass.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
 #include "render/window.hpp"
+#include "scenes/frame_loop.hpp"
 
 namespace mane::app {
 namespace {
@@ -266,10 +266,10 @@ void run(const ViewOptions& options) {
   if (!swapchain) return failWith(swapchain.error().message);
   auto renderer = render::Renderer::create(**device, {.extent = {width, height}, .msaaSamples = options.msaa});
   if (!renderer) return failWith(renderer.error().message);
+  auto loop = scenes::FrameLoop::create(*world, **renderer, {.imageSize = {width, height}, .threads = options.threads});
+  if (!loop) return failWith(loop.error().message);
   render::StaticScene drawn = world->staticScene();
-  if (auto uploaded = (*renderer)->setScene(drawn); !uploaded) return failWith(uploaded.error().message);
-  if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
-    return failWith(uploaded.error().message);
+  if (auto set = loop->setScene(drawn); !set) return failWith(set.error().message);
   std::cout << kKeyHelp << '\n';
 
   InputState input;
@@ -288,9 +288,7 @@ void run(const ViewOptions& options) {
       input.techniquesChanged = false;
       (*device)->device().waitIdle();
       drawn = withTechniques(world->staticScene(), input);
-      if (auto uploaded = (*renderer)->setScene(drawn); !uploaded) return failWith(uploaded.error().message);
-      if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
-        return failWith(uploaded.error().message);
+      if (auto set = loop->setScene(drawn); !set) return failWith(set.error().message);
       std::cout << techniqueLine(drawn, world->frameInput()) << '\n';
     }
     const auto now = std::chrono::steady_clock::now();
@@ -299,10 +297,7 @@ void run(const ViewOptions& options) {
     smoothedMs = frame == 0 ? dt * 1e3 : 0.9 * smoothedMs + 0.1 * dt * 1e3;
     if (!input.paused || input.stepOnce) {
       // Real time, capped so a slow frame (lavapipe) plays in slow motion rather than jumping.
-      if (auto advanced = world->advance(std::min(dt, 1.0 / 30.0), options.threads); !advanced)
-        return failWith(advanced.error().message);
-      if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
-        return failWith(uploaded.error().message);
+      if (auto advanced = loop->advance(std::min(dt, 1.0 / 30.0)); !advanced) return failWith(advanced.error().message);
       input.stepOnce = false;
     }
     render::FrameInput frameInput = world->frameInput();
@@ -318,12 +313,8 @@ void run(const ViewOptions& options) {
     input.lightChanged = false;
     // Subdivided meshes follow the camera (and their own motion), but not while the orbit is being
     // dragged: a re-tessellation can rebuild a voxel translucency table (seconds).
-    if (!input.orbit.dragging)
-      if (auto refined =
-              scenes::refineSubdivided(*world, **renderer, frameInput.camera, {width, height}, options.threads);
-          !refined)
-        return failWith(refined.error().message);
-    auto rendered = (*renderer)->render(frameInput);
+    auto rendered = loop->renderFrame(
+        frameInput, input.orbit.dragging ? scenes::Refinement::kKeep : scenes::Refinement::kForCamera);
     if (!rendered) return failWith(rendered.error().message);
     if (input.showOverlay) {
       // From the first pass's begin to the last one's end (render::PassTiming).

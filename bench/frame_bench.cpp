@@ -1,12 +1,12 @@
-// The whole default frame (issue 8, "Performance"): scenes/nalu.json as `mane render` runs it —
+// The whole default frame: scenes/nalu.json through scenes::FrameLoop as `mane render` runs it —
 // World::advance (animation and simulation, 2 threads), the cloth and hair guides handed to the
 // renderer, then every pass with the scene's own post settings — at 1280×720 on the device mane
-// picks (lavapipe here). Each iteration is one frame of 1/30 s, timed by the wall clock; the
-// counters are medians over the iterations: frame_ms (the whole frame, and fps from it), sim_ms
-// (World::advance), upload_ms (the hand-off to the renderer), refine_ms (the head's limit
-// surface tessellated again for its new pose by World::refineForCamera, and re-uploaded),
-// gpu_ms (the first pass's begin to the last one's end) and each pass's GPU time, the main
-// pass (surfaces and furs, then the hair) also as the sum of its two halves.
+// picks (lavapipe without a GPU). Each iteration is one frame of 1/30 s, timed by the wall clock;
+// the counters are medians over the iterations: frame_ms (the whole frame, and fps from it),
+// sim_ms (World::advance), upload_ms (the hand-off to the renderer), refine_ms (the head's limit
+// surface tessellated again for its new pose by World::refineForCamera, and re-uploaded), gpu_ms
+// (the first pass's begin to the last one's end) and each pass's GPU time, the main pass
+// (surfaces and furs, then the hair) also as the sum of its two halves.
 //
 //   BM_NaluFrame/variant:0  the scene as shipped (4,095 strands, pre-integrated skin), 1× MSAA
 //   BM_NaluFrame/variant:1  the same at 4× MSAA (`mane render`'s default)
@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "render/renderer.hpp"
-#include "scenes/renderer_upload.hpp"
+#include "scenes/frame_loop.hpp"
 #include "scenes/world.hpp"
 
 namespace {
@@ -96,7 +96,9 @@ void BM_NaluFrame(benchmark::State& state) {
                                                       .msaaSamples = variant == kMsaa4 ? 4u : 1u,
                                                       .hideOccludedHair = variant != kDemoContentEveryStrand});
   if (!renderer) return state.SkipWithError(renderer.error().message.c_str());
-  if (auto set = (*renderer)->setScene(statics); !set) return state.SkipWithError(set.error().message.c_str());
+  auto loop = scenes::FrameLoop::create(*world, **renderer, {.imageSize = {1280, 720}, .threads = 2});
+  if (!loop) return state.SkipWithError(loop.error().message.c_str());
+  if (auto set = loop->setScene(statics); !set) return state.SkipWithError(set.error().message.c_str());
 
   constexpr double kFrameSeconds = 1.0 / 30.0;
   const auto since = [](std::chrono::steady_clock::time_point start) {
@@ -104,28 +106,26 @@ void BM_NaluFrame(benchmark::State& state) {
   };
   std::vector<double> simulationMs, uploadMs, refineMs;
   const auto frame = [&](bool timed) -> Result<std::vector<render::PassTiming>> {
-    auto start = std::chrono::steady_clock::now();
-    if (auto advanced = world->advance(kFrameSeconds, 2); !advanced) return std::unexpected(advanced.error());
-    if (timed) simulationMs.push_back(since(start));
-    start = std::chrono::steady_clock::now();
-    if (auto uploaded = scenes::uploadFrameState(*world, **renderer); !uploaded)
-      return std::unexpected(uploaded.error());
-    if (timed) uploadMs.push_back(since(start));
-    start = std::chrono::steady_clock::now();
+    if (auto advanced = loop->advance(kFrameSeconds); !advanced) return std::unexpected(advanced.error());
     render::FrameInput input = world->frameInput();
-    if (auto refined = scenes::refineSubdivided(*world, **renderer, input.camera, {1280, 720}, 2); !refined)
-      return std::unexpected(refined.error());
-    if (timed) refineMs.push_back(since(start));
     input.post.frameSeconds = float(kFrameSeconds);
     if (variant == kNoFurShells) input.furShells = false;
-    return (*renderer)->render(input);
+    auto timings = loop->renderFrame(input);
+    if (timed) {
+      const scenes::FrameStageTimes& stages = loop->lastStageTimes();
+      simulationMs.push_back(stages.simulateMs);
+      uploadMs.push_back(stages.uploadMs);
+      refineMs.push_back(stages.refineMs);
+    }
+    return timings;
   };
   // Untimed: first-use work (pipeline compiles, the diffusion's first irradiance).
   if (auto first = frame(false); !first) return state.SkipWithError(first.error().message.c_str());
 
   std::vector<double> frameMs, gpuMs, hiddenShare;
-  std::vector<std::string> order;
-  std::map<std::string, std::vector<double>> passMs;
+  using render::PassName;
+  std::vector<PassName> order;
+  std::map<PassName, std::vector<double>> passMs;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     auto timings = frame(true);
@@ -137,13 +137,14 @@ void BM_NaluFrame(benchmark::State& state) {
     double frameEnd = 0.0, mainPass = 0.0;
     for (const render::PassTiming& timing : *timings) {
       frameEnd = std::max(frameEnd, timing.startMilliseconds + timing.milliseconds);
-      const std::string& pass = timing.pass;
-      if (pass == "surfaces" || pass == "hair" || pass == "main pass") mainPass += timing.milliseconds;
-      if (pass == "main pass") continue;
+      const PassName pass = timing.pass;
+      if (pass == PassName::kSurfaces || pass == PassName::kHair || pass == PassName::kMainPass)
+        mainPass += timing.milliseconds;
+      if (pass == PassName::kMainPass) continue;
       if (!passMs.contains(pass)) order.push_back(pass);
       passMs[pass].push_back(timing.milliseconds);
     }
-    passMs["main pass"].push_back(mainPass);
+    passMs[PassName::kMainPass].push_back(mainPass);
     double hidden = 0.0, vertices = 0.0;
     const std::vector<render::HairPrimitiveChoice> choices = (*renderer)->hairChoices();
     for (std::size_t g = 0; g < statics.grooms.size(); ++g) {
@@ -160,9 +161,9 @@ void BM_NaluFrame(benchmark::State& state) {
   state.counters["refine_ms"] = median(refineMs);
   state.counters["gpu_ms"] = median(gpuMs);
   state.counters["hidden_hair"] = median(hiddenShare);  // share of the dense vertices hidden
-  order.push_back("main pass");
-  for (const std::string& pass : order) {
-    std::string name = pass;
+  order.push_back(PassName::kMainPass);
+  for (const PassName pass : order) {
+    std::string name(pass.name());
     std::replace(name.begin(), name.end(), ' ', '_');
     state.counters[name + "_ms"] = median(passMs[pass]);
   }

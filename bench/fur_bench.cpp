@@ -1,4 +1,4 @@
-// The fur pass (render/passes/fur_pass) at issue 7's size: the Stanford bunny (69,451 triangles)
+// The fur pass (render/passes/fur_pass) at the paper's scale: the Stanford bunny (69,451 triangles)
 // with 15 shells at 1280×720, against the bare bunny and an empty frame in the same run, and
 // shells against shells + fins. The paper's figure (Ukaji et al., Table 1): a 34,832-vertex
 // bunny with 15 layers at 137 fps on a GeForce GTX 285.
@@ -10,7 +10,7 @@
 //
 // The bunny fills about half the frame's height. It has no uvs: they are a box projection by the
 // normal's largest axis, the photo repeating every 3 cm (the bunny is 15 cm tall). Wall time
-// around submit + wait (LAVAPIPE.md: it agrees with timestamps for graphics). Needs
+// around submit + wait (it agrees with timestamps for graphics, docs/lavapipe.md#timestamps). Needs
 // ../shared/assets (the bunny and the cat-fur photo).
 //
 //   build/release/bench/mane_fur_bench --benchmark_min_time=2

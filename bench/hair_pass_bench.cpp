@@ -1,4 +1,4 @@
-// The hair ribbon pass (render/passes/hair_pass) at the size of issue 4's target: 4,096 strands ×
+// The hair ribbon pass (render/passes/hair_pass) at a Nalu-sized groom: 4,096 strands ×
 // 32 vertices (4,096 × 31 × 2 = 254k triangles) at 1280×720, against an empty frame (clear, and
 // the MSAA resolve where there is one) in the same run, so the difference is the hair's cost.
 //
@@ -13,8 +13,8 @@
 //     which was drawn.
 //
 // The groom: strands hanging from a half-sphere "scalp" (radius 0.1 m), 0.3 m down and flaring
-// out, seen from 0.6 m: about a third of the frame. Wall time around submit + wait (LAVAPIPE.md:
-// it agrees with timestamps for graphics).
+// out, seen from 0.6 m: about a third of the frame. Wall time around submit + wait (it agrees with
+// timestamps for graphics, docs/lavapipe.md#timestamps).
 //
 //   build/release/bench/mane_hair_pass_bench --benchmark_min_time=2
 
@@ -33,9 +33,9 @@
 #include <benchmark/benchmark.h>
 
 #include "render/luts/marschner_lut.hpp"
-#include "render/passes/hair_lighting.hpp"
+#include "render/passes/hair_lighting_pass.hpp"
 #include "render/passes/hair_pass.hpp"
-#include "render/passes/hair_shadows.hpp"
+#include "render/passes/hair_shadow_pass.hpp"
 #include "render/render_target.hpp"
 
 namespace {
@@ -109,14 +109,14 @@ struct Setup {
 struct Shared {
   std::unique_ptr<Device> device;
   std::unique_ptr<MarschnerLut> lut;
-  std::unique_ptr<HairShadows> shadows;  // none: the empty map
+  std::unique_ptr<HairShadowPass> shadows;  // none: the empty map
   Groom groom;
   std::map<int, Setup> setups;
 
   Shared() {
     device = orExit(Device::create(deviceSettingsFromEnvironment()), "device");
     lut = std::make_unique<MarschnerLut>(orExit(MarschnerLut::create(*device, blondeHairParams()), "LUT"));
-    shadows = orExit(HairShadows::create(*device), "shadows");
+    shadows = orExit(HairShadowPass::create(*device), "shadows");
     groom = makeGroom(*device);
   }
 

@@ -1,6 +1,7 @@
-// Hair shadows of the real TressFX ponytail at issue 4's size, on the device mane picks (lavapipe
-// here): what opacity shadow maps and deep opacity maps cost against a plain depth shadow map of
-// the same strands, measured in the same run, and how far each is from the ray-cast reference.
+// Hair shadows of the real TressFX ponytail at full density, on the device mane picks (lavapipe
+// without a GPU): what opacity shadow maps and deep opacity maps cost against a plain depth shadow
+// map of the same strands, measured in the same run, and how far each is from the ray-cast
+// reference.
 //
 // The groom: the four ponytail files (../shared/assets/hair/tressfx_ponytail/{front_top, side,
 // back, tail}.tfx) placed as scenes/ponytail.json places them (z negated, `invert_z`; scaled by
@@ -19,11 +20,11 @@
 // One build per iteration (record, submit, wait). Counters: gpu_ms, the GPU timestamps around the
 // recorded work (render/gpu_timer.hpp), mean per iteration; vs_depth, gpu_ms over the depth
 // shadow map's gpu_ms in the same run; error, the mean |T_map − T_ref| at 2,000 dense vertices
-// drawn at random, T_map from the GLSL lookup (OpacityShadowMap::probe), T_ref from the ray-cast
-// reference (render/opacity_reference.hpp) filtered with the map's kernel at its texel size, rays
+// drawn at random, T_map from the GLSL lookup (OpacityShadowMapPass::probe), T_ref from the ray-cast
+// reference (render/passes/opacity_shadow_map_reference.hpp) filtered with the map's kernel at its texel size, rays
 // ≤ 2r apart, as tests/render/opacity_shadow_map_test.cpp does; the reference runs on the CPU
 // interpolation of the same strands (physics::interpolateDenseStrands, which the pass matches
-// within 1e-5 relative; about 40 s on 2 cores, once, outside the timed loops). A summary goes to
+// within 1e-5 relative; slow, so once, outside the timed loops). A summary goes to
 // stderr at the end.
 //
 //   build/release/bench/mane_hair_shadow_bench --benchmark_min_time=2
@@ -45,10 +46,9 @@
 
 #include "physics/interpolation.hpp"
 #include "render/gpu_timer.hpp"
-#include "render/opacity_reference.hpp"
-#include "render/passes/opacity_shadow_map.hpp"
-#include "render/passes/strand_interpolation.hpp"
-#include "scenes/render_groom_layout.hpp"
+#include "render/passes/opacity_shadow_map_reference.hpp"
+#include "render/passes/opacity_shadow_map_pass.hpp"
+#include "render/passes/strand_interpolation_pass.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/groom_loader.hpp"
 
@@ -74,7 +74,7 @@ struct Ponytail {
   std::unique_ptr<render::StrandInterpolationPass> interpolation;
   std::vector<glm::vec4> positions;  ///< the dense strands on the CPU, for the reference
   render::BoundingSphere sphere;
-  std::array<std::unique_ptr<render::OpacityShadowMap>, kModes> maps;
+  std::array<std::unique_ptr<render::OpacityShadowMapPass>, kModes> maps;
   std::vector<glm::vec3> errorPoints;
   std::vector<double> referenceTransmittance;  ///< T_ref at errorPoints
 };
@@ -126,8 +126,7 @@ Ponytail load() {
   for (const auto& guide : guides) p.guides.insert(p.guides.end(), guide.begin(), guide.end());
   p.vertices = layout->vertexCount;
 
-  const scenes::RenderGroomLayout mirrored = scenes::renderLayoutOf(*layout);
-  auto pass = render::StrandInterpolationPass::create(*p.device, mirrored.view());
+  auto pass = render::StrandInterpolationPass::create(*p.device, *layout);
   if (!pass) {
     p.problem = pass.error().message;
     return p;
@@ -209,7 +208,7 @@ double timeIterations(benchmark::State& state, const render::Device& device, Rec
   for (auto _ : state) {
     device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
       timer.reset(commands);
-      timer.begin(commands, "pass");
+      timer.begin(commands, render::PassName("pass"));
       record(commands);
       timer.end(commands);
     });
@@ -238,13 +237,13 @@ void BM_PonytailShadow(benchmark::State& state) {
   Ponytail& p = ponytail();
   if (!p.problem.empty()) return state.SkipWithError(p.problem.c_str());
   const auto mode = static_cast<std::size_t>(state.range(0));
-  std::unique_ptr<render::OpacityShadowMap>& map = p.maps[mode];
+  std::unique_ptr<render::OpacityShadowMapPass>& map = p.maps[mode];
   if (!map) {
     render::OpacityShadowSettings settings{.resolution = kResolution, .strandRadius = kStrandRadius};
     if (mode == 0) settings.mode = render::OpacityShadowMode::kDepthShadowMap;
     if (mode == 2) settings.builder = render::OpacityShadowBuilder::kCompute;
     if (mode == 3) settings.mode = render::OpacityShadowMode::kDeepOpacityMap;
-    auto created = render::OpacityShadowMap::create(
+    auto created = render::OpacityShadowMapPass::create(
         *p.device, {&p.interpolation->positions(), kDenseStrands, p.vertices}, settings);
     if (!created) return state.SkipWithError(created.error().message.c_str());
     if (auto lit = (*created)->setLight(kTowardLight, p.sphere); !lit)

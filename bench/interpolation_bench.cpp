@@ -5,7 +5,8 @@
 //     blend 0 = single guide, 1 = barycentric (3 guides). items/s = dense vertices per second.
 //   BM_InterpolateWithTangents/<dense strands>/<threads>: the same, barycentric, with tangents.
 //   BM_CopyBaseline/<dense strands>: a plain copy (memcpy) of as many vertices from a buffer of
-//     the same size: the memory-bound floor, so the README can quote interpolation / copy.
+//     the same size: the memory-bound floor, so docs/performance.md can quote interpolation /
+//     copy.
 //
 // Dense counts: 4,095 (Nalu, 762 → 4,095) and 100,000.
 

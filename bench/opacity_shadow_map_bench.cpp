@@ -1,6 +1,6 @@
-// Opacity shadow maps on the device mane picks (lavapipe here): one build of the map per
-// iteration (record, submit, wait), for 4,096 strands × 32 vertices (126,976 segments) at 512²,
-// the Nalu-sized groom of shared/LAVAPIPE.md.
+// Opacity shadow maps on the device mane picks (lavapipe without a GPU): one build of the map per
+// iteration (record, submit, wait), for 4,096 strands × 32 vertices (126,976 segments) at 512², a
+// Nalu-sized groom (the one docs/lavapipe.md#calibration measures).
 //
 //   BM_OpacityShadowMap/0: 16 slices, graphics builder (one draw into 4 RGBA16F targets)
 //   BM_OpacityShadowMap/1: 16 slices, compute builder (fixed-point atomics + prefix-sum resolve)
@@ -21,7 +21,7 @@
 #include <benchmark/benchmark.h>
 #include <glm/geometric.hpp>
 
-#include "render/passes/opacity_shadow_map.hpp"
+#include "render/passes/opacity_shadow_map_pass.hpp"
 
 namespace {
 
@@ -77,7 +77,7 @@ void BM_OpacityShadowMap(benchmark::State& state) {
   render::OpacityShadowSettings settings{.resolution = 512};
   if (state.range(0) == 1) settings.builder = render::OpacityShadowBuilder::kCompute;
   if (state.range(0) == 2) settings.mode = render::OpacityShadowMode::kDeepOpacityMap;
-  const auto map = orExit(render::OpacityShadowMap::create(*device, {&buffer, kStrands, kVertices}, settings));
+  const auto map = orExit(render::OpacityShadowMapPass::create(*device, {&buffer, kStrands, kVertices}, settings));
   const render::BoundingSphere sphere = orExit(render::boundingSphere(positions));
   if (auto lit = map->setLight(glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f)), sphere); !lit) {
     std::fprintf(stderr, "opacity shadow map bench: %s\n", lit.error().message.c_str());

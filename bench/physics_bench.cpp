@@ -8,7 +8,7 @@
 //   BM_HairFrame/<threads>/<vectorised>/<steps>: one 1/60 s frame of a 10,000-guide ×
 //     32-particle groom with 4 constraint iterations per fixed step and tethers, on a head that
 //     sways, with the scalar (0) or the AVX2 (1) strand kernel (HairSystem::setVectorised), in
-//     <steps> fixed steps (1: one 1/60 s step, 4 iterations per frame, the case; 2: two
+//     <steps> fixed steps (1: one 1/60 s step, 4 iterations per frame, the headline case; 2: two
 //     1/120 s steps, 8); items/s = particle updates (particles × fixed steps) per second.
 //   BM_HairFrameCollisions/<threads>/<vectorised>/<steps>: the same frame with a neck capsule
 //     and the SDF (64³ class) of a 20,480-triangle ellipsoidal head mesh as colliders,

@@ -1,8 +1,8 @@
-// The HDR post chain (render/passes/post_chain.hpp, issue 8 item 3) at 1280×720 against today's
-// output pass alone, in one run.
+// The HDR post chain (render/passes/post_pass.hpp) at 1280×720 against the output pass alone, in
+// one run.
 //
 //   BM_OutputOnly: record, submit, wait: clear the HDR frame, then the output pass with the
-//     defaults (linear exposure, no glow, no auto gain) — the frame as it was before the chain.
+//     defaults (linear exposure, no glow, no auto gain) — the frame without the chain.
 //   BM_PostChain/<glow>/<auto gain>/<tone map>/<god rays>: the same with the chain's passes that
 //     the arguments switch on (downsample, auto gain, four glow blurs, god rays around a light at
 //     frame uv (0.5, 0.4): bright pass, polar transform, radial blur, inverse), the overlay they
@@ -27,7 +27,7 @@
 
 #include "render/gpu_timer.hpp"
 #include "render/passes/output_pass.hpp"
-#include "render/passes/post_chain.hpp"
+#include "render/passes/post_pass.hpp"
 #include "render/render_target.hpp"
 
 namespace {
@@ -37,10 +37,19 @@ using namespace mane::render;
 
 constexpr vk::Extent2D kExtent{1280, 720};
 
+// What each frame times; the counters are named after them (name_ms).
+constexpr PassName kClear("clear");
+constexpr PassName kDownsample("downsample");
+constexpr PassName kAutoGain("auto_gain");
+constexpr PassName kGlow("glow");
+constexpr PassName kGodRays("god_rays");
+constexpr PassName kOverlay("overlay");
+constexpr PassName kOutput("output");
+
 struct Shared {
   std::unique_ptr<Device> device;
   std::unique_ptr<RenderTarget> target;
-  std::unique_ptr<PostChain> post;
+  std::unique_ptr<PostPass> post;
   std::unique_ptr<OutputPass> output;
   std::unique_ptr<GpuTimer> timer;
 
@@ -52,7 +61,7 @@ struct Shared {
     }
     device = std::move(*created);
     target = std::make_unique<RenderTarget>(*device, RenderTargetSettings{.extent = kExtent});
-    post = std::make_unique<PostChain>(*device, target->hdr());
+    post = std::make_unique<PostPass>(*device, target->hdr());
     output = std::make_unique<OutputPass>(*device, *target, *post);
     timer = std::make_unique<GpuTimer>(*device, 8);
   }
@@ -70,39 +79,39 @@ void frame(Shared& s, const PostSettings& settings) {
   using Layout = vk::ImageLayout;
   s.device->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     s.timer->reset(commands);
-    s.timer->begin(commands, "clear");
+    s.timer->begin(commands, kClear);
     s.target->beginScene(commands, {2.0f, 1.5f, 1.0f, 1.0f});
     commands.endRendering();
     s.timer->end(commands);
     transition(commands, s.target->hdr(), Layout::eColorAttachmentOptimal, Layout::eShaderReadOnlyOptimal,
                Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite,
                Stage::eFragmentShader | Stage::eComputeShader, Access::eShaderSampledRead);
-    if (PostChain::runs(settings)) {
-      s.timer->begin(commands, "downsample");
+    if (PostPass::runs(settings)) {
+      s.timer->begin(commands, kDownsample);
       s.post->recordDownsample(commands);
       s.timer->end(commands);
       if (settings.autoGain) {
-        s.timer->begin(commands, "auto_gain");
+        s.timer->begin(commands, kAutoGain);
         s.post->recordAutoGain(commands, settings, 1.0f);
         s.timer->end(commands);
       }
       if (settings.glowStrength > 0.0f) {
-        s.timer->begin(commands, "glow");
+        s.timer->begin(commands, kGlow);
         s.post->recordGlow(commands);
         s.timer->end(commands);
       }
       if (settings.godRays > 0.0f) {
-        s.timer->begin(commands, "god_rays");
+        s.timer->begin(commands, kGodRays);
         s.post->recordGodRays(commands, settings, {0.5f, 0.4f});
         s.timer->end(commands);
       }
-      s.timer->begin(commands, "overlay");
+      s.timer->begin(commands, kOverlay);
       s.post->recordHandOff(commands, settings, 1.0f);
       s.timer->end(commands);
     }
     transition(commands, s.target->output(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
                Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-    s.timer->begin(commands, "output");
+    s.timer->begin(commands, kOutput);
     s.output->record(commands, *s.target, 1.0f, settings);
     s.timer->end(commands);
   });
@@ -117,17 +126,17 @@ double median(std::vector<double> values) {
 void run(benchmark::State& state, const PostSettings& settings) {
   Shared& s = shared();
   frame(s, settings);  // warm: pipelines made, caches filled
-  std::map<std::string, std::vector<double>> times;
+  std::map<PassName, std::vector<double>> times;
   for (auto _ : state) {
     frame(s, settings);
     for (const PassTiming& timing : s.timer->results()) times[timing.pass].push_back(timing.milliseconds);
   }
   double post = 0.0;
   for (const auto& [pass, values] : times) {
-    state.counters[pass + "_ms"] = median(values);
-    if (pass != "clear") post += median(values);
+    state.counters[std::string(pass.name()) + "_ms"] = median(values);
+    if (pass != kClear) post += median(values);
   }
-  if (times.count("output")) state.counters["vs_output"] = post / median(times["output"]);
+  if (times.count(kOutput)) state.counters["vs_output"] = post / median(times[kOutput]);
 }
 
 void BM_OutputOnly(benchmark::State& state) {

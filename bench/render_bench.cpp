@@ -1,8 +1,8 @@
-// Frame time of the default scene's head on the device mane picks (lavapipe here), against
-// baselines measured in the same run: the same passes with nothing to draw (clear + output
-// pass), and the same head shaded Lambert instead of skin. The README reports the ratios, which
-// are steadier across machines than milliseconds. The hair is not drawn (no guides are handed
-// to the renderer), nor the fins and the furred bunny.
+// Frame time of the default scene's head on the device mane picks (lavapipe without a GPU), against
+// baselines measured in the same run: the same passes with nothing to draw (clear + output pass),
+// and the same head shaded Lambert instead of skin. docs/performance.md reports the ratios, which
+// are steadier across machines than milliseconds. The hair is not drawn (no guides are handed to
+// the renderer), nor the fins and the furred bunny.
 //
 //   BM_NaluFrame/scene:0: nothing drawn; scene:1: the head, Lambert; scene:2: the head, skin
 //   (pre-integrated diffuse, blurred normals, Kelemen/Szirmay-Kalos specular); scene:3 and 4:

@@ -1,4 +1,4 @@
-// mane vs Bullet soft bodies: the same ropes side by side in one run (issue 3, Performance).
+// mane vs Bullet soft bodies: the same ropes side by side in one run.
 //
 //   BM_RopesVsBullet/<ropes>/<particles>: <ropes> ropes of <particles> particles, 1 cm segments,
 //     each hanging from a fixed root and released horizontally (along +x) at rest, so they swing

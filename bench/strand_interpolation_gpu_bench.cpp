@@ -1,10 +1,11 @@
 // Dense strand interpolation on the GPU (render/passes/strand_interpolation) against its CPU
-// reference (physics::interpolateDenseStrands), the same case in the same run, so the README can
-// quote the ratio, which is steadier across machines than milliseconds.
+// reference (physics::interpolateDenseStrands), the same case in the same run, so
+// docs/performance.md can quote the ratio, which is steadier across machines than milliseconds.
 //
 //   BM_StrandInterpolationGpu/<dense strands>/<blend>: one frame of the pass on the device mane
-//     picks (lavapipe here): guide upload (updateGuides), record, submit, wait. Positions and
-//     tangents. blend 0 = single guide, 1 = barycentric (3 guides). items/s = dense vertices/s.
+//     picks (lavapipe without a GPU): guide upload (updateGuides), record, submit, wait.
+//     Positions and tangents. blend 0 = single guide, 1 = barycentric (3 guides). items/s =
+//     dense vertices/s.
 //   BM_StrandInterpolationCpu/<dense strands>/<blend>/<threads>: the CPU reference for the same
 //     layout and guides, positions and tangents.
 //
@@ -23,8 +24,7 @@
 
 #include "physics/groom_generator.hpp"
 #include "physics/interpolation.hpp"
-#include "render/passes/strand_interpolation.hpp"
-#include "scenes/render_groom_layout.hpp"
+#include "render/passes/strand_interpolation_pass.hpp"
 
 namespace {
 
@@ -51,7 +51,7 @@ std::vector<glm::vec3> flatGuides() {
   return flat;
 }
 
-physics::DenseGroomLayout layoutFor(std::size_t strands, physics::GuideBlend blend) {
+DenseStrandLayout layoutFor(std::size_t strands, physics::GuideBlend blend) {
   physics::DenseGroomSettings settings;
   settings.strandCount = strands;
   settings.blend = blend;
@@ -76,10 +76,9 @@ render::Device& device() {
 }
 
 void BM_StrandInterpolationGpu(benchmark::State& state) {
-  const physics::DenseGroomLayout layout =
+  const DenseStrandLayout layout =
       layoutFor(static_cast<std::size_t>(state.range(0)), static_cast<physics::GuideBlend>(state.range(1)));
-  const scenes::RenderGroomLayout mirrored = scenes::renderLayoutOf(layout);
-  auto pass = render::StrandInterpolationPass::create(device(), mirrored.view());
+  auto pass = render::StrandInterpolationPass::create(device(), layout);
   if (!pass) return state.SkipWithError(pass.error().message.c_str());
   const std::vector<glm::vec3> guides = flatGuides();
   for (auto _ : state) {
@@ -95,7 +94,7 @@ BENCHMARK(BM_StrandInterpolationGpu)
     ->UseRealTime();
 
 void BM_StrandInterpolationCpu(benchmark::State& state) {
-  const physics::DenseGroomLayout layout =
+  const DenseStrandLayout layout =
       layoutFor(static_cast<std::size_t>(state.range(0)), static_cast<physics::GuideBlend>(state.range(1)));
   const std::vector<glm::vec3> guides = flatGuides();
   std::vector<glm::vec3> positions(layout.vertexTotal()), tangents(layout.vertexTotal());

@@ -1,4 +1,4 @@
-// Adaptive Catmull-Clark tessellation of the LeePerrySmith head per frame (issue 6), through two
+// Adaptive Catmull-Clark tessellation of the LeePerrySmith head per frame, through two
 // cages (the first argument of every benchmark): the scan's own triangle mesh (vertices welded
 // where positions are equal, UVs kept as face-varying data), and the coarse quad-dominant cage
 // nalu.json draws (scenes::coarseCageFromTriangles). Each is refined adaptively once; each frame

@@ -19,5 +19,5 @@ add_compile_options(-ffp-contract=off)
 
 string(FIND "${CMAKE_CXX_FLAGS}" "fast-math" _mane_fast_math)
 if(NOT _mane_fast_math EQUAL -1)
-  message(FATAL_ERROR "mane must not be built with -ffast-math (determinism, see DESIGN.md)")
+  message(FATAL_ERROR "mane must not be built with -ffast-math (determinism, see docs/design.md#determinism)")
 endif()

@@ -1,5 +1,5 @@
 #pragma once
-// The error type every module returns across its boundary (STYLE.md: errors as values).
+// The error type every module returns across its boundary (docs/design.md#errors-as-values).
 
 #include <expected>
 #include <string>

@@ -206,7 +206,7 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
   if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("cloth frame time must be finite and ≥ 0");
   const StepPlan plan = accumulator_.plan(frameDt);
   // A worker joins only with enough particles to pay for its barrier waits (one per colour and
-  // iteration): on 2 cores a 256-vertex cape ran 5× slower on 2 threads than on 1.
+  // iteration); a small cape runs far slower on two threads than on one.
   constexpr std::size_t kParticlesPerWorker = 4096;
   const auto workers =
       static_cast<unsigned>(std::clamp<std::size_t>(particles_.size() / kParticlesPerWorker, 1, std::max(1u, threads)));

@@ -14,7 +14,7 @@
 // Parallel and deterministic: constraints are greedily graph-coloured so that no two in a
 // colour share a particle; colours are relaxed one after another, the constraints of a colour
 // in any split across threads. Since no particle is written twice within a colour, the result
-// is bit-identical for every thread count (DESIGN.md, Determinism).
+// is bit-identical for every thread count (docs/design.md#determinism).
 
 #include <cstdint>
 #include <span>

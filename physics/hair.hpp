@@ -70,7 +70,7 @@ struct SimulationFault {
 /// The head's pose at each fixed step, used by colliders and shape constraints, is a rigid
 /// interpolation between the frame's start and end transforms (rotation by normalised linear
 /// quaternion interpolation, translation linearly); at the end of the frame it is the new head
-/// transform. Roots themselves move on straight lines, as before.
+/// transform. Roots themselves move on the straight lines described above.
 class HairSystem {
 public:
   /// Builds the system from guide strands given as points in head-local space (metres), root

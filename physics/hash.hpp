@@ -1,5 +1,5 @@
 #pragma once
-// State hashing for determinism checks (DESIGN.md, "Determinism"): equal hashes mean equal bytes
+// State hashing for determinism checks (docs/design.md#determinism): equal hashes mean equal bytes
 // of simulated state, so runs can be compared across thread counts, repetitions and builds.
 //
 // The hash is 64-bit FNV-1a (Fowler, Noll & Vo; http://www.isthe.com/chongo/tech/comp/fnv/):

@@ -14,8 +14,8 @@ namespace mane::physics {
 
 namespace {
 
-constexpr std::size_t kMaxNeighbours = 8;   // nearest guide roots kept per guide
-constexpr std::size_t kMaxVertices = 4096;  // per guide and per dense strand
+constexpr std::size_t kMaxNeighbours = 8;  // nearest guide roots kept per guide
+constexpr std::size_t kMaxVertices = kMaxStrandVertices;
 // Closest distance between two guide roots that may span a frame or a triangle, metres.
 constexpr double kMinPartnerDistance = 1e-6;
 // A frame's partners must subtend at least this sine at the guide root (about 11.5°), so that
@@ -24,7 +24,6 @@ constexpr double kMinFrameSine = 0.2;
 // A barycentric triangle's corner at the home guide must be at least this sine (about 5.7°).
 constexpr double kMinTriangleSine = 0.1;
 constexpr int kTriangleAttempts = 8;
-constexpr float kWeightTolerance = 1e-5f;
 
 bool isFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -146,14 +145,10 @@ glm::vec3 randomInBall(SplitMix64& rng) {
   }
 }
 
-std::string where(std::size_t strand) {
-  return "Dense groom: strand " + std::to_string(strand);
-}
-
 }  // namespace
 
-Result<DenseGroomLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
-                                               const DenseGroomSettings& settings) {
+Result<DenseStrandLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
+                                                const DenseGroomSettings& settings) {
   const auto bad = [](const char* field, const char* expected) {
     return fail(std::string("Dense groom settings: ") + field + " must be " + expected + ".");
   };
@@ -193,7 +188,7 @@ Result<DenseGroomLayout> buildDenseGroomLayout(std::span<const std::vector<glm::
   if (guideVertices > kMaxVertices) return fail("Dense groom: guides have more than 4096 points.");
 
   const std::size_t guideCount = restGuides.size();
-  DenseGroomLayout layout;
+  DenseStrandLayout layout;
   layout.guideCount = static_cast<std::uint32_t>(guideCount);
   layout.guideVertexCount = static_cast<std::uint32_t>(guideVertices);
   layout.vertexCount =
@@ -291,50 +286,6 @@ Result<DenseGroomLayout> buildDenseGroomLayout(std::span<const std::vector<glm::
   return layout;
 }
 
-Result<void> validateDenseGroomLayout(const DenseGroomLayout& layout) {
-  if (layout.guideCount == 0 || layout.strands.empty())
-    return fail("Dense groom: the layout is empty (" + std::to_string(layout.guideCount) + " guides, " +
-                std::to_string(layout.strands.size()) + " dense strands).");
-  if (layout.guideVertexCount < 2 || layout.vertexCount < 2 || layout.guideVertexCount > kMaxVertices ||
-      layout.vertexCount > kMaxVertices)
-    return fail("Dense groom: guides and dense strands need 2 to 4096 vertices each (layout has " +
-                std::to_string(layout.guideVertexCount) + " and " + std::to_string(layout.vertexCount) + ").");
-  if (layout.guideFrames.size() != layout.guideCount)
-    return fail("Dense groom: the layout has " + std::to_string(layout.guideFrames.size()) + " guide frames for " +
-                std::to_string(layout.guideCount) + " guides.");
-  for (std::size_t g = 0; g < layout.guideFrames.size(); ++g)
-    if (layout.guideFrames[g].partnerA >= layout.guideCount || layout.guideFrames[g].partnerB >= layout.guideCount)
-      return fail("Dense groom: guide " + std::to_string(g) + "'s frame partners are out of range (" +
-                  std::to_string(layout.guideCount) + " guides).");
-
-  const float guideSpan = static_cast<float>(layout.guideVertexCount - 1);
-  const float denseSpan = static_cast<float>(layout.vertexCount - 1);
-  for (std::size_t s = 0; s < layout.strands.size(); ++s) {
-    const DenseStrand& strand = layout.strands[s];
-    if (strand.guideCount < 1 || strand.guideCount > 3)
-      return fail(where(s) + " has " + std::to_string(strand.guideCount) + " guides; 1 to 3 are allowed.");
-    float sum = 0.0f;
-    for (std::uint32_t k = 0; k < strand.guideCount; ++k) {
-      if (strand.guides[k] >= layout.guideCount)
-        return fail(where(s) + ": guide index " + std::to_string(strand.guides[k]) + " is out of range (" +
-                    std::to_string(layout.guideCount) + " guides).");
-      if (!std::isfinite(strand.weights[k]))
-        return fail(where(s) + ": weight " + std::to_string(k) + " is not finite.");
-      sum += strand.weights[k];
-    }
-    if (!(std::abs(sum - 1.0f) <= kWeightTolerance))
-      return fail(where(s) + ": weights sum to " + std::to_string(sum) + ", not 1 (tolerance 1e-5).");
-    if (!isFinite(strand.rootOffset) || !isFinite(strand.tipJitter))
-      return fail(where(s) + ": root offset or tip jitter is not finite.");
-    if (!(strand.clump >= 0.0f && strand.clump <= 1.0f))
-      return fail(where(s) + ": clump " + std::to_string(strand.clump) + " is outside [0, 1].");
-    if (!(strand.vertexScale >= 0.0f && denseSpan * strand.vertexScale <= guideSpan))
-      return fail(where(s) + ": vertexScale " + std::to_string(strand.vertexScale) +
-                  " is negative, not finite, or reaches past the guides' tips.");
-  }
-  return {};
-}
-
 namespace {
 
 // Step 2 of the header's formula for one strand with K guides. K is a template parameter only so
@@ -357,7 +308,7 @@ void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std
 }
 
 // Steps 1–3 of the header's formula for dense strands [first, end).
-void interpolateRange(std::span<const glm::vec3> guides, const DenseGroomLayout& layout, std::span<glm::vec3> out,
+void interpolateRange(std::span<const glm::vec3> guides, const DenseStrandLayout& layout, std::span<glm::vec3> out,
                       std::span<glm::vec3> tangents, std::size_t first, std::size_t end) {
   const std::size_t ng = layout.guideVertexCount;
   const std::size_t nd = layout.vertexCount;
@@ -403,36 +354,20 @@ void interpolateRange(std::span<const glm::vec3> guides, const DenseGroomLayout&
 
 }  // namespace
 
-Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions, const DenseGroomLayout& layout,
+Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions, const DenseStrandLayout& layout,
                                      std::span<glm::vec3> positions, std::span<glm::vec3> tangents, unsigned threads) {
-  if (auto valid = validateDenseGroomLayout(layout); !valid) return valid;
-  const std::size_t ng = layout.guideVertexCount;
-  const std::size_t expectedGuides = static_cast<std::size_t>(layout.guideCount) * ng;
-  if (guidePositions.size() != expectedGuides)
-    return fail("Dense groom: expected " + std::to_string(layout.guideCount) + " guides × " + std::to_string(ng) +
-                " vertices = " + std::to_string(expectedGuides) + " guide positions, got " +
-                std::to_string(guidePositions.size()) + " (mismatched guide or particle count).");
+  const auto denseGroomError = [](const Error& error) { return fail("Dense groom: " + error.message); };
+  if (auto valid = validateStrandLayout(layout); !valid) return denseGroomError(valid.error());
   if (positions.size() != layout.vertexTotal())
     return fail("Dense groom: the output holds " + std::to_string(positions.size()) + " positions; the layout needs " +
                 std::to_string(layout.vertexTotal()) + ".");
   if (!tangents.empty() && tangents.size() != layout.vertexTotal())
     return fail("Dense groom: the tangent output holds " + std::to_string(tangents.size()) +
                 " vectors; the layout needs " + std::to_string(layout.vertexTotal()) + " (or none).");
-  for (std::size_t i = 0; i < guidePositions.size(); ++i)
-    if (!isFinite(guidePositions[i]))
-      return fail("Dense groom: guide " + std::to_string(i / ng) + ", vertex " + std::to_string(i % ng) +
-                  " is not finite (NaN or infinite).");
-  for (std::size_t g = 0; g < layout.guideCount; ++g) {
-    const GuideFrameRef ref = layout.guideFrames[g];
-    if (ref.partnerA == g && ref.partnerB == g) continue;
-    const glm::vec3 root = guidePositions[g * ng];
-    const glm::vec3 toA = guidePositions[ref.partnerA * ng] - root;
-    const glm::vec3 toB = guidePositions[ref.partnerB * ng] - root;
-    const glm::vec3 normal = cross(toA, toB);
-    if (!(dot(toA, toA) > 0.0f && dot(normal, normal) > 0.0f))
-      return fail("Dense groom: guide " + std::to_string(g) + "'s root is collinear with its frame partners " +
-                  std::to_string(ref.partnerA) + " and " + std::to_string(ref.partnerB) + " (collapsed scalp).");
-  }
+  if (auto valid =
+          validateGuidePositions(guidePositions, layout.guideCount, layout.guideVertexCount, layout.guideFrames);
+      !valid)
+    return denseGroomError(valid.error());
 
   // A fixed partition into contiguous ranges of whole dense strands; every strand's arithmetic is
   // independent of the partition, so the output does not depend on `threads`.

@@ -12,8 +12,9 @@
 // Both add per-strand random variation (length scale, tip jitter) and clumping (the tip pulled
 // towards the strand's primary guide).
 //
-// The layout (which guides, weights, offsets) is built once from the guides' rest shape and a
-// seed, deterministically (splitmix64, exact IEEE operations only). Interpolation then runs every
+// The layout (which guides, weights, offsets; `DenseStrandLayout` in common/strand_layout.hpp,
+// which the renderer uploads as it is) is built once from the guides' rest shape and a seed,
+// deterministically (splitmix64, exact IEEE operations only). Interpolation then runs every
 // frame on the current guide positions. It is the CPU reference of the GPU interpolation pass:
 // the exact formula is below, and a shader must reproduce it within 1e-5 relative.
 //
@@ -62,6 +63,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "common/strand_layout.hpp"
 
 namespace mane::physics {
 
@@ -94,39 +96,6 @@ struct DenseGroomSettings {
   std::size_t neighbourCandidates = 4;
 };
 
-/// Per guide: the two neighbouring guides whose roots define its local frame (see the formula
-/// in this header). Both equal the guide itself when no usable neighbours exist.
-struct GuideFrameRef {
-  std::uint32_t partnerA = 0;  ///< e1 points from this guide's root to partner A's root
-  std::uint32_t partnerB = 0;  ///< spans the tangent plane together with partner A
-};
-
-/// One dense strand: 64 bytes, laid out to match a std430 GPU buffer element.
-struct DenseStrand {
-  std::uint32_t guides[3] = {0, 0, 0};    ///< guide indices; entries k ≥ guideCount are unused
-  std::uint32_t guideCount = 1;           ///< K: 1 (single) to 3 (barycentric)
-  float weights[3] = {1.0f, 0.0f, 0.0f};  ///< w[k]; the first K sum to 1 (within 1e-5)
-  float vertexScale = 1.0f;               ///< guide vertices per dense vertex (length scale)
-  glm::vec3 rootOffset{0.0f};             ///< o, metres, in the primary guide's frame (e1, e2, n)
-  float clump = 0.0f;                     ///< c in [0, 1]
-  glm::vec3 tipJitter{0.0f};              ///< j, metres, in the primary guide's frame
-  float lengthScale = 1.0f;               ///< the strand's length relative to its guides (info)
-};
-static_assert(sizeof(DenseStrand) == 64, "DenseStrand mirrors a 64-byte std430 GPU element");
-
-/// Everything interpolation needs, built once from the guides' rest shape. Plain data: it may
-/// be stored, edited or uploaded; `interpolateDenseStrands` validates it on every call.
-struct DenseGroomLayout {
-  std::uint32_t guideCount = 0;            ///< guides the layout was built for
-  std::uint32_t guideVertexCount = 0;      ///< Ng, vertices per guide, in [2, 4096]
-  std::uint32_t vertexCount = 0;           ///< Nd, vertices per dense strand, in [2, 4096]
-  std::vector<GuideFrameRef> guideFrames;  ///< one per guide
-  std::vector<DenseStrand> strands;        ///< one per dense strand
-
-  /// Number of dense vertices the output holds: strands × Nd.
-  [[nodiscard]] std::size_t vertexTotal() const noexcept { return strands.size() * vertexCount; }
-};
-
 /// Builds a dense groom layout from guide strands at rest (points root first, metres, in any
 /// frame: the layout is invariant under rigid motions of the guides). All guides must have the
 /// same number of points (`resampleGroom` in strand_resample.hpp makes them so); guide roots
@@ -139,13 +108,8 @@ struct DenseGroomLayout {
 /// random point of that triangle; strands whose home has no non-degenerate triangle fall back to
 /// the single guide. Fails, naming the guide or setting, on an empty groom, guides with fewer
 /// than 2 or unequal point counts, non-finite points, or settings out of range.
-[[nodiscard]] Result<DenseGroomLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
-                                                             const DenseGroomSettings& settings);
-
-/// Checks a layout: counts, guide indices and frame partners in range, weights finite and
-/// summing to 1 within 1e-5, offsets finite, clump in [0, 1], vertexScale keeping every dense
-/// vertex on its guides. Fails naming the first bad strand.
-[[nodiscard]] Result<void> validateDenseGroomLayout(const DenseGroomLayout& layout);
+[[nodiscard]] Result<DenseStrandLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
+                                                              const DenseGroomSettings& settings);
 
 /// Fills `positions` (metres, strand-major: layout.vertexTotal() elements) with the dense
 /// strands for the current guide positions, by the formula at the top of this header, and,
@@ -157,11 +121,11 @@ struct DenseGroomLayout {
 /// of dense strands; each strand is computed alone, so the output is bit-identical for any
 /// thread count. No allocation other than worker threads.
 ///
-/// Fails, writing nothing, when the layout is invalid or empty, the guide or output sizes do not
-/// match it, a guide position is NaN or infinite (naming guide and vertex), or a guide's frame
-/// partners have collapsed onto its root.
+/// Fails, writing nothing, when the layout is invalid or empty (`validateStrandLayout`), the
+/// guide or output sizes do not match it, a guide position is NaN or infinite (naming guide and
+/// vertex), or a guide's frame partners have collapsed onto its root (`validateGuidePositions`).
 [[nodiscard]] Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions,
-                                                   const DenseGroomLayout& layout, std::span<glm::vec3> positions,
+                                                   const DenseStrandLayout& layout, std::span<glm::vec3> positions,
                                                    std::span<glm::vec3> tangents = {}, unsigned threads = 1);
 
 }  // namespace mane::physics

@@ -1,6 +1,6 @@
 #pragma once
 // A signed distance field (SDF) of a closed triangle mesh, sampled on a regular grid and built
-// once on the CPU, for particle collisions against a head or body (issue 3, item 4).
+// once on the CPU, for particle collisions against a head or body.
 //
 // Build (`SignedDistanceField::build`), after Bridson's SDFGen ("makelevelset3", 2015):
 // 1. Narrow band: every triangle visits the grid nodes inside its bounding box grown by

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <limits>
 #include <string>
 
 namespace mane::physics {
@@ -91,44 +90,6 @@ void integrateVerlet(Particles& particles, std::size_t first, std::size_t count,
     x[i] = verletPosition(current, previous[i], keep, kick);
     previous[i] = current;
   }
-}
-
-Solver::Solver(const SolverSettings& settings)
-    : settings_(settings), accumulator_(settings.fixedStep, settings.maxSubstepsPerFrame) {}
-
-Result<Solver> Solver::create(const SolverSettings& settings) {
-  if (auto valid = validateSettings(settings); !valid) return std::unexpected(valid.error());
-  return Solver(settings);
-}
-
-void Solver::step() {
-  integrateVerlet(particles, 0, particles.size(), settings_.gravity, settings_.damping,
-                  static_cast<float>(settings_.fixedStep));
-  if (!colliders.empty())  // contacts of the predicted positions, with friction
-    for (std::size_t i = 0; i < particles.size(); ++i)
-      if (particles.inverseMasses[i] > 0.0f)
-        collideParticle(colliders, particles.positions[i], particles.previousPositions[i]);
-  for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
-    applyPins(particles, pins);
-    solveDistanceConstraints(particles, distances);
-    if (settings_.tethers) solveTethers(particles, tethers);
-  }
-  if (!colliders.empty())  // frictionless: what the constraints pushed in comes out
-    for (std::size_t i = 0; i < particles.size(); ++i)
-      if (particles.inverseMasses[i] > 0.0f)
-        collideParticle(colliders, particles.positions[i], particles.previousPositions[i], 0.0f);
-  if (settings_.maxSpeed < std::numeric_limits<float>::infinity()) {
-    const float reach = settings_.maxSpeed * static_cast<float>(settings_.fixedStep);
-    for (std::size_t i = 0; i < particles.size(); ++i)
-      if (particles.inverseMasses[i] > 0.0f)
-        clampDisplacement(particles.positions[i], particles.previousPositions[i], reach);
-  }
-}
-
-int Solver::advance(double frameDt) {
-  const StepPlan plan = accumulator_.plan(frameDt);
-  for (int k = 0; k < plan.substeps; ++k) step();
-  return plan.substeps;
 }
 
 }  // namespace mane::physics

@@ -1,22 +1,20 @@
 #pragma once
-// The fixed-step Verlet solver: settings, the fixed-step accumulator, the integrator, and a
-// general particle system (particles + distance constraints + tethers + pins) stepped in
-// Jakobsen's order. Hair (`hair.hpp`) runs the same integrator and constraint functions per
-// strand.
+// What every simulated body shares: the solver settings, the fixed-step accumulator and the
+// position-Verlet integrator. Hair (`hair.hpp`) and cloth (`cloth.hpp`) step with them and with
+// the constraint functions of `constraints.hpp`.
 //
 // Determinism: results depend only on the settings, the initial state and the sequence of frame
-// durations handed to `advance`, never on wall-clock time or thread count (DESIGN.md).
+// durations handed to `advance`, never on wall-clock time or thread count
+// (docs/design.md#determinism).
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
-#include "physics/colliders.hpp"
-#include "physics/constraints.hpp"
 #include "physics/particles.hpp"
 
 namespace mane::physics {
@@ -120,42 +118,5 @@ inline void clampDisplacement(const glm::vec3& position, glm::vec3& previous, fl
 /// 0) are left untouched. `step` h in seconds, `acceleration` a in m/s², `damping` d per step.
 void integrateVerlet(Particles& particles, std::size_t first, std::size_t count, const glm::vec3& acceleration,
                      float damping, float step);
-
-/// A general particle system: particles joined by distance constraints, tethers and pins, all
-/// relaxed in one fixed order. Used for chains, pendulums and (later) cloth; hair uses
-/// `HairSystem`, which is parallel over strands.
-///
-/// Step order (Jakobsen 2001): Verlet integration, collisions against `colliders` (world space,
-/// static) with friction, then `constraintIterations` sweeps of pins → distance constraints →
-/// tethers (tethers last so each sweep ends stretch-free), then collisions again without
-/// friction (so that no particle ends a step inside a collider), then the velocity clamp
-/// (`SolverSettings::maxSpeed`). The shape stiffness applies to hair only.
-class Solver {
-public:
-  /// Creates an empty system; fails when `settings` do not pass `validateSettings`.
-  [[nodiscard]] static Result<Solver> create(const SolverSettings& settings);
-
-  /// Runs one fixed step of `settings().fixedStep` seconds.
-  void step();
-
-  /// Advances by a frame of `frameDt` seconds (finite, ≥ 0) in whole fixed steps; returns how
-  /// many were run.
-  int advance(double frameDt);
-
-  /// The settings this system was created with.
-  [[nodiscard]] const SolverSettings& settings() const noexcept { return settings_; }
-
-  Particles particles;                        ///< the simulated state
-  std::vector<DistanceConstraint> distances;  ///< relaxed in order every sweep
-  std::vector<Tether> tethers;                ///< enforced after the distances every sweep
-  std::vector<Pin> pins;                      ///< applied first every sweep
-  ColliderSet colliders;                      ///< world space; resolved after the sweeps
-
-private:
-  explicit Solver(const SolverSettings& settings);
-
-  SolverSettings settings_;
-  FixedStepAccumulator accumulator_;
-};
 
 }  // namespace mane::physics

@@ -2,7 +2,7 @@
 // Resampling guide strands to a fixed particle count: a groom authored with any number of
 // points per strand (TressFX files carry 4 to 64, procedural ones whatever was asked) becomes
 // strands of N particles equally spaced along the original curve, which is what the solver's
-// cost and stability are tuned for (one segment length per strand, DESIGN.md "hair physics").
+// cost and stability are tuned for (one segment length per strand).
 //
 // The input polyline is the curve: new points lie on its segments at equal arc-length steps
 // (linear interpolation, as the TressFX Maya exporter does when it adds vertices to a strand), the root

@@ -201,7 +201,8 @@ Result<std::unique_ptr<Device>> Device::create(const DeviceSettings& requested) 
     enabled.get<vk::PhysicalDeviceVulkan13Features>().dynamicRendering = VK_TRUE;
     enabled.get<vk::PhysicalDeviceVulkan13Features>().synchronization2 = VK_TRUE;
     // glslang 12 (Debian 12) declares every compute shader's workgroup size with
-    // OpExecutionModeId LocalSizeId, which needs maintenance4 (glslang issue #3200).
+    // OpExecutionModeId LocalSizeId, which needs maintenance4
+    // (https://github.com/KhronosGroup/glslang/issues/3200).
     enabled.get<vk::PhysicalDeviceVulkan13Features>().maintenance4 = VK_TRUE;
 
     const float priority = 1.0f;

@@ -1,6 +1,7 @@
 #pragma once
 // What the renderer is given: plain data only (spans, matrices, texels). Scenes, physics and
-// subdiv convert their own types into these; render includes none of them (DESIGN.md).
+// subdiv convert their own types into these; render includes none of them
+// (docs/design.md#dependency-rules).
 
 #include <cstdint>
 #include <optional>
@@ -11,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "render/hair_data.hpp"
+#include "render/pass_name.hpp"
 
 namespace mane::render {
 
@@ -53,10 +55,10 @@ enum class SkinIntegrationRange : std::uint32_t {
 /// How a skin material's light spreads under the surface.
 enum class SkinDiffusion : std::uint32_t {
   kPreintegrated = 0,  ///< the pre-integrated table, looked up per pixel by curvature
-  kTextureSpace = 1,   ///< irradiance blurred in UV space (render/passes/skin_diffusion.hpp)
+  kTextureSpace = 1,   ///< irradiance blurred in UV space (render/passes/skin_diffusion_pass.hpp)
 };
 
-/// Parameters of a skin material (render/passes/surface_pass.hpp, "Skin").
+/// Parameters of a skin material (render/passes/skin_shading.hpp).
 struct SkinParameters {
   SkinDiffusion diffusion = SkinDiffusion::kPreintegrated;
   /// kTextureSpace: texels per side of the irradiance maps (1024; 2048 costs 4× the blurs).
@@ -68,10 +70,10 @@ struct SkinParameters {
   float specularIntensity = 0.5655f;
 };
 
-/// How light entering a surface on the side facing the first light shines out of the far side
-/// (issue 5, item 7). Both measure the thickness d between the light's entry point and the
-/// shaded point; skin then transmits its diffusion profile's T(d) (render/luts/translucency.hpp),
-/// any other material exp(−σ·d) per RGB.
+/// How light entering a surface on the side facing the first light shines out of the far side.
+/// Both measure the thickness d between the light's entry point and the shaded point; skin then
+/// transmits its diffusion profile's T(d) (render/luts/translucency.hpp), any other material
+/// exp(−σ·d) per RGB.
 enum class TranslucencyMethod : std::uint32_t {
   kNone = 0,
   /// d from the first light's depth map (Jimenez et al. 2010, after Dachsbacher & Stamminger's
@@ -177,7 +179,7 @@ struct DirectionalLight {
   float discRadiance = 20.0f;
 };
 
-/// How the post chain maps HDR colour to display values (render/passes/post_chain.hpp).
+/// How the post chain maps HDR colour to display values (render/passes/post_pass.hpp).
 enum class ToneMapping : std::uint32_t {
   kLinear = 0,    ///< colour × gain, clamped to [0, 1]: the simple scale
   kReinhard = 1,  ///< Reinhard et al. 2002, eq. 3: L_d = L/(1 + L) on the scaled luminance, colour × L_d/L
@@ -204,7 +206,7 @@ struct PostSettings {
   float frameSeconds = 1.0f / 30.0f;
   /// Snap L̄ to this frame's value (a cut); the first frame with auto gain always snaps.
   bool resetAdaptation = false;
-  /// God rays (issue 8, item 4): strength of the light shafts added to the HDR colour, ≥ 0; 0 skips
+  /// God rays: strength of the light shafts added to the HDR colour, ≥ 0; 0 skips
   /// their passes. They stream from the screen position of FrameInput::lights[godRayLight] (a
   /// directional light, at infinity); none when there is no light or it is behind the camera or
   /// off-screen.
@@ -234,7 +236,7 @@ struct FrameInput {
 
 /// GPU time of each pass of one frame, in milliseconds, in the order the passes ran.
 struct PassTiming {
-  std::string pass;
+  PassName pass;
   double milliseconds = 0.0;
   /// When the pass began, after the frame's first timestamp. On lavapipe the gaps between passes
   /// are not idle: it rasterizes a render pass's draws when the pass ends, and their cost can fall

@@ -5,7 +5,7 @@
 namespace mane::render {
 
 Result<FurSurfaces> FurSurfaces::create(const Device& device, const StaticScene& scene, const FurPassSettings& target,
-                                        const HairShadows& shadows) {
+                                        const HairShadowPass& shadows) {
   FurSurfaces result;
   for (std::size_t f = 0; f < scene.furs.size(); ++f) {
     const FurSurfaceData& entry = scene.furs[f];
@@ -39,8 +39,8 @@ Result<FurSurfaces> FurSurfaces::create(const Device& device, const StaticScene&
   return result;
 }
 
-std::vector<HairShadows::Groom> FurSurfaces::shadowCasters() const {
-  std::vector<HairShadows::Groom> casters;
+std::vector<HairShadowPass::Groom> FurSurfaces::shadowCasters() const {
+  std::vector<HairShadowPass::Groom> casters;
   for (const Fur& fur : furs_)
     casters.push_back({.strands = fur.pass->shadowStrands(),
                        .width = fur.pass->meanEdgeLength(),

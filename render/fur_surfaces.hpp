@@ -3,7 +3,7 @@
 // updated from the frame and drawn in the main pass after the opaque surfaces (whose depth the
 // shells test against). The surface pass leaves those instances to this while
 // FrameInput::furShells is on. Each fur receives the frame's hair shadows and casts into them:
-// the renderer registers shadowCasters() after its grooms (HairShadows keeps up to 4 maps).
+// the renderer registers shadowCasters() after its grooms (HairShadowPass keeps up to 4 maps).
 // Fur opacity in the map: each vertex's strand stands for a column of fur one mean edge wide
 // (object space: an instance scaled far from 1 gets too wide or narrow a shadow), and each
 // column crossed keeps exp(−κ·o) = exp(−kFurColumnOpacity) of the light. The body itself is not
@@ -29,10 +29,10 @@ public:
   /// entry: a mesh or material out of range, a material that is not kFur, a missing photo, a mesh
   /// without normals or uvs, or what FurPass refuses.
   [[nodiscard]] static Result<FurSurfaces> create(const Device& device, const StaticScene& scene,
-                                                  const FurPassSettings& target, const HairShadows& shadows);
+                                                  const FurPassSettings& target, const HairShadowPass& shadows);
 
   /// The furs as hair shadow casters, in StaticScene::furs order.
-  [[nodiscard]] std::vector<HairShadows::Groom> shadowCasters() const;
+  [[nodiscard]] std::vector<HairShadowPass::Groom> shadowCasters() const;
 
   /// Whether fur `fur` was drawn by the last update(); its shadowBounds() are then current.
   [[nodiscard]] bool drawn(std::size_t fur) const { return furs_.at(fur).drawn; }

@@ -33,11 +33,11 @@ void GpuTimer::handOff(const vk::raii::CommandBuffer& commands) {
   ended_ = false;
 }
 
-void GpuTimer::begin(const vk::raii::CommandBuffer& commands, std::string pass) {
+void GpuTimer::begin(const vk::raii::CommandBuffer& commands, PassName pass) {
   if (passes_.size() == capacity_) throw std::logic_error("GpuTimer: more passes than its capacity");
   if (!ended_) writeTimestamp(commands);
   ended_ = false;
-  passes_.push_back({std::move(pass), queries_ - 1, queries_ - 1});
+  passes_.push_back({pass, queries_ - 1, queries_ - 1});
 }
 
 void GpuTimer::end(const vk::raii::CommandBuffer& commands) {

@@ -4,10 +4,8 @@
 // A pass begun right after another ended shares that end's timestamp: the commands recorded
 // between the two (barriers, layout transitions) count with the later pass, and a frame of
 // back-to-back passes writes one timestamp per pass instead of two. They are not free: lavapipe
-// flushes its rasterizer for each, and nalu's frame (11 timed passes) took 2–6 ms longer with
-// 22 timestamps than with none (README, "Whole frame").
+// flushes its rasterizer for each (docs/lavapipe.md#timestamps).
 
-#include <string>
 #include <vector>
 
 #include "render/device.hpp"
@@ -23,7 +21,7 @@ public:
   /// Resets the queries; record before the first pass.
   void reset(const vk::raii::CommandBuffer& commands);
   /// Starts timing `pass`: from the previous pass's end where that was the last call, else from now.
-  void begin(const vk::raii::CommandBuffer& commands, std::string pass);
+  void begin(const vk::raii::CommandBuffer& commands, PassName pass);
   void end(const vk::raii::CommandBuffer& commands);
   /// Writes a timestamp that times nothing, for what it makes lavapipe do: it bins the draws of a
   /// rendering scope and rasterizes none of them before a flush, and a timestamp flushes without
@@ -40,7 +38,7 @@ private:
   vk::raii::QueryPool pool_{nullptr};
   std::uint32_t capacity_;
   struct Pass {
-    std::string name;
+    PassName name;
     std::uint32_t beginQuery;
     std::uint32_t endQuery;
   };

@@ -1,47 +1,13 @@
 #pragma once
-// Plain data of a hair groom as the renderer takes it: the dense-strand layout (mirroring
-// physics/interpolation.hpp's types byte for byte, since render does not include physics), the
-// look of the ribbons, and the Marschner preset. No Vulkan here: scenes fill these in.
+// Plain data of a hair groom as the renderer takes it: the dense-strand layout
+// (common/strand_layout.hpp, the type physics builds), the look of the ribbons, and the Marschner
+// preset. No Vulkan here: scenes fill these in.
 
 #include <cstdint>
-#include <span>
 
-#include <glm/vec3.hpp>
+#include "common/strand_layout.hpp"
 
 namespace mane::render {
-
-/// Per guide: the two guides whose roots span its frame (mirrors physics::GuideFrameRef; a
-/// std430 uvec2). Both equal the guide itself when it has no usable neighbours: its frame is
-/// then the fixed axes (1,0,0), (0,1,0), (0,0,1).
-struct GuideFrameRef {
-  std::uint32_t partnerA = 0;  ///< e1 points from the guide's root to partner A's root
-  std::uint32_t partnerB = 0;  ///< spans the tangent plane together with partner A
-};
-static_assert(sizeof(GuideFrameRef) == 8, "GuideFrameRef is a std430 uvec2");
-
-/// One dense strand (mirrors physics::DenseStrand field for field): a 64-byte std430 element,
-/// read by the shader as uvec4 (guides, guideCount), vec4 (weights, vertexScale),
-/// vec4 (rootOffset, clump), vec4 (tipJitter, lengthScale).
-struct DenseStrand {
-  std::uint32_t guides[3] = {0, 0, 0};    ///< guide indices; entries k ≥ guideCount are unused
-  std::uint32_t guideCount = 1;           ///< K: 1 (single) to 3 (barycentric)
-  float weights[3] = {1.0f, 0.0f, 0.0f};  ///< w[k]; the first K sum to 1 (within 1e-5)
-  float vertexScale = 1.0f;               ///< guide vertices per dense vertex (length scale)
-  glm::vec3 rootOffset{0.0f};             ///< o, metres, in the primary guide's frame (e1, e2, n)
-  float clump = 0.0f;                     ///< c in [0, 1]: 1 puts the tip on the primary guide
-  glm::vec3 tipJitter{0.0f};              ///< j, metres, in the primary guide's frame
-  float lengthScale = 1.0f;               ///< the strand's length relative to its guides (unused)
-};
-static_assert(sizeof(DenseStrand) == 64, "DenseStrand is a 64-byte std430 element");
-
-/// A dense groom layout, viewed (mirrors physics::DenseGroomLayout). `create` copies it.
-struct DenseStrandLayout {
-  std::uint32_t guideCount = 0;                ///< guides
-  std::uint32_t guideVertexCount = 0;          ///< Ng, vertices per guide, in [2, 4096]
-  std::uint32_t vertexCount = 0;               ///< Nd, vertices per dense strand, in [2, 4096]
-  std::span<const GuideFrameRef> guideFrames;  ///< one per guide
-  std::span<const DenseStrand> strands;        ///< one per dense strand
-};
 
 /// Per-groom look of the ribbons: plain data, may change every frame.
 struct HairGroomSettings {
@@ -57,7 +23,7 @@ struct HairGroomSettings {
   /// MSAA, one sample of each x offset) per row it spans.
   float minimumPixelWidth = 1.0f;
   /// κ of the hair shadows: light through hair of opacity o keeps exp(−κ·o) (> 0; see
-  /// render/passes/opacity_shadow_map.hpp, where each strand crossing adds `opacity`).
+  /// render/passes/opacity_shadow_map_pass.hpp, where each strand crossing adds `opacity`).
   float shadowExtinction = 1.0f;
 };
 
@@ -68,7 +34,7 @@ enum class HairLook : std::uint32_t {
 };
 
 /// How a scene's hair shadows itself and the surfaces: the first light of the frame casts the
-/// shadows of every groom (render/passes/opacity_shadow_map.hpp); the other lights cast none.
+/// shadows of every groom (render/passes/opacity_shadow_map_pass.hpp); the other lights cast none.
 enum class HairShadowMode : std::uint32_t {
   kOff = 0,
   kOpacityShadowMap = 1,  ///< 16 slices across the hair's bounding sphere (Kim & Neumann 2001)
@@ -81,9 +47,9 @@ struct HairShadowSettings {
 };
 
 /// A groom the renderer draws: dense strands interpolated on the GPU from the guides, which
-/// come every frame through Renderer::updateHair. The spans must stay valid during setScene.
+/// come every frame through Renderer::updateHair.
 struct HairGroomData {
-  DenseStrandLayout layout;
+  DenseStrandLayout layout;  ///< uploaded by setScene
   HairLook look = HairLook::kBlonde;
   HairGroomSettings settings;
 };

@@ -23,7 +23,7 @@ RenderTarget::RenderTarget(const Device& device, const RenderTargetSettings& set
                                                       .usage = Usage::eColorAttachment | Usage::eSampled});
   depth_ = Image(device, {.extent = settings.extent,
                           .format = kDepthFormat,
-                          .usage = Usage::eDepthStencilAttachment | Usage::eSampled,  // HairOcclusion reads it
+                          .usage = Usage::eDepthStencilAttachment | Usage::eSampled,  // HairOcclusionPass reads it
                           .samples = settings.samples,
                           .aspect = vk::ImageAspectFlagBits::eDepth});
   output_ = Image(
@@ -31,38 +31,43 @@ RenderTarget::RenderTarget(const Device& device, const RenderTargetSettings& set
       {.extent = settings.extent, .format = kOutputFormat, .usage = Usage::eColorAttachment | Usage::eTransferSrc});
 }
 
-void RenderTarget::beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor,
-                              bool afterSkin) const {
-  begin(commands, clearColor, ScenePart::kWhole, afterSkin);
+void RenderTarget::declareScene(FrameGraph::Builder& pass, ScenePart part, bool afterSkin) const {
+  const bool starts = part != ScenePart::kRest;
+  const bool ends = part != ScenePart::kOpaque;
+  pass.write(sceneColor(), ResourceUse::colorAttachment(), starts ? Contents::kDiscard : Contents::kKeep);
+  if (multisampled() && ends) pass.write(hdr(), ResourceUse::colorAttachment(), Contents::kDiscard);  // resolved into
+  const bool keepsDepth = afterSkin || !starts;
+  pass.write(depth(), ResourceUse::depthAttachment(), keepsDepth ? Contents::kKeep : Contents::kDiscard);
+  if (afterSkin)
+    for (const Image& image : skinGBuffer_)
+      pass.read(image, ResourceUse::sampled(vk::PipelineStageFlagBits2::eFragmentShader));
 }
 
-void RenderTarget::beginOpaque(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor,
-                               bool afterSkin) const {
-  begin(commands, clearColor, ScenePart::kOpaque, afterSkin);
+void RenderTarget::beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const {
+  FrameGraph graph;
+  graph.addPass(
+      PassName::kSurfaces, [this](FrameGraph::Builder& pass) { declareScene(pass, ScenePart::kWhole); },
+      [this, &clearColor](const vk::raii::CommandBuffer& c) { beginScenePart(c, ScenePart::kWhole, clearColor); });
+  graph.compile();
+  graph.execute(commands);
 }
 
-void RenderTarget::resumeScene(const vk::raii::CommandBuffer& commands) const {
-  begin(commands, glm::vec4(0.0f), ScenePart::kRest, false);
+void RenderTarget::declareSkinGBuffer(FrameGraph::Builder& pass) const {
+  for (const Image& image : skinGBuffer_) pass.write(image, ResourceUse::colorAttachment(), Contents::kDiscard);
+  pass.write(depth(), ResourceUse::depthAttachment(), Contents::kDiscard);
 }
 
 void RenderTarget::beginSkinGBuffer(const vk::raii::CommandBuffer& commands) const {
-  using Stage = vk::PipelineStageFlagBits2;
-  using Access = vk::AccessFlagBits2;
   using Layout = vk::ImageLayout;
   std::array<vk::RenderingAttachmentInfo, kGBufferImages> colors;
   for (std::size_t i = 0; i < kGBufferImages; ++i) {
-    transition(commands, skinGBuffer_.at(i), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-               Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
     // Not cleared: the lighting reads only where the skin wrote depth, and so every target.
-    // Clearing the four 32-bit targets (59 MB at 1280×720) took lavapipe about 10 ms a frame.
-    colors[i] = {.imageView = *skinGBuffer_[i].view(),
+    // Clearing would write all four 32-bit targets (59 MB at 1280×720) every frame for nothing.
+    colors[i] = {.imageView = *skinGBuffer_.at(i).view(),
                  .imageLayout = Layout::eColorAttachmentOptimal,
                  .loadOp = vk::AttachmentLoadOp::eDontCare,
                  .storeOp = vk::AttachmentStoreOp::eStore};
   }
-  transition(commands, depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands, Access::eNone,
-             Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
-             Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
   const vk::RenderingAttachmentInfo depthAttachment{.imageView = *depth().view(),
                                                     .imageLayout = Layout::eDepthAttachmentOptimal,
                                                     .loadOp = vk::AttachmentLoadOp::eClear,
@@ -76,46 +81,11 @@ void RenderTarget::beginSkinGBuffer(const vk::raii::CommandBuffer& commands) con
   setViewportAndScissor(commands, extent());
 }
 
-void RenderTarget::begin(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor, ScenePart part,
-                         bool afterSkin) const {
-  using Stage = vk::PipelineStageFlagBits2;
-  using Access = vk::AccessFlagBits2;
+void RenderTarget::beginScenePart(const vk::raii::CommandBuffer& commands, ScenePart part, const glm::vec4& clearColor,
+                                  bool afterSkin) const {
   using Layout = vk::ImageLayout;
   const bool starts = part != ScenePart::kRest;
   const bool ends = part != ScenePart::kOpaque;
-  const auto depthTests = Stage::eEarlyFragmentTests | Stage::eLateFragmentTests;
-  if (starts) {
-    transition(commands, sceneColor(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-               Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-    if (multisampled())
-      transition(commands, hdr(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-                 Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-  }
-  if (afterSkin) {
-    // The G-buffer pass's writes, before this pass reads the G-buffer and tests against its depth.
-    for (const Image& image : skinGBuffer_)
-      transition(commands, image, Layout::eColorAttachmentOptimal, Layout::eShaderReadOnlyOptimal,
-                 Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eFragmentShader,
-                 Access::eShaderSampledRead);
-    const vk::MemoryBarrier2 depthDrawn{
-        .srcStageMask = depthTests,
-        .srcAccessMask = Access::eDepthStencilAttachmentWrite,
-        .dstStageMask = depthTests,
-        .dstAccessMask = Access::eDepthStencilAttachmentRead | Access::eDepthStencilAttachmentWrite};
-    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &depthDrawn});
-  } else if (starts) {
-    transition(commands, depth(), Layout::eUndefined, Layout::eDepthAttachmentOptimal, Stage::eAllCommands,
-               Access::eNone, depthTests, Access::eDepthStencilAttachmentWrite | Access::eDepthStencilAttachmentRead);
-  } else {
-    // The first half's colour and depth writes, before this half blends over them and tests against them.
-    const vk::MemoryBarrier2 drawn{
-        .srcStageMask = Stage::eColorAttachmentOutput | depthTests,
-        .srcAccessMask = Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentWrite,
-        .dstStageMask = Stage::eColorAttachmentOutput | depthTests,
-        .dstAccessMask = Access::eColorAttachmentRead | Access::eColorAttachmentWrite |
-                         Access::eDepthStencilAttachmentRead | Access::eDepthStencilAttachmentWrite};
-    commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &drawn});
-  }
   const vk::AttachmentLoadOp load = starts ? vk::AttachmentLoadOp::eClear : vk::AttachmentLoadOp::eLoad;
   vk::RenderingAttachmentInfo color{
       .imageView = *sceneColor().view(),

@@ -7,6 +7,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "render/frame_graph.hpp"
 #include "render/resources.hpp"
 
 namespace mane::render {
@@ -14,8 +15,7 @@ namespace mane::render {
 struct RenderTargetSettings {
   vk::Extent2D extent{1280, 720};
   vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
-  /// Single-sample only: keep the deferred skin's G-buffer (render/passes/surface_pass.hpp,
-  /// "Deferred skin").
+  /// Single-sample only: keep the deferred skin's G-buffer (render/passes/deferred_skin_pass.hpp).
   bool skinGBuffer = false;
 };
 
@@ -45,34 +45,37 @@ public:
   static constexpr vk::Format kGBufferFormat = vk::Format::eR32G32B32A32Sfloat;
   std::span<const Image> skinGBuffer() const { return skinGBuffer_; }
 
-  /// Starts the main scene pass: discards the colour and depth images' old contents, begins
-  /// dynamic rendering into sceneColor() (cleared to `clearColor`, linear RGBA; resolved into
-  /// hdr() at the end under MSAA) and depth (cleared to 1, not kept), and sets the viewport and
-  /// scissor to the whole target. End it with commands.endRendering(); hdr() is then in
-  /// COLOR_ATTACHMENT_OPTIMAL.
-  /// afterSkin: the deferred skin's G-buffer pass (below) has drawn the depth: keep it, and make
-  /// the G-buffer readable by fragment shaders (SHADER_READ_ONLY layout).
-  void beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor, bool afterSkin = false) const;
+  /// The scene pass whole, or in two halves with work between them that reads the depth
+  /// (HairOcclusionPass): kOpaque keeps the colour and depth at its end, unresolved; kRest
+  /// continues on them and ends as the whole pass does.
+  enum class ScenePart { kWhole, kOpaque, kRest };
 
-  /// The scene pass in two halves, with work between them that reads the depth (HairOcclusion):
-  /// beginOpaque starts it as beginScene does but keeps the colour and depth at its end, unresolved;
-  /// resumeScene continues it on them, then ends as beginScene's pass does. End each half with
-  /// commands.endRendering().
-  void beginOpaque(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor, bool afterSkin = false) const;
-  void resumeScene(const vk::raii::CommandBuffer& commands) const;
+  /// What scene pass `part` does to the images, for a frame graph: it draws into sceneColor()
+  /// (cleared, except in kRest; resolved into hdr() at the end under MSAA) and tests against
+  /// and writes depth() (cleared but after the skin's G-buffer pass; kept only for kRest).
+  /// afterSkin: the deferred skin's G-buffer pass (below) drew the depth, and the pass reads the
+  /// G-buffer.
+  void declareScene(FrameGraph::Builder& pass, ScenePart part, bool afterSkin = false) const;
+  /// Begins dynamic rendering of scene pass `part` (declareScene says what the frame graph must
+  /// do before it), clearing to `clearColor` (linear RGBA) where it clears, and sets the viewport
+  /// and scissor to the whole target. End it with commands.endRendering().
+  void beginScenePart(const vk::raii::CommandBuffer& commands, ScenePart part, const glm::vec4& clearColor,
+                      bool afterSkin = false) const;
+  /// The whole scene pass outside a frame graph (tests, benchmarks): after every earlier command,
+  /// drops the colour and depth images' old contents and begins it. hdr() is then in
+  /// COLOR_ATTACHMENT_OPTIMAL after commands.endRendering().
+  void beginScene(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor) const;
 
-  /// The deferred skin's G-buffer pass, before the scene pass (render/passes/surface_pass.hpp,
-  /// "Deferred skin"): discards the G-buffer's and the depth's old contents and begins dynamic
-  /// rendering into the G-buffer (not cleared: only the pixels the skin writes are read) and the
-  /// depth (cleared to 1, kept). End it with commands.endRendering(), then begin the scene pass
-  /// with afterSkin.
+  /// The deferred skin's G-buffer pass, before the scene pass
+  /// (render/passes/deferred_skin_pass.hpp): it drops the G-buffer's and the depth's old contents
+  /// and draws into the G-buffer (not cleared: only the pixels the skin writes are read) and the
+  /// depth (cleared to 1, kept), for a frame graph. Then declare the scene pass with afterSkin.
+  void declareSkinGBuffer(FrameGraph::Builder& pass) const;
+  /// Begins the G-buffer pass's dynamic rendering (declareSkinGBuffer says what the frame graph
+  /// must do before it). End it with commands.endRendering().
   void beginSkinGBuffer(const vk::raii::CommandBuffer& commands) const;
 
 private:
-  enum class ScenePart { kWhole, kOpaque, kRest };
-  void begin(const vk::raii::CommandBuffer& commands, const glm::vec4& clearColor, ScenePart part,
-             bool afterSkin) const;
-
   RenderTargetSettings settings_;
   Image msaaColor_;
   Image hdr_;

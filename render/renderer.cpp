@@ -5,6 +5,8 @@
 #include <cstring>
 #include <numbers>
 
+#include "render/frame_validation.hpp"
+
 namespace mane::render {
 namespace {
 
@@ -14,7 +16,7 @@ vk::SampleCountFlagBits sampleCount(std::uint32_t samples) {
 
 }  // namespace
 
-Renderer::Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows)
+Renderer::Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadowPass> shadows)
     : device_(&device),
       target_(
           device,
@@ -22,12 +24,16 @@ Renderer::Renderer(const Device& device, const RendererSettings& settings, std::
       occlusion_(device, target_),
       hideOccludedHair_(settings.hideOccludedHair),
       shadows_(std::move(shadows)),
-      surfaces_(device, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
+      translucency_(device),
+      scene_(device, *shadows_, translucency_.lightDepth()),
+      surfaces_(device, scene_, translucency_, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat,
+                target_.samples()),
+      deferredSkin_(device, scene_, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat),
       discs_(device, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat, target_.samples()),
       post_(device, target_.hdr()),
       output_(device, target_, post_),
       timer_(device, 16) {
-  if (!target_.skinGBuffer().empty()) surfaces_.setSkinGBuffer(target_.skinGBuffer());
+  if (!target_.skinGBuffer().empty()) deferredSkin_.setGBuffer(target_.skinGBuffer());
 }
 
 Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const RendererSettings& settings) {
@@ -39,7 +45,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
   if (settings.extent.width > limits.maxFramebufferWidth || settings.extent.height > limits.maxFramebufferHeight)
     return fail("the image size " + std::to_string(settings.extent.width) + "x" +
                 std::to_string(settings.extent.height) + " exceeds the device's framebuffer limit");
-  auto shadows = HairShadows::create(device);
+  auto shadows = HairShadowPass::create(device);
   if (!shadows) return std::unexpected(shadows.error());
   try {
     return std::unique_ptr<Renderer>(new Renderer(device, settings, std::move(*shadows)));
@@ -48,59 +54,11 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
   }
 }
 
-namespace {
-
-// The contract of MeshData (frame.hpp), checked before anything reaches the GPU; `name` says
-// which mesh.
-Result<void> validateMesh(const MeshData& mesh, const std::string& name) {
-  if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
-    return fail(name + ": " + std::to_string(mesh.normals.size()) + " normals for " +
-                std::to_string(mesh.positions.size()) + " positions");
-  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size())
-    return fail(name + ": " + std::to_string(mesh.uvs.size()) + " uvs for " + std::to_string(mesh.positions.size()) +
-                " positions");
-  if (!mesh.curvatures.empty() && mesh.curvatures.size() != mesh.positions.size())
-    return fail(name + ": " + std::to_string(mesh.curvatures.size()) + " curvatures for " +
-                std::to_string(mesh.positions.size()) + " positions");
-  if (mesh.indices.size() % 3 != 0) return fail(name + ": the index count is not a multiple of 3");
-  for (std::size_t i = 0; i < mesh.indices.size(); ++i)
-    if (mesh.indices[i] >= mesh.positions.size())
-      return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) + " but there are " +
-                  std::to_string(mesh.positions.size()) + " positions");
-  return {};
-}
-
-// The contract of MeshData and TextureData (frame.hpp), checked before anything reaches the GPU.
-Result<void> validateScene(const StaticScene& scene, const vk::PhysicalDeviceLimits& limits) {
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-    if (auto valid = validateMesh(scene.meshes[m], "mesh " + std::to_string(m)); !valid) return valid;
-  auto checkTexture = [&](const std::optional<TextureData>& texture, const std::string& name) -> Result<void> {
-    if (!texture) return {};
-    if (texture->width == 0 || texture->height == 0 ||
-        texture->rgba.size() != std::size_t(texture->width) * texture->height * 4)
-      return fail(name + ": " + std::to_string(texture->rgba.size()) + " bytes for a " +
-                  std::to_string(texture->width) + "x" + std::to_string(texture->height) + " RGBA texture");
-    if (texture->width > limits.maxImageDimension2D || texture->height > limits.maxImageDimension2D)
-      return fail(name + ": " + std::to_string(texture->width) + "x" + std::to_string(texture->height) +
-                  " exceeds the device's limit of " + std::to_string(limits.maxImageDimension2D));
-    return {};
-  };
-  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-    const std::string name = "material " + std::to_string(m);
-    if (auto ok = checkTexture(scene.materials[m].albedo, name + " albedo"); !ok) return ok;
-    if (auto ok = checkTexture(scene.materials[m].normalMap, name + " normal map"); !ok) return ok;
-    if (auto ok = checkTexture(scene.materials[m].specularMap, name + " specular map"); !ok) return ok;
-  }
-  return {};
-}
-
-}  // namespace
-
 Result<void> Renderer::setScene(const StaticScene& scene) {
   if (auto valid = validateScene(scene, device_->limits()); !valid) return valid;
   hair_.clear();
   // Strands first: the shadow maps read their positions, and the shading reads the maps.
-  std::vector<HairShadows::Groom> shadowed;
+  std::vector<HairShadowPass::Groom> shadowed;
   for (std::size_t g = 0; g < scene.grooms.size(); ++g) {
     const HairGroomData& groom = scene.grooms[g];
     auto strands = StrandInterpolationPass::create(*device_, groom.layout);
@@ -129,12 +87,15 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
   if (!furs) return std::unexpected(furs.error());
   furs_ = std::move(*furs);
   furShadowsBound_.assign(furs_.size(), false);
-  const std::vector<HairShadows::Groom> furCasters = furs_.shadowCasters();
+  const std::vector<HairShadowPass::Groom> furCasters = furs_.shadowCasters();
   shadowed.insert(shadowed.end(), furCasters.begin(), furCasters.end());
   if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
   // After the maps exist: the surfaces' pipelines are specialised for them.
   try {
-    surfaces_.setScene(scene);
+    scene_.setScene(scene);
+    translucency_.setScene(scene);
+    surfaces_.buildPipelines();
+    deferredSkin_.buildPipelines();
   } catch (const std::exception& error) {
     return fail(std::string("uploading the scene failed: ") + error.what());
   }
@@ -187,7 +148,7 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
     if (auto set = pass->setNormalMap(material.normalMap); !set)
       return fail("material " + std::to_string(m) + ": " + set.error().message);
     auto owned = std::make_unique<SkinDiffusionPass>(std::move(*pass));
-    surfaces_.setDiffusedIrradiance(m, owned->diffusedIrradiance(), owned->sampler());
+    scene_.setDiffusedIrradiance(m, owned->diffusedIrradiance(), owned->sampler());
     textureSpaceSkins_.push_back({m, std::move(owned)});
   }
   if (textureSpaceSkins_.empty()) return {};
@@ -203,7 +164,7 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
 }
 
 void Renderer::refreshShadowDescriptors() {
-  surfaces_.refreshShadows();
+  scene_.refreshShadows();
   for (TextureSpaceSkin& skin : textureSpaceSkins_) skin.pass->refreshShadows();
   for (HairGroom& groom : hair_)
     if (groom.lighting) groom.lighting->refreshShadows();
@@ -235,132 +196,201 @@ Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> 
 }
 
 void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput& frame) {
-  using Stage = vk::PipelineStageFlagBits2;
-  using Access = vk::AccessFlagBits2;
-  using Layout = vk::ImageLayout;
-  timer_.reset(commands);
+  using Builder = FrameGraph::Builder;
+  using Commands = vk::raii::CommandBuffer;
+  graph_.reset();
+  FramePlan& plan = plan_;
 
   // Dense strands first (compute), then their shadow maps and their shading, so the surfaces
   // and the ribbons can read them inside the main pass.
   bool hair = false;
   for (const HairGroom& groom : hair_) {
     if (!groom.hasGuides) continue;
-    if (!hair) timer_.begin(commands, "strands");
-    groom.strands->record(commands);
+    const StrandInterpolationPass* strands = groom.strands.get();
+    graph_.addPass(
+        PassName::kStrands, [&](Builder& pass) { strands->declare(pass); },
+        [strands](const Commands& c) { strands->execute(c); });
     hair = true;
   }
-  if (hair) timer_.end(commands);
   // The first light casts the hair and fur shadows; without lights nothing is lit, any direction does.
   const bool fur = std::ranges::any_of(frame.instances, [&](const MeshInstance& i) { return furs_.draws(i, frame); });
   if ((hair || fur) && shadows_->mapCount() > 0) {
-    const glm::vec3 towardLight =
-        frame.lights.empty() ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::normalize(frame.lights[0].direction);
-    timer_.begin(commands, "hair shadows");
-    shadows_->record(commands, towardLight);
-    timer_.end(commands);
+    shadows_->prepare(frame.lights.empty() ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::normalize(frame.lights[0].direction));
+    graph_.addPass(
+        PassName::kHairShadows, [this](Builder& pass) { shadows_->declare(pass); },
+        [this](const Commands& c) { shadows_->execute(c); });
   }
   furs_.setShadowUniforms(shadows_->uniforms());
   // A groom is shaded where its lighting took, and drawn where its view and order took as well.
-  std::vector<bool> shaded(hair_.size(), false), drawn(hair_.size(), false);
+  plan.shaded.assign(hair_.size(), false);
+  plan.drawn.assign(hair_.size(), false);
   if (hair) {
     const glm::mat4 viewProjection = frame.camera.projection(target_.aspect()) * frame.camera.view();
     const glm::vec4 eye = hairEye(viewProjection);
     for (std::size_t g = 0; g < hair_.size(); ++g) {
       const HairGroom& groom = hair_[g];
-      shaded[g] = groom.hasGuides &&
-                  groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()).has_value();
-      drawn[g] = shaded[g] && groom.ribbons->update(frame, target_.extent(), groom.settings) &&
-                 groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye));
+      plan.shaded[g] =
+          groom.hasGuides &&
+          groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()).has_value();
+      plan.drawn[g] = plan.shaded[g] && groom.ribbons->update(frame, target_.extent(), groom.settings) &&
+                      groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye));
     }
   }
   if (!textureSpaceSkins_.empty()) {
     // Skin lit in UV space (light 0 through the hair shadows) and blurred, before the surfaces
     // sample it.
-    timer_.begin(commands, "skin diffusion");
-    for (const TextureSpaceSkin& skin : textureSpaceSkins_)
-      for (const MeshInstance& instance : frame.instances)
-        if (instance.material == skin.material && instance.mesh < diffusionMeshes_.size() &&
-            diffusionMeshes_[instance.mesh]) {
-          skin.pass->record(commands, *diffusionMeshes_[instance.mesh],
-                            {.model = instance.model, .lights = frame.lights, .ambient = frame.ambient});
-          break;
-        }
-    timer_.end(commands);
-  }
-  if (surfaces_.drawsTranslucency(frame)) {
-    timer_.begin(commands, "translucency depth");
-    surfaces_.recordLightDepth(commands, frame);
-    timer_.end(commands);
-  }
-  surfaces_.update(frame, target_.aspect());
-
-  const glm::vec4 background(frame.background, 1.0f);
-  // The hair's hiding (HairOcclusion), choice and shading, outside any rendering scope.
-  const auto lightHair = [&] {
-    timer_.begin(commands, "hair lighting");
-    if (hideOccludedHair_) occlusion_.record(commands);
-    for (std::size_t g = 0; g < hair_.size(); ++g) {
-      if (drawn[g]) hair_[g].ribbons->record(commands);  // first: it marks the vertices not to shade
-      if (shaded[g]) hair_[g].lighting->record(commands);
+    bool diffused = false;
+    for (const TextureSpaceSkin& skin : textureSpaceSkins_) {
+      const MeshInstance* instance = diffusionInstance(skin, frame);
+      if (!instance) continue;
+      graph_.addPass(
+          PassName::kSkinDiffusion, [&](Builder& pass) { skin.pass->declare(pass); },
+          [this, &frame, &skin, instance](const Commands& c) {
+            skin.pass->record(c, *diffusionMeshes_[instance->mesh],
+                              {.model = instance->model, .lights = frame.lights, .ambient = frame.ambient});
+          });
+      diffused = true;
     }
-    timer_.end(commands);
-  };
-  // The skin's G-buffer and depth first where it is deferred (render/passes/surface_pass.hpp,
-  // "Deferred skin"); the main pass lights it before anything else. With hair, the strands are
-  // then hidden behind the skin's depth alone, chosen and shaded before the main pass, which
-  // draws them last: one pass, in which a timestamp after the surfaces makes lavapipe rasterize
-  // them on its raster threads while this thread bins the hair's lines (GpuTimer::handOff), 6–9
-  // ms on one core in nalu's frame. Without the G-buffer, the main pass stops after the surfaces
-  // and furs, whose depth then hides the strands (render/passes/hair_pass.hpp, "Hidden strands").
-  const bool skinDeferred = surfaces_.defersSkin(frame);
-  const bool hairBeforeMainPass = hair && skinDeferred;
-  timer_.begin(commands, hairBeforeMainPass ? "skin g-buffer" : "surfaces");
-  if (skinDeferred) {
-    target_.beginSkinGBuffer(commands);
-    surfaces_.drawSkinGBuffer(commands, frame);
-    commands.endRendering();
+    if (!diffused) addEmptyPass(PassName::kSkinDiffusion);
   }
-  if (hairBeforeMainPass) {
-    timer_.end(commands);
-    lightHair();
-    timer_.begin(commands, "main pass");
+  if (translucency_.drawsTranslucency(frame, scene_)) {
+    translucency_.prepareLightDepth(frame, scene_);
+    graph_.addPass(
+        PassName::kTranslucencyDepth, [this](Builder& pass) { translucency_.declareLightDepth(pass); },
+        [this](const Commands& c) { translucency_.recordLightDepth(c); });
   }
+  scene_.update(frame, target_.aspect());
+
+  // The skin's G-buffer and depth first where it is deferred
+  // (render/passes/deferred_skin_pass.hpp); the main pass lights it before anything else. With
+  // hair, the strands are then hidden behind the skin's depth alone, chosen and shaded before the
+  // main pass, which draws them last: one pass, in which a timestamp after the surfaces makes
+  // lavapipe rasterize them on its raster threads while this thread bins the hair's lines
+  // (GpuTimer::handOff): the two overlap instead of running one after the other
+  // (docs/lavapipe.md#raster-threads-and-binning). Without the G-buffer, the main pass stops after
+  // the surfaces and furs, whose depth then hides the strands (render/passes/hair_pass.hpp, "Hidden
+  // strands").
+  plan.skinDeferred = deferredSkin_.defersSkin(frame);
+  plan.hairBeforeMainPass = hair && plan.skinDeferred;
+  plan.scene = hair && !plan.hairBeforeMainPass ? RenderTarget::ScenePart::kOpaque : RenderTarget::ScenePart::kWhole;
+  plan.background = glm::vec4(frame.background, 1.0f);
+  if (plan.skinDeferred)
+    graph_.addPass(
+        plan.hairBeforeMainPass ? PassName::kSkinGBuffer : PassName::kSurfaces,
+        [this](Builder& pass) { target_.declareSkinGBuffer(pass); },
+        [this, &frame](const Commands& c) {
+          target_.beginSkinGBuffer(c);
+          deferredSkin_.drawGBuffer(c, frame);
+          c.endRendering();
+        });
+  if (plan.hairBeforeMainPass) addHairLighting();
   // Main pass: previous contents are discarded and cleared (but the deferred skin's depth).
-  if (hair && !hairBeforeMainPass)
-    target_.beginOpaque(commands, background, skinDeferred);
-  else
-    target_.beginScene(commands, background, skinDeferred);
-  if (skinDeferred) surfaces_.drawSkinLighting(commands, frame);
-  discs_.draw(commands, frame.camera, frame.lights, target_.extent());
-  surfaces_.draw(commands, frame, skinDeferred);
-  furs_.draw(commands);
-  if (hair) {
-    if (hairBeforeMainPass) {
-      timer_.handOff(commands);
-    } else {
-      commands.endRendering();
-      timer_.end(commands);
-      lightHair();
-      timer_.begin(commands, "hair");
-      target_.resumeScene(commands);
-    }
-    for (std::size_t g = 0; g < hair_.size(); ++g)
-      if (drawn[g]) hair_[g].ribbons->draw(commands);
+  graph_.addPass(
+      plan.hairBeforeMainPass ? PassName::kMainPass : PassName::kSurfaces,
+      [&](Builder& pass) {
+        target_.declareScene(pass, plan.scene, plan.skinDeferred);
+        declareSurfaceReads(pass, frame);
+        if (plan.hairBeforeMainPass) declareHairDraws(pass);
+      },
+      [this, &frame](const Commands& c) {
+        const FramePlan& plan = plan_;
+        target_.beginScenePart(c, plan.scene, plan.background, plan.skinDeferred);
+        if (plan.skinDeferred) deferredSkin_.drawLighting(c, frame);
+        discs_.draw(c, frame.camera, frame.lights, target_.extent());
+        surfaces_.draw(c, frame, plan.skinDeferred);
+        furs_.draw(c);
+        if (plan.hairBeforeMainPass) {
+          timer_.handOff(c);
+          drawHair(c);
+        }
+        c.endRendering();
+      });
+  if (hair && !plan.hairBeforeMainPass) {
+    addHairLighting();
+    graph_.addPass(
+        PassName::kHair,
+        [this](Builder& pass) {
+          target_.declareScene(pass, RenderTarget::ScenePart::kRest);
+          declareHairDraws(pass);
+        },
+        [this](const Commands& c) {
+          target_.beginScenePart(c, RenderTarget::ScenePart::kRest, glm::vec4(0.0f));
+          drawHair(c);
+          c.endRendering();
+        });
   }
-  commands.endRendering();
-  timer_.end(commands);
 
-  transition(commands, target_.hdr(), Layout::eColorAttachmentOptimal, Layout::eShaderReadOnlyOptimal,
-             Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite,
-             Stage::eFragmentShader | Stage::eComputeShader, Access::eShaderSampledRead);
-  recordPost(commands, frame);
-  transition(commands, target_.output(), Layout::eUndefined, Layout::eColorAttachmentOptimal, Stage::eAllCommands,
-             Access::eNone, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite);
-  timer_.begin(commands, "output");
-  output_.record(commands, target_, frame.exposure, frame.post);
-  timer_.end(commands);
-  transition(commands, target_.output(), Layout::eColorAttachmentOptimal, Layout::eTransferSrcOptimal,
-             Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer, Access::eTransferRead);
+  addPost(frame);
+  graph_.addPass(
+      PassName::kOutput, [&](Builder& pass) { output_.declare(pass, target_, frame.post); },
+      [this, &frame](const Commands& c) { output_.record(c, target_, frame.exposure, frame.post); });
+  graph_.leaveAs(target_.output(), ResourceUse::transferSource());
+  for (std::size_t g = 0; g < hair_.size(); ++g)
+    if (plan.drawn[g]) hair_[g].ribbons->leaveChoiceReadable(graph_);  // hairChoices reads it
+
+  graph_.compile();
+  timer_.reset(commands);
+  graph_.execute(commands, &timer_);
+}
+
+const MeshInstance* Renderer::diffusionInstance(const TextureSpaceSkin& skin, const FrameInput& frame) const {
+  for (const MeshInstance& instance : frame.instances)
+    if (instance.material == skin.material && instance.mesh < diffusionMeshes_.size() &&
+        diffusionMeshes_[instance.mesh])
+      return &instance;
+  return nullptr;
+}
+
+void Renderer::addEmptyPass(PassName name) {
+  graph_.addPass(
+      name, [](FrameGraph::Builder&) {}, [](const vk::raii::CommandBuffer&) {});
+}
+
+void Renderer::addHairLighting() {
+  using Builder = FrameGraph::Builder;
+  using Commands = vk::raii::CommandBuffer;
+  // The hair's hiding (HairOcclusionPass), choice and shading, outside any rendering scope.
+  bool any = false;
+  if (hideOccludedHair_) {
+    graph_.addPass(
+        PassName::kHairLighting, [this](Builder& pass) { occlusion_.declare(pass); },
+        [this](const Commands& c) { occlusion_.execute(c); });
+    any = true;
+  }
+  for (std::size_t g = 0; g < hair_.size(); ++g) {
+    if (plan_.drawn[g]) {  // first: it marks the vertices not to shade
+      const HairPass* ribbons = hair_[g].ribbons.get();
+      graph_.addPass(
+          PassName::kHairLighting, [ribbons](Builder& pass) { ribbons->declare(pass); },
+          [ribbons](const Commands& c) { ribbons->execute(c); });
+      any = true;
+    }
+    if (plan_.shaded[g]) {
+      const HairLightingPass* lighting = hair_[g].lighting.get();
+      graph_.addPass(
+          PassName::kHairLighting, [lighting](Builder& pass) { lighting->declare(pass); },
+          [lighting](const Commands& c) { lighting->execute(c); });
+      any = true;
+    }
+  }
+  if (!any) addEmptyPass(PassName::kHairLighting);
+}
+
+void Renderer::declareSurfaceReads(FrameGraph::Builder& pass, const FrameInput& frame) const {
+  shadows_->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);  // the surfaces' and the furs'
+  if (translucency_.drawsTranslucency(frame, scene_)) translucency_.declareReads(pass);
+  for (const TextureSpaceSkin& skin : textureSpaceSkins_)
+    if (diffusionInstance(skin, frame)) skin.pass->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);
+}
+
+void Renderer::declareHairDraws(FrameGraph::Builder& pass) const {
+  for (std::size_t g = 0; g < hair_.size(); ++g)
+    if (plan_.drawn[g]) hair_[g].ribbons->declareDraw(pass);
+}
+
+void Renderer::drawHair(const vk::raii::CommandBuffer& commands) const {
+  for (std::size_t g = 0; g < hair_.size(); ++g)
+    if (plan_.drawn[g]) hair_[g].ribbons->draw(commands);
 }
 
 std::vector<HairPrimitiveChoice> Renderer::hairChoices() const {
@@ -370,35 +400,30 @@ std::vector<HairPrimitiveChoice> Renderer::hairChoices() const {
   return choices;
 }
 
-void Renderer::recordPost(const vk::raii::CommandBuffer& commands, const FrameInput& frame) {
-  if (!PostChain::runs(frame.post)) return;  // the default: the output pass alone, as before the post chain
-  timer_.begin(commands, "post downsample");
-  post_.recordDownsample(commands);
-  timer_.end(commands);
-  if (frame.post.autoGain) {
-    timer_.begin(commands, "auto gain");
-    post_.recordAutoGain(commands, frame.post, frame.exposure);
-    timer_.end(commands);
-  }
-  if (frame.post.glowStrength > 0.0f) {
-    timer_.begin(commands, "glow");
-    post_.recordGlow(commands);
-    timer_.end(commands);
-  }
+void Renderer::addPost(const FrameInput& frame) {
+  using Builder = FrameGraph::Builder;
+  using Commands = vk::raii::CommandBuffer;
+  if (!PostPass::runs(frame.post)) return;  // the default: the output pass alone
+  const auto nothing = [](Builder&) {};
+  graph_.addPass(
+      PassName::kPostDownsample, [this](Builder& pass) { post_.declareDownsample(pass); },
+      [this](const Commands& c) { post_.recordDownsample(c); });
+  if (frame.post.autoGain)
+    graph_.addPass(PassName::kAutoGain, nothing,
+                   [this, &frame](const Commands& c) { post_.recordAutoGain(c, frame.post, frame.exposure); });
+  if (frame.post.glowStrength > 0.0f)
+    graph_.addPass(PassName::kGlow, nothing, [this](const Commands& c) { post_.recordGlow(c); });
   // God rays stream from their light's screen position; none when it is off screen or behind.
   const std::size_t rayLight = frame.post.godRayLight;
-  const std::optional<glm::vec2> light =
-      frame.post.godRays > 0.0f && rayLight < frame.lights.size()
-          ? godRayLightUv(frame.camera, frame.lights[rayLight].direction, target_.aspect())
-          : std::nullopt;
-  if (light) {
-    timer_.begin(commands, "god rays");
-    post_.recordGodRays(commands, frame.post, *light);
-    timer_.end(commands);
-  }
-  timer_.begin(commands, "post overlay");
-  post_.recordHandOff(commands, frame.post, frame.exposure);
-  timer_.end(commands);
+  plan_.rayLight = frame.post.godRays > 0.0f && rayLight < frame.lights.size()
+                       ? godRayLightUv(frame.camera, frame.lights[rayLight].direction, target_.aspect())
+                       : std::nullopt;
+  if (plan_.rayLight)
+    graph_.addPass(PassName::kGodRays, nothing,
+                   [this, &frame](const Commands& c) { post_.recordGodRays(c, frame.post, *plan_.rayLight); });
+  graph_.addPass(
+      PassName::kPostOverlay, [this](Builder& pass) { post_.declareHandOff(pass); },
+      [this, &frame](const Commands& c) { post_.recordHandOff(c, frame.post, frame.exposure); });
 }
 
 Result<void> Renderer::updateFurLeans(std::size_t fur, std::span<const glm::vec3> leans) {
@@ -407,19 +432,19 @@ Result<void> Renderer::updateFurLeans(std::size_t fur, std::span<const glm::vec3
 
 Result<void> Renderer::updateMesh(std::size_t mesh, std::span<const glm::vec3> positions,
                                   std::span<const glm::vec3> normals) {
-  if (!surfaces_.isDynamic(mesh)) return fail("mesh " + std::to_string(mesh) + " is not a dynamic mesh of the scene");
-  const std::size_t count = surfaces_.vertexCount(mesh);
+  if (!scene_.isDynamic(mesh)) return fail("mesh " + std::to_string(mesh) + " is not a dynamic mesh of the scene");
+  const std::size_t count = scene_.vertexCount(mesh);
   if (positions.size() != count || (!normals.empty() && normals.size() != count))
     return fail("mesh " + std::to_string(mesh) + " has " + std::to_string(count) + " vertices; got " +
                 std::to_string(positions.size()) + " positions and " + std::to_string(normals.size()) + " normals");
-  surfaces_.updateVertices(mesh, positions, normals);
+  scene_.updateVertices(mesh, positions, normals);
   return {};
 }
 
 Result<void> Renderer::replaceMesh(std::size_t mesh, const MeshData& data) {
   const std::string name = "mesh " + std::to_string(mesh);
-  if (!surfaces_.hasMesh(mesh)) return fail("replaceMesh: the scene has no " + name);
-  if (surfaces_.isDynamic(mesh))
+  if (!scene_.hasMesh(mesh)) return fail("replaceMesh: the scene has no " + name);
+  if (scene_.isDynamic(mesh))
     return fail("replaceMesh: " + name + " is dynamic: its vertices change with updateMesh, its triangles stay");
   if (data.dynamic) return fail("replaceMesh: the new " + name + " is marked dynamic; only static meshes are replaced");
   if (auto valid = validateMesh(data, name); !valid) return valid;
@@ -431,7 +456,8 @@ Result<void> Renderer::replaceMesh(std::size_t mesh, const MeshData& data) {
     diffusion = std::move(*uploaded);
   }
   try {
-    surfaces_.replaceMesh(mesh, data);
+    scene_.replaceMesh(mesh, data);
+    translucency_.replaceMesh(mesh, data);
   } catch (const std::exception& error) {
     return fail("replaceMesh: uploading " + name + " failed: " + error.what());
   }
@@ -447,13 +473,13 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   }
   for (std::size_t i = 0; i < frame.instances.size(); ++i) {
     const MeshInstance& instance = frame.instances[i];
-    if (!surfaces_.canDraw(instance))
+    if (!scene_.canDraw(instance))
       return fail("instance " + std::to_string(i) + " names mesh " + std::to_string(instance.mesh) + " and material " +
                   std::to_string(instance.material) + ", which the scene does not have");
     for (const TextureSpaceSkin& skin : textureSpaceSkins_)
       if (instance.material == skin.material && !diffusionMeshes_[instance.mesh])
         return fail("instance " + std::to_string(i) + ": texture-space skin needs a static mesh with uvs and normals");
-    if (frame.furShells && surfaces_.isFur(instance) && !furs_.draws(instance, frame))
+    if (frame.furShells && scene_.isFur(instance) && !furs_.draws(instance, frame))
       return fail("instance " + std::to_string(i) + " draws mesh " + std::to_string(instance.mesh) +
                   " with a fur material, but the scene grows no fur (StaticScene::furs) on that pair");
   }
@@ -467,7 +493,8 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
     if (!(frame.lights[i].discRadiance >= 0.0f && std::isfinite(frame.lights[i].discRadiance)))
       return fail("light " + std::to_string(i) + "'s disc radiance is not a finite number >= 0");
   }
-  if (auto prepared = surfaces_.prepareThickness(frame); !prepared) return std::unexpected(prepared.error());
+  if (auto prepared = translucency_.prepareThickness(frame, scene_); !prepared)
+    return std::unexpected(prepared.error());
   if (auto updated = furs_.update(frame, target_.extent(), target_.aspect()); !updated)
     return std::unexpected(updated.error());
   // Drawn furs cast shadows from where they are now (their slots follow the grooms').

@@ -11,20 +11,24 @@
 #include <vector>
 
 #include "render/frame.hpp"
+#include "render/frame_graph.hpp"
 #include "render/fur_surfaces.hpp"
 #include "render/hair_order.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/luts/marschner_lut.hpp"
-#include "render/passes/hair_lighting.hpp"
-#include "render/passes/hair_occlusion.hpp"
+#include "render/passes/hair_lighting_pass.hpp"
+#include "render/passes/hair_occlusion_pass.hpp"
 #include "render/passes/hair_pass.hpp"
-#include "render/passes/hair_shadows.hpp"
+#include "render/passes/deferred_skin_pass.hpp"
+#include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_disc_pass.hpp"
-#include "render/passes/skin_diffusion.hpp"
+#include "render/passes/skin_diffusion_pass.hpp"
 #include "render/passes/output_pass.hpp"
-#include "render/passes/post_chain.hpp"
-#include "render/passes/strand_interpolation.hpp"
+#include "render/passes/post_pass.hpp"
+#include "render/passes/strand_interpolation_pass.hpp"
 #include "render/passes/surface_pass.hpp"
+#include "render/passes/surface_scene.hpp"
+#include "render/passes/translucency_pass.hpp"
 #include "render/render_target.hpp"
 
 namespace mane::render {
@@ -38,7 +42,7 @@ struct RendererSettings {
   /// They would be depth-tested away anyway: the image is the same either way.
   bool hideOccludedHair = true;
   /// Whether single-sample frames light pre-integrated skin once per pixel after drawing it into
-  /// a G-buffer (render/passes/surface_pass.hpp, "Deferred skin") rather than in the fragment
+  /// a G-buffer (render/passes/deferred_skin_pass.hpp) rather than in the fragment
   /// shader: the same image, for 59 MB of G-buffer at 1280×720.
   bool deferSkin = true;
 };
@@ -93,29 +97,45 @@ public:
   /// defaults. After render() has returned.
   std::vector<HairPrimitiveChoice> hairChoices() const;
   /// Whether render() lights `frame`'s skin deferred (RendererSettings::deferSkin; after setScene).
-  bool defersSkin(const FrameInput& frame) const { return surfaces_.defersSkin(frame); }
-  /// The HDR post chain: its glow, its auto gain state (render/passes/post_chain.hpp).
-  const PostChain& post() const { return post_; }
+  bool defersSkin(const FrameInput& frame) const { return deferredSkin_.defersSkin(frame); }
+  /// The HDR post chain: its glow, its auto gain state (render/passes/post_pass.hpp).
+  const PostPass& post() const { return post_; }
   const Device& device() const { return *device_; }
 
 private:
-  Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadows> shadows);
+  Renderer(const Device& device, const RendererSettings& settings, std::unique_ptr<HairShadowPass> shadows);
 
   /// The diffusion passes of the scene's texture-space skin materials.
   Result<void> setTextureSpaceSkins(const StaticScene& scene);
 
-  /// The post chain's compute passes that `frame.post` asks for, timed; none by default.
-  void recordPost(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
+  // Pieces of record()'s frame graph.
+  struct TextureSpaceSkin;
+  /// The post chain's compute passes that `frame.post` asks for; none by default.
+  void addPost(const FrameInput& frame);
+  /// The hair's hiding, choice and shading (HairOcclusionPass, HairPass, HairLightingPass).
+  void addHairLighting();
+  /// A pass that records nothing, so that its timer is there as in every frame of its kind.
+  void addEmptyPass(PassName name);
+  /// What the surfaces, furs and deferred skin of the scene pass read from earlier passes.
+  void declareSurfaceReads(FrameGraph::Builder& pass, const FrameInput& frame) const;
+  void declareHairDraws(FrameGraph::Builder& pass) const;
+  void drawHair(const vk::raii::CommandBuffer& commands) const;
+  /// The first instance of `frame` drawn with `skin`'s material, whose mesh it diffuses over.
+  const MeshInstance* diffusionInstance(const TextureSpaceSkin& skin, const FrameInput& frame) const;
 
   /// Points every pass that receives hair shadows at the current maps.
   void refreshShadowDescriptors();
 
   const Device* device_;
   RenderTarget target_;
-  HairOcclusion occlusion_;
+  HairOcclusionPass occlusion_;
   bool hideOccludedHair_;
-  std::unique_ptr<HairShadows> shadows_;
+  std::unique_ptr<HairShadowPass> shadows_;
+  // The opaque surfaces: the scene's meshes and materials, translucency, forward and deferred.
+  TranslucencyPass translucency_;
+  SurfaceScene scene_;
   SurfacePass surfaces_;
+  DeferredSkinPass deferredSkin_;
   LightDiscPass discs_;
   // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {
@@ -140,9 +160,20 @@ private:
   std::vector<HairGroom> hair_;
   FurSurfaces furs_;
   std::vector<bool> furShadowsBound_;  // per fur: its shadow map has had bounds
-  PostChain post_;
+  PostPass post_;
   OutputPass output_;
   GpuTimer timer_;
+  // record()'s graph and what it decided for the frame, kept to reuse their memory.
+  FrameGraph graph_;
+  struct FramePlan {
+    std::vector<bool> shaded, drawn;  ///< per groom
+    bool skinDeferred = false;
+    bool hairBeforeMainPass = false;
+    RenderTarget::ScenePart scene = RenderTarget::ScenePart::kWhole;
+    glm::vec4 background{0.0f};
+    std::optional<glm::vec2> rayLight;  ///< the god rays' light, frame uv
+  };
+  FramePlan plan_;
 };
 
 }  // namespace mane::render

@@ -42,7 +42,7 @@ struct AssetResolverSettings {
   std::filesystem::path cacheDirectory;
   /// When false, a file found nowhere is reported missing without touching the network.
   bool allowDownload = true;
-  /// Check each local file's SHA-256 against the manifest on every resolve (≈ 5 ms/MB).
+  /// Check each local file's SHA-256 against the manifest on every resolve (reads every byte).
   bool verifyLocalFiles = true;
   /// Seconds allowed to connect to the upstream host; keeps an offline run from hanging.
   long connectTimeoutSeconds = 5;

@@ -1,7 +1,7 @@
 #pragma once
-// Fur that moves (issue 7, item 3): short guide strands simulated by physics::HairSystem on a
-// furred mesh, turned into the per-vertex leans the fur pass bends its shells by
-// (render::FurPass::setLeans). The shells stay the photo's; only where their layers sit moves.
+// Fur that moves: short guide strands simulated by physics::HairSystem on a furred mesh, turned
+// into the per-vertex leans the fur pass bends its shells by (render::FurPass::setLeans). The
+// shells stay the photo's; only where their layers sit moves.
 //
 // Guides. Every k-th vertex of the mesh (k = ⌈vertices / guides⌉, a deterministic choice that
 // follows the mesh's vertex density) roots a guide of kFurGuidePoints points, straight out along

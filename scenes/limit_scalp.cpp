@@ -14,8 +14,8 @@ namespace mane::scenes {
 namespace {
 
 // Cells of the starting grid over the whole surface: enough that a cell's area bound is tight
-// (few rejections), few enough that the grid costs little next to the tessellation (a limit
-// evaluation takes about a microsecond).
+// (few rejections), few enough that the grid's limit evaluations cost little next to the
+// tessellation.
 constexpr double kTargetCells = 65536.0;
 constexpr int kMaxCellsPerSide = 8;
 // The area bound of a cell is its largest corner Jacobian times this: the Jacobian varies

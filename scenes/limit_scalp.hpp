@@ -1,5 +1,5 @@
 #pragma once
-// Hair roots on a subdivision surface (issue 6, item 4): a procedural groom whose mesh is drawn
+// Hair roots on a subdivision surface: a procedural groom whose mesh is drawn
 // as its Catmull-Clark limit surface grows from that surface, evaluated exactly by OpenSubdiv at
 // sampled (ptex face, u, v), rather than from the triangles of one view's tessellation, which
 // change as the camera moves while the hair must stay put.

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "common/strand_layout.hpp"
 #include "physics/colliders.hpp"
 #include "render/frame.hpp"
 #include "render/hair_data.hpp"
@@ -192,8 +193,8 @@ inline constexpr int kMaxGuideStrands = 1'000'000;
 /// Most dense strands a groom may be drawn with (64 bytes each on the GPU, plus their vertices).
 inline constexpr int kMaxDenseStrands = 1'000'000;
 
-/// Most vertices a dense strand may be drawn with (render::DenseStrandLayout's limit).
-inline constexpr int kMaxDenseStrandVertices = 4096;
+/// Most vertices a dense strand may be drawn with (the dense-strand layout's limit).
+inline constexpr int kMaxDenseStrandVertices = static_cast<int>(kMaxStrandVertices);
 
 /// How a groom is drawn (render/hair_data.hpp): its Marschner preset, its ribbons and how many
 /// dense strands are interpolated from its guides.

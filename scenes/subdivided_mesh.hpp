@@ -1,5 +1,5 @@
 #pragma once
-// A scene mesh drawn as its Catmull-Clark limit surface (issue 6, items 4–5): the mesh's
+// A scene mesh drawn as its Catmull-Clark limit surface: the mesh's
 // polygons become a subdivision cage, and the limit surface is tessellated for one camera
 // (Bunnell's screen-space error, subdiv/tessellator.hpp) into the triangles the renderer draws.
 

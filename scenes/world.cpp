@@ -360,14 +360,14 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
   return {};
 }
 
-std::optional<RenderGroomLayout> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
+std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
                                                    std::size_t strandCount, int verticesPerStrand) {
   physics::DenseGroomSettings settings;
   settings.strandCount = strandCount;
   settings.verticesPerStrand = static_cast<std::size_t>(verticesPerStrand);
   auto layout = physics::buildDenseGroomLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
-  return renderLayoutOf(*layout);
+  return std::move(*layout);
 }
 
 std::vector<World::HairGuides> World::hairGuides() const {
@@ -461,7 +461,7 @@ render::StaticScene World::staticScene() const {
     if (!groom.dense) continue;
     const GroomRendering& rendering = scene_.grooms[groom.sceneGroom].rendering;
     result.grooms.push_back(
-        render::HairGroomData{.layout = groom.dense->view(), .look = rendering.look, .settings = rendering.settings});
+        render::HairGroomData{.layout = *groom.dense, .look = rendering.look, .settings = rendering.settings});
   }
   result.hairShadows = scene_.hairShadows;
   result.furs = furSurfaces();

@@ -1,5 +1,5 @@
 #pragma once
-// The per-frame world of a scene (DESIGN.md, "The frame"): it owns the loaded meshes,
+// The per-frame world of a scene (docs/design.md#the-frame): it owns the loaded meshes,
 // textures and hair systems, and per frame runs animate → simulate, then hands the renderer
 // plain data. The composition root: the only place physics, subdiv and render meet.
 
@@ -13,13 +13,13 @@
 #include <glm/vec2.hpp>
 
 #include "common/error.hpp"
+#include "common/strand_layout.hpp"
 #include "physics/hair.hpp"
 #include "render/frame.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/fur_dynamics.hpp"
 #include "scenes/image.hpp"
 #include "scenes/scene_cloth.hpp"
-#include "scenes/render_groom_layout.hpp"
 #include "scenes/scene.hpp"
 #include "scenes/scene_meshes.hpp"
 #include "scenes/subdivided_mesh.hpp"
@@ -49,7 +49,8 @@ public:
   /// `threads` ≥ 1 workers; results do not depend on it.
   Result<void> advance(double frameDt, unsigned threads);
 
-  /// Meshes and materials for the renderer; views into this world, valid while it lives.
+  /// Meshes, materials and grooms for the renderer; the meshes' and textures' data are views into
+  /// this world, valid while it lives.
   render::StaticScene staticScene() const;
   /// Camera, lights and mesh placements at the current time.
   render::FrameInput frameInput() const;
@@ -115,9 +116,8 @@ private:
     std::size_t mesh = 0;  ///< index into scene_.meshes the roots follow
     physics::HairSystem hair;
     std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
-    /// The dense strands as the renderer draws them (render::HairGroomData's spans point here);
-    /// none when its guides differ in point count.
-    std::optional<RenderGroomLayout> dense;
+    /// The dense strands the renderer draws; none when its guides differ in point count.
+    std::optional<DenseStrandLayout> dense;
   };
 
   World() = default;
@@ -145,7 +145,7 @@ private:
   Result<void> simulate(double frameDt, unsigned threads);
   /// `strandCount` dense strands of `verticesPerStrand` vertices (0: the guides' count) drawn for
   /// `guides` (rest shape, equal point counts), or none.
-  static std::optional<RenderGroomLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,
+  static std::optional<DenseStrandLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,
                                                      std::size_t strandCount, int verticesPerStrand);
 
   Scene scene_;

@@ -1,4 +1,5 @@
-// Per-frame data shared by the surface shaders; mirrors FrameUniforms in render/passes/surface_pass.cpp.
+// Per-frame data shared by the surface shaders; mirrors FrameUniforms in
+// render/passes/surface_scene.cpp.
 // Include after `#extension GL_GOOGLE_include_directive : require`.
 #define HAIR_SHADOW_SET 0
 #define HAIR_SHADOW_BINDING 1

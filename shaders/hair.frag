@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Hair ribbons, premultiplied alpha (see render/passes/hair_pass.hpp): the radiance shaded at the
-// strand's vertices (render/passes/hair_lighting.hpp), interpolated along the segment.
+// strand's vertices (render/passes/hair_lighting_pass.hpp), interpolated along the segment.
 #include "hair_uniforms.glsl"
 
 layout(location = 0) in vec3 inRadiance;

@@ -14,7 +14,7 @@ layout(set = 0, binding = 2, std430) readonly buffer Tangents {
 };
 
 layout(set = 0, binding = 3, std430) readonly buffer Radiance {
-  vec4 radiance[];  // rgb towards the eye, shaded per vertex (render/passes/hair_lighting.hpp)
+  vec4 radiance[];  // rgb towards the eye, shaded per vertex (render/passes/hair_lighting_pass.hpp)
 };
 
 layout(location = 0) out vec3 outRadiance;

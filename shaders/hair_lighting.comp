@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Marschner shading of every dense hair vertex (render/passes/hair_lighting.hpp): the radiance
+// Marschner shading of every dense hair vertex (render/passes/hair_lighting_pass.hpp): the radiance
 // towards the eye under the frame's directional lights, the first one attenuated by the hair
 // shadows, plus the ambient term. The ribbons interpolate it along each segment.
 #include "hair_shading.glsl"
@@ -14,8 +14,9 @@ const int kHairLightingMaxLights = 4;
 // every member a vec4 or made of them, so vec4 k is texel k). Not a uniform block: lavapipe
 // (Mesa 22.3) folds uniform-block values that decide a branch or a loop's trip count (the light
 // count, the shadow slots) into the shader, and does it again, with a full LLVM compile, each time
-// the block is bound: every frame. Not a storage buffer either, as it was: read this way, nalu's
-// hair lighting takes about 1 ms less on lavapipe.
+// the block is bound: every frame (docs/lavapipe.md#shader-recompiles-on-bind). Not a storage
+// buffer either: lavapipe gathers a texel buffer's lanes at once
+// (docs/lavapipe.md#texel-buffers-gather-storage-buffers-loop).
 layout(set = 0, binding = 0) uniform usamplerBuffer lightingTexels;
 const int kEyeTexel = 0;      // w = 1: eye position (metres); w = 0: unit direction towards the eye
 const int kAmbientTexel = 1;  // rgb: ambient radiance × the groom's white-furnace albedo
@@ -82,8 +83,8 @@ void main() {
   // Each light's vectors fetched where they are used: indexing an array of them by the loop's
   // counter made lavapipe load them lane by lane. And the test at the end of the loop: lavapipe
   // (Mesa 22.3) runs the body once more, every lane masked off, lookups and all, before a test at
-  // the top ends the loop; the selection keeps a frame without lights unlit. Together 2–3 ms of
-  // nalu's hair lighting.
+  // the top ends the loop (docs/lavapipe.md#loops-test-at-the-end); the selection keeps a frame
+  // without lights unlit.
   uint i = 0u;
   do {
     vec3 toLight = lightingVector(kLightDirectionTexel + int(i)).xyz;

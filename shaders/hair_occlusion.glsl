@@ -1,5 +1,5 @@
 // The farthest depth of the opaque scene in each square tile of the frame
-// (render/passes/hair_occlusion.hpp), for HairPass to hide strands behind. One invocation per
+// (render/passes/hair_occlusion_pass.hpp), for HairPass to hide strands behind. One invocation per
 // tile; define HAIR_OCCLUSION_SAMPLES (1: a single-sample depth image) before including.
 
 #if HAIR_OCCLUSION_SAMPLES == 1

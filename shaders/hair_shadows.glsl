@@ -1,10 +1,10 @@
-// The hair shadows a shader receives (render/passes/hair_shadows.hpp): up to 4 grooms' opacity
+// The hair shadows a shader receives (render/passes/hair_shadow_pass.hpp): up to 4 grooms' opacity
 // or deep opacity maps, all cast by the frame's first light. Before including, declare
 //   #define HAIR_SHADOW_SET <set> and HAIR_SHADOW_BINDING <first binding>
 // and put a `HairShadowUniforms` member in a uniform block; then
 //   hairShadowTransmittance(block.shadows, worldPosition)
 // is the fraction of the first light that reaches the point through all the hair. The pipeline
-// sets specialization constants 0 and 1 (HairShadows::shaderConstants): how many maps exist and
+// sets specialization constants 0 and 1 (HairShadowPass::shaderConstants): how many maps exist and
 // their mode, so the lookups of absent maps and of the other mode are compiled out.
 #include "opacity_shadow.glsl"
 

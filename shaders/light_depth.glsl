@@ -1,4 +1,4 @@
-// The first light's depth map of the translucent surfaces (render/passes/light_depth_map.hpp),
+// The first light's depth map of the translucent surfaces (render/passes/light_depth_pass.hpp),
 // in the frame set. Include after `#extension GL_GOOGLE_include_directive : require`.
 
 // Mirrors LightDepthUniforms (std140).

@@ -1,4 +1,4 @@
-// Hair self-shadowing lookup (render/passes/opacity_shadow_map.hpp): the transmittance
+// Hair self-shadowing lookup (render/passes/opacity_shadow_map_pass.hpp): the transmittance
 // exp(−κ·opacity) towards the light at a world position (Kim & Neumann 2001, eq. 1), from an
 // opacity shadow map (16 slices, linear between slices: Kim & Neumann 2001 §3.3) or a deep
 // opacity map (first-hair depth + 4 layers: Yuksel & Keyser 2008 §3.3), or, as a cost baseline,

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Opacity map line segments (render/passes/opacity_shadow_map.hpp): vertex 2i and 2i + 1 are the
+// Opacity map line segments (render/passes/opacity_shadow_map_pass.hpp): vertex 2i and 2i + 1 are the
 // ends of segment i; no vertex or index buffer. The weight is the opacity one fragment stands
 // for: α·2r/s per texel of line length, times the texels of length a fragment covers
 // (1 for rectangular lines; |Δ|/max(|Δx|, |Δy|) when one fragment is made per major-axis column).

@@ -1,5 +1,5 @@
-// Shared by the shaders that build opacity maps (render/passes/opacity_shadow_map.hpp): the
-// strand positions and the push constants (mirrors BuildConstants in opacity_shadow_map.cpp).
+// Shared by the shaders that build opacity maps (render/passes/opacity_shadow_map_pass.hpp): the
+// strand positions and the push constants (mirrors BuildConstants in opacity_shadow_map_pass.cpp).
 
 // Strand-major vec4 positions: xyz metres, w ignored (StrandInterpolationPass's layout).
 layout(set = 0, binding = 0, std430) readonly buffer StrandPositions {

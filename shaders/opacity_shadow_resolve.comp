@@ -1,5 +1,5 @@
 #version 450
-// Opacity shadow map, compute builder, step 2 (render/passes/opacity_shadow_map.hpp): slice k of
+// Opacity shadow map, compute builder, step 2 (render/passes/opacity_shadow_map_pass.hpp): slice k of
 // a texel is the sum of its increments 0..k (opacity_shadow_splat.comp), converted from 16.16
 // fixed point and stored where the graphics builder's blending puts it (layer k/4, channel k%4).
 // It leaves the increments zero for the next frame's splat: cheaper than clearing the buffer in a

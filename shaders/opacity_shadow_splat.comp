@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Opacity shadow map, compute builder, step 1 (render/passes/opacity_shadow_map.hpp): one thread
+// Opacity shadow map, compute builder, step 1 (render/passes/opacity_shadow_map_pass.hpp): one thread
 // per segment walks its columns along the major axis (those whose centres lie in [start, end),
 // as a line rasterizer does), covers in each the texels the graphics pass's lines would (see
 // below), and adds their weight in 16.16 fixed point to the first slice at or beyond the depth
@@ -64,7 +64,7 @@ void main() {
     int rowLow = rectangular ? int(ceil(minor - halfSpan - 0.5)) : int(floor(minor));
     int rowHigh = rectangular ? int(floor(minor + halfSpan - 0.5)) : rowLow;
     // At most two rows, as the span across is 2·halfSpan ≤ √2 texels: two tests rather than a
-    // loop, which lavapipe runs about 7 % slower here.
+    // loop, which lavapipe runs slower here (docs/lavapipe.md#loops-test-at-the-end).
     int row = max(rowLow, 0), lastRow = min(rowHigh, size - 1);
     if (row <= lastRow) add(alongX ? ivec2(column, row) : ivec2(row, column), size, slice, fixedWeight);
     if (row + 1 <= lastRow) add(alongX ? ivec2(column, row + 1) : ivec2(row + 1, column), size, slice, fixedWeight);

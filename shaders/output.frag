@@ -10,7 +10,7 @@
 #include "post_common.glsl"
 
 layout(constant_id = 0) const int kToneMapping = 0;  // ToneMapping: 0 linear, 1 Reinhard
-// PostChain::OverlayUse: 0 none (the exposure), 1 its scale alone (auto gain only), 2 filtered.
+// PostPass::OverlayUse: 0 none (the exposure), 1 its scale alone (auto gain only), 2 filtered.
 layout(constant_id = 1) const int kOverlay = 0;
 
 layout(set = 0, binding = 0) uniform sampler2D hdrColor;

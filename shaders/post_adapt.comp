@@ -1,5 +1,5 @@
 #version 450
-// Automatic gain control (render/passes/post_chain.hpp): the log-average luminance of the tiny
+// Automatic gain control (render/passes/post_pass.hpp): the log-average luminance of the tiny
 // image, L̄ = exp(mean(log(δ + L))) (Reinhard et al. 2002, eq. 1), by one workgroup: each
 // invocation sums a fixed stride of texels in order, then a tree in shared memory adds the 256
 // partial sums in a fixed order, so the result is the same run after run. The adapted log
@@ -13,7 +13,7 @@
 layout(local_size_x = 256) in;
 
 layout(set = 0, binding = 0, rgba16f) uniform readonly image2D tiny;
-// Mirrors PostExposure in render/passes/post_chain.hpp.
+// Mirrors PostExposure in render/passes/post_pass.hpp.
 layout(set = 0, binding = 1, std430) buffer Exposure {
   float adaptedLogLuminance;
   float frameLogLuminance;

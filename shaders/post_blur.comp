@@ -1,5 +1,5 @@
 #version 450
-// One of the glow's four separable Gaussian blurs (x, y, x, y; render/passes/post_chain.hpp) on
+// One of the glow's four separable Gaussian blurs (x, y, x, y; render/passes/post_pass.hpp) on
 // the downsampled copy: 2R + 1 taps with the normalised weights of glowKernel()
 // (render/passes/post_reference.hpp), clamped to the edge. The radius and the axis are
 // specialisation constants, so the loop has a fixed trip count and no branch depends on a

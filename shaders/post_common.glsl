@@ -1,4 +1,4 @@
-// Shared by the post chain's shaders (render/passes/post_chain.hpp); the CPU twins are in
+// Shared by the post chain's shaders (render/passes/post_pass.hpp); the CPU twins are in
 // render/passes/post_reference.hpp.
 
 // Luminance of linear Rec. 709 / sRGB primaries (ITU-R BT.709), as luminance() on the CPU.

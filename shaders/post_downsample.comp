@@ -1,5 +1,5 @@
 #version 450
-// The post chain's downsampled copy of the HDR frame (render/passes/post_chain.hpp): each texel
+// The post chain's downsampled copy of the HDR frame (render/passes/post_pass.hpp): each texel
 // the mean of a 4×4 block of pixels, read as 4 bilinear taps at the centres of the block's 2×2
 // quads (each tap halfway between two pixel centres on both axes: the exact mean of its quad).
 // The sampler clamps to the edge, which repeats the last row and column as downsampleForPost

@@ -1,5 +1,5 @@
 #version 450
-// Post chain, the hand-off (render/passes/post_chain.hpp, step 5): what the output pass does with
+// Post chain, the hand-off (render/passes/post_pass.hpp, step 5): what the output pass does with
 // the chain's results, folded on the downsampled copy's grid so that the full-size output pass
 // samples one image there instead of two and reads no buffer: rgb = g·(s·glow + r·rays) and
 // a = g·(1 − s), for the gain g (the auto gain or the exposure), the glow's share s and the god

@@ -1,5 +1,5 @@
 #version 450
-// God rays, step 3 (render/passes/post_chain.hpp): the blur along each ray of the polar image (a
+// God rays, step 3 (render/passes/post_pass.hpp): the blur along each ray of the polar image (a
 // vertical blur: one column per angle), towards the light: out(j) = Σ_{k: j − k·step ≥ 0} w[k] ·
 // in(j − k·step) with w[k] = w₀·d^k·(1 − k²/K²) for k < K taps (godRayWeights), so light only
 // moves outwards and fades; taps that would reach past the light add nothing, so each ray keeps
@@ -10,7 +10,7 @@
 // outwards multiplies every term by d and raises its k by one, which the binomial expansion of
 // (k + 1)ⁿ turns into A' = in + d·A, B' = d·(B + A), C' = d·(C + 2B + A), less the term that
 // leaves the window (k = K); out = w₀·(A − C/K²). So two loads per texel instead of K: on
-// lavapipe the direct sum's 32 loads took 3.3 of the god rays' 5.8 ms in nalu's frame.
+// lavapipe the direct sum's loads were more than half of the god rays' cost.
 // The sums are rounded differently from the direct sum's, by a few units of the last place in
 // fp32, well below the fp16 image's rounding. Taps and step are specialisation constants.
 

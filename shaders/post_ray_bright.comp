@@ -1,5 +1,5 @@
 #version 450
-// God rays, step 1 (render/passes/post_chain.hpp): the downsampled copy's bright texels, rgb ·
+// God rays, step 1 (render/passes/post_pass.hpp): the downsampled copy's bright texels, rgb ·
 // max(L − threshold, 0)/L; everything darker is an occluder, 0 (godRayBright in
 // render/passes/post_reference.hpp).
 

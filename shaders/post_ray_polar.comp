@@ -1,5 +1,5 @@
 #version 450
-// God rays, step 2 (render/passes/post_chain.hpp): the bright image in polar coordinates around
+// God rays, step 2 (render/passes/post_pass.hpp): the bright image in polar coordinates around
 // the light, texel (i, j) at the angle θ = 2π(i + ½)/A and the radius r = j copy texels, over the
 // A angles and R radii the light uses (the rest of the image is left as it is): a
 // bilinear sample at centre + r(cos θ, sin θ), clamped to the edge (toPolar in

@@ -1,5 +1,5 @@
 #version 450
-// God rays, step 4 (render/passes/post_chain.hpp): the (blurred) polar image back on the
+// God rays, step 4 (render/passes/post_pass.hpp): the (blurred) polar image back on the
 // downsampled copy's grid: each texel centre's angle and radius around the light, sampled
 // bilinearly, wrapping in angle and clamped in radius (fromPolar in
 // render/passes/post_reference.hpp). The output pass adds the result.

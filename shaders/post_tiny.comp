@@ -1,5 +1,5 @@
 #version 450
-// The auto gain's tiny image (render/passes/post_chain.hpp): each texel the mean of a k×k block
+// The auto gain's tiny image (render/passes/post_pass.hpp): each texel the mean of a k×k block
 // of the downsampled copy, over the texels of the block inside it (tinyForAutoGain in
 // render/passes/post_reference.hpp). k is fixed per frame size: a specialisation constant.
 

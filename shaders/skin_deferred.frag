@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Deferred skin, step 2 (render/passes/surface_pass.hpp, "Deferred skin"): a triangle over the
+// Deferred skin, step 2 (render/passes/deferred_skin_pass.hpp): a triangle over the
 // screen at the far plane whose depth test (greater) passes only where shaders/skin_gbuffer.frag
 // drew skin; lavapipe's fragment code tests the depth first and skips the shading of the 4 × 4
 // blocks where it passes nowhere, so each skin pixel is lit once, as shaders/surface.frag lights

@@ -1,5 +1,5 @@
 #version 450
-// One of the twelve blurs of texture-space diffusion (render/passes/skin_diffusion.hpp): a 1D
+// One of the twelve blurs of texture-space diffusion (render/passes/skin_diffusion_pass.hpp): a 1D
 // Gaussian along u or v whose width in texels follows the stretch map, with the taps of
 // render/passes/skin_diffusion_kernel.hpp (the CPU reference,
 // render/passes/skin_diffusion_reference.cpp, does the same arithmetic). A blur along v also
@@ -27,7 +27,7 @@ layout(set = 0, binding = 2, rgba16f) uniform writeonly image2D destination;
 layout(set = 0, binding = 3, rgba16f) uniform image2D accumulated;  // Σ w·blur(E·c); after the resolve, the result
 layout(set = 0, binding = 4, rgba16f) uniform image2D coverage;     // Σ w·blur(c), per RGB
 
-// Mirrors BlurConstants in render/passes/skin_diffusion.cpp.
+// Mirrors BlurConstants in render/passes/skin_diffusion_pass.cpp.
 layout(push_constant) uniform Blur {
   vec4 stage;   // x σ of this blur alone (mm), y stretch for texels off the mesh (mm per texel)
   vec4 weight;  // rgb: the profile's weight of the Gaussian this blur completes

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Deferred skin, step 1 (render/passes/surface_pass.hpp, "Deferred skin"): what shaders/surface.frag
+// Deferred skin, step 1 (render/passes/deferred_skin_pass.hpp): what shaders/surface.frag
 // computes of a skin fragment before its lights, written to four RGBA32F targets so that
 // shaders/skin_deferred.frag finishes it, once per pixel, with the same bits. The parts that
 // need screen derivatives (the normal map's frame, the textures' mip levels) are done here.

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Irradiance and stretch in texture space (render/passes/skin_diffusion.hpp): per texel
+// Irradiance and stretch in texture space (render/passes/skin_diffusion_pass.hpp): per texel
 // E = ambient + Σ max(N·L, 0)·radiance (light 0 through the hair shadows) with coverage 1, and the millimetres of surface one texel
 // spans along u and along v (the stretch map of d'Eon & Luebke, GPU Gems 3 §14.4.2, here as
 // lengths rather than their inverses, so that texels off the mesh can hold 0).

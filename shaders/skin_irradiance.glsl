@@ -1,5 +1,5 @@
 // What shaders/skin_irradiance.{vert,frag} share: the uniforms of one mesh instance's irradiance
-// in texture space; mirrors IrradianceUniforms in render/passes/skin_diffusion.cpp.
+// in texture space; mirrors IrradianceUniforms in render/passes/skin_diffusion_pass.cpp.
 // Include after `#extension GL_GOOGLE_include_directive : require`.
 
 const int kSkinIrradianceMaxLights = 4;  // SkinDiffusionPass::kMaxLights

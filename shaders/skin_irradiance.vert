@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// A mesh drawn at its texture coordinates (render/passes/skin_diffusion.hpp): every texel of the
+// A mesh drawn at its texture coordinates (render/passes/skin_diffusion_pass.hpp): every texel of the
 // irradiance map receives the surface point that maps to it.
 #include "skin_irradiance.glsl"
 

@@ -1,4 +1,4 @@
-// Skin under the frame's lights (render/passes/surface_pass.hpp, "Skin"), shared by the forward
+// Skin under the frame's lights (render/passes/skin_shading.hpp), shared by the forward
 // pass (shaders/surface.frag) and the deferred one (shaders/skin_gbuffer.frag, then
 // shaders/skin_deferred.frag), so that both give a shaded point the same bits. Declares the skin
 // table and the material block of set 1. Include after frame_uniforms.glsl.
@@ -6,7 +6,7 @@
 
 layout(set = 1, binding = 2) uniform sampler2DArray skinTable;  // skin: pre-integrated diffuse + Beckmann
 
-// Mirrors MaterialUniforms in render/passes/surface_pass.cpp.
+// Mirrors MaterialUniforms in render/passes/surface_scene.cpp.
 layout(set = 1, binding = 4, std140) uniform Material {
   vec4 baseColor;
   ivec4 flags;       // x: has normal map
@@ -17,7 +17,7 @@ layout(set = 1, binding = 4, std140) uniform Material {
 } draw;
 
 // Skin's diffuse light from texture-space diffusion (ambient and lights already in it, blurred;
-// render/passes/skin_diffusion.hpp) rather than from the pre-integrated table.
+// render/passes/skin_diffusion_pass.hpp) rather than from the pre-integrated table.
 layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 
 // Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
@@ -32,8 +32,8 @@ void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float cu
   vec3 normalB = normalize(mix(detail, geometric, draw.blur.b));
   specular = vec3(0.0);
   // The test at the end: lavapipe (Mesa 22.3) runs a loop's body once more, every lane masked off,
-  // lookups and all, before a test at the top ends the loop (about 2 ms of nalu's main pass). The
-  // selections keep a frame without lights unlit.
+  // lookups and all, before a test at the top ends the loop
+  // (docs/lavapipe.md#loops-test-at-the-end). The selections keep a frame without lights unlit.
   int i = 0;
   do {
     vec3 toLight = frame.lightDirection[i].xyz;

@@ -13,7 +13,7 @@
 // and i + 1, comes from a sliding window of three positions held in registers — no second
 // dispatch, no barrier and no re-read of the positions.
 //
-// Buffers (std430), see render/passes/strand_interpolation.hpp:
+// Buffers (std430), see render/passes/strand_interpolation_pass.hpp:
 //   0 guide positions   vec4 per guide vertex, guide after guide, root first: xyz metres, w unused
 //   1 guide frames      uvec2 per guide (partner A, partner B)
 //   2 dense strands     64-byte DenseStrand per strand

@@ -1,4 +1,4 @@
-// Light through a translucent surface (render/passes/surface_pass.hpp, "Translucency"): the
+// Light through a translucent surface (render/passes/translucency_pass.hpp): the
 // thickness d it crossed from where the first light entered to the shaded point, and what of it
 // comes out. Include in surface.frag after frame_uniforms.glsl and the material block.
 //

@@ -121,8 +121,7 @@ struct LimitSurface::Impl {
   /// The stencils that read, directly or through another point, a cage vertex `staleFor` marks
   /// as moved, as runs per table (refined, local). Finding them reads every stencil's sources
   /// once, about what applying them all costs, so they are kept while the same vertices move,
-  /// as an animation's do frame after frame: the head's jaw poses (bench/subdiv_bench.cpp)
-  /// update the scan cage in 3.4–4.4 ms on one thread instead of 17.
+  /// as an animation's do frame after frame (the head's jaw poses, bench/subdiv_bench.cpp).
   std::vector<char> staleFor;
   std::array<std::vector<StaleRun>, 2> staleRuns;
 
@@ -239,7 +238,7 @@ Result<LimitSurface> LimitSurface::create(const Cage& cage, const LimitSurfaceSe
   options.generateFVarTables = cage.hasUvs();
   // Smooth face-varying patches that follow kUvInterpolation, not the legacy bilinear ones.
   options.generateFVarLegacyLinearPatches = false;
-  // The refiner must isolate what the patch table expects (PITFALLS.md).
+  // The refiner must isolate what the patch table expects, so its options come from the table's.
   refiner.RefineAdaptive(options.GetRefineAdaptiveOptions());
   topology->patches.reset(Far::PatchTableFactory::Create(refiner, options));
   if (!topology->patches) return fail("OpenSubdiv could not build a patch table for the cage");

@@ -1,6 +1,6 @@
 #pragma once
 // Uniform Catmull-Clark refinement of a cage with OpenSubdiv (Far), as a polygon mesh. The
-// adaptive, view-dependent path of the subdivision issue builds on the same topology.
+// adaptive, view-dependent path (subdiv/tessellator.hpp) builds on the same topology.
 
 #include "subdiv/cage.hpp"
 

@@ -24,8 +24,8 @@ namespace {
 
 using detail::kGrid;
 
-// Below these a thread costs more than it saves (a face takes about a microsecond to refine
-// and triangulate, a limit point half that to evaluate).
+// Below these a thread costs more than it saves (evaluating a limit point costs about half of
+// refining and triangulating a face).
 constexpr std::size_t kMinFacesPerWorker = 512;
 constexpr std::size_t kMinPointsPerWorker = 1024;
 constexpr std::size_t kChunksPerWorker = 16;
@@ -39,9 +39,8 @@ constexpr double kKeptErrorGrowth = 0.10;
 constexpr double kKeptFinestScale = 0.7;
 
 // update prepares the next tessellation in the background, between the caller's frames, and
-// adopts it this many calls later: 83 ms at 60 frames a second, where a tessellation of the
-// LeePerrySmith head filling a 1280×720 image takes 20–50 ms on one thread of this project's
-// 2-core machine.
+// adopts it this many calls later: at 60 frames a second, time enough for one thread to
+// tessellate the LeePerrySmith head filling a 1280×720 image.
 constexpr int kPreparedCalls = 5;
 // It prepares when the largest growth of a scale, extrapolated from its rate over the last
 // kGrowthSpan calls (an even number: an animation that alternates between two poses every
@@ -52,9 +51,9 @@ constexpr std::size_t kGrowthSpan = 4;
 constexpr double kPrepareErrorGrowth = 0.07;
 constexpr double kPrepareFinestScale = 0.75;
 // The preparing threads give their cores to the caller's work (detail::yieldToForeground)
-// between faces and every so many limit points, cells, lines or triangle corners: tens of
-// microseconds of work apart mostly; the longest gaps measured on the preparing thread at near
-// were 1.4–4.5 ms (a finely split face, or the thread descheduled).
+// between faces and every so many limit points, cells, lines or triangle corners, so the gaps
+// stay short against a frame; only a finely split face, or the thread being descheduled, makes a
+// long one.
 constexpr std::size_t kPointsBetweenYields = 64;
 constexpr std::size_t kCellsBetweenYields = 4096;
 constexpr std::size_t kLinesBetweenYields = 256;
@@ -680,10 +679,9 @@ struct AdaptiveTessellator::Preparation {
   void start(const Impl& current, const ScreenView& view, unsigned threads) { run(current, view, threads, true); }
 
   /// Tessellates the surface for `view` in the background and drops the result, so that
-  /// the first tessellation prepared for adoption finds its storage allocated and touched: on
-  /// this project's 2-core VM a page fault costs about 11 µs, and the first tessellation of the
-  /// head at near took 80–110 ms on one thread against 30 ms for the next, longer than the
-  /// kPreparedCalls frames it has before it is adopted.
+  /// the first tessellation prepared for adoption finds its storage allocated and touched: page
+  /// faults make the first tessellation of the head at near several times slower than the next,
+  /// longer than the kPreparedCalls frames it has before it is adopted.
   void warm(const Impl& current, const ScreenView& view, unsigned threads) { run(current, view, threads, false); }
 
   /// Waits for the tessellation to be made.

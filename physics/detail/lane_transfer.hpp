@@ -4,12 +4,12 @@
 // public API.
 //
 // The hair step copies every particle in and out once per block and step; done one float at a
-// time, those copies took about 40 % of a step on 128-particle ropes and a quarter of a
-// collision-free step of a 32-particle groom. Here 8 strands × 8 particles move as a tile: a strand's 8 particles are
-// 24 consecutive floats, 3 registers, and the 8 × 24 matrix (strands × floats) transposed is 24 registers whose j-th
-// holds coordinate j % 3 of particle j / 3 of the 8 strands: exactly 3 lane rows. So each tile is three 8 × 8
-// transposes; rows that do not fill a tile (strand ends, short strands) are copied one float at a time. Copies only:
-// the values are bit for bit the same either way.
+// time, those copies were a large share of a step. Here 8 strands × 8 particles move as a tile: a
+// strand's 8 particles are 24 consecutive floats, 3 registers, and the 8 × 24 matrix (strands ×
+// floats) transposed is 24 registers whose j-th holds coordinate j % 3 of particle j / 3 of the 8
+// strands: exactly 3 lane rows. So each tile is three 8 × 8 transposes; rows that do not fill a
+// tile (strand ends, short strands) are copied one float at a time. Copies only: the values are
+// bit for bit the same either way.
 
 #include <algorithm>
 #include <cstddef>

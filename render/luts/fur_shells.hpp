@@ -1,7 +1,7 @@
 #pragma once
 // Shell-texture thresholds from a single photograph of fur (Ukaji, Kosaka, Hattori, Kubo,
-// Morishima, "Feature Extraction and Real-time Rendering of Fur from Realistic Image", the seed
-// document shared/seeds/003_24c77bd882b180b8.txt; "[U]" below). The CPU reference of what
+// Morishima, "Feature Extraction and Real-time Rendering of Fur from Realistic Image", one of the
+// source documents, docs/design.md#sources; "[U]" below). The CPU reference of what
 // FurPass (render/passes/fur_pass.hpp) draws: the GPU reads the thresholds this file computes.
 //
 // The model [U §3.1]. Fur is a scattering medium of thickness h_b over the skin. Light entering

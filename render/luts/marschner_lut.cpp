@@ -180,12 +180,12 @@ void MarschnerLut::bake() {
       const Table& table = which == 0 ? longitudinal_ : azimuthal_;
       constants.table.x = which;
       const auto groups = [](std::uint32_t texels) { return (texels + kWorkgroupSize - 1) / kWorkgroupSize; };
-      timer.begin(commands, which == 0 ? "longitudinal" : "azimuthal");
+      timer.begin(commands, which == 0 ? PassName("longitudinal") : PassName("azimuthal"));
       commands.pushConstants<BakeConstants>(*pipeline.layout, vk::ShaderStageFlagBits::eCompute, 0, constants);
       commands.dispatch(groups(table.extent.width), groups(table.extent.height), 1);
       timer.end(commands);
     }
-    timer.begin(commands, "mips");
+    timer.begin(commands, PassName("mips"));
     buildMips(commands, *longitudinal_.image, longitudinal_.extent, longitudinal_.layers, longitudinal_.levels);
     buildMips(commands, *azimuthal_.image, azimuthal_.extent, azimuthal_.layers, azimuthal_.levels);
     timer.end(commands);

@@ -8,8 +8,9 @@
 // Sources
 //   [Pen11] Penner & Borshukov, "Pre-Integrated Skin Shading", GPU Pro 2 (2011), and Penner's
 //           SIGGRAPH 2011 course talk: the ring integral below over x ∈ [−π/2, π/2].
-//   [seed]  the project's seed method: the same integral over the curvature-dependent range
-//           x ∈ [−π(r+1)/(2r), π(r+1)/(2r)] (DESIGN.md, issue 5).
+//   [seed]  the source document the project implements for skin (Takamine's master's thesis,
+//           Tokyo University of Technology, eq. 3.1; docs/design.md#sources): the same integral
+//           over the curvature-dependent range x ∈ [−π(r+1)/(2r), π(r+1)/(2r)].
 //   [dEL07] d'Eon & Luebke, GPU Gems 3 ch. 14: the six-Gaussian profile, Kelemen/Szirmay-Kalos
 //           specular with the Beckmann term stored in a texture (render/luts/skin_specular.hpp).
 //

@@ -111,7 +111,7 @@ void PreintegratedSkinLut::bake() {
     commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline.pipeline);
     commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline.layout, 0, *set, {});
     const std::uint32_t groups = (settings_.size + kWorkgroupSize - 1) / kWorkgroupSize;
-    timer.begin(commands, "preintegrated skin");
+    timer.begin(commands, PassName("preintegrated skin"));
     commands.dispatch(groups, groups, 1);
     timer.end(commands);
     transition(commands, table_, Layout::eGeneral, Layout::eShaderReadOnlyOptimal, Stage::eComputeShader,

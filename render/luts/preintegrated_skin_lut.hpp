@@ -7,8 +7,7 @@
 //
 // Format: R16F, four layers of a 2D array, one per channel (R, G, B, A). A skin fragment reads
 // each diffuse channel at an N·L of its own (blurred normals) and the Beckmann term at N·H, so
-// every lookup uses one channel, and lavapipe filters one channel for less than four (the
-// surfaces of the frame bench's demo content: 40.9 → 38.8 ms, three alternating runs). Every
+// every lookup uses one channel, and lavapipe filters one channel for less than four. Every
 // Vulkan device filters R16F linearly; storing to it takes shaderStorageImageExtendedFormats,
 // which lavapipe and desktop GPUs have (create() names the format where a device lacks it).
 // The values stored lie in [0, 1] (the diffuse term, and 0.5·D^0.1 of the Beckmann term but for

@@ -1,7 +1,7 @@
 #pragma once
 // Solid voxelization of a closed triangle mesh: which cells of an N³ grid over the mesh's
 // bounding box have their centre inside the object. The first step of the voxelized thickness
-// LUT (render/luts/voxel_thickness.hpp, issue 5 item 7b); plain C++ and GLM, no Vulkan.
+// LUT (render/luts/voxel_thickness.hpp); plain C++ and GLM, no Vulkan.
 //
 // Inside test: the winding number of each cell centre, counted along a ray in +x. Every grid
 // column (j, k) casts one ray through the centres (·, j + ½, k + ½); each triangle whose

@@ -1,7 +1,7 @@
 #pragma once
 // The surface voxels of a solid voxelization, numbered, and the map from every cell to its
 // nearest surface voxel: the rows and columns of the voxelized thickness LUT
-// (render/luts/voxel_thickness.hpp, issue 5 item 7b) and how a shaded point finds its row.
+// (render/luts/voxel_thickness.hpp) and how a shaded point finds its row.
 //
 // Which voxels: solid cells with at least one 6-neighbour in the exterior, where the exterior is
 // everything outside the grid plus the empty cells 6-connected to it (a flood fill from the

@@ -1,9 +1,10 @@
 #pragma once
-// The voxelized thickness LUT of the seed method (issue 5, item 7b; DESIGN.md "translucency"),
-// CPU side: for every pair of surface voxels of a closed mesh, how much of the straight segment
-// between their centres lies inside the object. A translucent shade then needs no depth map: the
-// light's entry point and the shaded point each find their surface voxel, one LUT read gives the
-// thickness d between them, and the light arriving is I = I0·exp(−σ·d) per RGB channel.
+// The voxelized thickness LUT of the seed method (the voxelized-translucency paper,
+// docs/design.md#sources), CPU side: for every pair of surface voxels of a closed mesh, how much of
+// the straight segment between their centres lies inside the object. A translucent shade then needs
+// no depth map: the light's entry point and the shaded point each find their surface voxel, one LUT
+// read gives the thickness d between them, and the light arriving is I = I0·exp(−σ·d) per RGB
+// channel.
 //
 // Build:
 // 1. Solid voxelization on N³ cells over the bounding box (render/luts/solid_voxels.hpp:

@@ -202,7 +202,7 @@ void MeshEdges::findSilhouette(const glm::vec4& eye, std::vector<glm::uvec2>& ou
 
 Result<std::unique_ptr<FurPass>> FurPass::create(const Device& device, const FurPassSettings& settings,
                                                  const TextureData& photo, const FurShellSettings& shells,
-                                                 const HairShadows* shadows) {
+                                                 const HairShadowPass* shadows) {
   if (settings.depthFormat == vk::Format::eUndefined)
     return fail("fur pass: a depth format is required (the shells composite by depth testing)");
   auto model = FurShellModel::fromPhoto(photo, shells);
@@ -215,10 +215,10 @@ Result<std::unique_ptr<FurPass>> FurPass::create(const Device& device, const Fur
 }
 
 FurPass::FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model,
-                 const HairShadows* shadows)
+                 const HairShadowPass* shadows)
     : device_(&device), shadows_(shadows), settings_(settings), model_(model) {
   if (shadows_ == nullptr) {
-    auto empty = HairShadows::create(device);
+    auto empty = HairShadowPass::create(device);
     if (!empty) throw std::runtime_error(empty.error().message);
     ownShadows_ = std::move(*empty);
     shadows_ = ownShadows_.get();
@@ -241,11 +241,11 @@ FurPass::FurPass(const Device& device, const FurPassSettings& settings, const Te
                                       {Type::eCombinedImageSampler, Stage::eFragment},
                                       {Type::eCombinedImageSampler, Stage::eFragment},
                                       {Type::eCombinedImageSampler, Stage::eFragment}});
-  static_assert(HairShadows::kBindings == 8);
+  static_assert(HairShadowPass::kBindings == 8);
   buildPipelines();
   pool_ = makeDescriptorPool(device, 1,
                              {{Type::eUniformBuffer, 1},
-                              {Type::eCombinedImageSampler, 1 + HairShadows::kBindings},
+                              {Type::eCombinedImageSampler, 1 + HairShadowPass::kBindings},
                               {Type::eStorageBuffer, 3}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(FurUniforms), vk::BufferUsageFlagBits::eUniformBuffer,

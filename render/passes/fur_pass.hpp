@@ -1,6 +1,6 @@
 #pragma once
-// Shell-and-fin fur from one photograph (issue 7): Ukaji et al.'s shells (render/luts/fur_shells.hpp,
-// the seed document 003) with Lengyel, Praun, Finkelstein & Hoppe's fins ("Real-time fur over
+// Shell-and-fin fur from one photograph: Ukaji et al.'s shells (render/luts/fur_shells.hpp,
+// docs/design.md#sources) with Lengyel, Praun, Finkelstein & Hoppe's fins ("Real-time fur over
 // arbitrary surfaces", I3D 2001) and Kajiya-Kay lighting. Shaders: shaders/fur_common.glsl,
 // fur_shell.{vert,frag}, fur_fin.{vert,frag}.
 //
@@ -43,7 +43,7 @@
 // along the normal gives back the photo's colour; a half-Lambert term of the normal darkens the
 // side of the body away from the light; one directional light plus ambient.
 //
-// Shadows. The pass receives the frame's hair shadows (render/passes/hair_shadows.hpp: the opacity
+// Shadows. The pass receives the frame's hair shadows (render/passes/hair_shadow_pass.hpp: the opacity
 // maps of the first light) on the shells and fins, and casts its own: shadowStrands() holds one
 // two-point strand per vertex, from the skin to the fur's top (leans included), in world space,
 // rewritten by update(), for the renderer to register as a shadow caster. The fur then shadows
@@ -64,7 +64,7 @@
 
 #include "render/frame.hpp"
 #include "render/luts/fur_shells.hpp"
-#include "render/passes/hair_shadows.hpp"
+#include "render/passes/hair_shadow_pass.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -158,7 +158,7 @@ public:
   [[nodiscard]] static Result<std::unique_ptr<FurPass>> create(const Device& device, const FurPassSettings& settings,
                                                                const TextureData& photo,
                                                                const FurShellSettings& shells = {},
-                                                               const HairShadows* shadows = nullptr);
+                                                               const HairShadowPass* shadows = nullptr);
 
   FurPass(const FurPass&) = delete;
   FurPass& operator=(const FurPass&) = delete;
@@ -182,10 +182,10 @@ public:
   [[nodiscard]] Result<void> update(const FurView& view);
 
   /// Re-reads the hair shadows' maps: their descriptors, and the pipelines when the number of
-  /// maps or their mode changed (after HairShadows::setGrooms, or a map's first bounds).
+  /// maps or their mode changed (after HairShadowPass::setGrooms, or a map's first bounds).
   void refreshShadows();
 
-  /// The hair shadows' uniforms of this frame (HairShadows::uniforms after its record()), for
+  /// The hair shadows' uniforms of this frame (HairShadowPass::uniforms after its record()), for
   /// the next draw.
   void setShadowUniforms(const HairShadowUniforms& uniforms);
 
@@ -214,14 +214,14 @@ public:
 
 private:
   FurPass(const Device& device, const FurPassSettings& settings, const TextureData& photo, FurShellModel model,
-          const HairShadows* shadows);
+          const HairShadowPass* shadows);
   void buildPipelines();
   /// Writes shadowStrands_ and shadowBounds_ for this model matrix and comb.
   void writeShadowStrands(const glm::mat4& model, const glm::vec3& comb);
 
   const Device* device_;
-  std::unique_ptr<HairShadows> ownShadows_;  ///< empty maps, when the caller gives none
-  const HairShadows* shadows_;
+  std::unique_ptr<HairShadowPass> ownShadows_;  ///< empty maps, when the caller gives none
+  const HairShadowPass* shadows_;
   SpecializationConstants shadowConstants_;  ///< of the current pipelines
   FurPassSettings settings_;
   FurShellModel model_;

@@ -9,10 +9,14 @@
 #include <vector>
 
 #include "render/descriptors.hpp"
-#include "render/passes/hair_lighting.hpp"
+#include "render/passes/hair_lighting_pass.hpp"
 
 namespace mane::render {
 namespace {
+
+// After the frame: the draws read their commands, and the host reads the choice (lastChoice).
+constexpr ResourceUse kChoiceReadable{vk::PipelineStageFlagBits2::eDrawIndirect | vk::PipelineStageFlagBits2::eHost,
+                                      vk::AccessFlagBits2::eIndirectCommandRead | vk::AccessFlagBits2::eHostRead};
 
 // std140 mirror of HairUniforms in shaders/hair_uniforms.glsl.
 struct HairUniforms {
@@ -169,6 +173,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
 
 void HairPass::setOcclusion(const Buffer& tileMaxDepth, const HairOcclusionTiles& tiles) {
   writeStorageBuffer(*device_, set_, 6, tileMaxDepth);
+  occlusionTiles_ = *tileMaxDepth.buffer();
   occlusion_ = tiles;
   writeOcclusionUniforms();
 }
@@ -233,6 +238,8 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   lineCoverage_ = Buffer(*device_, lineVertices * sizeof(float), lineUsage, vk::MemoryPropertyFlagBits::eDeviceLocal);
   writeStorageBuffer(*device_, set_, 12, lineClips_);
   writeStorageBuffer(*device_, set_, 13, lineCoverage_);
+  positions_ = strands.positions;
+  tangents_ = strands.tangents;
   radiance_ = strands.radiance;
   positionTexels_ = makeTexelView(*device_, strands.positions, vk::Format::eR32G32B32A32Sfloat);
   tangentTexels_ = makeTexelView(*device_, strands.tangents, vk::Format::eR32G32B32A32Sfloat);
@@ -303,19 +310,25 @@ bool HairPass::linesDrawable(float width) const {
   return device_->wideLines() && width >= limits.lineWidthRange[0] && width <= limits.lineWidthRange[1];
 }
 
-void HairPass::record(const vk::raii::CommandBuffer& commands) const {
+void HairPass::declare(FrameGraph::Builder& pass) const {
+  if (indexCount_ == 0 || extent_.width == 0) return;
+  const auto compute = vk::PipelineStageFlagBits2::eComputeShader;
+  pass.read(GraphResource(positions_), ResourceUse::sampled(compute));  // texel buffers
+  pass.read(GraphResource(tangents_), ResourceUse::sampled(compute));
+  pass.read(GraphResource(occlusionTiles_), ResourceUse::storageRead(compute));
+  // The sums the previous choice zeroed are read, then written; the draws read indices, commands
+  // and line vertices that these steps write again.
+  pass.write(draws_, ResourceUse::storageReadWrite(compute));
+  for (const Buffer* buffer : {&visibleCounts_, &visibleBits_, &firstSegments_, &shadeList_})
+    pass.write(*buffer, ResourceUse::storageReadWrite(compute));
+  for (const Buffer* buffer : {&indices_, &lineClips_, &lineCoverage_})
+    pass.write(*buffer, ResourceUse::storageWrite(compute));
+}
+
+void HairPass::execute(const vk::raii::CommandBuffer& commands) const {
   if (indexCount_ == 0 || extent_.width == 0) return;
   using Stage = vk::PipelineStageFlagBits2;
   using Access = vk::AccessFlagBits2;
-  // In: the strands from the interpolation dispatch, the occlusion tiles, and the sums the previous
-  // choice zeroed. The steps below rewrite the draw commands and indices after the previous
-  // frame's draws have read them.
-  const vk::MemoryBarrier2 before{
-      .srcStageMask = Stage::eComputeShader | Stage::eDrawIndirect | Stage::eIndexInput | Stage::eVertexAttributeInput,
-      .srcAccessMask = Access::eShaderStorageWrite,
-      .dstStageMask = Stage::eComputeShader,
-      .dstAccessMask = Access::eShaderStorageRead | Access::eShaderSampledRead | Access::eShaderStorageWrite};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &before});
   // Each step reads what the one before wrote.
   const vk::MemoryBarrier2 stepDone{.srcStageMask = Stage::eComputeShader,
                                     .srcAccessMask = Access::eShaderStorageWrite,
@@ -333,14 +346,37 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
   step(choosePipeline_, 1, 1);
   commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &stepDone});
   step(indexPipeline_, groupsX, (groups + groupsX - 1) / groupsX);
-  const vk::MemoryBarrier2 written{.srcStageMask = Stage::eComputeShader,
-                                   .srcAccessMask = Access::eShaderStorageWrite,
-                                   .dstStageMask = Stage::eDrawIndirect | Stage::eIndexInput |
-                                                   Stage::eVertexAttributeInput | Stage::eComputeShader | Stage::eHost,
-                                   .dstAccessMask = Access::eIndirectCommandRead | Access::eIndexRead |
-                                                    Access::eVertexAttributeRead | Access::eShaderStorageRead |
-                                                    Access::eHostRead};
-  commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &written});
+}
+
+void HairPass::record(const vk::raii::CommandBuffer& commands) const {
+  if (indexCount_ == 0 || extent_.width == 0) return;
+  // HairLightingPass reads the shade list as texels and as its dispatch's size.
+  const ResourceUse shading{vk::PipelineStageFlagBits2::eComputeShader | vk::PipelineStageFlagBits2::eDrawIndirect,
+                            vk::AccessFlagBits2::eShaderSampledRead | vk::AccessFlagBits2::eIndirectCommandRead};
+  FrameGraph::recordAlone(commands, PassName::kHairLighting, *this,
+                          {{shadeList_, shading},
+                           {indices_, ResourceUse::indexInput()},
+                           {lineClips_, ResourceUse::vertexInput()},
+                           {lineCoverage_, ResourceUse::vertexInput()},
+                           {draws_, kChoiceReadable}});
+}
+
+void HairPass::declareDraw(FrameGraph::Builder& pass) const {
+  if (indexCount_ == 0 || extent_.width == 0) return;
+  const auto vertexShader = vk::PipelineStageFlagBits2::eVertexShader;
+  pass.read(GraphResource(positions_), ResourceUse::storageRead(vertexShader));
+  pass.read(GraphResource(tangents_), ResourceUse::storageRead(vertexShader));
+  pass.read(GraphResource(radiance_), ResourceUse::storageRead(vertexShader));
+  pass.read(GraphResource(radiance_), ResourceUse::vertexInput());  // the lines' third attribute
+  pass.read(draws_, ResourceUse::indirectCommands());
+  pass.read(indices_, ResourceUse::indexInput());
+  pass.read(lineClips_, ResourceUse::vertexInput());
+  pass.read(lineCoverage_, ResourceUse::vertexInput());
+}
+
+void HairPass::leaveChoiceReadable(FrameGraph& graph) const {
+  if (indexCount_ == 0 || extent_.width == 0) return;
+  graph.leaveAs(draws_, kChoiceReadable);
 }
 
 HairPrimitiveChoice HairPass::lastChoice() const {

@@ -1,10 +1,10 @@
 #pragma once
 // Dense hair strands drawn as camera-facing ribbons (shaders/hair.vert, shaders/hair.frag,
 // shaders/hair_uniforms.glsl), coloured with the radiance HairLightingPass shaded at their
-// vertices (render/passes/hair_lighting.hpp).
+// vertices (render/passes/hair_lighting_pass.hpp).
 //
 // Input. The strands come as storage buffers in the layout of StrandInterpolationPass
-// (render/passes/strand_interpolation.hpp): per vertex a vec4 position (xyz metres, w = t along
+// (render/passes/strand_interpolation_pass.hpp): per vertex a vec4 position (xyz metres, w = t along
 // the strand, 0 root .. 1 tip), a vec4 unit tangent (xyz, root → tip) and a vec4 radiance (rgb,
 // HairLightingPass::radiance()), strand-major, Nd vertices per strand. Any buffers with
 // STORAGE_BUFFER usage in that layout work (tests make their own). The positions and tangents
@@ -34,8 +34,8 @@
 //  both sample counts.
 //
 // Lines. Where a ribbon is drawn at the minimum width, a line of that width along the strand
-// covers the same pixels with half the primitives (one per segment, not two triangles): on
-// lavapipe the nalu frame's hair went from about 70 to 40 ms. A vertex wider on screen than the
+// covers the same pixels with half the primitives (one per segment, not two triangles), which
+// lavapipe's single-threaded geometry stage draws much faster. A vertex wider on screen than the
 // minimum is drawn by a line at the minimum width, with coverage 1: it loses the difference. The
 // choice is made on the GPU every frame by `record` (shaders/hair_primitive.comp), from the widths
 // the vertex shader computes, summed over the vertices: lines when they leave at most 1 % of the
@@ -46,16 +46,16 @@
 // lines (strictLines), at width 1 or with the wideLines feature within its range. The compute
 // step that measures the widths also writes every vertex's clip position and coverage, which the
 // line draw takes as vertex attributes (shaders/hair_line.vert) with the radiance: lavapipe runs
-// vertex shaders on one thread, where pulling the strands from storage buffers took about 2 ms of
-// the nalu frame's line draw. That step reads the strands through texel buffers: lavapipe
-// (Mesa 22.3) loads a storage buffer lane by lane in a loop, where a texel fetch gathers all lanes
-// at once (nalu's frame: about 1 ms less).
+// vertex shaders on one thread (docs/lavapipe.md#vertex-shading-is-single-threaded), where pulling
+// the strands from storage buffers a second time is expensive. That step reads the strands through texel
+// buffers: lavapipe (Mesa 22.3) loads a storage buffer lane by lane in a loop, where a texel fetch
+// gathers all lanes at once (docs/lavapipe.md#texel-buffers-gather-storage-buffers-loop).
 //
 // Hidden strands. Long hair falls behind the head and shoulders, and out of the frame: in nalu
 // about half of the dense vertices. The Renderer knows opaque depth before the hair is shaded
 // and drawn (the skin's, from its G-buffer pass, where the skin is deferred; else that of the
 // surfaces and furs, as it splits the main pass around the hair), and reduces it to the
-// farthest depth per 8 × 8 pixel tile (HairOcclusion). `record` then tests every segment: it is
+// farthest depth per 8 × 8 pixel tile (HairOcclusionPass). `record` then tests every segment: it is
 // hidden when its pixel box on screen (its ends and the ribbon's edges, 1.5 pixels more each way
 // for the line width and rounding) lies off the screen, or only over tiles whose farthest opaque
 // depth is nearer than the segment's nearest depth, less its whole depth range (samples of a
@@ -64,21 +64,20 @@
 // order (a prefix sum in a fixed order, so the frame is deterministic), and a vertex both of whose
 // segments are hidden is not shaded (shadeList(), for HairLightingPass). Nothing seen changes: a
 // hidden segment's fragments would all fail the depth test (tests/world/hidden_hair_test.cpp
-// compares the frames with and without, byte for byte); nalu's frame on lavapipe is about 15 %
-// faster (README, "Whole frame"). Moving hidden vertices beyond the far plane instead,
+// compares the frames with and without, byte for byte), and nalu's frame on lavapipe is faster
+// (docs/performance.md#whole-frame). Moving hidden vertices beyond the far plane instead,
 // leaving the indices alone, changed the frame under 4× MSAA: lavapipe then clips the whole line
 // draw, which it rasterizes differently from the unclipped one.
 //
 // Compositing: sorted, back to front, per strand. Each strand is blended with premultiplied-alpha
-// "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the
-// order setDrawOrder gives (the Renderer sorts strands every frame by the distance of their
-// guide's middle from the eye: render/hair_order.hpp). Why sorting and not an order-independent
-// method: on lavapipe it costs nothing on the GPU (the index buffer is written in that order
-// anyway; the sort is of guides, thousands, on the CPU), where weighted blended OIT (McGuire &
-// Bavoil, JCGT 2013) needs two more colour targets and a full-screen composite (≈ 20 ms at 720p,
-// shared/LAVAPIPE.md) and still only approximates the front-to-back weighting by a depth
-// heuristic; a per-pixel linked list (TressFX's PPLL) needs atomics and memory per fragment. What
-// sorting gets right and wrong:
+// "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the order
+// setDrawOrder gives (the Renderer sorts strands every frame by the distance of their guide's
+// middle from the eye: render/hair_order.hpp). Why sorting and not an order-independent method: on
+// lavapipe it costs nothing on the GPU (the index buffer is written in that order anyway; the sort
+// is of guides, thousands, on the CPU), where weighted blended OIT (McGuire & Bavoil, JCGT 2013)
+// needs two more colour targets and a full-screen composite (docs/lavapipe.md#full-screen-passes)
+// and still only approximates the front-to-back weighting by a depth heuristic; a per-pixel linked
+// list (TressFX's PPLL) needs atomics and memory per fragment. What sorting gets right and wrong:
 //  - Coverage: the accumulated alpha 1 − Π(1 − α_i) does not depend on the order at all.
 //  - Colour: exact where strands are separated in depth as whole strands (layers of hair, a
 //    fringe in front of a face). Where two strands cross in depth along their lengths, the
@@ -88,7 +87,7 @@
 //    depth-test against it (none yet) see only the opaque scene.
 //
 // Colour: the radiance of the segment's two end vertices, interpolated linearly along it (it is
-// constant across the width: see hair_lighting.hpp), times the coverage alpha.
+// constant across the width: see hair_lighting_pass.hpp), times the coverage alpha.
 //
 // Units: metres, radians, pixels where named.
 
@@ -100,6 +99,7 @@
 #include <glm/glm.hpp>
 
 #include "render/frame.hpp"
+#include "render/frame_graph.hpp"
 #include "render/hair_data.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
@@ -131,7 +131,7 @@ struct HairPrimitiveChoice {
   std::uint32_t hiddenVertices = 0;
 };
 
-/// The farthest depth of the opaque scene per square tile of the frame (HairOcclusion), which
+/// The farthest depth of the opaque scene per square tile of the frame (HairOcclusionPass), which
 /// `record` tests the strands against.
 struct HairOcclusionTiles {
   glm::uvec2 tiles{1, 1};      ///< across and down, covering the view's extent
@@ -185,18 +185,30 @@ public:
   /// then only the segments off the screen are hidden.
   void setOcclusion(const Buffer& tileMaxDepth, const HairOcclusionTiles& tiles);
 
+  /// What the compute steps below read (the strands, the occlusion tiles) and write (the
+  /// draws, their indices, the shade list, the lines' vertices), for a frame graph.
+  void declare(FrameGraph::Builder& pass) const;
   /// Records the compute steps that choose this frame's primitive, ribbons or lines, and write
   /// the indices of the visible segments and the shade list (see the file comment), outside a
-  /// rendering scope, after `update` and before `draw` and HairLightingPass::record; the strands'
-  /// writes and the occlusion tiles' are made visible to them. Nothing is recorded before
-  /// setStrands.
+  /// rendering scope, after `update` and before `draw` and HairLightingPass's dispatch; the
+  /// barriers before and after them come from a frame graph (declare), those between them are
+  /// the pass's own. Nothing is recorded before setStrands.
+  void execute(const vk::raii::CommandBuffer& commands) const;
+  /// `execute` alone (tests, benchmarks): after every earlier command, and leaving what it wrote
+  /// visible to the draw, to HairLightingPass and to the host (lastChoice).
   void record(const vk::raii::CommandBuffer& commands) const;
 
+  /// What `draw` reads (the strands, the radiance, the draws and their indices, the lines'
+  /// vertices), for the frame graph's pass that draws it.
+  void declareDraw(FrameGraph::Builder& pass) const;
+  /// After the frame, the host reads the choice (lastChoice): the draws' buffer, for a frame graph.
+  void leaveChoiceReadable(FrameGraph& graph) const;
   /// Records the draw inside a dynamic rendering scope with the formats and sample count of
-  /// HairPassSettings (viewport and scissor are set to the view's extent), after `record` in the
+  /// HairPassSettings (viewport and scissor are set to the view's extent), after `execute` in the
   /// same submission. Nothing is drawn before setStrands. The strand buffers' writes must be
   /// visible to vertex-shader storage reads, and the radiance's to vertex attribute reads
-  /// (StrandInterpolationPass::record's and HairLightingPass::record's barriers do that).
+  /// (declareDraw says so to a frame graph; StrandInterpolationPass::record and
+  /// HairLightingPass::record leave them so).
   void draw(const vk::raii::CommandBuffer& commands) const;
 
   /// The choice of the last submission that ran `record`, once it has finished.
@@ -227,17 +239,20 @@ private:
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};
   Buffer uniforms_;
-  Buffer order_;          ///< uint per strand, host-visible
-  Buffer indices_;        ///< per visible segment two ribbon triangles, then per visible segment a line
-  Buffer draws_;          ///< PrimitiveDraws (hair_pass.cpp), host-visible
-  Buffer shadeList_;      ///< HairLightingPass::setShadeList's layout
-  Buffer visibleCounts_;  ///< uint per strand
-  Buffer visibleBits_;    ///< a bit per segment, per strand
-  Buffer firstSegments_;  ///< per strand in drawing order: the visible segments and shaded vertices before it
-  Buffer noOcclusion_;    ///< one tile at the far plane
-  Buffer lineClips_;      ///< vec4 per vertex: the line draw's clip positions, written by `record`
-  Buffer lineCoverage_;   ///< float per vertex: and its coverage
-  vk::Buffer radiance_;   ///< the strands' radiance, the line draw's third vertex attribute
+  Buffer order_;               ///< uint per strand, host-visible
+  Buffer indices_;             ///< per visible segment two ribbon triangles, then per visible segment a line
+  Buffer draws_;               ///< PrimitiveDraws (hair_pass.cpp), host-visible
+  Buffer shadeList_;           ///< HairLightingPass::setShadeList's layout
+  Buffer visibleCounts_;       ///< uint per strand
+  Buffer visibleBits_;         ///< a bit per segment, per strand
+  Buffer firstSegments_;       ///< per strand in drawing order: the visible segments and shaded vertices before it
+  Buffer noOcclusion_;         ///< one tile at the far plane
+  Buffer lineClips_;           ///< vec4 per vertex: the line draw's clip positions, written by `record`
+  Buffer lineCoverage_;        ///< float per vertex: and its coverage
+  vk::Buffer positions_;       ///< the strands' positions (setStrands)
+  vk::Buffer tangents_;        ///< and tangents
+  vk::Buffer radiance_;        ///< the strands' radiance, the line draw's third vertex attribute
+  vk::Buffer occlusionTiles_;  ///< setOcclusion's tiles
   vk::raii::BufferView positionTexels_{nullptr};  ///< the strands' positions and tangents as RGBA32F texel buffers
   vk::raii::BufferView tangentTexels_{nullptr};
   HairOcclusionTiles occlusion_;

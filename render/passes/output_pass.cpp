@@ -13,7 +13,7 @@ struct OutputConstants {
 
 }  // namespace
 
-OutputPass::OutputPass(const Device& device, const RenderTarget& target, const PostChain& post)
+OutputPass::OutputPass(const Device& device, const RenderTarget& target, const PostPass& post)
     : device_(&device), post_(&post) {
   const vk::ShaderStageFlags fragment = vk::ShaderStageFlagBits::eFragment;
   layout_ = makeSetLayout(device, {{vk::DescriptorType::eCombinedImageSampler, fragment},
@@ -24,10 +24,10 @@ OutputPass::OutputPass(const Device& device, const RenderTarget& target, const P
   writeSampledImage(device, set_, 0, target.hdr(), sampler_);
   // The overlay stays in GENERAL layout (the post chain writes it as a storage image).
   writeSampledImage(device, set_, 1, post.overlay().view(), post.sampler(), vk::ImageLayout::eGeneral);
-  pipelineFor(ToneMapping::kLinear, PostChain::OverlayUse::kNone);
+  pipelineFor(ToneMapping::kLinear, PostPass::OverlayUse::kNone);
 }
 
-const Pipeline& OutputPass::pipelineFor(ToneMapping toneMapping, PostChain::OverlayUse overlay) {
+const Pipeline& OutputPass::pipelineFor(ToneMapping toneMapping, PostPass::OverlayUse overlay) {
   Pipeline& pipeline = pipelines_[3 * std::size_t(toneMapping == ToneMapping::kReinhard) + std::size_t(overlay)];
   if (*pipeline.pipeline) return pipeline;
   pipeline = makeGraphicsPipeline(
@@ -41,10 +41,18 @@ const Pipeline& OutputPass::pipelineFor(ToneMapping toneMapping, PostChain::Over
   return pipeline;
 }
 
+void OutputPass::declare(FrameGraph::Builder& pass, const RenderTarget& target, const PostSettings& post) const {
+  const auto fragment = vk::PipelineStageFlagBits2::eFragmentShader;
+  pass.read(target.hdr(), ResourceUse::sampled(fragment));
+  if (PostPass::runs(post))
+    pass.read(post_->overlay(), {fragment, vk::AccessFlagBits2::eShaderSampledRead, vk::ImageLayout::eGeneral});
+  pass.write(target.output(), ResourceUse::colorAttachment(), Contents::kDiscard);
+}
+
 void OutputPass::record(const vk::raii::CommandBuffer& commands, const RenderTarget& target, float exposure,
                         const PostSettings& post) {
   // The chain's overlay only where it ran this frame (the renderer records it as `post` asks).
-  const PostChain::OverlayUse overlay = PostChain::runs(post) ? post_->overlayUse() : PostChain::OverlayUse::kNone;
+  const PostPass::OverlayUse overlay = PostPass::runs(post) ? post_->overlayUse() : PostPass::OverlayUse::kNone;
   const Pipeline& pipeline = pipelineFor(post.toneMapping, overlay);
   const vk::RenderingAttachmentInfo color{.imageView = *target.output().view(),
                                           .imageLayout = vk::ImageLayout::eColorAttachmentOptimal,

@@ -1,5 +1,5 @@
 #pragma once
-// The HDR post chain (render/passes/post_chain.hpp) as numbers, on the CPU: the sizes of its
+// The HDR post chain (render/passes/post_pass.hpp) as numbers, on the CPU: the sizes of its
 // images, the glow's blur kernel, and reference implementations of every step the GPU does, for
 // tests and tools. The shaders (shaders/post_*.comp, shaders/output.frag) follow this file.
 //
@@ -76,7 +76,7 @@ double adaptLogLuminance(double adaptedLog, double frameLog, double rate);
 /// L_d = L/(1 + L); the colour keeps its chromaticity, scaled by L_d/L: gain·rgb/(1 + L).
 glm::dvec3 reinhard(glm::dvec3 rgb, double gain);
 
-// God rays (issue 8, item 4), on the downsampled copy: the bright texels (the rest occludes), a
+// God rays, on the downsampled copy: the bright texels (the rest occludes), a
 // polar image around the light, a blur along each ray away from the light, back to the copy's grid.
 // Positions on the copy are continuous texel coordinates, texel (x, y) covering [x, x+1]×[y, y+1];
 // the polar image's texel (i, j) is the angle θ = 2π(i + ½)/A at the radius r = j copy texels.

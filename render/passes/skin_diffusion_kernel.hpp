@@ -1,5 +1,5 @@
 #pragma once
-// The blurs of texture-space diffusion (render/passes/skin_diffusion.hpp), as numbers: which six
+// The blurs of texture-space diffusion (render/passes/skin_diffusion_pass.hpp), as numbers: which six
 // Gaussians run in which order, and which taps one texel's blur along one axis reads. The GPU
 // (shaders/skin_diffusion_blur.comp) and the CPU reference (skin_diffusion_reference.hpp) both
 // follow this file.
@@ -22,10 +22,10 @@
 //    whose sparse spacing 3σ_i/6 would exceed the previous Gaussian's σ (its input would alias:
 //    the ripple of Gaussians of width σ summed at spacing d is 2·exp(−2π²σ²/d²)); H = 6 for the
 //    rest. For d'Eon's variances: 12, 12, 6, 6, 6, 6 (25 taps for the first two, 13 after).
-// The trip counts are fixed per pipeline (a specialization constant): lavapipe ran this blur
-// 3× slower with loops and branches that depend on the texel around the image reads (measured
-// at 1024²: 9 taps in a data-dependent loop 95 ms, the same 9 in a fixed one 35 ms), and reads
-// through imageLoad 2× faster than through texelFetch (13 taps: 16 against 33 ms).
+// The trip counts are fixed per pipeline (a specialization constant): lavapipe runs this blur
+// several times slower with loops and branches that depend on the texel around the image reads
+// (docs/lavapipe.md#loops-test-at-the-end), and reads through imageLoad faster than through
+// texelFetch.
 // Measured on a 1D prototype of the cascade (point impulse, 0.04–0.12 mm per texel): the
 // response matches R(r) within 2.2 % wherever R is ≥ 1 % of its peak, its sums over disks
 // within 0.25 %; at 0.0625 mm per texel within 0.1 %.
@@ -66,7 +66,7 @@ std::array<SkinDiffusionStage, kSkinGaussianCount> skinDiffusionStages(const Ski
 double skinBlurTapOffset(double sigmaTexels, int halfTaps, int k);
 
 /// Blurred coverage below this leaves a texel of the diffused map black: no covered texel lies
-/// within the kernels' reach, and the quotient (see skin_diffusion.hpp, "Seams") would be noise.
+/// within the kernels' reach, and the quotient (see skin_diffusion_pass.hpp, "Seams") would be noise.
 inline constexpr double kSkinMinCoverage = 1e-3;
 
 /// The stretch (mm per texel) that texels outside the UV islands blur with, for maps given as

@@ -1,5 +1,5 @@
 #pragma once
-// A mesh as texture-space diffusion draws it (render/passes/skin_diffusion.hpp): positions,
+// A mesh as texture-space diffusion draws it (render/passes/skin_diffusion_pass.hpp): positions,
 // normals and texture coordinates in one device-local vertex buffer, and its triangle list. It
 // keeps its own copy, apart from the surface pass's buffers, so the pass stands alone (the
 // surface pass's vertices start with the same three fields, at a 36-byte stride: sharing them

@@ -1,5 +1,5 @@
 #pragma once
-// The CPU reference of texture-space diffusion's blurs (render/passes/skin_diffusion.hpp): the
+// The CPU reference of texture-space diffusion's blurs (render/passes/skin_diffusion_pass.hpp): the
 // same cascade, taps, weights, normalisation and resolve as shaders/skin_diffusion_blur.comp
 // (render/passes/skin_diffusion_kernel.hpp), in double precision, for tests that compare the GPU
 // with it. Slow (a 256² map takes well under a second): not for frames.

@@ -1,4 +1,4 @@
-// SkinDiffusionPass's maps to and from the host (render/passes/skin_diffusion.hpp): setMaps and
+// SkinDiffusionPass's maps to and from the host (render/passes/skin_diffusion_pass.hpp): setMaps and
 // the read-backs, for tests and tools. Between frames; each call waits for the GPU.
 
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <glm/gtc/packing.hpp>
 
-#include "render/passes/skin_diffusion.hpp"
+#include "render/passes/skin_diffusion_pass.hpp"
 
 namespace mane::render {
 namespace {

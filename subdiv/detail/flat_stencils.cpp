@@ -64,8 +64,8 @@ void FlatStencils::apply(std::span<glm::dvec3> points, std::size_t begin, std::s
   const auto weightsOf = [&](std::size_t s) { return weights_.data() + weightOffsets_[s]; };
   const auto sizeOf = [&](std::size_t s) { return offsets_[s + 1] - offsets_[s]; };
   // Two stencils at a time: each sum is a chain of dependent additions, and two independent
-  // chains keep the floating-point units busy (5.3 instead of 8.3 ms on the LeePerrySmith
-  // cage; four chains were slower). Each sum still adds its terms in its own order.
+  // chains keep the floating-point units busy (four chains were slower). Each sum still adds its
+  // terms in its own order.
   std::size_t s = begin;
   for (; s + 1 < end; s += 2) {
     const std::uint32_t *sourcesA = sourcesOf(s), *sourcesB = sourcesOf(s + 1);

@@ -1,6 +1,6 @@
 #pragma once
 // Private to subdiv/: runs work over a fixed partition of [0, count) into contiguous ranges,
-// one per worker (DESIGN.md, "Determinism"). Callers make each item's arithmetic independent
+// one per worker (docs/design.md#determinism). Callers make each item's arithmetic independent
 // of the partition and merge per-range outputs in range order, so results do not depend on
 // the thread count.
 
@@ -15,7 +15,7 @@
 namespace mane::subdiv::detail {
 
 /// The workers `threads` asks for over `count` items: at least 1, at most one per
-/// `minimumPerWorker` items (handing a range to another thread costs tens of microseconds).
+/// `minimumPerWorker` items (handing a range to another thread has a fixed cost to pay back).
 [[nodiscard]] inline std::size_t workerCount(std::size_t count, unsigned threads, std::size_t minimumPerWorker) {
   const std::size_t useful = std::max<std::size_t>(1, count / std::max<std::size_t>(1, minimumPerWorker));
   return std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, useful);

@@ -110,9 +110,8 @@ private:
 
   /// Linux wakes a sleeping thread on the CPU of the thread that wakes it, where it waits for
   /// the caller's own range to end: a frame's loop, run after the threads slept through the
-  /// rest of the frame, took as long on two threads as on one (measured on this project's
-  /// 2-core VM: the woken thread started 0.9–1.0 ms after a 1 ms range began, and 0.1–0.2 ms
-  /// after when barred from the caller's CPU). So the kept threads may run anywhere but there.
+  /// rest of the frame, took as long on two threads as on one. So the kept threads may run
+  /// anywhere but there.
   void keepOffCallersCpu() {
 #if defined(__linux__)
     const int cpu = sched_getcpu();

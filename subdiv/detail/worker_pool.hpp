@@ -1,8 +1,8 @@
 #pragma once
 // Private to subdiv/: threads kept between the parallel loops of forEachRange, and the gate that
-// pauses background work (a tessellation being prepared) while a frame's work runs. A kept
-// thread is woken in 10–40 µs on this project's 2-core VM, where starting one costs 100–200
-// µs, and a deforming head's frame runs several such loops (the cage update, the vertices').
+// pauses background work (a tessellation being prepared) while a frame's work runs. Waking a
+// kept thread costs a fraction of starting one, and a deforming head's frame runs several such
+// loops (the cage update, the vertices').
 
 #include <atomic>
 #include <cstddef>
@@ -31,9 +31,8 @@ inline constexpr std::uint32_t kWaiterUnit = 0x10000;
 
 /// On a background thread, waits while foreground work runs and nobody waits for the
 /// background; elsewhere returns at once. Background work calls it often, so that a frame's
-/// work beside it has every core. On this project's 2-core VM, a frame's loop on two threads
-/// beside a preparing thread took twice as long as alone, and on one thread as long as a frame
-/// on one thread.
+/// work beside it has every core: on a machine with few cores, a frame's loop on two threads
+/// beside a preparing thread otherwise gains nothing over one thread.
 inline void yieldToForeground() {
   if (!inBackground) return;
   for (std::uint32_t gate = backgroundGate.load(std::memory_order_acquire);

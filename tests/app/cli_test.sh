@@ -11,7 +11,7 @@ skip() { echo "SKIP: $*"; exit 77; }
 
 # Counts, in PNG $1's box x0 y0 x1 y1 (pixels, ends excluded), the pure white and the pure black
 # pixels: "WHITE BLACK". The overlay of `mane view` draws white text on a black panel
-# (render/passes/text_overlay.hpp); a rendered scene has neither over whole glyphs.
+# (render/passes/text_overlay_pass.hpp); a rendered scene has neither over whole glyphs.
 overlay_pixels() {
   python3 - "$@" <<'PY'
 import struct, sys, zlib
@@ -61,7 +61,7 @@ case $case in
     grep -q "vulkan:  1.3" <<<"$out" || fail "no Vulkan 1.3 in: $out"
     ;;
   sim-hash-independent-of-threads)
-    # DESIGN.md: same scene and steps → same hash whatever the thread count.
+    # Same scene and steps → same hash whatever the thread count (docs/design.md#determinism).
     hashes=()
     for threads in 1 2 4; do
       line=$("$mane" sim --steps 120 --threads "$threads" | tail -n 1) || fail "sim --threads $threads failed"

@@ -1,4 +1,4 @@
-// The text overlay `mane view` draws its frame time with (render/passes/text_overlay.hpp): the
+// The text overlay `mane view` draws its frame time with (render/passes/text_overlay_pass.hpp): the
 // font's coverage, the layout's rectangles, and the pass on lavapipe against the layout, pixel for
 // pixel.
 
@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "render/passes/text_overlay.hpp"
+#include "render/passes/text_overlay_pass.hpp"
 #include "render/render_target.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 

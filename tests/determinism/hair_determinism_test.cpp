@@ -1,4 +1,4 @@
-// Determinism of the hair simulation (DESIGN.md, "Determinism"): the same inputs give the same
+// Determinism of the hair simulation (docs/design.md#determinism): the same inputs give the same
 // state bit for bit, run after run and for any thread count. The oracle is the state hash
 // (FNV-1a over the raw bytes of every position and previous position) plus a direct
 // comparison of the position bytes.

@@ -8,9 +8,12 @@
 #include <gtest/gtest.h>
 
 #include "physics/solver.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 // Solves S = 2a·sinh(D/(2a)) for a > 0. The left side falls monotonically from ∞ (a → 0) to
 // D (a → ∞), so bisection on [1e-3·D, 1e3·D] converges for any S > D.
@@ -39,7 +42,7 @@ TEST(Catenary, HangingChainSettlesOntoTheCatenary) {
   // A 40-link chain needs many Gauss–Seidel sweeps for the residual stretch to vanish
   // (convergence slows as links²); 200 keeps the stretch below 0.1 % at rest.
   settings.constraintIterations = 200;
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   ASSERT_TRUE(solver);
 
   // Start straight between the pins (compressed: the links are longer than the spacing);

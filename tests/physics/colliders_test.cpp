@@ -17,9 +17,12 @@
 #include "physics/hair.hpp"
 #include "physics/sdf.hpp"
 #include "physics/solver.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 using ::testing::HasSubstr;
 
@@ -100,7 +103,7 @@ TEST(Colliders, SlidingFrictionDeceleratesAsCoulombsLaw) {
   SolverSettings settings;
   settings.damping = 0.0f;
   settings.constraintIterations = 1;
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   ASSERT_TRUE(solver);
   solver->colliders.spheres = {{{0.0f, static_cast<float>(-kRadius), 0.0f}, static_cast<float>(kRadius)}};
   solver->colliders.friction = static_cast<float>(kMu);
@@ -140,7 +143,7 @@ TEST(Colliders, SlidingFrictionDeceleratesAsCoulombsLaw) {
   EXPECT_LT(norm(solver->particles.positions[0] - rest), 1e-4f);
 
   // Control: without friction the same start slides on, past 2 m after 1 s.
-  auto frictionless = Solver::create(settings);
+  auto frictionless = ParticleSolver::create(settings);
   ASSERT_TRUE(frictionless);
   frictionless->colliders = solver->colliders;
   frictionless->colliders.friction = 0.0f;
@@ -157,7 +160,7 @@ TEST(Colliders, StaticFrictionHoldsInsideTheCoulombCone) {
   const auto drift = [](float mu) {
     SolverSettings settings;
     settings.constraintIterations = 1;
-    auto solver = Solver::create(settings);
+    auto solver = ParticleSolver::create(settings);
     EXPECT_TRUE(solver);
     solver->colliders.spheres = {{{0.0f, 0.0f, 0.0f}, 1.0f}};
     solver->colliders.friction = mu;

@@ -14,9 +14,12 @@
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
 #include "physics/solver.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 float distance(const glm::vec3& a, const glm::vec3& b) {
   const glm::vec3 d = b - a;
@@ -63,7 +66,7 @@ float stretchAfterOneStep(int iterations) {
   settings.damping = 0.0f;
   settings.constraintIterations = iterations;
   settings.tethers = false;  // measure the distance relaxation alone
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   EXPECT_TRUE(solver);
   SplitMix64 rng(42);
   constexpr int kParticles = 24;
@@ -150,7 +153,7 @@ TEST(Tether, NoParticleEverExceedsItsRestDistanceFromTheRootDuringAViolentShake)
 
 TEST(Pin, PinnedParticlesSitOnTheirTargets) {
   SolverSettings settings;
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   ASSERT_TRUE(solver);
   solver->particles.add({0.0f, 0.0f, 0.0f}, 0.0f);
   solver->particles.add({0.1f, 0.0f, 0.0f}, 1.0f);

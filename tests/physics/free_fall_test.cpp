@@ -9,9 +9,12 @@
 #include <gtest/gtest.h>
 
 #include "physics/solver.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 SolverSettings freeFallSettings(double step, glm::vec3 gravity) {
   SolverSettings settings;
@@ -31,7 +34,7 @@ TEST(FreeFall, DyadicInputsMatchTheParabolaBitForBit) {
   const glm::vec3 g{0.0f, -8.0f, 0.0f};
   const glm::vec3 x0{0.5f, 20.0f, -1.0f};
   const glm::vec3 v0{1.0f, 4.0f, 0.25f};
-  auto solver = Solver::create(freeFallSettings(h, g));
+  auto solver = ParticleSolver::create(freeFallSettings(h, g));
   ASSERT_TRUE(solver);
   solver->particles.addMoving(x0, v0, static_cast<float>(h), g, 1.0f);
   for (int n = 1; n <= 256; ++n) {
@@ -57,7 +60,7 @@ TEST(FreeFall, RealisticStepMatchesTheParabolaToRounding) {
   const glm::vec3 x0{0.0f, 10.0f, 0.0f};
   const glm::vec3 v0{1.5f, 3.0f, -0.7f};
   const double ulp = std::ldexp(1.0, -20);  // ulp of floats in [8, 16)
-  auto solver = Solver::create(freeFallSettings(h, g));
+  auto solver = ParticleSolver::create(freeFallSettings(h, g));
   ASSERT_TRUE(solver);
   solver->particles.addMoving(x0, v0, static_cast<float>(h), g, 1.0f);
   for (int n = 1; n <= 120; ++n) {
@@ -75,7 +78,7 @@ TEST(FreeFall, RealisticStepMatchesTheParabolaToRounding) {
 
 TEST(FreeFall, KinematicParticlesDoNotFall) {
   // Inverse mass 0 is infinite mass (Jakobsen 2001): the integrator must leave it exactly put.
-  auto solver = Solver::create(freeFallSettings(1.0 / 120.0, {0.0f, -9.81f, 0.0f}));
+  auto solver = ParticleSolver::create(freeFallSettings(1.0 / 120.0, {0.0f, -9.81f, 0.0f}));
   ASSERT_TRUE(solver);
   solver->particles.add({1.0f, 2.0f, 3.0f}, 0.0f);
   for (int n = 0; n < 100; ++n) solver->step();
@@ -90,7 +93,7 @@ TEST(FreeFall, DampingScalesTheImpliedVelocityEveryStep) {
   const float d = 0.1f;
   SolverSettings settings = freeFallSettings(0.01, {0.0f, 0.0f, 0.0f});
   settings.damping = d;
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   ASSERT_TRUE(solver);
   solver->particles.addMoving({0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 0.01f, {0, 0, 0}, 1.0f);
   for (int n = 1; n <= 50; ++n) {

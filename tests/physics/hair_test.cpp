@@ -18,9 +18,12 @@
 #include "physics/groom_generator.hpp"
 #include "physics/sdf.hpp"
 #include "physics/hair.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 using ::testing::HasSubstr;
 using Strands = std::vector<std::vector<glm::vec3>>;
@@ -168,9 +171,9 @@ TEST(HairSystem, NonFiniteStateIsDetectedAndReportedWithTheStrand) {
 
 TEST(HairSystem, StrandKernelMatchesTheGeneralSolverBitForBit) {
   // The hair kernel advances several strands side by side for speed. With the head at rest it
-  // must do exactly what the general Solver does to one strand on its own (Verlet, then per
-  // sweep distances root → tip and tethers root → tip): equal bits, tolerance 0. Five strands
-  // of different lengths, so lanes run out at different particles.
+  // must do exactly what the general ParticleSolver (tests/support) does to one strand on its
+  // own (Verlet, then per sweep distances root → tip and tethers root → tip): equal bits,
+  // tolerance 0. Five strands of different lengths, so lanes run out at different particles.
   GroomSettings groom;
   groom.seed = 9;
   groom.strandCount = 5;
@@ -186,7 +189,7 @@ TEST(HairSystem, StrandKernelMatchesTheGeneralSolverBitForBit) {
   for (int frame = 0; frame < 30; ++frame) ASSERT_TRUE(hair->advance(1.0 / 60.0, 1));
 
   for (std::size_t s = 0; s < strands->size(); ++s) {
-    auto solver = Solver::create(settings);
+    auto solver = ParticleSolver::create(settings);
     ASSERT_TRUE(solver);
     const auto reach = hair->strandRestDistances(s);
     const std::vector<glm::vec3>& points = (*strands)[s];

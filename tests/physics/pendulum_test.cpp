@@ -22,9 +22,12 @@
 #include <gtest/gtest.h>
 
 #include "physics/solver.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 constexpr double kLength = 1.0;         // m
 constexpr double kGravity = 9.81;       // m/s²
@@ -54,7 +57,7 @@ double measurePeriod(double amplitude) {
   settings.damping = 0.0f;
   // One projection places the bob exactly on the circle: the root never moves.
   settings.constraintIterations = 1;
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   EXPECT_TRUE(solver);
   const ParticleIndex root = solver->particles.add({0.0f, 0.0f, 0.0f}, 0.0f);
   const ParticleIndex bob = solver->particles.add(

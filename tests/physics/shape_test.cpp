@@ -15,9 +15,12 @@
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
 #include "physics/solver.hpp"
+#include "tests/support/particle_solver.hpp"
 
 namespace mane::physics {
 namespace {
+
+using mane::testing::ParticleSolver;
 
 using ::testing::HasSubstr;
 
@@ -147,7 +150,7 @@ TEST(VelocityClamp, FreeFallReachesTheMaximumSpeedAndStaysThere) {
   SolverSettings settings;
   settings.damping = 0.0f;
   settings.maxSpeed = 3.0f;
-  auto solver = Solver::create(settings);
+  auto solver = ParticleSolver::create(settings);
   ASSERT_TRUE(solver);
   solver->particles.add({0.0f, 0.0f, 0.0f}, 1.0f);
   const float h = static_cast<float>(settings.fixedStep);

@@ -82,7 +82,7 @@ TEST(SolverSettings, InvalidSettingsAreRejectedWithTheFieldNamed) {
 
   settings = {};
   settings.maxSubstepsPerFrame = 0;
-  EXPECT_FALSE(Solver::create(settings));
+  EXPECT_FALSE(validateSettings(settings));
 
   EXPECT_TRUE(validateSettings(SolverSettings{}));
 }

@@ -27,7 +27,8 @@ TEST(Device, ReportsTheFeaturesTheRendererUses) {
   const auto& features = (*device)->info().features;
   ASSERT_FALSE(features.empty());
   for (const auto& feature : features) {
-    // lavapipe 22.3 has every feature mane uses (../shared/PITFALLS.md); validation is off here.
+    // lavapipe 22.3 has every feature mane uses (docs/lavapipe.md#features); validation is off
+    // here.
     if (feature.name == "validation layers") continue;
     EXPECT_TRUE(feature.present) << feature.name;
   }

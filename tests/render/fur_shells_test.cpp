@@ -1,4 +1,4 @@
-// The CPU side of the fur from one photograph (issue 7): Ukaji et al.'s shell thresholds
+// The CPU side of the fur from one photograph: Ukaji et al.'s shell thresholds
 // (render/luts/fur_shells.hpp) against the paper's formulas evaluated independently here, and the
 // fins' silhouette edges (MeshEdges in render/passes/fur_pass.hpp) against a sphere's analytic
 // silhouette. No Vulkan device.

@@ -397,7 +397,7 @@ TEST_F(FurPassTest, ShadowStrandsRunFromTheSkinToTheTopOfTheFur) {
 // unshadowed render (measured 0.61), and on the lit third stay above 0.8 (0.88).
 TEST_F(FurPassTest, FurShadowsItsFarSideThroughTheOpacityMap) {
   MANE_PHOTO_OR_SKIP(image);
-  auto shadows = HairShadows::create(device());
+  auto shadows = HairShadowPass::create(device());
   ASSERT_TRUE(shadows.has_value());
   auto pass = FurPass::create(device(), {}, texture(image), {.layers = 15, .thickness = kThickness}, shadows->get());
   ASSERT_TRUE(pass.has_value()) << pass.error().message;
@@ -408,10 +408,10 @@ TEST_F(FurPassTest, FurShadowsItsFarSideThroughTheOpacityMap) {
   view.ambient = glm::vec3(0.0f);            // direct light only: the part the map attenuates
   const Pixels bare = render(**pass, view);  // no map yet: every slot empty, T = 1
 
-  const std::array<HairShadows::Groom, 1> casters{{{.strands = (*pass)->shadowStrands(),
-                                                    .width = (*pass)->meanEdgeLength(),
-                                                    .opacity = kFurColumnOpacity,
-                                                    .extinction = 1.0f}}};
+  const std::array<HairShadowPass::Groom, 1> casters{{{.strands = (*pass)->shadowStrands(),
+                                                       .width = (*pass)->meanEdgeLength(),
+                                                       .opacity = kFurColumnOpacity,
+                                                       .extinction = 1.0f}}};
   ASSERT_TRUE((*shadows)->setGrooms(casters, {}).has_value());
   ASSERT_TRUE((*shadows)->setBounds(0, (*pass)->shadowBounds()).has_value());
   device().submitAndWait(

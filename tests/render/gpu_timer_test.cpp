@@ -17,9 +17,9 @@ TEST_F(GpuTimerTest, BackToBackPassesShareTheirBoundaryTimestamp) {
   GpuTimer timer(device(), 3);
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     timer.reset(commands);
-    timer.begin(commands, "first");
+    timer.begin(commands, PassName("first"));
     timer.end(commands);
-    timer.begin(commands, "second");
+    timer.begin(commands, PassName("second"));
     timer.end(commands);
     // A barrier between two passes counts with the later one: it still starts where the last ended.
     const vk::MemoryBarrier2 barrier{.srcStageMask = vk::PipelineStageFlagBits2::eAllCommands,
@@ -27,14 +27,14 @@ TEST_F(GpuTimerTest, BackToBackPassesShareTheirBoundaryTimestamp) {
                                      .dstStageMask = vk::PipelineStageFlagBits2::eAllCommands,
                                      .dstAccessMask = vk::AccessFlagBits2::eMemoryRead};
     commands.pipelineBarrier2(vk::DependencyInfo{.memoryBarrierCount = 1, .pMemoryBarriers = &barrier});
-    timer.begin(commands, "third");
+    timer.begin(commands, PassName("third"));
     timer.end(commands);
   });
   const std::vector<PassTiming> timings = timer.results();
   ASSERT_EQ(timings.size(), 3u);
-  EXPECT_EQ(timings[0].pass, "first");
-  EXPECT_EQ(timings[1].pass, "second");
-  EXPECT_EQ(timings[2].pass, "third");
+  EXPECT_EQ(timings[0].pass, PassName("first"));
+  EXPECT_EQ(timings[1].pass, PassName("second"));
+  EXPECT_EQ(timings[2].pass, PassName("third"));
   EXPECT_EQ(timings[0].startMilliseconds, 0.0);
   for (std::size_t i = 0; i < timings.size(); ++i) {
     EXPECT_GE(timings[i].milliseconds, 0.0) << timings[i].pass;
@@ -51,18 +51,18 @@ TEST_F(GpuTimerTest, AHandOffTimesNothing) {
   GpuTimer timer(device(), 3);
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     timer.reset(commands);
-    timer.begin(commands, "around");
+    timer.begin(commands, PassName("around"));
     timer.handOff(commands);
     timer.end(commands);
     timer.handOff(commands);
-    timer.begin(commands, "after");
+    timer.begin(commands, PassName("after"));
     timer.end(commands);
     EXPECT_THROW(timer.handOff(commands), std::logic_error) << "six timestamps fill the room of three passes";
   });
   const std::vector<PassTiming> timings = timer.results();
   ASSERT_EQ(timings.size(), 2u);
-  EXPECT_EQ(timings[0].pass, "around");
-  EXPECT_EQ(timings[1].pass, "after");
+  EXPECT_EQ(timings[0].pass, PassName("around"));
+  EXPECT_EQ(timings[1].pass, PassName("after"));
   EXPECT_GE(timings[0].milliseconds, 0.0);
   EXPECT_GE(timings[1].startMilliseconds, timings[0].startMilliseconds + timings[0].milliseconds);
 }
@@ -72,7 +72,7 @@ TEST_F(GpuTimerTest, EndWithoutABegunPassIsAnError) {
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     timer.reset(commands);
     EXPECT_THROW(timer.end(commands), std::logic_error);
-    timer.begin(commands, "only");
+    timer.begin(commands, PassName("only"));
     timer.end(commands);
     EXPECT_THROW(timer.end(commands), std::logic_error);
   });

@@ -1,10 +1,10 @@
-// The per-vertex hair shading pass (render/passes/hair_lighting.hpp) against independent
+// The per-vertex hair shading pass (render/passes/hair_lighting_pass.hpp) against independent
 // references:
 //  - radiance: at every vertex of straight strands in many orientations, the Marschner radiance
 //    of the CPU model (render/luts/marschner.hpp, double precision) for that vertex's tangent,
 //    light and eye directions, plus the ambient term;
 //  - shadows: behind a sheet of hair, the first light's transmittance at each vertex matches a
-//    ray cast through the sheet's strands (render/opacity_reference.hpp), in both shadow modes,
+//    ray cast through the sheet's strands (render/passes/opacity_shadow_map_reference.hpp), in both shadow modes,
 //    with the sheet and the shaded strands in two grooms (two maps, multiplied); the other
 //    lights stay unshadowed.
 // Validation layers on; any message fails a test (VulkanTest).
@@ -23,9 +23,9 @@
 
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
-#include "render/opacity_reference.hpp"
-#include "render/passes/hair_lighting.hpp"
-#include "render/passes/hair_shadows.hpp"
+#include "render/passes/opacity_shadow_map_reference.hpp"
+#include "render/passes/hair_lighting_pass.hpp"
+#include "render/passes/hair_shadow_pass.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::render {
@@ -126,7 +126,7 @@ TEST_F(HairLightingTest, VertexRadianceMatchesTheCpuModel) {
   }
   const Buffer positions = upload(strands.positions);
   const Buffer tangents = upload(strands.tangents);
-  auto shadows = HairShadows::create(device());
+  auto shadows = HairShadowPass::create(device());
   ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
   auto pass =
       HairLightingPass::create(device(), table, **shadows, positions, tangents, strands.count(), strands.vertices);
@@ -205,11 +205,11 @@ TEST_F(HairLightingTest, FirstLightIsShadowedByTheHairInFrontOfIt) {
 
   for (const HairShadowMode mode : {HairShadowMode::kOpacityShadowMap, HairShadowMode::kDeepOpacityMap}) {
     SCOPED_TRACE(mode == HairShadowMode::kDeepOpacityMap ? "deep opacity map" : "opacity shadow map");
-    auto shadows = HairShadows::create(device());
+    auto shadows = HairShadowPass::create(device());
     ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
     const std::array grooms{
-        HairShadows::Groom{.strands = {&sheetPositions, sheet.count(), sheet.vertices}, .width = 2 * kRadius},
-        HairShadows::Groom{
+        HairShadowPass::Groom{.strands = {&sheetPositions, sheet.count(), sheet.vertices}, .width = 2 * kRadius},
+        HairShadowPass::Groom{
             .strands = {&shadedPositions, shaded.count(), shaded.vertices}, .width = 2 * kRadius, .opacity = 1e-6f}};
     ASSERT_TRUE((*shadows)->setGrooms(grooms, {.mode = mode, .resolution = 512}).has_value());
     const BoundingSphere sheetSphere = *boundingSphere(sheet.positions);
@@ -252,7 +252,7 @@ TEST_F(HairLightingTest, FirstLightIsShadowedByTheHairInFrontOfIt) {
 
 TEST_F(HairLightingTest, RejectsStrandsItCannotShade) {
   const MarschnerLut& table = lut(darkHairParams());
-  auto shadows = HairShadows::create(device());
+  auto shadows = HairShadowPass::create(device());
   ASSERT_TRUE(shadows.has_value());
   const Buffer small(device(), 64,
                      vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer,

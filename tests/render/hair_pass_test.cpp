@@ -1,5 +1,5 @@
 // The hair ribbon pass (render/passes/hair_pass.hpp), shaded by the hair lighting pass
-// (render/passes/hair_lighting.hpp), against references independent of them:
+// (render/passes/hair_lighting_pass.hpp), against references independent of them:
 //  - coverage: parallel straight strands of known world width seen head-on by an orthographic
 //    camera cover their analytic projected area, width × length in pixels; strands narrower
 //    than a pixel still cover their own area (coverage-scaled alpha), at 1× and 4× MSAA;
@@ -32,9 +32,9 @@
 #include "render/hair_order.hpp"
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
-#include "render/passes/hair_lighting.hpp"
+#include "render/passes/hair_lighting_pass.hpp"
 #include "render/passes/hair_pass.hpp"
-#include "render/passes/hair_shadows.hpp"
+#include "render/passes/hair_shadow_pass.hpp"
 #include "render/render_target.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
@@ -120,7 +120,7 @@ public:
     const auto usage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer;
     const Buffer positions = Buffer::withData(device(), std::as_bytes(std::span(data.positions)), usage);
     const Buffer tangents = Buffer::withData(device(), std::as_bytes(std::span(data.tangents)), usage);
-    auto shadows = HairShadows::create(device());
+    auto shadows = HairShadowPass::create(device());
     EXPECT_TRUE(shadows.has_value()) << shadows.error().message;
     auto lighting = HairLightingPass::create(device(), table, **shadows, positions, tangents, data.strandCount(),
                                              data.verticesPerStrand);
@@ -651,8 +651,8 @@ TEST_F(HairPassTest, StrandsSortedBackToFrontCompositeFrontOverBack) {
   const glm::vec4 unsorted = centre();
   EXPECT_NEAR(unsorted.b, kAlpha, 1e-3) << "buffer order draws the back strand last, on top";
 
-  const std::array guides{DenseStrand{.guides = {0, 0, 0}}, DenseStrand{.guides = {1, 0, 0}}};
-  StrandDrawOrder order(DenseStrandLayout{.guideCount = 2, .strands = guides});
+  StrandDrawOrder order(DenseStrandLayout{
+      .guideCount = 2, .strands = {DenseStrand{.guides = {0, 0, 0}}, DenseStrand{.guides = {1, 0, 0}}}});
   const std::array middles{glm::vec3(0.0f, 0.0f, 0.1f), glm::vec3(0.0f, 0.0f, -0.1f)};
   const auto backToFront = order.backToFront(middles, hairEye(view.viewProjection));
   ASSERT_EQ(std::vector<std::uint32_t>(backToFront.begin(), backToFront.end()), (std::vector<std::uint32_t>{1, 0}));

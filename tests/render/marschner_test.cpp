@@ -342,7 +342,7 @@ void MarschnerLutTest::compareWithCpu(const HairShadingParams& params, const cha
   ASSERT_TRUE(lut.has_value()) << lut.error().message;
   std::printf("[ %s ] bake %.1f ms wall (pipeline creation included); GPU:", name, bakeMs);
   for (const PassTiming& timing : lut->bakeTimings())
-    std::printf(" %s %.1f ms", timing.pass.c_str(), timing.milliseconds);
+    std::printf(" %.*s %.1f ms", int(timing.pass.name().size()), timing.pass.name().data(), timing.milliseconds);
   std::printf("\n");
 
   const vk::Extent2D mExtent = lut->extent(MarschnerTable::kLongitudinal);

@@ -1,6 +1,6 @@
-// Opacity shadow maps and deep opacity maps (render/passes/opacity_shadow_map.hpp) against
+// Opacity shadow maps and deep opacity maps (render/passes/opacity_shadow_map_pass.hpp) against
 // references that share no code with them:
-// - the ray-cast CPU reference (render/opacity_reference.hpp): transmittance at points inside and
+// - the ray-cast CPU reference (render/passes/opacity_shadow_map_reference.hpp): transmittance at points inside and
 //   behind a synthetic groom, read from the maps by the GLSL lookup itself
 //   (shaders/opacity_shadow.glsl, run by shaders/opacity_shadow_probe.comp);
 // - the covered area: the last slice summed over the map is α·2r·(projected strand length)/s²;
@@ -21,8 +21,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "render/opacity_reference.hpp"
-#include "render/passes/opacity_shadow_map.hpp"
+#include "render/passes/opacity_shadow_map_reference.hpp"
+#include "render/passes/opacity_shadow_map_pass.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::render {
@@ -115,10 +115,10 @@ protected:
                                 vk::BufferUsageFlagBits::eUniformTexelBuffer | vk::BufferUsageFlagBits::eTransferSrc);
   }
 
-  std::unique_ptr<OpacityShadowMap> build(const Buffer& positions, const Groom& groom,
-                                          const OpacityShadowSettings& settings, glm::vec3 towardLight,
-                                          const BoundingSphere& sphere, double* milliseconds = nullptr) {
-    auto map = OpacityShadowMap::create(device(), {&positions, groom.strands, groom.vertices}, settings);
+  std::unique_ptr<OpacityShadowMapPass> build(const Buffer& positions, const Groom& groom,
+                                              const OpacityShadowSettings& settings, glm::vec3 towardLight,
+                                              const BoundingSphere& sphere, double* milliseconds = nullptr) {
+    auto map = OpacityShadowMapPass::create(device(), {&positions, groom.strands, groom.vertices}, settings);
     EXPECT_TRUE(map.has_value()) << map.error().message;
     if (!map) return nullptr;
     auto lit = (*map)->setLight(towardLight, sphere);
@@ -130,8 +130,8 @@ protected:
     return std::move(*map);
   }
 
-  // Runs shaders/opacity_shadow.glsl at `points` (OpacityShadowMap::probe).
-  static ProbeResult probe(const OpacityShadowMap& map, std::span<const glm::vec3> points) {
+  // Runs shaders/opacity_shadow.glsl at `points` (OpacityShadowMapPass::probe).
+  static ProbeResult probe(const OpacityShadowMapPass& map, std::span<const glm::vec3> points) {
     ProbeResult result;
     for (const glm::vec2& value : map.probe(points)) {
       result.opacity.push_back(value.x);
@@ -179,7 +179,7 @@ struct Accuracy {
 class OpacityShadowAccuracy : public OpacityShadowMapTest {
 protected:
   // Both modes at `points` against the ray-cast reference filtered with the map's kernel
-  // (render/opacity_reference.hpp) at the map's texel size, with rays ≤ r apart.
+  // (render/passes/opacity_shadow_map_reference.hpp) at the map's texel size, with rays ≤ r apart.
   Accuracy measure(const Groom& groom, std::span<const glm::vec3> points, float layerSpacing) {
     const Buffer positions = upload(groom);
     const BoundingSphere sphere = *boundingSphere(groom.positions);
@@ -405,7 +405,7 @@ TEST_F(OpacityShadowMapTest, SliceBoundariesSitAtTheirAnalyticDepths) {
     const auto map = build(positions, layout.groom, {.builder = builder, .resolution = 64, .strandRadius = 2e-4f},
                            light, layout.sphere);
     ASSERT_TRUE(map);
-    for (std::uint32_t k = 0; k < OpacityShadowMap::kSlices; ++k)
+    for (std::uint32_t k = 0; k < OpacityShadowMapPass::kSlices; ++k)
       EXPECT_FLOAT_EQ(map->sliceBoundary(k), float((k + 1) * layout.spacing)) << "slice " << k;
     EXPECT_NEAR(map->depthOf({0.0f, 0.0f, 0.1f - float(layout.depthA)}), layout.depthA, 1e-7);
 
@@ -561,7 +561,7 @@ TEST_F(OpacityShadowMapTest, BadInputGivesClearErrors) {
   const Groom groom = wavyBall(10, 4, 0.05, 0.06, 1);
   const Buffer positions = upload(groom);
   const auto error = [&](OpacityShadowStrands strands, OpacityShadowSettings settings) {
-    auto map = OpacityShadowMap::create(device(), strands, settings);
+    auto map = OpacityShadowMapPass::create(device(), strands, settings);
     return map ? std::string("(no error)") : map.error().message;
   };
   const OpacityShadowStrands good{&positions, 10, 4};
@@ -583,9 +583,10 @@ TEST_F(OpacityShadowMapTest, BadInputGivesClearErrors) {
       Buffer::withData(device(), std::as_bytes(std::span(groom.positions)), vk::BufferUsageFlagBits::eStorageBuffer);
   EXPECT_THAT(error({&storageOnly, 10, 4}, {.builder = OpacityShadowBuilder::kCompute}),
               HasSubstr("UNIFORM_TEXEL_BUFFER"));
-  EXPECT_TRUE(OpacityShadowMap::create(device(), {&storageOnly, 10, 4}, {.builder = OpacityShadowBuilder::kGraphics}));
+  EXPECT_TRUE(
+      OpacityShadowMapPass::create(device(), {&storageOnly, 10, 4}, {.builder = OpacityShadowBuilder::kGraphics}));
 
-  auto map = OpacityShadowMap::create(device(), good);
+  auto map = OpacityShadowMapPass::create(device(), good);
   ASSERT_TRUE(map.has_value()) << map.error().message;
   const BoundingSphere sphere{{0.0f, 0.0f, 0.0f}, 0.1f};
   const auto lightError = [&](glm::vec3 light, BoundingSphere s) {

@@ -1,4 +1,4 @@
-// The HDR post chain (render/passes/post_chain.hpp) and the output pass's tone maps, against the
+// The HDR post chain (render/passes/post_pass.hpp) and the output pass's tone maps, against the
 // CPU references of render/passes/post_reference.hpp and the formulas of Reinhard et al. 2002:
 //  - the glow's kernel is a normalised Gaussian; the GPU glow of an impulse and of a noise image
 //    matches the CPU downsample + four blurs;
@@ -25,7 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "render/passes/light_disc_pass.hpp"
-#include "render/passes/post_chain.hpp"
+#include "render/passes/post_pass.hpp"
 #include "render/passes/post_reference.hpp"
 #include "render/renderer.hpp"
 #include "tests/support/vulkan_fixture.hpp"
@@ -137,7 +137,7 @@ TEST(PostReference, AdaptationRateComposesOverFrames) {
 class PostChainTest : public testing::VulkanTest {
 public:
   // Runs the passes `settings` asks for once on `frame`.
-  void run(PostChain& chain, const PostSettings& settings, float exposure = 1.0f) {
+  void run(PostPass& chain, const PostSettings& settings, float exposure = 1.0f) {
     device().submitAndWait(
         [&](const vk::raii::CommandBuffer& commands) { chain.record(commands, settings, exposure); });
   }
@@ -150,7 +150,7 @@ public:
   };
   GodRays godRaysOf(const HdrImage& frame, glm::vec2 lightUv) {
     const Image uploaded = uploadHdr(device(), frame);
-    PostChain chain(device(), uploaded);
+    PostPass chain(device(), uploaded);
     const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 1.0f, .godRayDecay = 0.96f};
     run(chain, settings, 1.0f);
     device().submitAndWait(
@@ -187,7 +187,7 @@ TEST_F(PostChainTest, GlowOfAnImpulseMatchesTheCpuKernel) {
   const glm::uvec2 pixel(4 * 32 + 1, 4 * 24 + 2);
   frame.texels[std::size_t(pixel.y) * frame.width + pixel.x] = glm::vec4(1600.0f, 800.0f, 400.0f, 1.0f);
   const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
+  PostPass chain(device(), uploaded);
   run(chain, {.glowStrength = 0.5f});
   auto glow = chain.readGlow();
   ASSERT_TRUE(glow.has_value()) << glow.error().message;
@@ -223,7 +223,7 @@ TEST_F(PostChainTest, GlowOfAnImpulseMatchesTheCpuKernel) {
 TEST_F(PostChainTest, GlowOfNoiseMatchesTheCpuReference) {
   const HdrImage frame = noise(90, 70, 0.01f, 100.0f, 7);
   const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
+  PostPass chain(device(), uploaded);
   run(chain, {.glowStrength = 1.0f});
   auto downsampled = chain.readDownsampled();
   auto glow = chain.readGlow();
@@ -248,7 +248,7 @@ TEST_F(PostChainTest, GlowOfNoiseMatchesTheCpuReference) {
 TEST_F(PostChainTest, LogAverageMatchesTheCpuOverTheSameTinyImage) {
   const HdrImage frame = noise(610, 290, 0.001f, 50.0f, 11);  // downsampled 153×73, blocks of 3: 51×25
   const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
+  PostPass chain(device(), uploaded);
   const PostSettings settings{.autoGain = true, .key = 0.18f};
   run(chain, settings, 1.0f);
   auto tiny = chain.readTiny();
@@ -272,7 +272,7 @@ TEST_F(PostChainTest, LogAverageMatchesTheCpuOverTheSameTinyImage) {
 TEST_F(PostChainTest, LogAverageIsDeterministic) {
   const HdrImage frame = noise(333, 222, 0.001f, 50.0f, 5);
   const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
+  PostPass chain(device(), uploaded);
   run(chain, {.autoGain = true});
   const float first = chain.readExposure().frameLogLuminance;
   for (int i = 0; i < 3; ++i) {
@@ -305,7 +305,7 @@ HdrImage smoothFrame() {
 TEST_F(PostChainTest, PolarRoundTripReturnsTheImageAwayFromTheCentre) {
   const HdrImage frame = smoothFrame();
   const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
+  PostPass chain(device(), uploaded);
   const glm::vec2 lightUv(0.37f, 0.58f);
   const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 0.0f};
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
@@ -374,7 +374,7 @@ TEST_F(PostChainTest, RadialBlurByRunningSumsMatchesTheDirectSum) {
   for (glm::vec4& texel : frame.texels)
     texel = glm::vec4(brightness(random), brightness(random), brightness(random), 1);
   const Image uploaded = uploadHdr(device(), frame);
-  PostChain chain(device(), uploaded);
+  PostPass chain(device(), uploaded);
   const glm::vec2 lightUv(0.3f, 0.65f);
   const PostSettings settings{.godRays = 1.0f, .godRayThreshold = 0.0f, .godRayDecay = 0.96f};
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
@@ -656,7 +656,7 @@ TEST_F(PostRendering, GodRaysOffLeaveTheOutputBitIdentical) {
     rays.godRayThreshold = 0.0f;
     std::vector<PassTiming> timings;
     EXPECT_EQ(draw(*renderer, litQuad(1.0f, rays), &timings), plain) << "light behind the camera";
-    for (const PassTiming& timing : timings) EXPECT_NE(timing.pass, "god rays");
+    for (const PassTiming& timing : timings) EXPECT_NE(timing.pass, PassName::kGodRays);
     FrameInput offScreen = litQuad(1.0f, rays);
     offScreen.lights.insert(offScreen.lights.begin(),
                             DirectionalLight{.direction = glm::normalize(glm::vec3(3, 0, -1)), .intensity = 0.0f});
@@ -687,8 +687,9 @@ TEST_F(PostRendering, GodRaysOffLeaveTheOutputBitIdentical) {
   const std::size_t quadCentre = (std::size_t(24) * 64 + 32) * 4;
   EXPECT_NEAR(int(lit[quadCentre]), int(dark[quadCentre]), 1) << "no rays over the occluder's middle";
   if (!timings.empty()) {
-    EXPECT_NE(std::find_if(timings.begin(), timings.end(), [](const PassTiming& t) { return t.pass == "god rays"; }),
-              timings.end());
+    EXPECT_NE(
+        std::find_if(timings.begin(), timings.end(), [](const PassTiming& t) { return t.pass == PassName::kGodRays; }),
+        timings.end());
   }
 }
 
@@ -721,7 +722,7 @@ TEST_F(PostRendering, OutputAppliesTheGainGlowAndGodRaysAsTheirFormulasSay) {
         .exposure = 0.7f,
         .post = post};
     const std::vector<std::uint8_t> rgba = draw(*renderer, sky);
-    const PostChain& chain = renderer->post();
+    const PostPass& chain = renderer->post();
     auto glow = chain.readGlow();
     auto rays = chain.readGodRays();
     ASSERT_TRUE(glow.has_value() && rays.has_value() && rgba.size() == std::size_t(kWidth) * kHeight * 4);
@@ -747,16 +748,16 @@ TEST_F(PostRendering, PostPassesAreTimedOnlyWhenAskedFor) {
   auto renderer = makeRenderer({32, 32}, true);
   std::vector<PassTiming> timings;
   const auto names = [&] {
-    std::vector<std::string> passes;
+    std::vector<PassName> passes;
     for (const PassTiming& timing : timings) passes.push_back(timing.pass);
     return passes;
   };
   draw(*renderer, litQuad(1.0f, {}), &timings);
   if (timings.empty()) GTEST_SKIP() << "the device has no timestamps";
-  EXPECT_EQ(names(), (std::vector<std::string>{"surfaces", "output"})) << "the default adds no passes";
+  EXPECT_EQ(names(), (std::vector{PassName::kSurfaces, PassName::kOutput})) << "the default adds no passes";
   draw(*renderer, litQuad(1.0f, {.autoGain = true, .glowStrength = 0.5f}), &timings);
-  EXPECT_EQ(names(),
-            (std::vector<std::string>{"surfaces", "post downsample", "auto gain", "glow", "post overlay", "output"}));
+  EXPECT_EQ(names(), (std::vector{PassName::kSurfaces, PassName::kPostDownsample, PassName::kAutoGain, PassName::kGlow,
+                                  PassName::kPostOverlay, PassName::kOutput}));
   for (const PassTiming& timing : timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
   // The passes run one after another in the order recorded: the first begins the frame, and each
   // begins no earlier than the one before it ended.

@@ -115,7 +115,7 @@ TEST_F(ReplaceMesh, TheNewTrianglesAreDrawnWhateverTheirCounts) {
 
 // Texture-space skin draws its irradiance over its own copy of the mesh: replaced too, or the
 // new quad would read irradiance never written for it. With the specular term off, a uniformly
-// lit quad keeps its irradiance through the blurs (render/passes/skin_diffusion.hpp), so it
+// lit quad keeps its irradiance through the blurs (render/passes/skin_diffusion_pass.hpp), so it
 // shades as Lambert.
 TEST_F(ReplaceMesh, TextureSpaceSkinFollowsTheNewMesh) {
   const MaterialData skin{

@@ -1,4 +1,4 @@
-// Texture-space diffusion's blurs (render/passes/skin_diffusion.hpp). The references are
+// Texture-space diffusion's blurs (render/passes/skin_diffusion_pass.hpp). The references are
 // independent of the code under test:
 //  - the profile itself: d'Eon's R(r) = Σ w_i exp(−r²/(2v_i))/(2πv_i) (GPU Gems 3, Table 14-1),
 //    evaluated in closed form at texel centres, against the blurred point impulse;
@@ -18,7 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "render/gpu_timer.hpp"
-#include "render/passes/skin_diffusion.hpp"
+#include "render/passes/skin_diffusion_pass.hpp"
 #include "render/passes/skin_diffusion_reference.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
@@ -66,9 +66,9 @@ TEST_F(SkinDiffusionTest, SixBlursOfAPointImpulseMatchTheProfile) {
   // (its samples sum to ∫R within 1e-6), and the widest (σ = 2.72 mm, 44 texels; the cascade's
   // taps reach ±241 texels) fits in 512². Expected at a texel at distance r: P·R(r)·s², s² the
   // texel's area in mm².
-  // Tolerance 2 % (the issue's): a double-precision prototype of these taps stays within 0.1 %
-  // at this stretch (within 2.2 % over 0.04–0.12 mm per texel); the rest is half-float storage
-  // (≤ 2^-11 per write, 13 writes in a chain).
+  // Tolerance 2 % (the pass's specification): a double-precision prototype of these taps stays
+  // within 0.1 % at this stretch (within 2.2 % over 0.04–0.12 mm per texel); the rest is half-float
+  // storage (≤ 2^-11 per write, 13 writes in a chain).
   const Impulse impulse{.size = 512, .power = 1000.0f, .mmPerTexel = 0.0625f};
   const SkinProfile profile;
   auto pass = SkinDiffusionPass::create(device(), {.size = impulse.size, .profile = profile});
@@ -122,10 +122,10 @@ TEST_F(SkinDiffusionTest, SixBlursOfAPointImpulseMatchTheProfile) {
 }
 
 TEST_F(SkinDiffusionTest, EachChannelConservesEnergy) {
-  // Every blur's weights are normalised and the map is covered everywhere, so the output of a
-  // point impulse sums to its power in every channel. The cascade's taps reach ±241 texels at
-  // 0.0625 mm per texel and stay inside 512². Tolerance 1 % (the issue's): the CPU reference keeps
-  // the sum to 1e-6; on lavapipe it comes out 0.15–0.3 % low, as half-float stores that round
+  // Every blur's weights are normalised and the map is covered everywhere, so the output of a point
+  // impulse sums to its power in every channel. The cascade's taps reach ±241 texels at 0.0625 mm
+  // per texel and stay inside 512². Tolerance 1 % (the pass's specification): the CPU reference
+  // keeps the sum to 1e-6; on lavapipe it comes out 0.15–0.3 % low, as half-float stores that round
   // toward zero would make it (2^-11 at most each, 13 in a chain).
   const Impulse impulse{.size = 512, .power = 1000.0f, .mmPerTexel = 0.0625f};
   auto pass = SkinDiffusionPass::create(device(), {.size = impulse.size});
@@ -215,9 +215,9 @@ TEST_F(SkinDiffusionTest, MatchesTheCpuReferenceWithVaryingStretchAndHoles) {
 }
 
 TEST_F(SkinDiffusionTest, ReportsTheBlursGpuTimeAt1024And2048) {
-  // No assertion on time (machines differ); LAVAPIPE.md predicts ≈ 130 ms at 1024² and 500 ms
-  // at 2048² for 13 fixed taps. The stretch is that of a 256 mm wide face filling the map:
-  // 0.25 and 0.125 mm per texel, so the taps are those of the head scene.
+  // No assertion on time (machines differ); docs/lavapipe.md#calibration has the driver's cost for
+  // 13 fixed taps at both sizes to compare with. The stretch is that of a 256 mm wide face filling
+  // the map: 0.25 and 0.125 mm per texel, so the taps are those of the head scene.
   for (const std::uint32_t size : {1024u, 2048u}) {
     const float mmPerTexel = 256.0f / float(size);
     auto pass = SkinDiffusionPass::create(device(), {.size = size});
@@ -230,7 +230,7 @@ TEST_F(SkinDiffusionTest, ReportsTheBlursGpuTimeAt1024And2048) {
       const auto start = std::chrono::steady_clock::now();
       device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
         timer.reset(commands);
-        timer.begin(commands, "skin blurs");
+        timer.begin(commands, PassName("skin blurs"));
         pass->recordBlurs(commands);
         timer.end(commands);
       });

@@ -1,4 +1,4 @@
-// Texture-space diffusion's inputs (render/passes/skin_diffusion.hpp): the irradiance and
+// Texture-space diffusion's inputs (render/passes/skin_diffusion_pass.hpp): the irradiance and
 // stretch maps drawn from a mesh at its uvs, and the errors for bad settings and meshes. The
 // references are closed forms for a flat quad: E = ambient + Σ max(N·L, 0)·radiance with the
 // quad's one normal, and the stretch = its world size / the texels its uvs span.
@@ -14,7 +14,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "render/passes/skin_diffusion.hpp"
+#include "render/passes/skin_diffusion_pass.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::render {
@@ -172,7 +172,7 @@ TEST_F(SkinIrradianceTest, HairShadowsDimTheFirstLightAsTheirLookupSays) {
   // A sheet of 1,500 strands 1 cm above the left half of the quad (x < 5 cm), the first light
   // straight down through it, a second light unshadowed. Each texel on the quad must hold
   // ambient + T·E0 + E1 with T the opacity shadow map's own lookup at the texel's point
-  // (OpacityShadowMap::probe); texture-space soft shadows are the blurs of exactly this.
+  // (OpacityShadowMapPass::probe); texture-space soft shadows are the blurs of exactly this.
   constexpr std::uint32_t kSize = 128;
   const Quad quad;
   std::vector<glm::vec4> strands;
@@ -191,9 +191,9 @@ TEST_F(SkinIrradianceTest, HairShadowsDimTheFirstLightAsTheirLookupSays) {
   const Buffer positions =
       Buffer::withData(device(), std::as_bytes(std::span(strands)),
                        vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eUniformTexelBuffer);
-  auto shadows = HairShadows::create(device());
+  auto shadows = HairShadowPass::create(device());
   ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
-  const std::array grooms{HairShadows::Groom{
+  const std::array grooms{HairShadowPass::Groom{
       .strands = {&positions, std::uint32_t(strands.size() / kVertices), kVertices}, .width = 4e-5f}};
   ASSERT_TRUE((*shadows)->setGrooms(grooms, {.resolution = 256}).has_value());
   ASSERT_TRUE((*shadows)->setBounds(0, *boundingSphere(strands)).has_value());

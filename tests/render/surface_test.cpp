@@ -89,8 +89,8 @@ TEST_F(Surface, LambertOnAFlatQuadMatchesTheClosedForm) {
     EXPECT_NEAR(centre[c], expected, 1.0) << "channel " << c;
   }
   ASSERT_EQ(shot.timings.size(), 2u);
-  EXPECT_EQ(shot.timings[0].pass, "surfaces");
-  EXPECT_EQ(shot.timings[1].pass, "output");
+  EXPECT_EQ(shot.timings[0].pass, PassName::kSurfaces);
+  EXPECT_EQ(shot.timings[1].pass, PassName::kOutput);
   for (const auto& timing : shot.timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
 }
 
@@ -154,7 +154,7 @@ TEST_F(Surface, TextureSpaceSkinOfAUniformlyLitQuadKeepsItsIrradiance) {
   for (int c = 0; c < 3; ++c)
     EXPECT_NEAR(centre[c], 255.0 * srgbEncode(base[c] * (ambient[c] + 0.9 * 0.8)), 1.5) << "channel " << c;
   ASSERT_GE(shot.timings.size(), 3u);
-  EXPECT_EQ(shot.timings[0].pass, "skin diffusion");
+  EXPECT_EQ(shot.timings[0].pass, PassName::kSkinDiffusion);
 }
 
 TEST_F(Surface, BackgroundOutsideTheQuad) {

@@ -1,4 +1,4 @@
-// Translucency through the Renderer (render/passes/surface_pass.hpp, "Translucency"), lit from
+// Translucency through the Renderer (render/passes/translucency_pass.hpp), lit from
 // straight behind so the face the camera sees has N·L = −1: no diffuse, no specular, the wrap
 // max(0.3 − N·L, 0) clamps to 1, and with no ambient a pixel holds exactly the light's radiance
 // × T(d) × albedo. References:

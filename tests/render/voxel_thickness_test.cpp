@@ -1,4 +1,4 @@
-// The voxelized thickness LUT (render/luts/voxel_thickness.hpp, issue 5 item 7b) on meshes built
+// The voxelized thickness LUT (render/luts/voxel_thickness.hpp) on meshes built
 // in code (tests/render/voxel_test_shapes.hpp). The references are independent of the code under
 // test:
 //  - inside/outside of every cell centre against the analytic solid (box, octahedron whose

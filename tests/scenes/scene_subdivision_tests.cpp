@@ -1,5 +1,5 @@
-// Subdivision surfaces in scene files (issue 6, items 4–5): a mesh entry's `subdivision` block
-// makes the World draw the Catmull-Clark limit surface, tessellated for the scene's camera.
+// Subdivision surfaces in scene files: a mesh entry's `subdivision` block makes the World draw the
+// Catmull-Clark limit surface, tessellated for the scene's camera.
 //
 // Oracles: a closed cage gives a closed mesh (every directed edge matched by its reverse, by
 // position: UV seams split vertices, not the surface); the limit surface of a fine sphere cage

@@ -468,7 +468,7 @@ TEST(Scene, HairShadowErrorsNameTheField) {
 TEST(Scene, PostBlockSetsTheFramesToneMappingGainAndGlow) {
   auto plain = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}})", "x.json");
   ASSERT_TRUE(plain.has_value()) << plain.error().message;
-  EXPECT_EQ(plain->post.toneMapping, render::ToneMapping::kLinear);  // today's look unless asked
+  EXPECT_EQ(plain->post.toneMapping, render::ToneMapping::kLinear);  // the default unless asked
   EXPECT_FALSE(plain->post.autoGain);
   EXPECT_EQ(plain->post.glowStrength, 0.0f);
   auto post = parseScene(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},

@@ -85,7 +85,7 @@ inline bool assetsRequired() {
     GTEST_SKIP() << (reason);                                          \
   } while (false)
 
-/// Resolves a shared asset, or skips the test when the assets are not on this machine.
+/// Resolves a shared asset, or skips the test when the assets are not installed.
 #define MANE_RESOLVE_OR_SKIP(var, name)                                    \
   std::filesystem::path var;                                               \
   {                                                                        \

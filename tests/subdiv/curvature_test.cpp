@@ -59,7 +59,7 @@ TEST(Curvature, SphereLikeCageHasMeanCurvatureOneOverRadius) {
           worstMean = std::max(worstMean, std::abs(s.curvature.mean * radius - 1.0));
           worstGaussian = std::max(worstGaussian, std::abs(s.curvature.gaussian * radius * radius - 1.0));
         }
-  EXPECT_LT(worstMean, 0.02);  // issue 6: within 2 %
+  EXPECT_LT(worstMean, 0.02);  // within 2 % of the sphere's
   EXPECT_LT(worstGaussian, 0.04);
 }
 

@@ -1,4 +1,4 @@
-// Thread counts do not change results (DESIGN.md, "Determinism"): the deforming-cage update
+// Thread counts do not change results (docs/design.md#determinism): the deforming-cage update
 // and the tessellation split their work over fixed ranges and merge in range order, so 1, 2
 // and 4 workers must give the same bytes. The oracle is the single-threaded result.
 

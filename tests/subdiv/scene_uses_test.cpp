@@ -1,5 +1,5 @@
-// The limit surface where the World uses it (issue 6, item 4 and item 3's "refreshed when the
-// camera moves"): a procedural groom on a subdivided mesh grows from the limit surface itself,
+// The limit surface where the World uses it (hair roots, and tessellations refreshed when the
+// camera moves): a procedural groom on a subdivided mesh grows from the limit surface itself,
 // and the World tessellates its subdivided meshes again as the camera moves.
 //
 // Oracles: the limit surface evaluated here, from the scene's cage, with OpenSubdiv (a root's

@@ -5,7 +5,8 @@
 // Why a test needs this: lavapipe (Mesa 22.3) folds uniform values that decide a branch or a
 // loop's trip count into the shader and compiles it again every time its descriptors are
 // bound, with no cache of those variants in memory. A shader written that way costs a compile
-// per frame (up to 200 ms for the hair lighting), hidden by Mesa's disk cache while it is warm.
+// per frame (docs/lavapipe.md#shader-recompiles-on-bind), hidden by Mesa's disk cache while it is
+// warm.
 //
 // The count comes from interposing LLVMGetPointerToGlobal, the call that finishes each JIT
 // compile: a binary using this must export the symbol (CMake: mane_count_jit_compiles).

@@ -1,6 +1,6 @@
 #pragma once
 // A test fixture that owns a Vulkan device with the validation layers on and fails the test
-// on any validation message (DESIGN.md: validation messages fail tests).
+// on any validation message (docs/design.md#testing: validation messages fail tests).
 
 #include <memory>
 

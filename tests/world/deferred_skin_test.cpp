@@ -1,4 +1,4 @@
-// The deferred skin (render/passes/surface_pass.hpp, "Deferred skin") on scenes/nalu.json: the
+// The deferred skin (render/passes/deferred_skin_pass.hpp) on scenes/nalu.json: the
 // head's pre-integrated skin drawn into a G-buffer and lit once per pixel gives the frame the
 // forward fragment shader gives, byte for byte, with the fins, the furred bunny, the sun's disc
 // and the hair drawn over and around it, under either hair shadow mode. Under 4× MSAA the skin

@@ -30,7 +30,7 @@
 
 #include "physics/hash.hpp"
 #include "render/renderer.hpp"
-#include "scenes/renderer_upload.hpp"
+#include "scenes/frame_loop.hpp"
 #include "scenes/world.hpp"
 #include "tests/support/jit_compile_counter.hpp"
 #include "tests/support/vulkan_fixture.hpp"
@@ -77,10 +77,12 @@ double fractionAwayFromMostCommonColour(const std::vector<std::uint8_t>& rgba, i
   return double(away) / double(rgba.size() / 4);
 }
 
-// The scene file as a World at the smoke test's size, and a renderer holding its statics.
+// The scene file as a World at the smoke test's size, a renderer holding its statics, and the
+// frame loop over both (one simulation thread).
 struct SmokeScene {
-  World world;
+  std::unique_ptr<World> world;
   std::unique_ptr<render::Renderer> renderer;
+  FrameLoop loop;
 };
 
 Result<SmokeScene> loadSmokeScene(const std::filesystem::path& file, render::Device& device) {
@@ -96,37 +98,40 @@ Result<SmokeScene> loadSmokeScene(const std::filesystem::path& file, render::Dev
     material.translucency.voxelResolution = std::min(material.translucency.voxelResolution, kSmokeVoxelResolution);
   auto resolver = AssetResolver::createDefault();
   if (!resolver) return std::unexpected(resolver.error());
-  auto world = World::create(std::move(*scene), *resolver);
-  if (!world) return std::unexpected(world.error());
-  for (const std::string& note : world->notes()) std::cout << "note: " << note << '\n';
+  auto created = World::create(std::move(*scene), *resolver);
+  if (!created) return std::unexpected(created.error());
+  for (const std::string& note : created->notes()) std::cout << "note: " << note << '\n';
+  auto world = std::make_unique<World>(std::move(*created));
   auto renderer = render::Renderer::create(device, {.extent = {kWidth, kHeight}, .msaaSamples = 1});
   if (!renderer) return std::unexpected(renderer.error());
-  if (auto set = (*renderer)->setScene(world->staticScene()); !set) return std::unexpected(set.error());
-  return SmokeScene{std::move(*world), std::move(*renderer)};
+  auto loop = FrameLoop::create(*world, **renderer, {.imageSize = {kWidth, kHeight}, .threads = 1});
+  if (!loop) return std::unexpected(loop.error());
+  if (auto set = loop->setScene(world->staticScene()); !set) return std::unexpected(set.error());
+  return SmokeScene{std::move(world), std::move(*renderer), std::move(*loop)};
 }
 
-// The world's current state handed to the renderer, and a frame of it.
+// A frame of the world as it is now, with the triangles tessellated at load for the small frame.
 Result<std::vector<render::PassTiming>> renderCurrentFrame(SmokeScene& smoke) {
-  if (auto uploaded = uploadFrameState(smoke.world, *smoke.renderer); !uploaded)
-    return std::unexpected(uploaded.error());
-  return smoke.renderer->render(smoke.world.frameInput());
+  return smoke.loop.renderFrame(smoke.world->frameInput(), Refinement::kKeep);
 }
 
 TEST_P(EveryScene, LoadsAndRendersOneSmallFrameThatIsNotBlank) {
   auto smoke = loadSmokeScene(GetParam(), device());
   ASSERT_TRUE(smoke.has_value()) << smoke.error().message;
-  const render::StaticScene statics = smoke->world.staticScene();
-  ASSERT_FALSE(smoke->world.frameInput().instances.empty() && statics.grooms.empty()) << "the scene draws nothing";
+  const render::StaticScene statics = smoke->world->staticScene();
+  ASSERT_FALSE(smoke->world->frameInput().instances.empty() && statics.grooms.empty()) << "the scene draws nothing";
   auto timings = renderCurrentFrame(*smoke);
   ASSERT_TRUE(timings.has_value()) << timings.error().message;
-  const auto ran = [&](const std::string& pass) {
+  using render::PassName;
+  const auto ran = [&](PassName pass) {
     return std::any_of(timings->begin(), timings->end(), [&](const auto& t) { return t.pass == pass; });
   };
   // A main pass in two halves, or in one where the deferred skin lets the hair be shaded before it.
-  EXPECT_NE(ran("surfaces"), ran("main pass"));
-  EXPECT_EQ(ran("hair lighting"), !smoke->world.hairGuides().empty())
+  EXPECT_NE(ran(PassName::kSurfaces), ran(PassName::kMainPass));
+  EXPECT_EQ(ran(PassName::kHairLighting), !smoke->world->hairGuides().empty())
       << "hair is shaded exactly when the scene has grooms";
-  EXPECT_EQ(ran("hair") || ran("main pass"), ran("hair lighting")) << "and drawn after the surfaces";
+  EXPECT_EQ(ran(PassName::kHair) || ran(PassName::kMainPass), ran(PassName::kHairLighting))
+      << "and drawn after the surfaces";
   auto pixels = smoke->renderer->readOutput();
   ASSERT_TRUE(pixels.has_value()) << pixels.error().message;
   ASSERT_EQ(pixels->size(), std::size_t(kWidth) * kHeight * 4);
@@ -146,7 +151,7 @@ TEST_P(EveryScene, LaterFramesCompileNoShaderOnLavapipe) {
   ASSERT_GT(mane::testing::jitCompiles(), beforeFirst) << "the counter saw the first frame compile nothing";
   for (int frame = 1; frame <= 2; ++frame) {
     const std::size_t before = mane::testing::jitCompiles();
-    ASSERT_TRUE(smoke->world.advance(1.0 / 30.0, 1).has_value());
+    ASSERT_TRUE(smoke->loop.advance(1.0 / 30.0).has_value());
     auto timings = renderCurrentFrame(*smoke);
     ASSERT_TRUE(timings.has_value()) << timings.error().message;
     EXPECT_EQ(mane::testing::jitCompiles() - before, 0u)
@@ -166,7 +171,7 @@ TEST_P(EveryScene, RendersItsGoldenFramesByteForByte) {
   std::string hashes;
   for (int frame = 0; frame < 3; ++frame) {
     if (frame > 0) {
-      ASSERT_TRUE(smoke->world.advance(1.0 / 30.0, 1).has_value());
+      ASSERT_TRUE(smoke->loop.advance(1.0 / 30.0).has_value());
     }
     ASSERT_TRUE(renderCurrentFrame(*smoke).has_value());
     auto pixels = smoke->renderer->readOutput();

@@ -1,4 +1,4 @@
-// Fur in the frame (issue 7, item 4): a scene's fur material through the World and the Renderer,
+// Fur in the frame: a scene's fur material through the World and the Renderer,
 // on scenes/bunny.json (the Stanford bunny, no uvs, with the cat-fur photo). Checked against
 // what the scene says and against the same frame drawn another way:
 //  - the World grows fur on the pair the scene names, with box-projected uvs in metres × the

@@ -30,7 +30,7 @@ protected:
         device(), world, {.extent = kExtent, .msaaSamples = samples, .hideOccludedHair = hideOccludedHair},
         [&](const render::Renderer& renderer) {
           const render::StaticScene statics = world.staticScene();
-          const render::DenseStrandLayout& layout = statics.grooms.at(0).layout;
+          const DenseStrandLayout& layout = statics.grooms.at(0).layout;
           const double vertices = double(layout.strands.size()) * layout.vertexCount;
           frame.hiddenShare = renderer.hairChoices().at(0).hiddenVertices / vertices;
         });

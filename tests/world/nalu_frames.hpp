@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "render/renderer.hpp"
-#include "scenes/renderer_upload.hpp"
+#include "scenes/frame_loop.hpp"
 #include "scenes/world.hpp"
 #include "tests/scenes/test_support.hpp"
 
@@ -47,12 +47,15 @@ inline std::vector<std::uint8_t> renderFrame(const render::Device& device, World
   auto renderer = render::Renderer::create(device, settings);
   EXPECT_TRUE(renderer.has_value()) << renderer.error().message;
   if (!renderer) return {};
+  auto loop = FrameLoop::create(world, **renderer, {.imageSize = {settings.extent.width, settings.extent.height}});
+  EXPECT_TRUE(loop.has_value()) << loop.error().message;
+  if (!loop) return {};
   render::StaticScene statics = world.staticScene();
   if (shadows) statics.hairShadows.mode = *shadows;
-  EXPECT_TRUE((*renderer)->setScene(statics).has_value());
-  auto uploaded = uploadFrameState(world, **renderer);
-  EXPECT_TRUE(uploaded.has_value()) << uploaded.error().message;
-  auto rendered = (*renderer)->render(world.frameInput());
+  auto set = loop->setScene(statics);
+  EXPECT_TRUE(set.has_value()) << set.error().message;
+  // The triangles the world was loaded with: the frames compared differ in one renderer setting.
+  auto rendered = loop->renderFrame(world.frameInput(), Refinement::kKeep);
   EXPECT_TRUE(rendered.has_value()) << rendered.error().message;
   auto pixels = (*renderer)->readOutput();
   EXPECT_TRUE(pixels.has_value());

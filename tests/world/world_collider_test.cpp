@@ -446,12 +446,11 @@ TEST(WorldColliders, CapeStaysOutsideTheBody) {
 
 // --- Subdivided bodies ------------------------------------------------------------------------
 
-// A mesh drawn as its Catmull-Clark limit surface collides as that surface too: the field is
-// built from the World's tessellation of the limit (issue 6, item 4), not from the cage. The
-// cage here is a smooth cube (corners ±1, scale 0.1 m), whose limit is a rounded blob well
-// inside it: a corner's limit point is (n²·v + 4·Σ edge neighbours + Σ diagonal neighbours) /
-// (n(n + 5)) with valence n = 3, i.e. ±0.5, 0.87 units (8.7 cm, tens of cells of a 48-node
-// field) from the cage's corner.
+// A mesh drawn as its Catmull-Clark limit surface collides as that surface too: the field is built
+// from the World's tessellation of the limit, not from the cage. The cage here is a smooth cube
+// (corners ±1, scale 0.1 m), whose limit is a rounded blob well inside it: a corner's limit point
+// is (n²·v + 4·Σ edge neighbours + Σ diagonal neighbours) / (n(n + 5)) with valence n = 3, i.e.
+// ±0.5, 0.87 units (8.7 cm, tens of cells of a 48-node field) from the cage's corner.
 // Oracle: the limit surface evaluated here with OpenSubdiv on a 9 × 9 grid of every ptex face.
 // There the field must read zero within half a cell (measured: 0.085 cells): the tessellation
 // strays at most a pixel of the scene's camera from the limit (about 0.7 mm here, a quarter of a

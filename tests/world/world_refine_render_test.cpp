@@ -1,6 +1,6 @@
-// A subdivided mesh followed by the camera end to end (issue 6, item 3): World::refineForCamera
-// tessellates the limit surface again for each new camera position and Renderer::replaceMesh
-// uploads the new triangles, under the validation layers (VulkanTest fails on any message).
+// A subdivided mesh followed by the camera end to end: World::refineForCamera tessellates the limit
+// surface again for each new camera position and Renderer::replaceMesh uploads the new triangles,
+// under the validation layers (VulkanTest fails on any message).
 //
 // Oracle: a sphere of radius R seen from distance d covers a disc of angular radius asin(R/d),
 // so the count of lit pixels follows tan²(asin(R/d)): ×4.4 from 0.8 m to 0.4 m and ×0.24 from

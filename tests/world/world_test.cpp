@@ -23,9 +23,9 @@ const std::filesystem::path kNalu = std::filesystem::path(MANE_SOURCE_DIR) / "sc
 using testing::resolverWithoutAssets;
 using testing::ScratchDir;
 
-// Issue 6, item 5: nalu's head is the limit surface of the scan's coarse cage, tessellated
-// again as the camera moves in and out: closer means more triangles, farther fewer, and each
-// tessellation is closed (no cracks, no T-junctions).
+// Nalu's head is the limit surface of the scan's coarse cage, tessellated again as the camera moves
+// in and out: closer means more triangles, farther fewer, and each tessellation is closed (no
+// cracks, no T-junctions).
 TEST(World, NaluHeadIsRefinedAsTheCameraMovesInAndOut) {
   auto scene = loadScene(kNalu);
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
@@ -234,7 +234,7 @@ TEST(WorldGrooms, ASourceArrayConcatenatesTheFilesGuidesInOrderIntoOneGroom) {
 }
 
 TEST(WorldGrooms, AMissingAssetOfASourceArraySkipsTheGroomWithANote) {
-  // As for a single file: a manifest asset that is not on this machine is a note and the groom
+  // As for a single file: a manifest asset that is not installed is a note and the groom
   // is skipped, here although a.hair is there (a groom is all its files or nothing); a path that
   // names no file is an error.
   ScratchDir dir;
@@ -447,10 +447,10 @@ TEST_F(WorldRender, GroomsAreInterpolatedOnTheGpuAndDrawnOverTheSurfaces) {
   };
   std::vector<render::PassTiming> timings;
   const std::vector<std::uint8_t> withHair = render(true, &timings), bare = render(false, nullptr);
-  std::vector<std::string> passes;
+  std::vector<render::PassName> passes;
   for (const render::PassTiming& timing : timings) passes.push_back(timing.pass);
-  EXPECT_NE(std::find(passes.begin(), passes.end(), "strands"), passes.end());
-  EXPECT_NE(std::find(passes.begin(), passes.end(), "hair lighting"), passes.end());
+  EXPECT_NE(std::find(passes.begin(), passes.end(), render::PassName::kStrands), passes.end());
+  EXPECT_NE(std::find(passes.begin(), passes.end(), render::PassName::kHairLighting), passes.end());
   std::size_t changed = 0;
   for (std::size_t p = 0; p < bare.size(); p += 4)
     if (std::abs(int(withHair[p]) - int(bare[p])) + std::abs(int(withHair[p + 1]) - int(bare[p + 1])) > 8) ++changed;
