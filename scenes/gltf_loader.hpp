@@ -15,7 +15,8 @@ namespace mane::scenes {
 /// view (all zeros), sparse accessors, u8/u16/u32 indices and non-indexed primitives.
 /// Primitives without normals get smooth normals; texture coordinates (TEXCOORD_0) are kept
 /// when any primitive has them (zeros elsewhere). Morph targets and skins are ignored: the
-/// result is the bind pose. Images are not decoded.
+/// result is the bind pose (`loadCharacter`, scenes/gltf_character.hpp, reads them). Images are
+/// not decoded.
 ///
 /// Errors name the file and the problem: unreadable or truncated file, bad JSON, a missing
 /// or out-of-range accessor or buffer view, an index past the vertex count, a primitive mode
