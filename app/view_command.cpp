@@ -1,7 +1,8 @@
 // `mane view`: the scene in a window (GLFW + Vulkan swapchain) with an orbit camera.
 // Mouse: left drag orbits, right drag turns the key light, wheel zooms. Keys (kKeyHelp): pause and
-// step the simulation, turn the key light, switch techniques and post effects, quit. The frame time and the toggles'
-// states are drawn in the image's top-left corner (render/passes/text_overlay_pass.hpp) and the window title.
+// step the simulation, turn the key light, switch techniques and post effects, quit. The frame time
+// and the toggles' states are drawn in the image's top-left corner
+// (render/passes/text_overlay_pass.hpp) and the window title.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -204,7 +205,7 @@ render::PostSettings toggled(render::PostSettings post, const InputState& input)
   if (input.flipToneMapping)
     post.toneMapping = post.toneMapping == render::ToneMapping::kReinhard ? render::ToneMapping::kLinear
                                                                           : render::ToneMapping::kReinhard;
-  // The seed's glow mixes about half and half; a scene with its own strength toggles to none.
+  // Timbury's glow mixes about half and half; a scene with its own strength toggles to none.
   if (input.flipGlow) post.glowStrength = post.glowStrength > 0.0f ? 0.0f : 0.4f;
   if (input.flipAutoGain) post.autoGain = !post.autoGain;
   if (input.flipGodRays) post.godRays = post.godRays > 0.0f ? 0.0f : 1.0f;
@@ -284,7 +285,8 @@ void run(const ViewOptions& options) {
     if (frame >= 1 && std::size_t(frame - 1) < scripted.size())
       press((*window)->handle(), input, scripted[std::size_t(frame - 1)]);
     if (input.techniquesChanged) {
-      // New passes and maps for the switched techniques; the frame in flight must not use the old ones.
+      // New passes and maps for the switched techniques; the frame in flight must not use the old
+      // ones.
       input.techniquesChanged = false;
       (*device)->device().waitIdle();
       drawn = withTechniques(world->staticScene(), input);

@@ -1,6 +1,6 @@
-// The fur pass (render/passes/fur_pass) at the paper's scale: the Stanford bunny (69,451 triangles)
-// with 15 shells at 1280×720, against the bare bunny and an empty frame in the same run, and
-// shells against shells + fins. The paper's figure (Ukaji et al., Table 1): a 34,832-vertex
+// The fur pass (render/passes/fur_pass.hpp) at the paper's scale: the Stanford bunny (69,451
+// triangles) with 15 shells at 1280×720, against the bare bunny and an empty frame in the same run,
+// and shells against shells + fins. The paper's figure (Ukaji et al., Table 1): a 34,832-vertex
 // bunny with 15 layers at 137 fps on a GeForce GTX 285.
 //
 //   BM_EmptyFrame:         record, submit, wait: clear colour + depth only.

@@ -1,13 +1,13 @@
-// The hair ribbon pass (render/passes/hair_pass) at a Nalu-sized groom: 4,096 strands ×
+// The hair ribbon pass (render/passes/hair_pass.hpp) at a Nalu-sized groom: 4,096 strands ×
 // 32 vertices (4,096 × 31 × 2 = 254k triangles) at 1280×720, against an empty frame (clear, and
 // the MSAA resolve where there is one) in the same run, so the difference is the hair's cost.
 //
 //   BM_EmptyFrame/<samples>/0: record, submit, wait: begin rendering (clear colour + depth), end
 //     (resolve at 4×).
 //   BM_HairFrame/<samples>/<lights>/<width>: the same with the hair: the per-vertex shading
-//     dispatch (render/passes/hair_lighting, blonde Marschner LUTs, no shadow maps) with a key and
-//     a back light (lights 2) or ambient only (lights 0), the choice of primitive, then the hair
-//     draw, premultiplied-alpha blending. Width in µm: 800, strands up to ~1.3 pixels wide, drawn
+//     dispatch (render/passes/hair_lighting_pass.hpp, blonde Marschner LUTs, no shadow maps) with
+//     a key and a back light (lights 2) or ambient only (lights 0), the choice of primitive, then
+//     the hair draw, premultiplied-alpha blending. Width in µm: 800, strands up to ~1.3 pixels wide, drawn
 //     as ribbons (lines would leave about a quarter of their width uncovered); 400, up to ~0.65
 //     pixels, drawn as 1-pixel lines (render/passes/hair_pass.hpp, "Lines"). The counters say
 //     which was drawn.

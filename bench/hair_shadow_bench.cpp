@@ -118,7 +118,7 @@ Ponytail load() {
   }
   physics::DenseGroomSettings settings;
   settings.strandCount = kDenseStrands;
-  auto layout = physics::buildDenseGroomLayout(guides, settings);
+  auto layout = physics::buildDenseStrandLayout(guides, settings);
   if (!layout) {
     p.problem = layout.error().message;
     return p;

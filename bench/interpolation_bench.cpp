@@ -48,7 +48,7 @@ void run(benchmark::State& state, std::size_t strands, GuideBlend blend, unsigne
   DenseGroomSettings settings;
   settings.strandCount = strands;
   settings.blend = blend;
-  const auto layout = buildDenseGroomLayout(naluGuides(), settings);
+  const auto layout = buildDenseStrandLayout(naluGuides(), settings);
   if (!layout) {
     state.SkipWithError(layout.error().message.c_str());
     return;

@@ -13,7 +13,7 @@
 // the output pass it extends. The HDR frame is a clear to an HDR colour: every pass here runs the
 // same work whatever the pixels hold (no branch depends on them). Wall time around submit + wait.
 //
-//   build/post-dev/bench/mane_post_bench --benchmark_min_time=2
+//   build/release/bench/mane_post_bench --benchmark_min_time=2
 
 #include <algorithm>
 #include <cstdio>

@@ -1,5 +1,5 @@
-// Dense strand interpolation on the GPU (render/passes/strand_interpolation) against its CPU
-// reference (physics::interpolateDenseStrands), the same case in the same run, so
+// Dense strand interpolation on the GPU (render/passes/strand_interpolation_pass.hpp) against its
+// CPU reference (physics::interpolateDenseStrands), the same case in the same run, so
 // docs/performance.md can quote the ratio, which is steadier across machines than milliseconds.
 //
 //   BM_StrandInterpolationGpu/<dense strands>/<blend>: one frame of the pass on the device mane
@@ -55,7 +55,7 @@ DenseStrandLayout layoutFor(std::size_t strands, physics::GuideBlend blend) {
   physics::DenseGroomSettings settings;
   settings.strandCount = strands;
   settings.blend = blend;
-  auto layout = physics::buildDenseGroomLayout(naluGuides(), settings);
+  auto layout = physics::buildDenseStrandLayout(naluGuides(), settings);
   if (!layout) {
     std::fprintf(stderr, "strand interpolation bench: %s\n", layout.error().message.c_str());
     std::exit(1);

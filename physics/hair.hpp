@@ -3,7 +3,7 @@
 // each strand is kinematic and follows a rigid head transform; the others fall under gravity and
 // are held together by distance constraints and long-range attachments to the root.
 //
-// Strands do not interact (no hair–hair forces yet), so a frame is simulated strand by strand,
+// Strands do not interact (there are no hair–hair forces), so a frame is simulated strand by strand,
 // in parallel over whole strands: every strand runs the same sequence of floating-point
 // operations whichever thread runs it, and no value is reduced across threads, so the state is
 // bit-identical for any thread count.

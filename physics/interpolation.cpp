@@ -147,7 +147,7 @@ glm::vec3 randomInBall(SplitMix64& rng) {
 
 }  // namespace
 
-Result<DenseStrandLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
+Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm::vec3>> restGuides,
                                                 const DenseGroomSettings& settings) {
   const auto bad = [](const char* field, const char* expected) {
     return fail(std::string("Dense groom settings: ") + field + " must be " + expected + ".");

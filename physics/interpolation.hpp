@@ -108,7 +108,7 @@ struct DenseGroomSettings {
 /// random point of that triangle; strands whose home has no non-degenerate triangle fall back to
 /// the single guide. Fails, naming the guide or setting, on an empty groom, guides with fewer
 /// than 2 or unequal point counts, non-finite points, or settings out of range.
-[[nodiscard]] Result<DenseStrandLayout> buildDenseGroomLayout(std::span<const std::vector<glm::vec3>> restGuides,
+[[nodiscard]] Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm::vec3>> restGuides,
                                                               const DenseGroomSettings& settings);
 
 /// Fills `positions` (metres, strand-major: layout.vertexTotal() elements) with the dense

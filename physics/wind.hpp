@@ -9,7 +9,7 @@
 //
 // The force depends on a segment's orientation to the wind: a thin cylinder in a flow feels
 // drag from the velocity component normal to its axis only (the axial part just slides along
-// it; slender-body drag, e.g. Hoerner, "Fluid-Dynamic Drag", 1965, ch. 3). We use linear drag,
+// it; slender-body drag, e.g. Hoerner, "Fluid-Dynamic Drag", 1965, ch. 3). The drag is linear,
 // a = k · (w − v)⊥, a common choice in real-time hair (it is stable for any step with k·h < 1).
 
 #include <cstdint>

@@ -49,7 +49,7 @@ enum class SurfaceShading : std::uint32_t {
 /// Which integration range the pre-integrated skin table uses (render/luts/preintegrated_skin.hpp).
 enum class SkinIntegrationRange : std::uint32_t {
   kPenner = 0,     ///< x ∈ [−π/2, π/2] (Penner & Borshukov 2011)
-  kCurvature = 1,  ///< x ∈ ±π(r + 1)/(2r), the seed method's curvature-dependent range
+  kCurvature = 1,  ///< x ∈ ±π(r + 1)/(2r), the skin thesis's curvature-dependent range
 };
 
 /// How a skin material's light spreads under the surface.
@@ -72,7 +72,7 @@ struct SkinParameters {
 
 /// How light entering a surface on the side facing the first light shines out of the far side.
 /// Both measure the thickness d between the light's entry point and the shaded point; skin then
-/// transmits its diffusion profile's T(d) (render/luts/translucency.hpp), any other material
+/// transmits its diffusion profile's T(d) (SkinProfile::transmittance), any other material
 /// exp(−σ·d) per RGB.
 enum class TranslucencyMethod : std::uint32_t {
   kNone = 0,
@@ -80,8 +80,8 @@ enum class TranslucencyMethod : std::uint32_t {
   /// translucent shadow maps): the distance from the first surface the light meets. Cheap, but
   /// hollows and gaps between entry and exit count as material.
   kDepthMap = 1,
-  /// d from the mesh's voxelized thickness table (render/luts/voxel_thickness.hpp, the seed
-  /// method): the entry point from the same depth map, hollows subtracted.
+  /// d from the mesh's voxelized thickness table (render/luts/voxel_thickness.hpp, after the
+  /// voxelized-translucency paper): the entry point from the same depth map, hollows subtracted.
   kVoxelLut = 2,
 };
 
@@ -185,9 +185,9 @@ enum class ToneMapping : std::uint32_t {
   kReinhard = 1,  ///< Reinhard et al. 2002, eq. 3: L_d = L/(1 + L) on the scaled luminance, colour × L_d/L
 };
 
-/// HDR post-processing of a frame, after NVIDIA's "Timbury" demo (seed 004): a soft glow, automatic
-/// gain control and tone mapping. The defaults keep the plain path: colour × FrameInput::exposure,
-/// clamped, no glow, no extra passes.
+/// HDR post-processing of a frame, after NVIDIA's "Timbury" demo (docs/design.md#sources): a soft
+/// glow, automatic gain control and tone mapping. The defaults keep the plain path: colour ×
+/// FrameInput::exposure, clamped, no glow, no extra passes.
 struct PostSettings {
   ToneMapping toneMapping = ToneMapping::kLinear;
   /// Automatic gain control: gain = exposure · key / L̄ with L̄ the log-average luminance of a tiny
@@ -196,7 +196,7 @@ struct PostSettings {
   /// a, the display value the log-average luminance maps to (Reinhard et al. 2002, §3.1: 0.18 for
   /// a normal key, 0.09 low, 0.36 or 0.72 high). > 0.
   float key = 0.18f;
-  /// Share of the blurred image in the displayed colour, 0..1 (the seed mixes about half and half);
+  /// Share of the blurred image in the displayed colour, 0..1 (Timbury mixes about half and half);
   /// 0 skips the glow passes.
   float glowStrength = 0.0f;
   /// τ, seconds: the adaptation's time constant; each frame L̄ moves 1 − exp(−Δt/τ) of the way (in

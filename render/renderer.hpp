@@ -1,9 +1,11 @@
 #pragma once
-// Runs the passes of a frame into an offscreen RenderTarget: the grooms' strand interpolation
-// (compute), their shadow maps from the first light, their per-vertex shading (compute), the
-// texture-space diffusion of skin that asks for it, then surfaces, fur (shells and fins) and hair ribbons into HDR
-// colour, then the post chain where FrameInput::post asks for it (glow, auto gain) and the output pass (tone map) to
-// 8-bit sRGB. Reads the result back for PNG files, or leaves it for a window to blit into its swapchain.
+// Runs the passes of a frame into an offscreen RenderTarget, in the order of
+// docs/design.md#the-frame: the grooms' strand interpolation (compute), the hair shadows from the
+// first light, the texture-space diffusion of skin that asks for it, light 0's depth map of the
+// translucent surfaces, the deferred skin's G-buffer, the hair's hiding and per-vertex shading
+// (compute), then surfaces, fur (shells and fins) and hair into HDR colour, the post chain where
+// FrameInput::post asks for it (glow, auto gain, god rays) and the output pass (tone map) to 8-bit
+// sRGB. Reads the result back for PNG files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
@@ -60,11 +62,12 @@ public:
 
   /// Replaces static mesh `mesh` of the scene by `data`, whose vertex and index counts may
   /// differ: a subdivision surface tessellated again as the camera moves
-  /// (scenes::World::refineForCamera); takes effect from the next render. What was derived
-  /// from the old triangles is dropped or redone: the surface pass's bounds and voxel thickness
-  /// tables (built again the next frame that draws them: seconds for a fine table) and the
-  /// texture-space skin's copy of the mesh. Errors: no such mesh, a dynamic mesh or `data`
-  /// (use updateMesh), data that breaks MeshData's contract, or an upload that fails.
+  /// (scenes::World::refineForCamera); takes effect from the next render. What was derived from
+  /// the old triangles is dropped or redone: the surface scene's bounds, the translucency
+  /// pass's voxel thickness tables (built again the next frame that draws them: seconds for a
+  /// fine table) and the texture-space skin's copy of the mesh. Errors: no such mesh, a dynamic
+  /// mesh or `data` (use updateMesh), data that breaks MeshData's contract, or an upload that
+  /// fails.
   Result<void> replaceMesh(std::size_t mesh, const MeshData& data);
 
   /// This frame's guide positions of groom `groom` of the scene (world space, metres: guide

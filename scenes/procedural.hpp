@@ -1,6 +1,6 @@
 #pragma once
-// Built-in meshes: the stand-ins used when an asset is missing, and test geometry (the seed
-// paper's translucency objects among them).
+// Built-in meshes: the stand-ins used when an asset is missing, and test geometry (the test
+// objects of the voxelized-translucency paper among them, docs/design.md#sources).
 //
 // Every mesh here is closed by position: vertices duplicated for UV seams and poles repeat
 // their twin's position bit for bit, so each directed edge a→b is matched by b→a when a and b
@@ -19,13 +19,13 @@ namespace mane::scenes {
 /// the north pole to 1 at the south pole. Triangles wind counter-clockwise seen from outside.
 [[nodiscard]] Mesh makeSphere(int rings, int segments, float radius);
 
-/// The cube [−halfSide, halfSide]³ with a spherical hollow of `hollowRadius` (< halfSide) at
-/// its centre: the seed paper's test of hollows in translucency. The cube has 4 vertices and 2
-/// triangles per face, flat normals, UVs 0..1 per face, and winds counter-clockwise seen from
-/// outside. The hollow is `makeSphere(hollowRings, hollowSegments, hollowRadius)` turned inside
-/// out: its triangles wind inward and its normals point into the hollow, away from the material,
-/// so the whole surface bounds the material the way solid_voxels.hpp expects. Cube vertices
-/// come first (24), then the hollow's.
+/// The cube [−halfSide, halfSide]³ with a spherical hollow of `hollowRadius` (< halfSide) at its
+/// centre: the voxelized-translucency paper's test of hollows in translucency. The cube has 4
+/// vertices and 2 triangles per face, flat normals, UVs 0..1 per face, and winds counter-clockwise
+/// seen from outside. The hollow is `makeSphere(hollowRings, hollowSegments, hollowRadius)` turned
+/// inside out: its triangles wind inward and its normals point into the hollow, away from the
+/// material, so the whole surface bounds the material the way solid_voxels.hpp expects. Cube
+/// vertices come first (24), then the hollow's.
 [[nodiscard]] Mesh makeCubeWithHollow(float halfSide, float hollowRadius, int hollowRings, int hollowSegments);
 
 /// A ring torus around +Y (lying flat in the XZ plane), centred on the origin: the circle of

@@ -18,7 +18,7 @@ namespace {
 constexpr int kSphereRings = 32;
 constexpr int kSphereSegments = 64;
 
-// The seed paper's translucency objects, in model units (the instance's scale sets the size).
+// The voxelized-translucency paper's test objects, in model units (the instance's scale sets the size).
 // The hollow is seen only through the material, but its outline shows in the transmitted light
 // and the voxelization: as fine as the sphere. The torus's tube steps 360°/32 = 11°.
 constexpr float kCubeHalfSide = 1.0f;

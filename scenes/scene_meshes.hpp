@@ -1,6 +1,6 @@
 #pragma once
-// Turning a scene's mesh entries into geometry, with the procedural fallback that lets the
-// main job run without third-party assets.
+// Turning a scene's mesh entries into geometry, with the procedural fallback that lets a scene
+// run without its third-party assets.
 
 #include <optional>
 #include <string>

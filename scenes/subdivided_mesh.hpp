@@ -35,7 +35,7 @@ struct CoarseCage {
 /// simplifyMesh to `simplification` (meshoptimizer's quadric edge collapse, uv seams kept), then
 /// cageFromTriangles and pairTrianglesIntoQuads (subdiv/quad_pairing.hpp). The cage's vertices
 /// stay on the scan; the limit surface, an average of them, lies slightly inside where the scan
-/// is convex. (Moving the vertices until the limit surface interpolates them was tried: it
+/// is convex. (Moving the vertices until the limit surface interpolates them would not help: it
 /// amplifies the simplified mesh's small-scale noise into ridges between the vertices.)
 /// Errors: the simplifier's.
 [[nodiscard]] Result<CoarseCage> coarseCageFromTriangles(const Mesh& mesh, const MeshSimplification& simplification);

@@ -318,7 +318,7 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       // Like meshes: a missing asset is a note and the groom is skipped (all its files or
       // nothing); a file that does not parse is an error. Groom files hold strands in their head
       // mesh's model space (the TressFX ponytail's four files sit on their own head in the same
-      // units, shared/assets/README.md, once their inverted z is turned back: `invert_z`).
+      // units, ../shared/assets/README.md, once their inverted z is turned back: `invert_z`).
       std::vector<std::filesystem::path> files;
       for (const std::string& source : groom.sources) {
         auto lookup = resolver.lookupForScene(source, scene_.file.parent_path());
@@ -365,7 +365,7 @@ std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<g
   physics::DenseGroomSettings settings;
   settings.strandCount = strandCount;
   settings.verticesPerStrand = static_cast<std::size_t>(verticesPerStrand);
-  auto layout = physics::buildDenseGroomLayout(guides, settings);
+  auto layout = physics::buildDenseStrandLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
   return std::move(*layout);
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build the release preset, render the default scene
+# Quick start: install what is missing, build the release preset, render the default scene
 # headless to out/. Extra arguments go to `mane render` (e.g. --frames 60 --size 640x360).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -10,7 +10,8 @@
 // outwards multiplies every term by d and raises its k by one, which the binomial expansion of
 // (k + 1)ⁿ turns into A' = in + d·A, B' = d·(B + A), C' = d·(C + 2B + A), less the term that
 // leaves the window (k = K); out = w₀·(A − C/K²). So two loads per texel instead of K: on
-// lavapipe the direct sum's loads were more than half of the god rays' cost.
+// lavapipe the direct sum's loads would be more than half of the god rays' cost
+// (docs/lavapipe.md#branches-run-every-lane).
 // The sums are rounded differently from the direct sum's, by a few units of the last place in
 // fp32, well below the fp16 image's rounding. Taps and step are specialisation constants.
 

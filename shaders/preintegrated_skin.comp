@@ -68,7 +68,7 @@ vec2 integrateGaussian(float variance, float nDotL, float theta, float curvature
 vec3 diffuse(float nDotL, float curvature) {
   if (curvature <= 0.0) return vec3(max(nDotL, 0.0));
   float theta = acos(clamp(nDotL, -1.0, 1.0));
-  // π(r + 1)/(2r) = (π/2)(1 + 1/r) for the seed's range, π/2 for Penner's.
+  // π(r + 1)/(2r) = (π/2)(1 + 1/r) for the curvature-dependent range, π/2 for Penner's.
   float halfRange = bake.sizes.y == 0u ? 0.5 * kSkinPi : 0.5 * kSkinPi * (1.0 + curvature);
   vec3 lit = vec3(0.0);
   vec3 total = vec3(0.0);

@@ -22,9 +22,10 @@ layout(location = 0) out vec4 outColor;
 
 layout(constant_id = 2) const bool kSkin = false;  // the pipeline's shading: skin or Lambert
 
-// Of light that crossed `thickness` metres: skin's diffusion profile summed over the plane of
-// entry points, Σ w_i·exp(−d²/2v_i) (render/luts/skin_profile.hpp, SkinProfile::transmittance);
-// any other material exp(−σ·d) per channel (Beer–Lambert, the seed method's I = I0·exp(−σd)).
+// Of light that crossed `thickness` metres: skin's diffusion profile summed over the plane of entry
+// points, Σ w_i·exp(−d²/2v_i) (render/luts/skin_profile.hpp, SkinProfile::transmittance); any other
+// material exp(−σ·d) per channel (Beer–Lambert, the voxelized-translucency paper's
+// I = I0·exp(−σd)).
 vec3 transmittance(float thickness) {
   if (!kSkin) return exp(-draw.extinction.rgb * thickness);
   float mm2 = thickness * thickness * 1e6;

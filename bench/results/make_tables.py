@@ -524,9 +524,13 @@ BANNER = re.compile(r"^(\d{4}-\d\d-\d\dT\S+$|Running |Run on |CPU Caches:|  L\d 
 
 
 def printed_lines(log: Path, context: dict) -> list[str]:
+    """The log's lines that are not the results, each once (with how often it was printed)."""
     custom = {k for k, v in context.items() if isinstance(v, str)}
-    return [line for line in log.read_text().splitlines()
-            if line.strip() and not BANNER.match(line) and line.split(":", 1)[0] not in custom]
+    counts: dict[str, int] = {}
+    for line in log.read_text().splitlines():
+        if line.strip() and not BANNER.match(line) and line.split(":", 1)[0] not in custom:
+            counts[line] = counts.get(line, 0) + 1
+    return [line if n == 1 else f"{line}  (×{n})" for line, n in counts.items()]
 
 
 def render_folder(folder: Path) -> str:

@@ -4,7 +4,7 @@
 // public API.
 //
 // The hair step copies every particle in and out once per block and step; done one float at a
-// time, those copies were a large share of a step. Here 8 strands × 8 particles move as a tile: a
+// time, those copies would be a large share of a step (docs/performance.md). Here 8 strands × 8 particles move as a tile: a
 // strand's 8 particles are 24 consecutive floats, 3 registers, and the 8 × 24 matrix (strands ×
 // floats) transposed is 24 registers whose j-th holds coordinate j % 3 of particle j / 3 of the 8
 // strands: exactly 3 lane rows. So each tile is three 8 × 8 transposes; rows that do not fill a

@@ -21,8 +21,8 @@
 // separable distance transform of Felzenszwalb & Huttenlocher ("Distance Transforms of Sampled
 // Functions", Theory of Computing 8, 2012), carrying the argmin along: O(N³). Equidistant
 // candidates are settled by the fixed order of the passes (x, then y, then z), so the map is the
-// same every run. A shader mirrors the lookup with one texelFetch of this map stored as an R32UI
-// 3D texture.
+// same every run. A shader mirrors the lookup with one read of this map, stored as a storage
+// buffer of uint32 (render/passes/thickness_table.hpp, shaders/translucency.glsl).
 
 #include <cstdint>
 #include <vector>

@@ -1,10 +1,9 @@
 #pragma once
-// The voxelized thickness LUT of the seed method (the voxelized-translucency paper,
-// docs/design.md#sources), CPU side: for every pair of surface voxels of a closed mesh, how much of
-// the straight segment between their centres lies inside the object. A translucent shade then needs
-// no depth map: the light's entry point and the shaded point each find their surface voxel, one LUT
-// read gives the thickness d between them, and the light arriving is I = I0·exp(−σ·d) per RGB
-// channel.
+// The voxelized thickness LUT of the voxelized-translucency paper (docs/design.md#sources),
+// CPU side: for every pair of surface voxels of a closed mesh, how much of the straight segment
+// between their centres lies inside the object. A translucent shade then needs no depth map: the
+// light's entry point and the shaded point each find their surface voxel, one LUT read gives the
+// thickness d between them, and the light arriving is I = I0·exp(−σ·d) per RGB channel.
 //
 // Build:
 // 1. Solid voxelization on N³ cells over the bounding box (render/luts/solid_voxels.hpp:
@@ -15,13 +14,14 @@
 //    subtracted (render/luts/solid_segments.hpp). The entry (b, a) is a copy of (a, b), so the
 //    table is exactly symmetric, and (a, a) = 0.
 //
-// Storage: a dense M × M table (M surface voxels) of half floats, row-major, ready for an R16F
-// texture: entry = d / thicknessScale(), where the scale is the bounding box's diagonal, so
+// Storage: a dense M × M table (M surface voxels) of half floats, row-major, as the GPU reads it
+// (render/passes/thickness_table.hpp, two halves per uint32 of a storage buffer):
+// entry = d / thicknessScale(), where the scale is the bounding box's diagonal, so
 // entries lie in [0, 1] whatever the mesh's units and half precision costs at most 2⁻¹² of the
 // diagonal (a 128-cell voxel is ~4.5·10⁻³ of it). Memory is 2·M² bytes and M grows as N² (the
 // surface area), so the table grows as N⁴: a cube at N = 30, 40, 50 has M = 5,048, 9,128,
-// 14,408 and needs 51, 167, 415 MB. M is also the texture's width, which a device caps
-// (maxImageDimension2D, often 16,384).
+// 14,408 and needs 51, 167, 415 MB; a device caps one storage buffer's range
+// (maxStorageBufferRange: 128 MiB on lavapipe, docs/lavapipe.md#features).
 //
 // Threads: rows are dealt round-robin to `threads` workers; each entry is a pure function of
 // its pair, so the table is bit-identical for any thread count.
@@ -44,7 +44,7 @@ namespace mane::render {
 /// How to build a VoxelThicknessLut.
 struct VoxelThicknessSettings {
   /// N, cells per axis of the grid over the mesh's bounding box, in
-  /// [SolidVoxels::kMinResolution, SolidVoxels::kMaxResolution]. The seed method used 30 to 50.
+  /// [SolidVoxels::kMinResolution, SolidVoxels::kMaxResolution]. The paper uses 30 to 50.
   int resolution = 32;
   /// Worker threads for the pair table; 0 = std::thread::hardware_concurrency(). Results do not
   /// depend on it.

@@ -1,9 +1,9 @@
 #pragma once
 // Deferred skin (single-sample targets that keep a G-buffer: RenderTargetSettings::skinGBuffer).
-// lavapipe runs a fragment shader on whole 4 × 4 blocks of every triangle it touches: on nalu's
-// head at 1280×720, whose triangles cover about 5 pixels each, a pipeline-statistics query counted
-// 4.4 shader invocations per covered pixel. So where a frame's pre-integrated skin (without
-// translucency) uses one material, it is drawn first into the G-buffer and the depth by
+// lavapipe runs a fragment shader on whole 4 × 4 blocks of every triangle it touches, so a head
+// whose triangles cover a few pixels each runs several invocations per covered pixel
+// (docs/lavapipe.md#fragments-are-shaded-in-4--4-blocks). So where a frame's pre-integrated skin
+// (without translucency) uses one material, it is drawn first into the G-buffer and the depth by
 // shaders/skin_gbuffer.frag, which does only what needs screen derivatives (the normal map's frame,
 // the textures' mip levels). The main pass then lights it with shaders/skin_deferred.frag on a
 // triangle over the screen at the far plane, depth-tested "greater" against the skin, so that

@@ -7,8 +7,8 @@
 // width and changes only as the tangent turns along the strand. One evaluation per vertex, in a
 // compute pass that spreads over all cores, replaces one per fragment: on lavapipe, hair
 // fragments are many times the ribbon's pixel area (the rasterizer shades whole pixel blocks of
-// thin, overlapping ribbons, docs/lavapipe.md#thin-strands), and the fragment shading dominated
-// the hair draw (docs/performance.md). The lookups read the LUT mip level that matches how far the
+// thin, overlapping ribbons, docs/lavapipe.md#thin-strands), so shading per fragment would
+// dominate the hair draw. The lookups read the LUT mip level that matches how far the
 // tangent turns over the vertex's share of the strand, so curls filter instead of aliasing.
 //
 // Per vertex, written to radiance() (vec4, strand-major like the positions):

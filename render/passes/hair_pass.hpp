@@ -12,7 +12,7 @@
 //
 // Ribbon expansion (vertex pulling). One indexed draw of two triangles per segment and no vertex
 // buffers: hair.vert finds its strand vertex and side from the index (2 per strand vertex,
-// so lavapipe's vertex cache shades each once where a plain draw of 6 corners per segment shaded
+// so lavapipe's vertex cache shades each once where a plain draw of 6 corners per segment shades
 // every strand vertex 12 times), reads its position and tangent, and pushes it sideways along
 // s = normalize(t × ωe) (ωe: towards the eye), perpendicular to the strand and to the view, by half
 // the strand width. Both segments that share a vertex compute the same offset there, so the ribbon
@@ -66,8 +66,8 @@
 // hidden segment's fragments would all fail the depth test (tests/world/hidden_hair_test.cpp
 // compares the frames with and without, byte for byte), and nalu's frame on lavapipe is faster
 // (docs/performance.md#whole-frame). Moving hidden vertices beyond the far plane instead,
-// leaving the indices alone, changed the frame under 4× MSAA: lavapipe then clips the whole line
-// draw, which it rasterizes differently from the unclipped one.
+// leaving the indices alone, would change the frame under 4× MSAA: lavapipe then clips the whole
+// line draw, which it rasterizes differently from the unclipped one.
 //
 // Compositing: sorted, back to front, per strand. Each strand is blended with premultiplied-alpha
 // "over", depth-tested against the opaque scene (LESS_OR_EQUAL) without depth writes, in the order
@@ -83,8 +83,8 @@
 //    fringe in front of a face). Where two strands cross in depth along their lengths, the
 //    one sorted later is drawn over the other along its whole length: the residual error is
 //    the mix of lighting of such overlaps, within one groom, whose strands share a material.
-//  - Without depth writes, hair does not occlude hair in the depth buffer: later passes that
-//    depth-test against it (none yet) see only the opaque scene.
+//  - Without depth writes, hair does not occlude hair in the depth buffer: a later pass that
+//    depth-tested against it would see only the opaque scene (no pass does).
 //
 // Colour: the radiance of the segment's two end vertices, interpolated linearly along it (it is
 // constant across the width: see hair_lighting_pass.hpp), times the coverage alpha.

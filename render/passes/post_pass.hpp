@@ -7,9 +7,9 @@
 // expensive on lavapipe, docs/lavapipe.md#full-screen-passes):
 //  1. Downsample (shaders/post_downsample.comp): the HDR frame to a copy 4× smaller per side, each
 //     texel the mean of a 4×4 block.
-//  2. Glow (shaders/post_blur.comp): four separable Gaussian blurs of the copy, along x, y, x, y (the
-//     seed's "pseudo-Gaussian, but fast"), with normalised weights; the output pass mixes the result
-//     with the sharp frame by PostSettings::glowStrength.
+//  2. Glow (shaders/post_blur.comp): four separable Gaussian blurs of the copy, along x, y, x, y
+//     (Timbury's "pseudo-Gaussian, but fast"), with normalised weights; the output pass mixes the
+//     result with the sharp frame by PostSettings::glowStrength.
 //  3. Auto gain (shaders/post_tiny.comp, post_adapt.comp): the copy reduced to at most 64×64 texels,
 //     its log-average luminance L̄ = exp(mean(log(δ + L))) ([RSSF02] eq. 1) by one workgroup in a
 //     fixed order, and the adapted L̄ moved towards it by 1 − exp(−Δt/τ) in log luminance, kept in
@@ -25,11 +25,11 @@
 //  5. Hand-off (shaders/post_overlay.comp): the gain, the glow's share and the god rays folded
 //     into one image on the copy's grid, the overlay (rgb to add, alpha the frame's scale), so that
 //     the full-size output pass takes one bilinear sample and reads no buffer: on lavapipe each
-//     extra sample or buffer read there cost about as much as the plain output pass itself
-//     (bench/post_bench.cpp).
-// The seed's AGC averaged luminance linearly and divided by it; the log-average is Reinhard's, which
-// the seed names as the better-balanced alternative (a few very bright pixels, like the sun, pull a
-// linear mean far more).
+//     extra sample or buffer read there costs about as much as the plain output pass itself
+//     (docs/lavapipe.md#full-screen-passes).
+// Timbury's automatic gain averages luminance linearly and divides by it; the log-average is
+// Reinhard's, which the Timbury slides name as the better-balanced alternative (a few very bright
+// pixels, like the sun, pull a linear mean far more).
 //
 //   [RSSF02] Reinhard, Stark, Shirley & Ferwerda, "Photographic Tone Reproduction for Digital
 //            Images", SIGGRAPH 2002.

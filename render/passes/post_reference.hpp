@@ -5,8 +5,9 @@
 //
 //   [RSSF02] Reinhard, Stark, Shirley & Ferwerda, "Photographic Tone Reproduction for Digital
 //            Images", SIGGRAPH 2002.
-//   Seed 004, "Timbury" (Ryan Geiss, NVIDIA 2004): the frame drawn to fp16, downsampled, blurred
-//            x, y, x, y and mixed with the sharp image; automatic gain from a tiny copy.
+//   [Tim04]  NVIDIA's "Timbury" demo (Ryan Geiss 2004, docs/design.md#sources): the frame drawn
+//            to fp16, downsampled, blurred x, y, x, y and mixed with the sharp image; automatic
+//            gain from a tiny copy.
 
 #include <cstdint>
 #include <span>

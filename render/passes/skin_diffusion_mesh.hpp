@@ -1,9 +1,9 @@
 #pragma once
 // A mesh as texture-space diffusion draws it (render/passes/skin_diffusion_pass.hpp): positions,
 // normals and texture coordinates in one device-local vertex buffer, and its triangle list. It
-// keeps its own copy, apart from the surface pass's buffers, so the pass stands alone (the
-// surface pass's vertices start with the same three fields, at a 36-byte stride: sharing them
-// would take only the irradiance pipeline's stride).
+// keeps its own copy, apart from the surface scene's buffers (surface_scene.hpp), so the pass
+// stands alone (the surface scene's vertices start with the same three fields, at a 36-byte
+// stride: sharing them would take only the irradiance pipeline's stride).
 
 #include <cstdint>
 

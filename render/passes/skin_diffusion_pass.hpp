@@ -36,7 +36,7 @@
 // irradiance, so the blurs soften their edges by the profile's widths, red most: texture-space
 // soft shadows ([dEL07] §14.4.4).
 //
-// Not yet: "pre-scatter" albedo, and the blurring of the stretch map itself.
+// Not implemented: "pre-scatter" albedo, and the blurring of the stretch map itself.
 
 #include <array>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 // Private to subdiv/: a map from 64-bit keys to dense indices 0, 1, 2, … in order of first
 // insertion, with open addressing (linear probing) in two flat arrays. The tessellator names
-// hundreds of thousands of points a frame; std::unordered_map spent most of that time
+// hundreds of thousands of points a frame; std::unordered_map would spend most of that time
 // allocating nodes. Storage is kept across `clear` calls.
 
 #include <algorithm>

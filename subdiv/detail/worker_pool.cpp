@@ -110,7 +110,7 @@ private:
 
   /// Linux wakes a sleeping thread on the CPU of the thread that wakes it, where it waits for
   /// the caller's own range to end: a frame's loop, run after the threads slept through the
-  /// rest of the frame, took as long on two threads as on one. So the kept threads may run
+  /// rest of the frame, then takes as long on two threads as on one. So the kept threads may run
   /// anywhere but there.
   void keepOffCallersCpu() {
 #if defined(__linux__)

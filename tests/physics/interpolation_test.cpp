@@ -80,7 +80,7 @@ TEST(DenseStrands, SingleGuideWithoutOffsetIsItsGuideBitForBit) {
   settings.rootSpread = 0.0f;
   settings.tipJitter = 0.0f;
   settings.lengthVariation = 0.0f;  // clumping stays random: with no offset it changes nothing
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   const std::vector<glm::vec3> dense = interpolate(guides, layout);
   for (std::size_t s = 0; s < layout.strands.size(); ++s)
     for (std::size_t i = 0; i < 16; ++i) {
@@ -98,7 +98,7 @@ TEST(DenseStrands, StrandsWhoseGuidesAreAllTheSameReproduceThatGuidePlusOffset) 
   settings.blend = GuideBlend::kBarycentric;
   settings.lengthVariation = 0.0f;
   settings.tipJitter = 0.01f;
-  DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   SplitMix64 rng(3);
   for (DenseStrand& strand : layout.strands) {
     ASSERT_EQ(strand.guideCount, 3u);
@@ -126,7 +126,7 @@ TEST(DenseStrands, WeightsSumToOneForEveryStrand) {
   for (GuideBlend blend : {GuideBlend::kSingle, GuideBlend::kBarycentric}) {
     DenseGroomSettings settings;
     settings.blend = blend;
-    const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+    const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
     ASSERT_EQ(layout.strands.size(), 4095u);
     std::size_t threeGuide = 0;
     for (std::size_t s = 0; s < layout.strands.size(); ++s) {
@@ -167,7 +167,7 @@ TEST(DenseStrands, ThreeParallelGuidesGiveTheBarycentricCombination) {
   settings.clump = 0.0f;
   settings.clumpVariation = 0.0f;
   settings.lengthVariation = 0.0f;
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   const std::vector<glm::vec3> dense = interpolate(guides, layout);
   double worst = 0.0;
   for (std::size_t s = 0; s < layout.strands.size(); ++s) {
@@ -193,7 +193,7 @@ TEST(DenseStrands, FullClumpingPutsTheTipOnTheGuideTip) {
     settings.clumpVariation = 0.0f;
     settings.lengthVariation = 0.0f;
     settings.tipJitter = 0.01f;
-    const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+    const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
     const std::vector<glm::vec3> dense = interpolate(guides, layout);
     double worstTip = 0.0;
     double meanRoot = 0.0;
@@ -224,7 +224,7 @@ TEST(DenseStrands, LengthScaleShortensAlongTheGuideWithAnyVertexCount) {
   settings.lengthVariation = 0.5f;
   settings.rootSpread = 0.0f;
   settings.tipJitter = 0.0f;
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   const std::vector<glm::vec3> dense = interpolate(guides, layout);
   double worst = 0.0;
   for (std::size_t s = 0; s < layout.strands.size(); ++s) {
@@ -254,7 +254,7 @@ TEST(DenseStrands, OffsetsFollowHeadRotation) {
     settings.strandCount = 2000;
     settings.blend = blend;
     settings.tipJitter = 0.01f;
-    const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+    const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
     const std::vector<glm::vec3> rest = interpolate(guides, layout);
     const std::vector<glm::vec3> turned = interpolate(moved, layout);
     double worst = 0.0;
@@ -270,7 +270,7 @@ TEST(DenseStrands, TangentsAreUnitCentralDifferences) {
   const Strands guides = nalu(100);
   DenseGroomSettings settings;
   settings.strandCount = 500;
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   std::vector<glm::vec3> tangents;
   const std::vector<glm::vec3> dense = interpolate(guides, layout, 1, &tangents);
   for (std::size_t s = 0; s < layout.strands.size(); ++s)
@@ -288,13 +288,13 @@ TEST(DenseStrands, LayoutIsDeterministicForASeed) {
     DenseGroomSettings settings;
     settings.blend = blend;
     settings.seed = 42;
-    const DenseStrandLayout a = *buildDenseGroomLayout(guides, settings);
-    const DenseStrandLayout b = *buildDenseGroomLayout(guides, settings);
+    const DenseStrandLayout a = *buildDenseStrandLayout(guides, settings);
+    const DenseStrandLayout b = *buildDenseStrandLayout(guides, settings);
     ASSERT_EQ(a.strands.size(), b.strands.size());
     EXPECT_EQ(0, std::memcmp(a.strands.data(), b.strands.data(), a.strands.size() * sizeof(DenseStrand)));
     EXPECT_EQ(0, std::memcmp(a.guideFrames.data(), b.guideFrames.data(), a.guideFrames.size() * sizeof(GuideFrameRef)));
     settings.seed = 43;
-    const DenseStrandLayout c = *buildDenseGroomLayout(guides, settings);
+    const DenseStrandLayout c = *buildDenseStrandLayout(guides, settings);
     EXPECT_NE(0, std::memcmp(a.strands.data(), c.strands.data(), a.strands.size() * sizeof(DenseStrand)));
   }
 }
@@ -304,7 +304,7 @@ TEST(DenseStrands, OutputIsIdenticalFor1And2And4Threads) {
   for (GuideBlend blend : {GuideBlend::kSingle, GuideBlend::kBarycentric}) {
     DenseGroomSettings settings;
     settings.blend = blend;
-    const DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+    const DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
     std::vector<glm::vec3> tangents1;
     const std::vector<glm::vec3> one = interpolate(guides, layout, 1, &tangents1);
     for (unsigned threads : {2u, 4u}) {
@@ -327,7 +327,7 @@ TEST(DenseStrands, NaluAndHundredThousandStrandsBuildAndInterpolate) {
       DenseGroomSettings settings;
       settings.strandCount = count;
       settings.blend = blend;
-      const auto layout = buildDenseGroomLayout(guides, settings);
+      const auto layout = buildDenseStrandLayout(guides, settings);
       ASSERT_TRUE(layout) << layout.error().message;
       ASSERT_EQ(layout->vertexTotal(), count * 16);
       const std::vector<glm::vec3> dense = interpolate(guides, *layout, 2);
@@ -347,7 +347,7 @@ TEST(DenseStrands, NaluAndHundredThousandStrandsBuildAndInterpolate) {
 // --- bad input ------------------------------------------------------------------------------
 
 std::string buildError(const Strands& guides, const DenseGroomSettings& settings = {}) {
-  const auto layout = buildDenseGroomLayout(guides, settings);
+  const auto layout = buildDenseStrandLayout(guides, settings);
   EXPECT_FALSE(layout);
   return layout ? std::string() : layout.error().message;
 }
@@ -376,7 +376,7 @@ TEST(DenseStrandsInput, MismatchedParticleCountsAreRejected) {
   EXPECT_THAT(message, HasSubstr("resample"));
 
   guides = nalu(20);
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, {});
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, {});
   std::vector<glm::vec3> flat = flatten(guides);
   flat.pop_back();
   EXPECT_THAT(interpolateError(flat, layout), HasSubstr("mismatched"));
@@ -386,7 +386,7 @@ TEST(DenseStrandsInput, GuideIndexOutOfRangeIsRejectedByStrand) {
   const Strands guides = nalu(20);
   DenseGroomSettings settings;
   settings.blend = GuideBlend::kBarycentric;
-  DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   layout.strands[17].guides[2] = 20;
   const std::string message = interpolateError(flatten(guides), layout);
   EXPECT_THAT(message, HasSubstr("strand 17"));
@@ -397,14 +397,14 @@ TEST(DenseStrandsInput, WeightsNotSummingToOneAreRejected) {
   const Strands guides = nalu(20);
   DenseGroomSettings settings;
   settings.blend = GuideBlend::kBarycentric;
-  DenseStrandLayout layout = *buildDenseGroomLayout(guides, settings);
+  DenseStrandLayout layout = *buildDenseStrandLayout(guides, settings);
   layout.strands[3].weights[0] = 0.5f;
   layout.strands[3].weights[1] = 0.3f;
   layout.strands[3].weights[2] = 0.1f;
   EXPECT_THAT(interpolateError(flatten(guides), layout), HasSubstr("strand 3: weights sum to 0.9"));
 
   // 1e-5 is the tolerance: 2e-5 off is refused, 5e-6 off is accepted.
-  layout = *buildDenseGroomLayout(guides, settings);
+  layout = *buildDenseStrandLayout(guides, settings);
   layout.strands[3].weights[0] += 2e-5f;
   EXPECT_THAT(interpolateError(flatten(guides), layout), HasSubstr("not 1"));
   layout.strands[3].weights[0] -= 1.5e-5f;
@@ -420,7 +420,7 @@ TEST(DenseStrandsInput, NaNGuidesAreRejectedWithGuideAndVertex) {
   EXPECT_THAT(buildError(guides), HasSubstr("guide 7, vertex 4 is not finite"));
 
   guides = nalu(20);
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, {});
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, {});
   std::vector<glm::vec3> flat = flatten(guides);
   flat[9 * 16 + 11].z = std::numeric_limits<float>::infinity();
   EXPECT_THAT(interpolateError(flat, layout), HasSubstr("guide 9, vertex 11 is not finite"));
@@ -441,7 +441,7 @@ TEST(DenseStrandsInput, SettingsOutOfRangeAreRejectedByName) {
 
 TEST(DenseStrandsInput, OutputOfTheWrongSizeIsRejected) {
   const Strands guides = nalu(20);
-  const DenseStrandLayout layout = *buildDenseGroomLayout(guides, {});
+  const DenseStrandLayout layout = *buildDenseStrandLayout(guides, {});
   std::vector<glm::vec3> out(layout.vertexTotal() - 1);
   const auto done = interpolateDenseStrands(flatten(guides), layout, out);
   ASSERT_FALSE(done);

@@ -1,4 +1,4 @@
-// The strand interpolation compute pass (render/passes/strand_interpolation) against its
+// The strand interpolation compute pass (render/passes/strand_interpolation_pass.hpp) against its
 // references:
 // - the CPU reference physics::interpolateDenseStrands on the real TressFX ponytail (4,933 guides
 //   × 16 vertices) after the guides moved (a rigid head turn plus a few simulated steps), for the
@@ -98,7 +98,7 @@ void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<gl
   settings.strandCount = 10000;
   settings.blend = blend;
   settings.verticesPerStrand = verticesPerStrand;
-  const auto layout = physics::buildDenseGroomLayout(rest, settings);
+  const auto layout = physics::buildDenseStrandLayout(rest, settings);
   ASSERT_TRUE(layout.has_value()) << layout.error().message;
   const auto blended = std::count_if(layout->strands.begin(), layout->strands.end(),
                                      [](const DenseStrand& s) { return s.guideCount == 3; });

@@ -4,9 +4,9 @@
 // × T(d) × albedo. References:
 //  - a box: the light crosses the box's depth, so d is its side (the depth-map method exactly,
 //    the voxel table between surface voxel centres, one voxel less);
-//  - the cube [−1, 1]³ with a ball hollow of radius 0.5 (the seed paper's first test object):
-//    the depth map counts the hollow, d = 2; the voxel table subtracts its chord 2√(r² − x²),
-//    d = 2 − 2√(r² − x²) at a lateral offset x;
+//  - the cube [−1, 1]³ with a ball hollow of radius 0.5 (the voxelized-translucency paper's
+//    first test object): the depth map counts the hollow, d = 2; the voxel table subtracts its
+//    chord 2√(r² − x²), d = 2 − 2√(r² − x²) at a lateral offset x;
 //  - skin: a 1 mm slab transmits SkinProfile::transmittance(1 mm).
 // A channel's value is read back through the 8-bit sRGB output and inverted to a thickness.
 

@@ -64,8 +64,8 @@ double uvSphereSagitta(double r, int rings, int segments) {
   return r * (1.0 - std::cos(3.14159265358979 / rings) * std::cos(3.14159265358979 / segments));
 }
 
-// The seed method's first scene: the cube [−1, 1]³ with a hollow ball of radius 0.5 at its
-// centre, the ball's triangles facing inward.
+// The voxelized-translucency paper's first scene: the cube [−1, 1]³ with a hollow ball of radius
+// 0.5 at its centre, the ball's triangles facing inward.
 constexpr double kHollowRadius = 0.5;
 TriangleMesh hollowCube() {
   return test::combined(test::box(glm::vec3(-1.0f), glm::vec3(1.0f)),
@@ -423,7 +423,7 @@ TEST(VoxelThicknessLut, BadInputGivesAClearError) {
 }
 
 TEST(VoxelThicknessLut, TableMemoryGrowsAsTheSquareOfTheSurfaceVoxelCount) {
-  // The cube with a hollow at the seed method's resolutions. Only N = 30 is built in full (in
+  // The cube with a hollow at the paper's resolutions. Only N = 30 is built in full (in
   // ThroughTheCubesHollow…); for 40 and 50 the surface voxels are counted, which is all the
   // table's size depends on: M = N³ − (N − 2)³ for a cube, 2·M² bytes.
   const TriangleMesh mesh = hollowCube();

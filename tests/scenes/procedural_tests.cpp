@@ -140,7 +140,8 @@ TEST(ProceduralSphere, IsClosedByExactPositionAtItsSeamAndPoles) {
   EXPECT_EQ(unmatchedEdges(makeSphere(12, 20, 0.5f)), 0);
 }
 
-// The seed paper's hollow cube: [−1, 1]³ minus a ball of radius 0.5, at 16 rings × 32 segments.
+// The voxelized-translucency paper's hollow cube: [−1, 1]³ minus a ball of radius 0.5, at 16
+// rings × 32 segments.
 constexpr int kHollowRings = 16;
 constexpr int kHollowSegments = 32;
 
@@ -205,7 +206,7 @@ TEST(ProceduralCubeWithHollow, VoxelizesWithAnEmptyHollow) {
   EXPECT_FALSE(voxels->isSolid(8, 10, 7));  // y = 0.3125 above the centre: still in the hollow
 }
 
-// The seed paper's torus: major radius 1, minor 0.4, around +Y.
+// The voxelized-translucency paper's torus: major radius 1, minor 0.4, around +Y.
 constexpr float kMajorRadius = 1.0f;
 constexpr float kMinorRadius = 0.4f;
 constexpr int kMajorSegments = 48;

@@ -1,6 +1,6 @@
 // Translucency in scene files: a material's `translucency` block (defaults, each method, errors
-// that name the field path), and the two shipped scenes of the seed paper's test objects, which
-// load their procedural meshes, voxelize them and light them from behind.
+// that name the field path), and the two shipped scenes of the voxelized-translucency paper's test
+// objects, which load their procedural meshes, voxelize them and light them from behind.
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // pins, stepped one after another with the physics module's own integrator and constraint
 // functions. The analytic tests (free fall, pendulum, catenary) check those functions through it,
 // and the hair tests hold HairSystem's strand kernel against it bit for bit. The engine itself
-// simulates with HairSystem and ClothSystem.
+// simulates with HairSystem and Cloth.
 
 #include <vector>
 
