@@ -5,17 +5,13 @@
 #include <utility>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include "common/dual_quaternion_joint.hpp"
+
 namespace mane::physics {
 namespace {
-
-// Polar decomposition stops when an iteration changes no entry by more than this (the
-// iteration converges quadratically, so the result is then exact to double rounding).
-constexpr double kPolarTolerance = 1e-12;
-constexpr int kPolarMaxIterations = 64;
 
 bool isFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -43,43 +39,6 @@ glm::vec3 normalisedOr(const glm::vec3& v, const glm::vec3& fallback) {
 glm::vec3 rotate(const glm::vec4& q, const glm::vec3& v) {
   const glm::vec3 r(q);
   return v + 2.0f * glm::cross(r, glm::cross(r, v) + q.w * v);
-}
-
-/// One joint matrix as DQS blends it: M = [R·S | t] with R a rotation and S symmetric.
-struct JointDualQuaternion {
-  glm::vec4 real{0.0f};  ///< rotation quaternion (x, y, z, w)
-  glm::vec4 dual{0.0f};  ///< ½·t·real, the translation part
-  glm::mat3 stretch{1.0f};
-  bool proper = false;  ///< false when the matrix mirrors or flattens: no rotation expresses it
-};
-
-/// Polar decomposition L = R·S by Higham's iteration X ← (X + X⁻ᵀ)/2 (Higham 1986, "Computing
-/// the Polar Decomposition—with Applications"), in double. Requires det L > 0.
-JointDualQuaternion decompose(const glm::mat4& m) {
-  JointDualQuaternion joint;
-  const glm::dmat3 linear{glm::mat3(m)};
-  if (!(glm::determinant(linear) > 0.0)) return joint;
-  glm::dmat3 rotation = linear;
-  for (int i = 0; i < kPolarMaxIterations; ++i) {
-    const glm::dmat3 next = 0.5 * (rotation + glm::transpose(glm::inverse(rotation)));
-    double change = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) change = std::max(change, std::abs(next[c][r] - rotation[c][r]));
-    }
-    rotation = next;
-    if (change <= kPolarTolerance) break;
-  }
-  const glm::dquat q = glm::normalize(glm::quat_cast(rotation));
-  joint.real =
-      glm::vec4(static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z), static_cast<float>(q.w));
-  joint.stretch = glm::mat3(glm::transpose(rotation) * linear);
-  // dual = ½·(t, 0)·real, a quaternion product with the translation as a pure quaternion.
-  const glm::vec3 t(m[3]);
-  const glm::vec3 r(joint.real);
-  const glm::vec3 dualVector = joint.real.w * t + glm::cross(t, r);
-  joint.dual = 0.5f * glm::vec4(dualVector, -glm::dot(t, r));
-  joint.proper = true;
-  return joint;
 }
 
 }  // namespace
@@ -175,10 +134,10 @@ Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::
   }
 
   const bool dualQuaternion = d.method == SkinningMethod::DualQuaternion;
-  std::vector<JointDualQuaternion> dualQuaternions;
+  std::vector<DualQuaternionJoint> dualQuaternions;
   if (dualQuaternion) {
     dualQuaternions.reserve(jointMatrices.size());
-    for (const glm::mat4& m : jointMatrices) dualQuaternions.push_back(decompose(m));
+    for (const glm::mat4& m : jointMatrices) dualQuaternions.push_back(decomposeJoint(m));
   }
 
   const std::size_t vertices = d.positions.size();
@@ -237,7 +196,7 @@ Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::
     for (std::size_t i = first; i < first + influences; ++i) {
       const float w = d.weights[i];
       if (w == 0.0f) continue;
-      const JointDualQuaternion& joint = dualQuaternions[d.joints[i]];
+      const DualQuaternionJoint& joint = dualQuaternions[d.joints[i]];
       if (!joint.proper) {
         return fail("vertex " + std::to_string(v) + " is bound to joint " + std::to_string(d.joints[i]) +
                     ", whose matrix mirrors or flattens space (determinant <= 0); dual-quaternion skinning "

@@ -21,6 +21,7 @@ public:
   friend std::ostream& operator<<(std::ostream& out, PassName pass) { return out << pass.name_; }
 
   // The passes of the renderer's frame (render/renderer.hpp), in the order they can run.
+  static const PassName kSkinning;           ///< skinned, morphing meshes deformed (compute)
   static const PassName kStrands;            ///< the grooms' strand interpolation (compute)
   static const PassName kHairShadows;        ///< the hair and fur opacity shadow maps from light 0
   static const PassName kSkinDiffusion;      ///< texture-space skin: irradiance in uv space and its blurs
@@ -41,6 +42,7 @@ private:
   std::string_view name_;
 };
 
+inline constexpr PassName PassName::kSkinning{"skinning"};
 inline constexpr PassName PassName::kStrands{"strands"};
 inline constexpr PassName PassName::kHairShadows{"hair shadows"};
 inline constexpr PassName PassName::kSkinDiffusion{"skin diffusion"};
