@@ -57,6 +57,13 @@ ResourceUse ResourceUse::vertexInput() {
   return {Stage::eVertexAttributeInput, Access::eVertexAttributeRead};
 }
 
+ResourceUse ResourceUse::computedVertices(bool host) {
+  ResourceUse use{Stage::eVertexAttributeInput | Stage::eVertexShader | Stage::eCopy,
+                  Access::eVertexAttributeRead | Access::eShaderStorageRead | Access::eTransferRead};
+  if (host) use = {use.stages | Stage::eHost, use.access | Access::eHostRead};
+  return use;
+}
+
 ResourceUse ResourceUse::indexInput() {
   return {Stage::eIndexInput, Access::eIndexRead};
 }

@@ -81,6 +81,9 @@ struct ResourceUse {
   static ResourceUse transferSource();
   /// Read by the host after the commands complete (a mapped buffer).
   static ResourceUse hostRead();
+  /// Vertex data a compute pass wrote, as its later readers take it: drawn from (vertex input or
+  /// storage reads in the vertex shader) or copied, and read by the host too where `host`.
+  static ResourceUse computedVertices(bool host);
 
   /// Whether `access` holds a write.
   [[nodiscard]] bool writes() const;

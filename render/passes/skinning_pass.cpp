@@ -249,11 +249,7 @@ void SkinningPass::execute(const vk::raii::CommandBuffer& commands) const {
 }
 
 void SkinningPass::record(const vk::raii::CommandBuffer& commands) const {
-  using Stage = vk::PipelineStageFlagBits2;
-  using Access = vk::AccessFlagBits2;
-  ResourceUse readers{Stage::eVertexAttributeInput | Stage::eVertexShader | Stage::eCopy,
-                      Access::eVertexAttributeRead | Access::eShaderStorageRead | Access::eTransferRead};
-  if (hostReadable_) readers = {readers.stages | Stage::eHost, readers.access | Access::eHostRead};
+  const ResourceUse readers = ResourceUse::computedVertices(hostReadable_);
   FrameGraph::recordAlone(commands, PassName::kSkinning, *this,
                           {{positions_, readers}, {normals_, readers}, {tangents_, readers}});
 }

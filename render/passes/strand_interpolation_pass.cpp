@@ -122,11 +122,7 @@ void StrandInterpolationPass::execute(const vk::raii::CommandBuffer& commands) c
 }
 
 void StrandInterpolationPass::record(const vk::raii::CommandBuffer& commands) const {
-  using Stage = vk::PipelineStageFlagBits2;
-  using Access = vk::AccessFlagBits2;
-  ResourceUse readers{Stage::eVertexAttributeInput | Stage::eVertexShader | Stage::eCopy,
-                      Access::eVertexAttributeRead | Access::eShaderStorageRead | Access::eTransferRead};
-  if (hostReadable_) readers = {readers.stages | Stage::eHost, readers.access | Access::eHostRead};
+  const ResourceUse readers = ResourceUse::computedVertices(hostReadable_);
   FrameGraph::recordAlone(commands, PassName::kStrands, *this, {{positions_, readers}, {tangents_, readers}});
 }
 
