@@ -43,7 +43,8 @@ constexpr const char* kKeyHelp =
     "Keys: Space pause/run the simulation, N step one frame while paused, K skin pre-integrated / texture-space "
     "diffusion, H hair shadows opacity / deep opacity maps, T tone map Reinhard / linear, G glow, A auto gain, "
     "R god rays, F fur shells and fins / bare, O the on-screen text, J / L turn the key light left / right 15 degrees, "
-    "I / M raise / lower it 10 degrees, Esc quit. Mouse: left drag orbits, right drag turns the key light, wheel "
+    "I / M raise / lower it 10 degrees, C a character's next animation clip (cross-faded), E its next expression "
+    "(morph target blended in, the last one out), Esc quit. Mouse: left drag orbits, right drag turns the key light, wheel "
     "zooms.";
 
 // Spherical coordinates around the scene camera's target.
@@ -118,6 +119,9 @@ struct InputState {
   bool furShells = true;  // F: fur as shells and fins, or the bare body with its photo
   bool techniquesChanged = false;
   bool showOverlay = true;  // O
+  // Characters: C plays each one's next clip, E blends in its next expression.
+  bool nextClip = false;
+  bool nextExpression = false;
 };
 
 // What a key does; the window's key callback and --press both come here.
@@ -140,6 +144,8 @@ void press(GLFWwindow* window, InputState& state, int key) {
       break;
     case GLFW_KEY_O: state.showOverlay = !state.showOverlay; break;
     case GLFW_KEY_F: state.furShells = !state.furShells; break;
+    case GLFW_KEY_C: state.nextClip = true; break;
+    case GLFW_KEY_E: state.nextExpression = true; break;
     case GLFW_KEY_J:
     case GLFW_KEY_L:
       state.light.yaw += (key == GLFW_KEY_L ? 1.0f : -1.0f) * LightControl::kYawStep;
@@ -293,6 +299,11 @@ void run(const ViewOptions& options) {
       if (auto set = loop->setScene(drawn); !set) return failWith(set.error().message);
       std::cout << techniqueLine(drawn, world->frameInput()) << '\n';
     }
+    // Over half a second: quick enough to follow the key, slow enough to see the blend.
+    constexpr float kCharacterBlendSeconds = 0.5f;
+    if (input.nextClip) std::cout << "clips: " << world->playNextClips(kCharacterBlendSeconds) << '\n';
+    if (input.nextExpression) std::cout << "expressions: " << world->nextExpression(kCharacterBlendSeconds) << '\n';
+    input.nextClip = input.nextExpression = false;
     const auto now = std::chrono::steady_clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;

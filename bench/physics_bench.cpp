@@ -17,7 +17,19 @@
 //     thread, without (0) or with (1) the capsule + SDF head colliders.
 //   BM_SdfBuild: building that SDF (20,480 triangles, about LeePerrySmith's 17,684) at 64³.
 //   BM_StateHash: FNV-1a over the same groom's state; bytes/s.
+//   BM_CharacterBind: binding 10,000 groom roots to a 50,000-triangle skinned head
+//     (SurfaceBinding::create), once per iteration: the load-time cost.
+//   BM_CharacterStep/<threads>: the 10,000-guide × 32-particle groom on that head as it nods,
+//     with three joint capsules (neck, shoulders) as colliders. Each iteration is one fixed step:
+//     the per-step update (SurfaceBinding::evaluate of the 10k roots on the skinned mesh,
+//     setHeadTransform, setColliders with the capsules re-expressed in the head's frame,
+//     setRootTargets), then HairSystem::advance of one 1/120 s step on <threads>. Counters:
+//     update_us and step_us per iteration, update_ratio = update / step (the goal: ≤ 0.1), and
+//     the update's parts evaluate_us, colliders_us, targets_us.
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -31,6 +43,8 @@
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
 #include "physics/sdf.hpp"
+#include "physics/skinning.hpp"
+#include "physics/surface_binding.hpp"
 
 namespace {
 
@@ -239,5 +253,165 @@ void BM_StateHash(benchmark::State& state) {
                           static_cast<std::int64_t>(2 * hair->particles().size() * sizeof(glm::vec3)));
 }
 BENCHMARK(BM_StateHash)->Unit(benchmark::kMillisecond);
+
+// ---- A character: a skinned head and its groom (BM_CharacterBind, BM_CharacterStep). ----
+
+// A UV sphere of radius 0.1 m (125 stacks × 200 slices: 49,600 triangles, about the 50k of a
+// detailed head), skinned to a neck joint (0) and a head joint (1) that blend between y = −0.09 m
+// and y = −0.03 m.
+mane::physics::SkinnedMeshData benchCharacterHead() {
+  constexpr int kStacks = 125, kSlices = 200;
+  constexpr float kPi = 3.14159265358979f;
+  SkinnedMeshData head;
+  head.influencesPerVertex = 2;
+  head.jointCount = 2;
+  for (int i = 0; i <= kStacks; ++i) {
+    const float polar = kPi * static_cast<float>(i) / kStacks;
+    for (int j = 0; j < kSlices; ++j) {
+      const float azimuth = 2.0f * kPi * static_cast<float>(j) / kSlices;
+      const glm::vec3 n(std::sin(polar) * std::cos(azimuth), std::cos(polar), std::sin(polar) * std::sin(azimuth));
+      head.positions.push_back(0.1f * n);
+      head.normals.push_back(n);
+      const float w = std::clamp((0.1f * n.y + 0.09f) / 0.06f, 0.0f, 1.0f);
+      head.joints.insert(head.joints.end(), {0u, 1u});
+      head.weights.insert(head.weights.end(), {1.0f - w, w});
+    }
+  }
+  for (std::uint32_t i = 0; i < kStacks; ++i)
+    for (std::uint32_t j = 0; j < kSlices; ++j) {
+      const std::uint32_t a = i * kSlices + j, b = i * kSlices + (j + 1) % kSlices, c = a + kSlices, d = b + kSlices;
+      if (i > 0) head.indices.insert(head.indices.end(), {a, b, c});  // none at the poles: zero area
+      if (i + 1 < kStacks) head.indices.insert(head.indices.end(), {b, d, c});
+    }
+  return head;
+}
+
+// 10,000 roots spread over the top of the head (y ≥ 0.02 m), on the sphere: a few 1e-5 m off
+// its flat facets, as a groom authored on a smoother surface would be.
+std::vector<glm::vec3> benchCharacterRoots() {
+  std::vector<glm::vec3> roots;
+  SplitMix64 rng(31);
+  while (roots.size() < 10000) {
+    const glm::vec3 d(rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f), rng.nextFloat(-1.0f, 1.0f));
+    const float length = glm::length(d);
+    if (length > 1.0f || length < 0.1f || d.y / length < 0.2f) continue;
+    roots.push_back(0.1f * d / length);
+  }
+  return roots;
+}
+
+// The head joint's matrix in pose `k` of `kCharacterPoses`: a nod about the neck pivot.
+constexpr int kCharacterPoses = 16;
+glm::mat4 benchNod(int k) {
+  const float angle = 0.05f * static_cast<float>(k < kCharacterPoses / 2 ? k : kCharacterPoses - k);
+  const glm::vec3 pivot(0.0f, -0.1f, 0.0f);
+  return glm::translate(glm::mat4(1.0f), pivot) * glm::rotate(glm::mat4(1.0f), angle, glm::vec3(1.0f, 0.0f, 0.0f)) *
+         glm::translate(glm::mat4(1.0f), -pivot);
+}
+
+// Capsules bound to the neck joint (the identity here): the neck and the two shoulders.
+const CapsuleCollider kCharacterCapsules[3] = {{{0.0f, -0.08f, 0.0f}, {0.0f, -0.3f, 0.0f}, 0.04f},
+                                               {{0.04f, -0.3f, 0.0f}, {0.25f, -0.33f, 0.0f}, 0.05f},
+                                               {{-0.04f, -0.3f, 0.0f}, {-0.25f, -0.33f, 0.0f}, 0.05f}};
+
+void BM_CharacterBind(benchmark::State& state) {
+  static const SkinnedMeshData head = benchCharacterHead();
+  static const std::vector<glm::vec3> roots = benchCharacterRoots();
+  for (auto _ : state) {
+    auto binding = SurfaceBinding::create(head.positions, head.indices, roots);
+    if (!binding) {
+      state.SkipWithError(binding.error().message.c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(binding->points().data());
+  }
+  state.counters["triangles"] = static_cast<double>(head.indices.size() / 3);
+  state.counters["points"] = static_cast<double>(roots.size());
+}
+BENCHMARK(BM_CharacterBind)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_CharacterStep(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const auto threads = static_cast<unsigned>(state.range(0));
+  static const SkinnedMeshData headData = benchCharacterHead();
+  static const std::vector<glm::vec3> roots = benchCharacterRoots();
+  auto head = SkinnedMesh::create(headData);
+  auto binding = SurfaceBinding::create(headData.positions, headData.indices, roots);
+  if (!head || !binding) {
+    state.SkipWithError("character setup failed");
+    return;
+  }
+  // The host's skinning is not what is measured: every pose is deformed up front.
+  std::vector<DeformedSurface> poses(kCharacterPoses);
+  for (int k = 0; k < kCharacterPoses; ++k) {
+    const std::vector<glm::mat4> joints = {glm::mat4(1.0f), benchNod(k)};
+    if (!head->deform(joints, {}, poses[static_cast<std::size_t>(k)])) {
+      state.SkipWithError("deform failed");
+      return;
+    }
+  }
+  std::vector<glm::vec3> targets(roots.size()), normals(roots.size());
+  (void)binding->evaluate(headData.positions, headData.normals, targets, normals, {});
+  GroomSettings groom;
+  groom.seed = 11;
+  groom.particlesPerStrand = 32;
+  groom.strandLength = 0.4f;
+  auto strands = generateGroomFromRoots(groom, roots, normals);
+  if (!strands) {
+    state.SkipWithError(strands.error().message.c_str());
+    return;
+  }
+  auto hair = HairSystem::create(*strands, benchFrameSettings(2));
+  if (!hair || !hair->setRootRestNormals(normals)) {
+    state.SkipWithError("hair setup failed");
+    return;
+  }
+
+  double evaluateSeconds = 0.0, collidersSeconds = 0.0, targetsSeconds = 0.0, stepSeconds = 0.0;
+  int k = 0;
+  DeformedSurface skinned = poses[0];  // the host's skinning output, rewritten every step
+  for (auto _ : state) {
+    // As a host's skinning would, this step's mesh is written just before it is read (untimed).
+    std::copy(poses[static_cast<std::size_t>(k)].positions.begin(), poses[static_cast<std::size_t>(k)].positions.end(),
+              skinned.positions.begin());
+    std::copy(poses[static_cast<std::size_t>(k)].normals.begin(), poses[static_cast<std::size_t>(k)].normals.end(),
+              skinned.normals.begin());
+    const glm::mat4 nod = benchNod(k);
+    k = (k + 1) % kCharacterPoses;
+    const auto start = Clock::now();
+    (void)binding->evaluate(skinned.positions, skinned.normals, targets, normals, {});
+    const auto evaluated = Clock::now();
+    // The joint capsules in the head's frame: neck-joint space → world → head-local.
+    const glm::mat4 toHead = glm::inverse(nod);
+    ColliderSet colliders;
+    for (const CapsuleCollider& c : kCharacterCapsules)
+      colliders.capsules.push_back(
+          {glm::vec3(toHead * glm::vec4(c.a, 1.0f)), glm::vec3(toHead * glm::vec4(c.b, 1.0f)), c.radius});
+    colliders.friction = 0.3f;
+    (void)hair->setHeadTransform(nod);
+    (void)hair->setColliders(std::move(colliders));
+    const auto collided = Clock::now();
+    (void)hair->setRootTargets(targets, normals);
+    const auto targeted = Clock::now();
+    if (!hair->advance(1.0 / 120.0, threads)) {
+      state.SkipWithError("advance failed");
+      return;
+    }
+    const auto stepped = Clock::now();
+    evaluateSeconds += std::chrono::duration<double>(evaluated - start).count();
+    collidersSeconds += std::chrono::duration<double>(collided - evaluated).count();
+    targetsSeconds += std::chrono::duration<double>(targeted - collided).count();
+    stepSeconds += std::chrono::duration<double>(stepped - targeted).count();
+  }
+  const double n = static_cast<double>(state.iterations());
+  const double update = evaluateSeconds + collidersSeconds + targetsSeconds;
+  state.counters["evaluate_us"] = 1e6 * evaluateSeconds / n;
+  state.counters["colliders_us"] = 1e6 * collidersSeconds / n;
+  state.counters["targets_us"] = 1e6 * targetsSeconds / n;
+  state.counters["update_us"] = 1e6 * update / n;
+  state.counters["step_us"] = 1e6 * stepSeconds / n;
+  state.counters["update_ratio"] = update / stepSeconds;
+}
+BENCHMARK(BM_CharacterStep)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

@@ -21,10 +21,16 @@
 // refineForCamera): the same head as a scene mesh with a `subdivision` block, turning ±20° at
 // 0.25 Hz, so every frame sees it from a new side: tessellated again when the kept triangles
 // no longer keep within the target, then copied into the mesh the renderer's replaceMesh reads.
+//
+// BM_ElbowTubeFrame is a skinned cage bending (scenes::SkinnedCage, Timbury's elbow): an open
+// tube of 8 × 12 quads, 10 cm across and 60 cm long, on two joints blended over its middle third,
+// its elbow sweeping 0° → 90° → 0° over 120 frames; each frame skins the cage, moves the limit
+// surface and tessellates it again for a still 1280×720 camera from the side.
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +46,7 @@
 #include "scenes/assets.hpp"
 #include "scenes/gltf_loader.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/skinned_cage.hpp"
 #include "scenes/subdivided_mesh.hpp"
 #include "scenes/world.hpp"
 #include "subdiv/limit.hpp"
@@ -370,6 +377,81 @@ void BM_WorldRefineForCamera(benchmark::State& state) {
 BENCHMARK(BM_WorldRefineForCamera)
     ->ArgsProduct({{0, 1}, {1, 2}})
     ->ArgNames({"cage", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The elbow tube (the same shape as tests/scenes/skinned_cage_tests.cpp): rings of 8 vertices,
+// radius 5 cm, every 5 cm along +y; joint 1's weight rises smoothly from ring 4 to ring 8.
+constexpr int kTubeAround = 8;
+constexpr int kTubeAlong = 12;
+constexpr float kTubeRadius = 0.05f;
+constexpr float kTubeLength = 0.6f;
+constexpr int kElbowSweepFrames = 120;
+
+std::unique_ptr<scenes::SkinnedCage> makeElbowTube() {
+  subdiv::Cage cage;
+  physics::SkinnedMeshData skin{
+      .influencesPerVertex = 2, .jointCount = 2, .method = physics::SkinningMethod::DualQuaternion};
+  for (int r = 0; r <= kTubeAlong; ++r) {
+    const float t = std::clamp(float(r - 4) / 4.0f, 0.0f, 1.0f);
+    const float upper = t * t * (3.0f - 2.0f * t);
+    for (int s = 0; s < kTubeAround; ++s) {
+      const float angle = 2.0f * 3.14159265f * float(s) / float(kTubeAround);
+      cage.positions.emplace_back(kTubeRadius * std::sin(angle), kTubeLength * float(r) / float(kTubeAlong),
+                                  kTubeRadius * std::cos(angle));
+      skin.joints.insert(skin.joints.end(), {0u, 1u});
+      skin.weights.insert(skin.weights.end(), {1.0f - upper, upper});
+    }
+  }
+  const auto at = [](int r, int s) { return std::uint32_t(r * kTubeAround + s % kTubeAround); };
+  for (int r = 0; r < kTubeAlong; ++r)
+    for (int s = 0; s < kTubeAround; ++s) {
+      cage.faceSizes.push_back(4);
+      cage.faceVertices.insert(cage.faceVertices.end(), {at(r, s), at(r, s + 1), at(r + 1, s + 1), at(r + 1, s)});
+    }
+  auto tube = scenes::SkinnedCage::create(std::move(cage), std::move(skin), {});
+  return tube ? std::move(*tube) : nullptr;
+}
+
+/// The elbow's joints at `frame` of the sweep: joint 1 turned about z through the tube's middle.
+std::array<glm::mat4, 2> elbowAtFrame(int frame) {
+  const float phase = float(frame % kElbowSweepFrames) / float(kElbowSweepFrames);
+  const float degrees = 90.0f * (1.0f - std::abs(2.0f * phase - 1.0f));
+  const glm::vec3 elbow(0.0f, 0.5f * kTubeLength, 0.0f);
+  return {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), elbow) *
+                               glm::rotate(glm::mat4(1.0f), glm::radians(degrees), glm::vec3(0, 0, 1)) *
+                               glm::translate(glm::mat4(1.0f), -elbow)};
+}
+
+// Arguments: camera distance in cm (100: the whole tube in view, ~100 px wide; 30: the elbow
+// fills the frame), worker threads. One frame per iteration: pose, then tessellate (every pose moves the cage, so
+// every frame tessellates). `triangles` is the mean count over the sweep.
+void BM_ElbowTubeFrame(benchmark::State& state) {
+  const std::unique_ptr<scenes::SkinnedCage> tube = makeElbowTube();
+  if (!tube) return state.SkipWithError("the elbow tube did not build");
+  const float distance = float(state.range(0)) / 100.0f;
+  const auto threads = static_cast<unsigned>(state.range(1));
+  const glm::vec3 target(-0.05f, 0.3f, 0.0f);
+  const glm::mat4 view = glm::perspective(glm::radians(40.0f), kViewport.x / kViewport.y, 0.01f, 10.0f) *
+                         glm::lookAt(target + glm::vec3(0.0f, 0.0f, distance), target, glm::vec3(0.0f, 1.0f, 0.0f));
+  scenes::Mesh mesh;
+  std::vector<float> inverseRadius;
+  int frame = 0;
+  double triangles = 0.0;
+  for (auto _ : state) {
+    const auto joints = elbowAtFrame(++frame);
+    auto posed = tube->pose(joints, {}, threads);
+    if (!posed) return state.SkipWithError(posed.error().message.c_str());
+    tube->tessellate(view, kViewport, mesh, inverseRadius, threads);
+    benchmark::DoNotOptimize(mesh.indices.data());
+    triangles += double(mesh.triangleCount());
+  }
+  state.SetLabel(state.range(0) >= 100 ? "side" : "close");
+  state.counters["triangles"] = triangles / double(std::max(frame, 1));
+}
+BENCHMARK(BM_ElbowTubeFrame)
+    ->ArgsProduct({{100, 30}, {1, 2}})
+    ->ArgNames({"distance_cm", "threads"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

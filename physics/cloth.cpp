@@ -184,6 +184,18 @@ Result<void> Cloth::setBodyTransform(const glm::mat4& bodyTransform) {
   return {};
 }
 
+Result<void> Cloth::setPinTargets(std::span<const glm::vec3> positions) {
+  if (positions.size() != pinned_.size())
+    return fail("cloth pin targets: " + std::to_string(positions.size()) + " positions for " +
+                std::to_string(pinned_.size()) + " pinned vertices");
+  for (std::size_t p = 0; p < positions.size(); ++p)
+    if (!finite(positions[p]))
+      return fail("cloth pin target " + std::to_string(p) + " (vertex " + std::to_string(pinned_[p]) +
+                  ") is NaN or infinite");
+  pinTargets_.assign(positions.begin(), positions.end());
+  return {};
+}
+
 void Cloth::relaxColour(std::size_t colour, std::size_t first, std::size_t end) {
   auto& positions = particles_.positions;
   const auto& weights = particles_.inverseMasses;
@@ -237,14 +249,24 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
         particles_.positions[i] = transformPoint(toWorld, position);
     }
   };
+  // Each pin's straight path over the frame: between the body's two placements, or from where
+  // it is to its target.
+  pinFrom_.resize(pinned_.size());
+  pinTo_.resize(pinned_.size());
+  for (std::size_t p = 0; p < pinned_.size(); ++p) {
+    pinFrom_[p] =
+        pinTargets_.empty() ? transformPoint(previousBody_, pinnedLocal_[p]) : particles_.positions[pinned_[p]];
+    pinTo_[p] = pinTargets_.empty() ? transformPoint(body_, pinnedLocal_[p]) : pinTargets_[p];
+  }
   auto work = [&](unsigned w) {
     for (int k = 1; k <= plan.substeps; ++k) {
       if (w == 0) {
         const float t = plan.fractionAt(k);
         for (std::size_t p = 0; p < pinned_.size(); ++p) {
-          const glm::vec3 from = transformPoint(previousBody_, pinnedLocal_[p]);
-          const glm::vec3 to = transformPoint(body_, pinnedLocal_[p]);
-          particles_.positions[pinned_[p]] = from + (to - from) * t;
+          // At the frame's end exactly on the placement (from + (to − from)·1 may round off it),
+          // so a pin that follows targets starts the next frame where a body-carried one would.
+          const glm::vec3 from = pinFrom_[p], to = pinTo_[p];
+          particles_.positions[pinned_[p]] = t >= 1.0f ? to : from + (to - from) * t;
           particles_.previousPositions[pinned_[p]] = particles_.positions[pinned_[p]];
         }
       }

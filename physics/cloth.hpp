@@ -6,7 +6,8 @@
 //   between the two vertices opposite the edge, relaxed with a stiffness in [0, 1] (the
 //   "bend spring" of Provot 1995 in position-based form; 0 folds freely, 1 keeps the rest
 //   dihedral as well as the iteration count allows);
-// - pinned vertices with infinite mass that follow the body transform;
+// - pinned vertices with infinite mass that follow the body transform, or per-pin targets (a
+//   host's skinned vertices);
 // - long-range attachments (Kim, Chentanez & Müller 2012): every free vertex may stray from its
 //   nearest pin no farther than the shortest path along the mesh's edges at rest, so the cloth
 //   cannot stretch visibly however few the iterations (on with `solver.tethers`).
@@ -55,8 +56,23 @@ public:
                                             const glm::mat4& bodyTransform = glm::mat4(1.0f));
 
   /// Body-local → world transform at the end of the next `advance`; pins move along the straight
-  /// line between the previous and this placement over the frame's steps. NaN/Inf: error.
+  /// line between the previous and this placement over the frame's steps (until
+  /// `setPinTargets` is first called), colliders with it. NaN/Inf: error.
   [[nodiscard]] Result<void> setBodyTransform(const glm::mat4& bodyTransform);
+
+  /// Pins bound to a skinned mesh: where each pinned vertex is at the end of the next `advance`
+  /// (world space, metres; one per pin, in `pinnedVertices()` order). During the frame each pin
+  /// moves on the straight line from where it is to its target, as the roots of
+  /// `HairSystem::setRootTargets`. Colliders keep following the body transform. From the first
+  /// call on, pins follow the targets (the last ones given, until new ones come) instead of the
+  /// body transform. Fails, changing nothing, on a count that is not `pinnedVertices().size()`
+  /// or a NaN or infinite entry (naming the pin and its vertex).
+  [[nodiscard]] Result<void> setPinTargets(std::span<const glm::vec3> positions);
+  /// True when pins follow `setPinTargets` targets rather than the body transform.
+  [[nodiscard]] bool pinsFollowTargets() const noexcept { return !pinTargets_.empty(); }
+  /// The pinned vertices, each once, in the order they first appear in `create`'s list: the
+  /// order `setPinTargets` takes.
+  [[nodiscard]] std::span<const std::uint32_t> pinnedVertices() const noexcept { return pinned_; }
 
   /// What the cloth collides with, in body-local space (it moves with the body transform).
   /// Step order: Verlet, collisions with friction, the coloured constraint sweeps, then a
@@ -96,6 +112,9 @@ private:
   std::vector<Tether> tethers_;  // sorted by particle
   std::vector<std::uint32_t> pinned_;
   std::vector<glm::vec3> pinnedLocal_;
+  std::vector<glm::vec3> pinTargets_;  // per pin, world: empty while pins follow the body
+  std::vector<glm::vec3> pinFrom_;     // per pin, world: where the current advance starts it ...
+  std::vector<glm::vec3> pinTo_;       // ... and ends it
   ColliderSet colliders_;
   glm::mat4 previousBody_{1.0f};
   glm::mat4 body_{1.0f};

@@ -9,6 +9,7 @@
 #include <string>
 #include <system_error>
 #include <thread>
+#include <utility>
 
 #include <glm/vec4.hpp>
 
@@ -165,12 +166,14 @@ void HairSystem::placeAtRest(const glm::mat4& headTransform) {
 
 namespace {
 
-// Checks one normal per strand and returns them normalised; `what` names the list in errors.
-Result<std::vector<glm::vec3>> unitNormals(std::span<const glm::vec3> normals, std::size_t strands, const char* what) {
+// Checks one normal per strand and writes them normalised to `unit` (resized; its storage is
+// reused, as per-frame targets come every step); `what` names the list in errors.
+Result<void> unitNormals(std::span<const glm::vec3> normals, std::size_t strands, const char* what,
+                         std::vector<glm::vec3>& unit) {
   if (normals.size() != strands)
     return fail(std::string("Hair system: ") + what + " has " + std::to_string(normals.size()) + " normals for " +
                 std::to_string(strands) + " strands.");
-  std::vector<glm::vec3> unit(normals.size());
+  unit.resize(normals.size());
   for (std::size_t s = 0; s < normals.size(); ++s) {
     const glm::vec3 n = normals[s];
     const float length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
@@ -180,7 +183,7 @@ Result<std::vector<glm::vec3>> unitNormals(std::span<const glm::vec3> normals, s
                   std::to_string(n.y) + ", " + std::to_string(n.z) + ").");
     unit[s] = n / length;
   }
-  return unit;
+  return {};
 }
 
 }  // namespace
@@ -192,8 +195,7 @@ Result<void> HairSystem::setRootTargets(std::span<const glm::vec3> positions, st
   for (std::size_t s = 0; s < positions.size(); ++s)
     if (!isFinite(positions[s]))
       return fail("Hair system: root target of strand " + std::to_string(s) + " is NaN or infinite.");
-  auto unit = unitNormals(normals, strands_.size(), "root targets");
-  if (!unit) return std::unexpected(unit.error());
+  if (auto unit = unitNormals(normals, strands_.size(), "root targets", pendingRootNormals_); !unit) return unit;
   if (rootTargets_.empty()) {
     // The first targets: the frame starts from the normals the head gives the roots now.
     previousRootNormals_.resize(strands_.size());
@@ -201,14 +203,14 @@ Result<void> HairSystem::setRootTargets(std::span<const glm::vec3> positions, st
     for (std::size_t s = 0; s < strands_.size(); ++s) previousRootNormals_[s] = rotate(rotation, rootRestNormals_[s]);
   }
   rootTargets_.assign(positions.begin(), positions.end());
-  rootNormals_ = std::move(*unit);
+  std::swap(rootNormals_, pendingRootNormals_);
   return {};
 }
 
 Result<void> HairSystem::setRootRestNormals(std::span<const glm::vec3> normals) {
-  auto unit = unitNormals(normals, strands_.size(), "rest root normals");
-  if (!unit) return std::unexpected(unit.error());
-  rootRestNormals_ = std::move(*unit);
+  std::vector<glm::vec3> unit;
+  if (auto valid = unitNormals(normals, strands_.size(), "rest root normals", unit); !valid) return valid;
+  rootRestNormals_ = std::move(unit);
   return {};
 }
 

@@ -240,6 +240,7 @@ private:
   std::vector<glm::vec3> rootRestNormals_;      // per strand, head-local, unit
   std::vector<glm::vec3> rootTargets_;          // per strand, world: empty while roots follow the head
   std::vector<glm::vec3> rootNormals_;          // per strand, world, unit: at the end of the next advance
+  std::vector<glm::vec3> pendingRootNormals_;   // setRootTargets' checked normals, swapped in on success
   std::vector<glm::vec3> previousRootNormals_;  // ... and at the end of the last one
   glm::mat4 previousHead_{1.0f};                // head transform at the end of the last advance
   glm::mat4 head_{1.0f};                        // head transform at the end of the next advance

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <thread>
 #include <utility>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -39,6 +44,93 @@ glm::vec3 normalisedOr(const glm::vec3& v, const glm::vec3& fallback) {
 glm::vec3 rotate(const glm::vec4& q, const glm::vec3& v) {
   const glm::vec3 r(q);
   return v + 2.0f * glm::cross(r, glm::cross(r, v) + q.w * v);
+}
+
+/// A vertex bound (with a non-zero weight) to a joint whose matrix DQS cannot take.
+struct ImproperBinding {
+  std::size_t vertex;
+  std::uint32_t joint;
+};
+
+/// SkinnedMesh::deform's work for vertices [begin, end) of `d`, into `out` (sized). Stops at the
+/// first improper binding (DQS) and names it.
+std::optional<ImproperBinding> deformRange(const SkinnedMeshData& d, std::span<const glm::mat4> jointMatrices,
+                                           std::span<const DualQuaternionJoint> dualQuaternions,
+                                           std::span<const float> morphWeights, DeformedSurface& out,
+                                           std::size_t begin, std::size_t end) {
+  const bool dualQuaternion = d.method == SkinningMethod::DualQuaternion;
+  const std::size_t influences = d.influencesPerVertex;
+  const bool hasNormals = !d.normals.empty();
+  const bool hasTangents = !d.tangents.empty();
+  for (std::size_t v = begin; v < end; ++v) {
+    // 1. Morph targets, in target order.
+    glm::vec3 position = d.positions[v];
+    glm::vec3 normal = hasNormals ? d.normals[v] : glm::vec3(0.0f);
+    glm::vec4 tangent = hasTangents ? d.tangents[v] : glm::vec4(0.0f);
+    for (std::size_t k = 0; k < d.morphTargets.size(); ++k) {
+      const float w = morphWeights[k];
+      if (w == 0.0f) continue;
+      const MorphTarget& target = d.morphTargets[k];
+      if (!target.positionDeltas.empty()) position += w * target.positionDeltas[v];
+      if (hasNormals && !target.normalDeltas.empty()) normal += w * target.normalDeltas[v];
+      if (hasTangents && !target.tangentDeltas.empty()) tangent += glm::vec4(w * target.tangentDeltas[v], 0.0f);
+    }
+    const glm::vec3 restNormal = hasNormals ? normalisedOr(normal, d.normals[v]) : glm::vec3(0.0f);
+    const glm::vec3 restTangent =
+        hasTangents ? normalisedOr(glm::vec3(tangent), glm::vec3(d.tangents[v])) : glm::vec3(0.0f);
+
+    // 2. Skinning.
+    const std::size_t first = v * influences;
+    if (!dualQuaternion) {
+      glm::mat4 blended(0.0f);
+      for (std::size_t i = first; i < first + influences; ++i) {
+        blended += d.weights[i] * jointMatrices[d.joints[i]];
+      }
+      out.positions[v] = glm::vec3(blended * glm::vec4(position, 1.0f));
+      const glm::mat3 linear(blended);
+      if (hasNormals) {
+        const float handedness = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
+        out.normals[v] = normalisedOr(handedness * (cofactor(linear) * restNormal), restNormal);
+      }
+      if (hasTangents) {
+        const float mirror = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
+        out.tangents[v] = glm::vec4(normalisedOr(linear * restTangent, restTangent), tangent.w * mirror);
+      }
+      continue;
+    }
+
+    // DQS: antipodal quaternions are the same rotation; align every influence with the first
+    // weighted one so that blending takes the short way round.
+    std::size_t pivotInfluence = first;
+    while (pivotInfluence + 1 < first + influences && d.weights[pivotInfluence] == 0.0f) ++pivotInfluence;
+    const glm::vec4 pivot = dualQuaternions[d.joints[pivotInfluence]].real;
+    glm::vec4 real(0.0f);
+    glm::vec4 dual(0.0f);
+    glm::mat3 stretch(0.0f);
+    for (std::size_t i = first; i < first + influences; ++i) {
+      const float w = d.weights[i];
+      if (w == 0.0f) continue;
+      const DualQuaternionJoint& joint = dualQuaternions[d.joints[i]];
+      if (!joint.proper) return ImproperBinding{v, d.joints[i]};
+      const float signedWeight = glm::dot(joint.real, pivot) < 0.0f ? -w : w;
+      real += signedWeight * joint.real;
+      dual += signedWeight * joint.dual;
+      stretch += w * joint.stretch;
+    }
+    const float length = glm::length(real);
+    real /= length;
+    dual /= length;
+    // Translation of the blended motion: 2·dual·conj(real), vector part.
+    const glm::vec3 rv(real);
+    const glm::vec3 dv(dual);
+    const glm::vec3 translation = 2.0f * (real.w * dv - dual.w * rv + glm::cross(rv, dv));
+    out.positions[v] = rotate(real, stretch * position) + translation;
+    if (hasNormals) out.normals[v] = normalisedOr(rotate(real, cofactor(stretch) * restNormal), restNormal);
+    if (hasTangents) {
+      out.tangents[v] = glm::vec4(normalisedOr(rotate(real, stretch * restTangent), restTangent), tangent.w);
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -116,7 +208,7 @@ Result<SkinnedMesh> SkinnedMesh::create(SkinnedMeshData data) {
 }
 
 Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
-                                 DeformedSurface& out) const {
+                                 DeformedSurface& out, unsigned threads) const {
   const SkinnedMeshData& d = data_;
   if (jointMatrices.size() != d.jointCount) {
     return fail("deforming a skinned mesh needs " + std::to_string(d.jointCount) + " joint matrices; got " +
@@ -141,84 +233,40 @@ Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::
   }
 
   const std::size_t vertices = d.positions.size();
-  const std::size_t influences = d.influencesPerVertex;
-  const bool hasNormals = !d.normals.empty();
-  const bool hasTangents = !d.tangents.empty();
   out.positions.resize(vertices);
-  out.normals.resize(hasNormals ? vertices : 0);
-  out.tangents.resize(hasTangents ? vertices : 0);
+  out.normals.resize(d.normals.empty() ? 0 : vertices);
+  out.tangents.resize(d.tangents.empty() ? 0 : vertices);
+  if (vertices == 0) return {};
 
-  for (std::size_t v = 0; v < vertices; ++v) {
-    // 1. Morph targets, in target order.
-    glm::vec3 position = d.positions[v];
-    glm::vec3 normal = hasNormals ? d.normals[v] : glm::vec3(0.0f);
-    glm::vec4 tangent = hasTangents ? d.tangents[v] : glm::vec4(0.0f);
-    for (std::size_t k = 0; k < d.morphTargets.size(); ++k) {
-      const float w = morphWeights[k];
-      if (w == 0.0f) continue;
-      const MorphTarget& target = d.morphTargets[k];
-      if (!target.positionDeltas.empty()) position += w * target.positionDeltas[v];
-      if (hasNormals && !target.normalDeltas.empty()) normal += w * target.normalDeltas[v];
-      if (hasTangents && !target.tangentDeltas.empty()) tangent += glm::vec4(w * target.tangentDeltas[v], 0.0f);
-    }
-    const glm::vec3 restNormal = hasNormals ? normalisedOr(normal, d.normals[v]) : glm::vec3(0.0f);
-    const glm::vec3 restTangent =
-        hasTangents ? normalisedOr(glm::vec3(tangent), glm::vec3(d.tangents[v])) : glm::vec3(0.0f);
-
-    // 2. Skinning.
-    const std::size_t first = v * influences;
-    if (!dualQuaternion) {
-      glm::mat4 blended(0.0f);
-      for (std::size_t i = first; i < first + influences; ++i) {
-        blended += d.weights[i] * jointMatrices[d.joints[i]];
+  // A fixed partition into contiguous vertex ranges; each vertex's arithmetic does not depend on
+  // it, so the output has the same bits for every thread count.
+  const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, vertices);
+  const auto rangeBegin = [&](std::size_t w) { return vertices * w / workers; };
+  std::vector<std::optional<ImproperBinding>> failures(workers);
+  const auto run = [&](std::size_t w) {
+    failures[w] = deformRange(d, jointMatrices, dualQuaternions, morphWeights, out, rangeBegin(w), rangeBegin(w + 1));
+  };
+  {
+    std::vector<std::jthread> pool;
+    pool.reserve(workers - 1);
+    std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
+    for (std::size_t w = 1; w < workers; ++w) {
+      try {
+        pool.emplace_back(run, w);
+      } catch (const std::system_error&) {
+        inlineFrom = w;  // no more threads available: run the remaining ranges here
+        break;
       }
-      out.positions[v] = glm::vec3(blended * glm::vec4(position, 1.0f));
-      const glm::mat3 linear(blended);
-      if (hasNormals) {
-        const float handedness = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
-        out.normals[v] = normalisedOr(handedness * (cofactor(linear) * restNormal), restNormal);
-      }
-      if (hasTangents) {
-        const float mirror = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
-        out.tangents[v] = glm::vec4(normalisedOr(linear * restTangent, restTangent), tangent.w * mirror);
-      }
-      continue;
     }
-
-    // DQS: antipodal quaternions are the same rotation; align every influence with the first
-    // weighted one so that blending takes the short way round.
-    std::size_t pivotInfluence = first;
-    while (pivotInfluence + 1 < first + influences && d.weights[pivotInfluence] == 0.0f) ++pivotInfluence;
-    const glm::vec4 pivot = dualQuaternions[d.joints[pivotInfluence]].real;
-    glm::vec4 real(0.0f);
-    glm::vec4 dual(0.0f);
-    glm::mat3 stretch(0.0f);
-    for (std::size_t i = first; i < first + influences; ++i) {
-      const float w = d.weights[i];
-      if (w == 0.0f) continue;
-      const DualQuaternionJoint& joint = dualQuaternions[d.joints[i]];
-      if (!joint.proper) {
-        return fail("vertex " + std::to_string(v) + " is bound to joint " + std::to_string(d.joints[i]) +
-                    ", whose matrix mirrors or flattens space (determinant <= 0); dual-quaternion skinning "
-                    "needs a rotation");
-      }
-      const float signedWeight = glm::dot(joint.real, pivot) < 0.0f ? -w : w;
-      real += signedWeight * joint.real;
-      dual += signedWeight * joint.dual;
-      stretch += w * joint.stretch;
-    }
-    const float length = glm::length(real);
-    real /= length;
-    dual /= length;
-    // Translation of the blended motion: 2·dual·conj(real), vector part.
-    const glm::vec3 rv(real);
-    const glm::vec3 dv(dual);
-    const glm::vec3 translation = 2.0f * (real.w * dv - dual.w * rv + glm::cross(rv, dv));
-    out.positions[v] = rotate(real, stretch * position) + translation;
-    if (hasNormals) out.normals[v] = normalisedOr(rotate(real, cofactor(stretch) * restNormal), restNormal);
-    if (hasTangents) {
-      out.tangents[v] = glm::vec4(normalisedOr(rotate(real, stretch * restTangent), restTangent), tangent.w);
-    }
+    run(0);
+    for (std::size_t w = inlineFrom; w < workers; ++w) run(w);
+  }  // joins
+  // The first failing vertex in vertex order, whatever the partition.
+  for (const std::optional<ImproperBinding>& failure : failures) {
+    if (!failure) continue;
+    return fail("vertex " + std::to_string(failure->vertex) + " is bound to joint " + std::to_string(failure->joint) +
+                ", whose matrix mirrors or flattens space (determinant <= 0); dual-quaternion skinning "
+                "needs a rotation");
   }
   return {};
 }

@@ -18,7 +18,8 @@
 // uniformly scaled skeleton (an armature exported at 100×) deforms correctly too; normals take
 // the blended stretch's cofactor and then the rotation. Every normal and tangent is renormalised.
 //
-// Single-threaded and free of data-dependent ordering: the same inputs give the same bits.
+// Free of data-dependent ordering, and each vertex is computed alone: the same inputs give the
+// same bits for any thread count.
 
 #include <cstddef>
 #include <cstdint>
@@ -88,8 +89,10 @@ public:
   /// affine), writing to `out` (resized as needed). Fails, leaving `out` unspecified, when a span
   /// has the wrong size or holds a NaN or infinity, or, for DQS, a joint matrix used by a vertex
   /// mirrors or flattens space (its determinant is ≤ 0): a rotation cannot express that.
+  /// `threads` ≥ 1 workers (0 counts as 1) deform fixed contiguous ranges of vertices; the output
+  /// and any error do not depend on `threads`.
   [[nodiscard]] Result<void> deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
-                                    DeformedSurface& out) const;
+                                    DeformedSurface& out, unsigned threads = 1) const;
 
 private:
   SkinnedMeshData data_;

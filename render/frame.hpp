@@ -13,6 +13,7 @@
 
 #include "render/hair_data.hpp"
 #include "render/pass_name.hpp"
+#include "render/skinned_mesh_data.hpp"
 
 namespace mane::render {
 
@@ -35,6 +36,12 @@ struct MeshData {
   /// Empty or one per position: the surface's curvature 1/r (1 per mesh unit, ≥ 0; the instance's scale converts it),
   /// which skin materials look their pre-integrated scattering up by (scenes/mesh_curvature.hpp).
   std::span<const float> curvatures;
+  /// Set: the mesh is skinned and morphed on the GPU every frame (render/passes/skinning_pass.hpp)
+  /// from Renderer::updateSkinning's joints and weights; `positions` and `normals` (required) are
+  /// its bind pose, one per skinning->positions, and every pass draws the deformed vertices, with
+  /// the instance's model matrix applied after the joints. Read during setScene only. Not with
+  /// `dynamic`. Like dynamic meshes, left out of the translucency depth map (bounds unknown).
+  const GpuSkinnedMesh* skinning = nullptr;
 };
 
 /// How a surface scatters light.

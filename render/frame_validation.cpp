@@ -13,6 +13,14 @@ Result<void> validateMesh(const MeshData& mesh, const std::string& name) {
     return fail(name + ": " + std::to_string(mesh.curvatures.size()) + " curvatures for " +
                 std::to_string(mesh.positions.size()) + " positions");
   if (mesh.indices.size() % 3 != 0) return fail(name + ": the index count is not a multiple of 3");
+  if (mesh.skinning != nullptr) {
+    if (mesh.dynamic) return fail(name + ": a mesh is either dynamic (updateMesh) or skinned, not both");
+    if (mesh.skinning->positions.size() != mesh.positions.size() || mesh.normals.size() != mesh.positions.size() ||
+        mesh.skinning->normals.size() != mesh.positions.size())
+      return fail(name + ": a skinned mesh needs its bind pose's " + std::to_string(mesh.skinning->positions.size()) +
+                  " positions and as many normals, in MeshData and its skinning; got " + std::to_string(mesh.positions.size()) + " and " +
+                  std::to_string(mesh.normals.size()));
+  }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i)
     if (mesh.indices[i] >= mesh.positions.size())
       return fail(name + ": index " + std::to_string(i) + " is " + std::to_string(mesh.indices[i]) + " but there are " +

@@ -102,4 +102,13 @@ Result<void> FurSurfaces::setLeans(std::size_t fur, std::span<const glm::vec3> l
   return {};
 }
 
+Result<void> FurSurfaces::setPose(std::size_t fur, std::span<const glm::vec4> positions,
+                                  std::span<const glm::vec4> normals) {
+  if (fur >= furs_.size())
+    return fail("fur " + std::to_string(fur) + " is not in the scene (it has " + std::to_string(furs_.size()) + ")");
+  if (auto set = furs_[fur].pass->setPose(positions, normals); !set)
+    return fail("fur " + std::to_string(fur) + ": " + set.error().message);
+  return {};
+}
+
 }  // namespace mane::render

@@ -56,7 +56,13 @@ public:
   /// Per-vertex leans of fur `fur` (FurPass::setLeans).
   [[nodiscard]] Result<void> setLeans(std::size_t fur, std::span<const glm::vec3> leans);
 
+  /// The shape of fur `fur`'s mesh this frame, when it is deformed on the GPU (FurPass::setPose).
+  [[nodiscard]] Result<void> setPose(std::size_t fur, std::span<const glm::vec4> positions,
+                                     std::span<const glm::vec4> normals);
+
   [[nodiscard]] std::size_t size() const { return furs_.size(); }
+  /// The scene mesh fur `fur` grows on.
+  [[nodiscard]] std::size_t mesh(std::size_t fur) const { return furs_.at(fur).mesh; }
   [[nodiscard]] const FurPass& pass(std::size_t fur) const { return *furs_.at(fur).pass; }
 
 private:

@@ -56,6 +56,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
 
 Result<void> Renderer::setScene(const StaticScene& scene) {
   if (auto valid = validateScene(scene, device_->limits()); !valid) return valid;
+  skinned_.clear();  // before the buffers they write into go
   hair_.clear();
   // Strands first: the shadow maps read their positions, and the shading reads the maps.
   std::vector<HairShadowPass::Groom> shadowed;
@@ -100,6 +101,7 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     return fail(std::string("uploading the scene failed: ") + error.what());
   }
   if (auto set = setTextureSpaceSkins(scene); !set) return set;
+  if (auto set = setSkinnedMeshes(scene); !set) return set;
   refreshShadowDescriptors();
 
   for (std::size_t g = 0; g < scene.grooms.size(); ++g) {
@@ -163,6 +165,76 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
   return {};
 }
 
+Result<void> Renderer::setSkinnedMeshes(const StaticScene& scene) {
+  skinned_.clear();
+  skinned_.resize(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const MeshData& mesh = scene.meshes[m];
+    if (mesh.skinning == nullptr) continue;
+    const std::string name = "mesh " + std::to_string(m);
+    SkinningSettings settings{.vertexTargets = {scene_.skinnedVertexTarget(m)}};
+    SkinnedMesh& skinned = skinned_[m];
+    for (std::size_t f = 0; f < furs_.size(); ++f) {
+      if (furs_.mesh(f) != m) continue;
+      skinned.furs.push_back(f);
+      settings.vertexTargets.push_back(furs_.pass(f).vertexTarget());
+    }
+    if (m < diffusionMeshes_.size() && diffusionMeshes_[m])
+      settings.vertexTargets.push_back(diffusionMeshes_[m]->vertexTarget());
+    if (settings.vertexTargets.size() > SkinningPass::kMaxVertexTargets)
+      return fail(name + ": a skinned mesh can grow one fur and have one texture-space skin copy at most");
+    // The furs' fins and shadows are found on the CPU, from the deformed vertices.
+    settings.hostReadable = !skinned.furs.empty();
+    auto pass = SkinningPass::create(*device_, *mesh.skinning, settings);
+    if (!pass) return fail(name + ": " + pass.error().message);
+    skinned.pass = std::move(*pass);
+  }
+  return {};
+}
+
+Result<void> Renderer::updateSkinning(std::size_t mesh, std::span<const glm::mat4> jointMatrices,
+                                      std::span<const float> morphWeights) {
+  const std::string name = "updateSkinning: mesh " + std::to_string(mesh);
+  if (mesh >= skinned_.size() || !skinned_[mesh].pass)
+    return fail(name + " is not a skinned mesh of the scene (MeshData::skinning)");
+  if (auto updated = skinned_[mesh].pass->update(jointMatrices, morphWeights); !updated)
+    return fail(name + ": " + updated.error().message);
+  skinned_[mesh].stale = true;
+  return {};
+}
+
+Result<void> Renderer::poseSkinnedFurs() {
+  const auto needsPose = [](const SkinnedMesh& mesh) { return mesh.pass && mesh.stale && !mesh.furs.empty(); };
+  if (std::ranges::none_of(skinned_, needsPose)) return {};
+  try {
+    device_->submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      for (const SkinnedMesh& mesh : skinned_)
+        if (needsPose(mesh)) mesh.pass->record(commands);
+    });
+  } catch (const std::exception& error) {
+    return fail(std::string("skinning the furred meshes failed: ") + error.what());
+  }
+  for (SkinnedMesh& mesh : skinned_) {
+    if (!needsPose(mesh)) continue;
+    mesh.stale = false;  // the frame draws what this wrote
+    for (const std::size_t fur : mesh.furs)
+      if (auto posed = furs_.setPose(fur, mesh.pass->mappedPositions(), mesh.pass->mappedNormals()); !posed)
+        return posed;
+  }
+  return {};
+}
+
+void Renderer::addSkinning() {
+  for (SkinnedMesh& mesh : skinned_) {
+    if (!mesh.pass || !mesh.stale) continue;
+    const SkinningPass* pass = mesh.pass.get();
+    graph_.addPass(
+        PassName::kSkinning, [pass](FrameGraph::Builder& builder) { pass->declare(builder); },
+        [pass](const vk::raii::CommandBuffer& c) { pass->execute(c); });
+    mesh.stale = false;
+  }
+}
+
 void Renderer::refreshShadowDescriptors() {
   scene_.refreshShadows();
   for (TextureSpaceSkin& skin : textureSpaceSkins_) skin.pass->refreshShadows();
@@ -200,6 +272,9 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
   using Commands = vk::raii::CommandBuffer;
   graph_.reset();
   FramePlan& plan = plan_;
+
+  // Skinned meshes first: every pass after this draws their deformed vertices.
+  addSkinning();
 
   // Dense strands first (compute), then their shadow maps and their shading, so the surfaces
   // and the ribbons can read them inside the main pass.
@@ -446,6 +521,8 @@ Result<void> Renderer::replaceMesh(std::size_t mesh, const MeshData& data) {
   if (!scene_.hasMesh(mesh)) return fail("replaceMesh: the scene has no " + name);
   if (scene_.isDynamic(mesh))
     return fail("replaceMesh: " + name + " is dynamic: its vertices change with updateMesh, its triangles stay");
+  if (scene_.isSkinned(mesh) || data.skinning != nullptr)
+    return fail("replaceMesh: " + name + " or its replacement is skinned; skinned meshes come with setScene only");
   if (data.dynamic) return fail("replaceMesh: the new " + name + " is marked dynamic; only static meshes are replaced");
   if (auto valid = validateMesh(data, name); !valid) return valid;
   // Texture-space skin draws its irradiance over its own copy of the mesh (setTextureSpaceSkins).
@@ -495,6 +572,7 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   }
   if (auto prepared = translucency_.prepareThickness(frame, scene_); !prepared)
     return std::unexpected(prepared.error());
+  if (auto posed = poseSkinnedFurs(); !posed) return std::unexpected(posed.error());
   if (auto updated = furs_.update(frame, target_.extent(), target_.aspect()); !updated)
     return std::unexpected(updated.error());
   // Drawn furs cast shadows from where they are now (their slots follow the grooms').

@@ -1,11 +1,13 @@
 #pragma once
 // Runs the passes of a frame into an offscreen RenderTarget, in the order of
-// docs/design.md#the-frame: the grooms' strand interpolation (compute), the hair shadows from the
-// first light, the texture-space diffusion of skin that asks for it, light 0's depth map of the
-// translucent surfaces, the deferred skin's G-buffer, the hair's hiding and per-vertex shading
-// (compute), then surfaces, fur (shells and fins) and hair into HDR colour, the post chain where
-// FrameInput::post asks for it (glow, auto gain, god rays) and the output pass (tone map) to 8-bit
-// sRGB. Reads the result back for PNG files, or leaves it for a window to blit into its swapchain.
+// docs/design.md#the-frame: the skinned meshes' deformation (compute, written into the vertex
+// buffers every later pass draws: render/passes/skinning_pass.hpp), the grooms' strand
+// interpolation (compute), the hair shadows from the first light, the texture-space diffusion of
+// skin that asks for it, light 0's depth map of the translucent surfaces, the deferred skin's
+// G-buffer, the hair's hiding and per-vertex shading (compute), then surfaces, fur (shells and
+// fins) and hair into HDR colour, the post chain where FrameInput::post asks for it (glow, auto
+// gain, god rays) and the output pass (tone map) to 8-bit sRGB. Reads the result back for PNG
+// files, or leaves it for a window to blit into its swapchain.
 
 #include <cstdint>
 #include <memory>
@@ -25,6 +27,7 @@
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_disc_pass.hpp"
 #include "render/passes/skin_diffusion_pass.hpp"
+#include "render/passes/skinning_pass.hpp"
 #include "render/passes/output_pass.hpp"
 #include "render/passes/post_pass.hpp"
 #include "render/passes/strand_interpolation_pass.hpp"
@@ -77,6 +80,15 @@ public:
   /// the dense strands stray from them.
   Result<void> updateHair(std::size_t groom, std::span<const glm::vec3> guidePositions);
 
+  /// This frame's joint matrices (one per joint of MeshData::skinning, affine, from the joint's
+  /// bind space to the mesh's model space, metres) and morph weights (one per morph target) of
+  /// skinned mesh `mesh` of the scene; takes effect from the next render, which deforms the mesh
+  /// on the GPU before any pass draws it. Until the first call the mesh is in its bind pose.
+  /// Errors, changing nothing: no such mesh or not a skinned one, wrong counts, a NaN or infinite
+  /// value, or for dual-quaternion skinning a joint matrix that mirrors or flattens space.
+  Result<void> updateSkinning(std::size_t mesh, std::span<const glm::mat4> jointMatrices,
+                              std::span<const float> morphWeights);
+
   /// Per-vertex leans of the fur of StaticScene::furs[fur] (world space, units of its thickness:
   /// FurPass::setLeans), e.g. from simulated guides; takes effect from the next render.
   Result<void> updateFurLeans(std::size_t fur, std::span<const glm::vec3> leans);
@@ -110,8 +122,16 @@ private:
 
   /// The diffusion passes of the scene's texture-space skin materials.
   Result<void> setTextureSpaceSkins(const StaticScene& scene);
+  /// The skinning passes of the scene's skinned meshes, after the surfaces, furs and diffusion
+  /// meshes they write into exist.
+  Result<void> setSkinnedMeshes(const StaticScene& scene);
+  /// Deforms the skinned meshes that grow fur and whose joints changed, in a submission of their
+  /// own, and hands the furs their pose: the fins and the fur's shadows are found on the CPU.
+  Result<void> poseSkinnedFurs();
 
   // Pieces of record()'s frame graph.
+  /// The skinning dispatches of the meshes whose joints changed since they were last deformed.
+  void addSkinning();
   struct TextureSpaceSkin;
   /// The post chain's compute passes that `frame.post` asks for; none by default.
   void addPost(const FrameInput& frame);
@@ -158,6 +178,14 @@ private:
     std::unique_ptr<SkinDiffusionPass> pass;
   };
   std::vector<TextureSpaceSkin> textureSpaceSkins_;
+  // A skinned mesh (MeshData::skinning): deformed on the GPU into the vertex buffers of the
+  // surface scene, of the furs growing on it and of its texture-space skin copy.
+  struct SkinnedMesh {
+    std::unique_ptr<SkinningPass> pass;
+    std::vector<std::size_t> furs;  // StaticScene::furs on the mesh: posed from the pass's outputs
+    bool stale = true;              // joints or weights changed since the last dispatch
+  };
+  std::vector<SkinnedMesh> skinned_;  // per scene mesh; no pass for the others
   std::vector<std::optional<SkinDiffusionMesh>> diffusionMeshes_;  // per scene mesh: static, with uvs and normals
   std::vector<std::unique_ptr<MarschnerLut>> luts_;                // per HairLook, baked when a groom needs it
   std::vector<HairGroom> hair_;

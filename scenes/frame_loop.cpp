@@ -52,6 +52,9 @@ Result<std::vector<render::PassTiming>> FrameLoop::renderFrame(const render::Fra
 Result<void> FrameLoop::uploadMovingState() {
   for (const auto& mesh : world_->dynamicMeshes())
     if (auto updated = renderer_->updateMesh(mesh.mesh, mesh.positions, mesh.normals); !updated) return updated;
+  for (const auto& skinned : world_->skinnedMeshes())
+    if (auto updated = renderer_->updateSkinning(skinned.mesh, skinned.jointMatrices, skinned.morphWeights); !updated)
+      return updated;
   for (const auto& hair : world_->hairGuides())
     if (auto updated = renderer_->updateHair(hair.groom, hair.positions); !updated) return updated;
   for (const auto& fur : world_->furLeans())

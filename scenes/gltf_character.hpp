@@ -43,6 +43,10 @@ struct CharacterMesh {
   std::vector<std::string> morphTargetNames;
   /// Where each glTF primitive starts in `surface`'s vertices, in primitive order.
   std::vector<std::size_t> primitiveFirstVertex;
+  /// Where each primitive's triangles start in `surface`'s indices, in primitive order.
+  std::vector<std::size_t> primitiveFirstIndex;
+  /// Each primitive's glTF material name; empty where it has none (or the material is unnamed).
+  std::vector<std::string> primitiveMaterials;
   /// Positions, normals (smooth ones where a primitive has none), tangents (when every primitive
   /// has them), triangles, joint influences with weights renormalised to sum to 1, and morph
   /// targets. Coordinates are the skin's bind space or, without a skin, the node's local space;

@@ -13,6 +13,7 @@
 
 #include "scenes/detail/json_fields.hpp"
 #include "scenes/detail/scene_bodies.hpp"
+#include "scenes/detail/scene_characters.hpp"
 #include "scenes/detail/scene_materials.hpp"
 
 namespace mane::scenes {
@@ -20,11 +21,13 @@ namespace {
 
 using detail::FieldError;
 using detail::ObjectFields;
+using detail::parseCharacter;
 using detail::parseCloth;
 using detail::parseGroom;
 using detail::parseHairShadows;
 using detail::parseMaterial;
 using detail::parsePost;
+using detail::parseSubdivision;
 using detail::parseTransform;
 using detail::require;
 using Json = nlohmann::json;
@@ -118,27 +121,6 @@ MeshSimplification parseSimplification(const Json& json, const std::string& path
           "expected an error in (0, 1] of the mesh's extent");
   fields.finish();
   return simplify;
-}
-
-Subdivision parseSubdivision(const Json& json, const std::string& path) {
-  ObjectFields fields(json, path);
-  Subdivision subdivision;
-  subdivision.maxPixelError = fields.optional<float>("max_pixel_error", subdivision.maxPixelError);
-  require(subdivision.maxPixelError > 0.0f && subdivision.maxPixelError <= kMaxSubdivisionPixelError,
-          fields.child("max_pixel_error"),
-          "expected a pixel error in (0, " + std::to_string(int(kMaxSubdivisionPixelError)) + "]");
-  const std::string levels = std::to_string(kMinSubdivisionLevel) + ".." + std::to_string(kMaxSubdivisionLevel);
-  subdivision.isolation = fields.optional<int>("isolation", subdivision.isolation);
-  require(subdivision.isolation >= kMinSubdivisionLevel && subdivision.isolation <= kMaxSubdivisionLevel,
-          fields.child("isolation"), "expected an isolation level in " + levels);
-  subdivision.maxDepth = fields.optional<int>("max_depth", subdivision.maxDepth);
-  require(subdivision.maxDepth >= kMinSubdivisionLevel && subdivision.maxDepth <= kMaxSubdivisionLevel,
-          fields.child("max_depth"), "expected a depth in " + levels);
-  subdivision.capHoles = fields.optional<bool>("cap_holes", subdivision.capHoles);
-  if (const Json* coarseCage = fields.take("coarse_cage"))
-    subdivision.coarseCage = parseSimplification(*coarseCage, fields.child("coarse_cage"));
-  fields.finish();
-  return subdivision;
 }
 
 MeshInstance parseMesh(const Json& json, const std::string& path) {
@@ -235,10 +217,19 @@ SimulationSettings parseSimulation(const Json& json, const std::string& path) {
   return sim;
 }
 
-void checkColliderReferences(const Scene& scene, const Colliders& colliders, const std::string& path) {
-  if (colliders.sdf) {
-    require(scene.findMesh(colliders.sdf->mesh) != nullptr, path + ".sdf.mesh",
-            "no mesh named \"" + colliders.sdf->mesh + "\" in meshes");
+std::string noMesh(const std::string& name) {
+  return "no mesh named \"" + name + "\" in meshes, nor a character part \"<character>/<mesh>\" of characters";
+}
+
+bool isCharacterPart(const std::string& name) { return name.find(kCharacterPartSeparator) != std::string::npos; }
+
+// Joint-bound shapes need a character to take their joints from: the body's own.
+void checkColliderReferences(const Scene& scene, const Colliders& colliders, const std::string& body,
+                             const std::string& path) {
+  if (colliders.sdf) require(scene.namesMesh(colliders.sdf->mesh), path + ".sdf.mesh", noMesh(colliders.sdf->mesh));
+  if (colliders.followsJoints()) {
+    require(isCharacterPart(body), path,
+            "shapes with a \"joint\" need a body that is a character part (attached_mesh \"<character>/<mesh>\")");
   }
 }
 
@@ -256,24 +247,35 @@ void checkReferences(const Scene& scene) {
     require(names.insert(mesh.name).second, path + ".name", "duplicate mesh name \"" + mesh.name + "\"");
     require(mesh.material.empty() || scene.findMaterial(mesh.material), path + ".material",
             "no material named \"" + mesh.material + "\" in materials");
+    require(!isCharacterPart(mesh.name), path + ".name", "expected a name without '/' (kept for character parts)");
+  }
+  names.clear();
+  for (std::size_t i = 0; i < scene.characters.size(); ++i) {
+    const CharacterInstance& character = scene.characters[i];
+    const std::string path = "characters[" + std::to_string(i) + "]";
+    require(names.insert(character.name).second, path + ".name",
+            "duplicate character name \"" + character.name + "\"");
+    require(character.material.empty() || scene.findMaterial(character.material), path + ".material",
+            "no material named \"" + character.material + "\" in materials");
+    for (const auto& [gltfMaterial, material] : character.materials)
+      require(scene.findMaterial(material), path + ".materials." + gltfMaterial,
+              "no material named \"" + material + "\" in materials");
   }
   for (std::size_t i = 0; i < scene.grooms.size(); ++i) {
     const Groom& groom = scene.grooms[i];
     const std::string path = "grooms[" + std::to_string(i) + "]";
-    require(scene.findMesh(groom.attachedMesh) != nullptr, path + ".attached_mesh",
-            "no mesh named \"" + groom.attachedMesh + "\" in meshes");
-    checkColliderReferences(scene, groom.colliders, path + ".colliders");
+    require(scene.namesMesh(groom.attachedMesh), path + ".attached_mesh", noMesh(groom.attachedMesh));
+    checkColliderReferences(scene, groom.colliders, groom.attachedMesh, path + ".colliders");
   }
   for (std::size_t i = 0; i < scene.cloths.size(); ++i) {
     const Cloth& cloth = scene.cloths[i];
     const std::string path = "cloths[" + std::to_string(i) + "]";
-    require(scene.findMesh(cloth.attachedMesh) != nullptr, path + ".attached_mesh",
-            "no mesh named \"" + cloth.attachedMesh + "\" in meshes");
+    require(scene.namesMesh(cloth.attachedMesh), path + ".attached_mesh", noMesh(cloth.attachedMesh));
     require(cloth.material.empty() || scene.findMaterial(cloth.material), path + ".material",
             "no material named \"" + cloth.material + "\" in materials");
     require(cloth.material.empty() || scene.findMaterial(cloth.material)->kind != MaterialKind::fur, path + ".material",
             "fur grows on meshes, not on cloth (its shells need a mesh that does not deform)");
-    checkColliderReferences(scene, cloth.colliders, path + ".colliders");
+    checkColliderReferences(scene, cloth.colliders, cloth.attachedMesh, path + ".colliders");
   }
   if (scene.headMotion.kind != HeadMotionKind::none) {
     require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
@@ -297,6 +299,7 @@ Scene parseRoot(const Json& json) {
   scene.meshes = parseList<MeshInstance>(fields, "meshes", parseMesh);
   scene.grooms = parseList<Groom>(fields, "grooms", parseGroom);
   scene.cloths = parseList<Cloth>(fields, "cloths", parseCloth);
+  scene.characters = parseList<CharacterInstance>(fields, "characters", parseCharacter);
   if (const Json* animation = fields.take("animation")) {
     ObjectFields anim(*animation, "animation");
     if (const Json* head = anim.take("head")) scene.headMotion = parseHeadMotion(*head, "animation.head");
@@ -313,6 +316,31 @@ Scene parseRoot(const Json& json) {
 }
 
 }  // namespace
+
+namespace detail {
+
+Subdivision parseSubdivision(const nlohmann::json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Subdivision subdivision;
+  subdivision.maxPixelError = fields.optional<float>("max_pixel_error", subdivision.maxPixelError);
+  require(subdivision.maxPixelError > 0.0f && subdivision.maxPixelError <= kMaxSubdivisionPixelError,
+          fields.child("max_pixel_error"),
+          "expected a pixel error in (0, " + std::to_string(int(kMaxSubdivisionPixelError)) + "]");
+  const std::string levels = std::to_string(kMinSubdivisionLevel) + ".." + std::to_string(kMaxSubdivisionLevel);
+  subdivision.isolation = fields.optional<int>("isolation", subdivision.isolation);
+  require(subdivision.isolation >= kMinSubdivisionLevel && subdivision.isolation <= kMaxSubdivisionLevel,
+          fields.child("isolation"), "expected an isolation level in " + levels);
+  subdivision.maxDepth = fields.optional<int>("max_depth", subdivision.maxDepth);
+  require(subdivision.maxDepth >= kMinSubdivisionLevel && subdivision.maxDepth <= kMaxSubdivisionLevel,
+          fields.child("max_depth"), "expected a depth in " + levels);
+  subdivision.capHoles = fields.optional<bool>("cap_holes", subdivision.capHoles);
+  if (const Json* coarseCage = fields.take("coarse_cage"))
+    subdivision.coarseCage = parseSimplification(*coarseCage, fields.child("coarse_cage"));
+  fields.finish();
+  return subdivision;
+}
+
+}  // namespace detail
 
 glm::mat4 Transform::matrix() const {
   return glm::translate(glm::mat4(1.0f), translation) * rotationMatrix(rotationDegrees) *
@@ -359,6 +387,30 @@ const Material* Scene::findMaterial(std::string_view name) const {
     if (m.name == name) return &m;
   }
   return nullptr;
+}
+
+const CharacterInstance* Scene::findCharacter(std::string_view name) const {
+  for (const CharacterInstance& c : characters) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+bool Scene::namesMesh(std::string_view name) const {
+  const std::size_t separator = name.find(kCharacterPartSeparator);
+  if (separator == std::string_view::npos) return findMesh(name) != nullptr;
+  return findCharacter(name.substr(0, separator)) != nullptr && separator + 1 < name.size();
+}
+
+float MorphTrack::weightAt(float timeSeconds) const {
+  if (keys.empty()) return 0.0f;
+  if (timeSeconds <= keys.front().timeSeconds) return keys.front().weight;
+  if (timeSeconds >= keys.back().timeSeconds) return keys.back().weight;
+  const auto next = std::upper_bound(keys.begin(), keys.end(), timeSeconds,
+                                     [](float t, const MorphKey& k) { return t < k.timeSeconds; });
+  const MorphKey& a = *(next - 1);
+  const MorphKey& b = *next;
+  return glm::mix(a.weight, b.weight, (timeSeconds - a.timeSeconds) / (b.timeSeconds - a.timeSeconds));
 }
 
 const MeshInstance* Scene::findMesh(std::string_view name) const {

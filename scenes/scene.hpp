@@ -3,6 +3,8 @@
 // holds once validated. Plain data; assets are referenced by manifest name, not loaded.
 
 #include <array>
+#include <cstdint>
+#include <utility>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,6 +17,7 @@
 #include "common/error.hpp"
 #include "common/strand_layout.hpp"
 #include "physics/colliders.hpp"
+#include "physics/skinning.hpp"
 #include "render/frame.hpp"
 #include "render/hair_data.hpp"
 
@@ -171,6 +174,22 @@ struct SdfColliderSource {
   int resolution = 48;  ///< grid nodes along the longest axis, kMinSdfResolution..kMaxSdfResolution
 };
 
+/// A sphere carried by a joint of a character (`CharacterInstance`): its centre in the joint's
+/// frame, which is the joint's placement with its scale divided out (metres, axes turned with the
+/// joint).
+struct JointSphere {
+  std::string joint;  ///< a node name of the character's file
+  physics::SphereCollider sphere;
+};
+
+/// A capsule carried by a joint: from `a` to `b` in the joint's frame (as `JointSphere`), or, with
+/// `toJoint`, from the joint's origin to that joint's origin (a limb from shoulder to elbow).
+struct JointCapsule {
+  std::string joint;
+  std::string toJoint;  ///< empty: `capsule.a` and `capsule.b` hold the axis
+  physics::CapsuleCollider capsule;
+};
+
 /// What a groom's or a cloth's particles collide with. Shapes are given in the frame of the body
 /// the groom or cloth follows (its `attached_mesh`): metres, origin at the mesh's placed pivot,
 /// axes turned with the mesh, its scale not applied — the frame hair roots and cloth pins live
@@ -181,10 +200,17 @@ struct Colliders {
   /// The field of a mesh, taken where that mesh stands at time 0 relative to the body (for the
   /// attached mesh itself: its model positions × its scale) and moving with the body from then on.
   std::optional<SdfColliderSource> sdf;
+  /// Shapes carried by the joints of the character the body belongs to (its attached mesh names a
+  /// character part): they follow their joints, not the body.
+  std::vector<JointSphere> jointSpheres;
+  std::vector<JointCapsule> jointCapsules;
   float friction = 0.0f;   ///< Coulomb coefficient μ ≥ 0, dimensionless
   float thickness = 0.0f;  ///< particles are kept this far outside every surface, metres ≥ 0
 
-  [[nodiscard]] bool empty() const { return spheres.empty() && capsules.empty() && !sdf; }
+  [[nodiscard]] bool empty() const {
+    return spheres.empty() && capsules.empty() && !sdf && jointSpheres.empty() && jointCapsules.empty();
+  }
+  [[nodiscard]] bool followsJoints() const { return !jointSpheres.empty() || !jointCapsules.empty(); }
 };
 
 /// Most guide strands a procedural groom may ask for (memory stays in the hundreds of MB).
@@ -240,7 +266,8 @@ struct Groom {
 
 /// Cloth (a fin, a scarf, a cape): a triangle mesh whose edges become constraints, moving with
 /// a mesh (the body). Its `transform` places the cloth relative to the body's pivot in metres,
-/// following the body's motion but not its scale.
+/// following the body's motion but not its scale; on a character part, relative to the
+/// character's placement (its axes, metres) at time 0.
 struct Cloth {
   std::string name;
   std::string source;        ///< mesh asset, file path, or "procedural:grid" (1 m × 1 m, top edge at y = 0)
@@ -248,11 +275,60 @@ struct Cloth {
   std::string material;      ///< name of a `Material` (empty: the default material)
   Transform transform;
   bool pinTopEdge = true;                 ///< pin the vertices at the highest local y (the grid's top edge)
+  /// Pin these vertices of the cloth mesh as well (indices into its vertices, checked at load).
+  std::vector<std::uint32_t> pinVertices;
+  /// Pin every vertex inside these boxes too: cloth-local coordinates (before `transform`), metres.
+  std::vector<std::array<glm::vec3, 2>> pinRegions;
   int iterations = 8;                     ///< constraint sweeps per step, ≥ 1
   float damping = 0.02f;                  ///< velocity fraction lost per step, in [0, 1)
   float bendingStiffness = 0.5f;          ///< in [0, 1]
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
   Colliders colliders;                    ///< in the attached mesh's body frame (not the cloth's transform)
+};
+
+/// A clip of a character's file played on the scene's clock.
+struct ClipPlay {
+  std::string clip;          ///< the glTF animation's name
+  float startSeconds = 0.0f;  ///< scene time the clip starts at (its own time 0); increasing along the list
+  float speed = 1.0f;         ///< clip seconds per scene second, > 0
+  bool loop = true;           ///< start over at its end; else hold its last pose
+  /// Blend in from the clip before over this long, seconds ≥ 0 (0: a cut). The clip before keeps
+  /// playing under it until the blend is done.
+  float crossFadeSeconds = 0.0f;
+};
+
+/// A morph weight set in the scene: constant, or piecewise linear through keys (held before the
+/// first and after the last). It replaces what the clips say for that target.
+struct MorphKey {
+  float timeSeconds = 0.0f;
+  float weight = 0.0f;
+};
+struct MorphTrack {
+  std::string target;           ///< a morph target name (`extras.targetNames`) of the character's meshes
+  std::vector<MorphKey> keys;   ///< strictly increasing times; one key: a constant weight
+  [[nodiscard]] float weightAt(float timeSeconds) const;
+};
+
+/// A skinned, morphing, animated glTF character (scenes/gltf_character.hpp) placed in the scene.
+/// Its meshes are named "<character>/<glTF mesh name>" wherever the scene names a mesh (a groom's
+/// or cloth's `attached_mesh`, an `sdf` collider): hair, cloth and colliders then follow the
+/// deformed surface and the joints.
+struct CharacterInstance {
+  std::string name;    ///< unique among characters; no '/'
+  std::string source;  ///< .glb/.gltf asset name or file path
+  Transform transform;
+  /// Scene material of the primitives whose glTF material is not in `materials` (empty: default).
+  std::string material;
+  /// glTF material name → scene material name.
+  std::vector<std::pair<std::string, std::string>> materials;
+  physics::SkinningMethod skinning = physics::SkinningMethod::LinearBlend;
+  std::vector<ClipPlay> clips;  ///< empty: the rest pose
+  std::vector<MorphTrack> morphs;
+  /// Draw these meshes (glTF mesh names) as the limit surfaces of their triangles as cages,
+  /// skinned each frame and tessellated again for the bend and the view (scenes/skinned_cage.hpp);
+  /// none: every mesh as its triangles.
+  std::vector<std::string> subdividedMeshes;
+  std::optional<Subdivision> subdivision;  ///< set exactly when subdividedMeshes is not empty
 };
 
 /// A head pose at a time; the motion interpolates these linearly.
@@ -310,6 +386,7 @@ struct Scene {
   std::vector<MeshInstance> meshes;
   std::vector<Groom> grooms;
   std::vector<Cloth> cloths;
+  std::vector<CharacterInstance> characters;
   HeadMotion headMotion;
   SimulationSettings simulation;
   render::HairShadowSettings hairShadows;  ///< opacity shadow maps at 512 × 512 unless the file says otherwise
@@ -318,7 +395,14 @@ struct Scene {
 
   [[nodiscard]] const Material* findMaterial(std::string_view name) const;
   [[nodiscard]] const MeshInstance* findMesh(std::string_view name) const;
+  [[nodiscard]] const CharacterInstance* findCharacter(std::string_view name) const;
+  /// Whether `name` is a mesh of `meshes` or names a character's part ("<character>/<mesh>",
+  /// the character being in `characters`; the part itself is checked when the file is read).
+  [[nodiscard]] bool namesMesh(std::string_view name) const;
 };
+
+/// Separator of a character part's name: "<character>/<glTF mesh name>".
+inline constexpr char kCharacterPartSeparator = '/';
 
 /// The mesh's model matrix at `timeSeconds`, including the head motion when it targets it.
 [[nodiscard]] glm::mat4 animatedMatrix(const Scene& scene, const MeshInstance& mesh, float timeSeconds);

@@ -24,28 +24,51 @@ HairSimulation parseHairSimulation(const Json& json, const std::string& path) {
   return sim;
 }
 
-physics::SphereCollider parseSphereCollider(const Json& json, const std::string& path) {
+// A sphere in the body frame, or carried by a joint ("joint": its centre in the joint's frame).
+void parseSphereCollider(const Json& json, const std::string& path, Colliders& colliders) {
   ObjectFields fields(json, path);
   // Unknown fields first: "center" for "centre" is then reported as the typo it is.
-  for (const char* key : {"centre", "radius"}) fields.take(key);
+  for (const char* key : {"centre", "radius", "joint"}) fields.take(key);
   fields.finish();
   physics::SphereCollider sphere;
   sphere.centre = fields.required<glm::vec3>("centre");
   sphere.radius = fields.required<float>("radius");
   require(sphere.radius > 0.0f, fields.child("radius"), "expected a radius > 0 metres");
-  return sphere;
+  const std::string joint = fields.optional<std::string>("joint", "");
+  if (fields.take("joint")) {
+    require(!joint.empty(), fields.child("joint"), "expected a joint (node) name");
+    colliders.jointSpheres.push_back(JointSphere{joint, sphere});
+  } else {
+    colliders.spheres.push_back(sphere);
+  }
 }
 
-physics::CapsuleCollider parseCapsuleCollider(const Json& json, const std::string& path) {
+// A capsule in the body frame, carried by a joint ("joint", with "a" and "b" in its frame), or
+// spanning two joints ("joint" and "to_joint": from one origin to the other).
+void parseCapsuleCollider(const Json& json, const std::string& path, Colliders& colliders) {
   ObjectFields fields(json, path);
-  for (const char* key : {"a", "b", "radius"}) fields.take(key);
+  for (const char* key : {"a", "b", "radius", "joint", "to_joint"}) fields.take(key);
   fields.finish();
   physics::CapsuleCollider capsule;
-  capsule.a = fields.required<glm::vec3>("a");
-  capsule.b = fields.required<glm::vec3>("b");
   capsule.radius = fields.required<float>("radius");
   require(capsule.radius > 0.0f, fields.child("radius"), "expected a radius > 0 metres");
-  return capsule;
+  const std::string joint = fields.optional<std::string>("joint", "");
+  const std::string toJoint = fields.optional<std::string>("to_joint", "");
+  require(!fields.take("to_joint") || fields.take("joint"), fields.child("to_joint"),
+          "needs \"joint\": the capsule runs from that joint's origin to this one's");
+  if (!toJoint.empty()) {
+    require(!fields.take("a") && !fields.take("b"), fields.child("a"),
+            "a capsule from \"joint\" to \"to_joint\" takes its axis from them; leave out \"a\" and \"b\"");
+  } else {
+    capsule.a = fields.required<glm::vec3>("a");
+    capsule.b = fields.required<glm::vec3>("b");
+  }
+  if (fields.take("joint")) {
+    require(!joint.empty(), fields.child("joint"), "expected a joint (node) name");
+    colliders.jointCapsules.push_back(JointCapsule{joint, toJoint, capsule});
+  } else {
+    colliders.capsules.push_back(capsule);
+  }
 }
 
 SdfColliderSource parseSdfCollider(const Json& json, const std::string& path) {
@@ -66,8 +89,12 @@ SdfColliderSource parseSdfCollider(const Json& json, const std::string& path) {
 Colliders parseColliders(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Colliders colliders;
-  colliders.spheres = parseList<physics::SphereCollider>(fields, "spheres", parseSphereCollider);
-  colliders.capsules = parseList<physics::CapsuleCollider>(fields, "capsules", parseCapsuleCollider);
+  const Json& spheres = fields.array("spheres", false);
+  for (std::size_t i = 0; i < spheres.size(); ++i)
+    parseSphereCollider(spheres[i], indexPath(fields.child("spheres"), i), colliders);
+  const Json& capsules = fields.array("capsules", false);
+  for (std::size_t i = 0; i < capsules.size(); ++i)
+    parseCapsuleCollider(capsules[i], indexPath(fields.child("capsules"), i), colliders);
   if (const Json* sdf = fields.take("sdf")) colliders.sdf = parseSdfCollider(*sdf, fields.child("sdf"));
   colliders.friction = fields.optional<float>("friction", colliders.friction);
   colliders.thickness = fields.optional<float>("thickness", colliders.thickness);
@@ -155,6 +182,36 @@ ScalpRegion parseScalp(const Json& json, const std::string& path) {
   return scalp;
 }
 
+// "top_edge", "none", or an object naming the top edge, vertices and boxes to pin.
+void parsePins(const Json& json, const std::string& path, Cloth& cloth) {
+  if (json.is_string()) {
+    const std::string pinned = json.get<std::string>();
+    require(pinned == "top_edge" || pinned == "none", path,
+            "expected \"top_edge\", \"none\" or an object, got \"" + pinned + "\"");
+    cloth.pinTopEdge = pinned == "top_edge";
+    return;
+  }
+  ObjectFields fields(json, path);
+  cloth.pinTopEdge = fields.optional<bool>("top_edge", false);
+  const Json& vertices = fields.array("vertices", false);
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const int vertex = read<int>(vertices[i], indexPath(fields.child("vertices"), i));
+    require(vertex >= 0, indexPath(fields.child("vertices"), i), "expected a vertex index >= 0");
+    cloth.pinVertices.push_back(static_cast<std::uint32_t>(vertex));
+  }
+  const Json& regions = fields.array("regions", false);
+  for (std::size_t i = 0; i < regions.size(); ++i) {
+    ObjectFields region(regions[i], indexPath(fields.child("regions"), i));
+    const glm::vec3 lower = region.required<glm::vec3>("min");
+    const glm::vec3 upper = region.required<glm::vec3>("max");
+    region.finish();
+    require(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z, region.child("max"),
+            "expected a corner at or above \"min\" on every axis");
+    cloth.pinRegions.push_back({lower, upper});
+  }
+  fields.finish();
+}
+
 }  // namespace
 
 Transform parseTransform(const Json& json, const std::string& path) {
@@ -217,10 +274,7 @@ Cloth parseCloth(const Json& json, const std::string& path) {
   if (const Json* transform = fields.take("transform")) {
     cloth.transform = parseTransform(*transform, fields.child("transform"));
   }
-  const std::string pinned = fields.optional<std::string>("pinned", "top_edge");
-  require(pinned == "top_edge" || pinned == "none", fields.child("pinned"),
-          "expected \"top_edge\" or \"none\", got \"" + pinned + "\"");
-  cloth.pinTopEdge = pinned == "top_edge";
+  if (const Json* pinned = fields.take("pinned")) parsePins(*pinned, fields.child("pinned"), cloth);
   if (const Json* sim = fields.take("simulation")) {
     ObjectFields simFields(*sim, fields.child("simulation"));
     cloth.iterations = simFields.optional<int>("iterations", cloth.iterations);

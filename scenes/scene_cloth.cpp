@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <glm/vector_relational.hpp>
+
 #include "scenes/obj_loader.hpp"
 
 namespace mane::scenes {
@@ -43,14 +45,30 @@ Result<Mesh> loadClothMesh(const Cloth& cloth, const AssetResolver& resolver,
 Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const SimulationSettings& simulation,
                                       const glm::mat4& body, physics::ColliderSet colliders) {
   // Pins: the vertices on the highest row of the rest mesh, in its own space (within a
-  // millionth of its height, so a flat top edge is found exactly despite rounding).
-  std::vector<std::uint32_t> pinned;
+  // millionth of its height, so a flat top edge is found exactly despite rounding), the listed
+  // vertices and those inside the pinned regions; each once, in vertex order.
+  std::vector<bool> pin(rest.positions.size(), false);
   if (cloth.pinTopEdge && !rest.positions.empty()) {
     const Bounds bounds = rest.bounds();
     const float tolerance = 1e-6f * std::max(bounds.size().y, 1e-3f);
     for (std::uint32_t v = 0; v < rest.positions.size(); ++v)
-      if (rest.positions[v].y >= bounds.max.y - tolerance) pinned.push_back(v);
+      if (rest.positions[v].y >= bounds.max.y - tolerance) pin[v] = true;
   }
+  for (std::size_t i = 0; i < cloth.pinVertices.size(); ++i) {
+    const std::uint32_t v = cloth.pinVertices[i];
+    if (v >= rest.positions.size())
+      return fail("cloth '" + cloth.name + "': pinned.vertices[" + std::to_string(i) + "]: vertex " + std::to_string(v) +
+                  " is past the mesh's " + std::to_string(rest.positions.size()) + " vertices");
+    pin[v] = true;
+  }
+  for (const auto& [lower, upper] : cloth.pinRegions)
+    for (std::size_t v = 0; v < rest.positions.size(); ++v) {
+      const glm::vec3& p = rest.positions[v];
+      if (glm::all(glm::greaterThanEqual(p, lower)) && glm::all(glm::lessThanEqual(p, upper))) pin[v] = true;
+    }
+  std::vector<std::uint32_t> pinned;
+  for (std::uint32_t v = 0; v < pin.size(); ++v)
+    if (pin[v]) pinned.push_back(v);
   const glm::mat4 placement = cloth.transform.matrix();
   std::vector<glm::vec3> local(rest.positions.size());
   for (std::size_t v = 0; v < local.size(); ++v) local[v] = glm::vec3(placement * glm::vec4(rest.positions[v], 1.0f));
@@ -68,9 +86,22 @@ Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const Simul
     if (auto set = physical->setColliders(colliders); !set)
       return fail("cloth '" + cloth.name + "': colliders: " + set.error().message);
   SceneCloth result(std::move(*physical), std::move(rest));
+  result.name_ = cloth.name;
   result.colliders_ = std::move(colliders);
   result.refreshSurface();
   return result;
+}
+
+Result<void> SceneCloth::setPinTargets(std::span<const glm::vec3> positions) {
+  if (auto set = cloth_.setPinTargets(positions); !set) return fail("cloth '" + name_ + "': " + set.error().message);
+  return {};
+}
+
+Result<void> SceneCloth::setColliders(physics::ColliderSet colliders) {
+  if (auto set = cloth_.setColliders(colliders); !set)
+    return fail("cloth '" + name_ + "': colliders: " + set.error().message);
+  colliders_ = std::move(colliders);
+  return {};
 }
 
 Result<void> SceneCloth::advance(const glm::mat4& body, double frameDt, unsigned threads) {

@@ -3,6 +3,8 @@
 // surface the renderer draws, refreshed from the particles every frame.
 
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include <glm/mat4x4.hpp>
 
@@ -28,7 +30,14 @@ public:
   static Result<SceneCloth> create(const Cloth& cloth, Mesh rest, const SimulationSettings& simulation,
                                    const glm::mat4& body, physics::ColliderSet colliders = {});
 
-  /// Moves the pins to `body` over the frame and simulates `frameDt` seconds.
+  /// Pins that follow a deforming body: where each pinned vertex (`cloth().pinnedVertices()`
+  /// order) is at the end of the next advance, world space (physics::Cloth::setPinTargets).
+  Result<void> setPinTargets(std::span<const glm::vec3> positions);
+  /// Replaces what the cloth collides with (body frame), e.g. shapes carried by moving joints.
+  Result<void> setColliders(physics::ColliderSet colliders);
+
+  /// Moves the body (and, unless pin targets were set, the pins) to `body` over the frame and
+  /// simulates `frameDt` seconds.
   Result<void> advance(const glm::mat4& body, double frameDt, unsigned threads);
 
   /// World-space surface: positions from the particles, smooth normals, the rest mesh's uvs.
@@ -42,6 +51,7 @@ private:
   void refreshSurface();
 
   physics::Cloth cloth_;
+  std::string name_;
   Mesh surface_;
   physics::ColliderSet colliders_;
 };

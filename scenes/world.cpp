@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
+#include <tuple>
 #include <thread>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
@@ -65,12 +68,99 @@ physics::SolverSettings solverSettings(const HairSimulation& simulation, const S
   return settings;
 }
 
+// The Transform whose matrix is the rigid `frame` (rotation and translation): Euler angles for
+// T · Rz · Ry · Rx, the order Transform composes.
+Transform transformOf(const glm::mat4& frame) {
+  Transform transform;
+  transform.translation = glm::vec3(frame[3]);
+  const float sinY = std::clamp(-frame[0][2], -1.0f, 1.0f);
+  glm::vec3 radians(0.0f, std::asin(sinY), 0.0f);
+  if (std::abs(sinY) < 0.99999f) {
+    radians.x = std::atan2(frame[1][2], frame[2][2]);
+    radians.z = std::atan2(frame[0][1], frame[0][0]);
+  } else {  // gimbal lock: the x and z turns share an axis; all of it goes to z
+    radians.z = std::atan2(-frame[1][0], frame[1][1]);
+  }
+  transform.rotationDegrees = glm::degrees(radians);
+  return transform;
+}
+
+// Vertices [first, end) of a skinned mesh as the renderer deforms them.
+render::GpuSkinnedMesh gpuSkinOf(const physics::SkinnedMeshData& data, std::size_t first, std::size_t end) {
+  const auto range = [&](const auto& values, std::size_t width) {
+    using Values = std::decay_t<decltype(values)>;
+    if (values.empty()) return Values{};
+    return Values(values.begin() + static_cast<std::ptrdiff_t>(first * width),
+                  values.begin() + static_cast<std::ptrdiff_t>(end * width));
+  };
+  render::GpuSkinnedMesh mesh;
+  mesh.positions = range(data.positions, 1);
+  mesh.normals = range(data.normals, 1);
+  mesh.tangents = range(data.tangents, 1);
+  mesh.influencesPerVertex = static_cast<std::uint32_t>(data.influencesPerVertex);
+  mesh.joints = range(data.joints, data.influencesPerVertex);
+  mesh.weights = range(data.weights, data.influencesPerVertex);
+  mesh.jointCount = static_cast<std::uint32_t>(data.jointCount);
+  for (const physics::MorphTarget& target : data.morphTargets)
+    mesh.morphTargets.push_back({range(target.positionDeltas, 1), range(target.normalDeltas, 1),
+                                 range(target.tangentDeltas, 1)});
+  mesh.method = data.method == physics::SkinningMethod::DualQuaternion ? render::GpuSkinningMethod::DualQuaternion
+                                                                      : render::GpuSkinningMethod::LinearBlend;
+  return mesh;
+}
+
+// Vertices [first, end) of a skinned mesh as a Catmull-Clark cage whose vertices are skinned:
+// its triangles welded where positions are equal (cageFromTriangles), each cage vertex taking the
+// influences and morph offsets of the first vertex at its position.
+Result<std::unique_ptr<SkinnedCage>> skinnedCageOf(const physics::SkinnedMeshData& data, std::size_t first,
+                                                   std::size_t end, std::span<const std::uint32_t> triangles,
+                                                   const Subdivision& subdivision) {
+  Mesh bind;
+  bind.positions.assign(data.positions.begin() + static_cast<std::ptrdiff_t>(first),
+                        data.positions.begin() + static_cast<std::ptrdiff_t>(end));
+  bind.indices.assign(triangles.begin(), triangles.end());
+  subdiv::Cage cage = cageFromTriangles(bind);
+  std::map<std::tuple<float, float, float>, std::size_t> firstAt;
+  for (std::size_t v = end; v-- > first;) {
+    const glm::vec3& p = data.positions[v];
+    firstAt[{p.x, p.y, p.z}] = v;
+  }
+  physics::SkinnedMeshData skin;
+  skin.influencesPerVertex = data.influencesPerVertex;
+  skin.jointCount = data.jointCount;
+  skin.method = data.method;
+  skin.morphTargets.resize(data.morphTargets.size());
+  for (const glm::vec3& p : cage.positions) {
+    const std::size_t v = firstAt.at({p.x, p.y, p.z});
+    for (std::size_t i = 0; i < data.influencesPerVertex; ++i) {
+      skin.joints.push_back(data.joints[v * data.influencesPerVertex + i]);
+      skin.weights.push_back(data.weights[v * data.influencesPerVertex + i]);
+    }
+    for (std::size_t t = 0; t < data.morphTargets.size(); ++t)
+      if (!data.morphTargets[t].positionDeltas.empty())
+        skin.morphTargets[t].positionDeltas.push_back(data.morphTargets[t].positionDeltas[v]);
+  }
+  return SkinnedCage::create(std::move(cage), std::move(skin), subdivision);
+}
+
+// `points` taken into the frame whose placement is `frame` (rigid): p ↦ frame⁻¹ · p; normals
+// turned likewise.
+void intoFrame(const glm::mat4& frame, std::span<const glm::vec3> points, std::span<const glm::vec3> normals,
+               std::span<glm::vec3> outPoints, std::span<glm::vec3> outNormals) {
+  const glm::mat4 inverse = glm::inverse(frame);
+  const glm::mat3 turn(inverse);
+  for (std::size_t v = 0; v < points.size(); ++v) outPoints[v] = glm::vec3(inverse * glm::vec4(points[v], 1.0f));
+  for (std::size_t v = 0; v < normals.size() && v < outNormals.size(); ++v)
+    outNormals[v] = glm::normalize(turn * normals[v]);
+}
+
 }  // namespace
 
 Result<World> World::create(Scene scene, const AssetResolver& resolver, const WorldSettings& settings) {
   World world;
   world.scene_ = std::move(scene);
   if (auto loaded = world.loadMeshes(resolver); !loaded) return std::unexpected(loaded.error());
+  if (auto loaded = world.loadCharacters(resolver); !loaded) return std::unexpected(loaded.error());
   if (auto subdivided = world.subdivideMeshes(); !subdivided) return std::unexpected(subdivided.error());
   world.prepareFurMeshes();
   if (settings.loadTextures) {
@@ -99,6 +189,162 @@ Result<void> World::loadMeshes(const AssetResolver& resolver) {
     meshes_.push_back(std::move(*loaded));
   }
   return {};
+}
+
+Result<void> World::loadCharacters(const AssetResolver& resolver) {
+  characterParts_.assign(scene_.meshes.size(), std::nullopt);
+  gpuSkins_.resize(scene_.meshes.size());
+  skinnedCages_.resize(scene_.meshes.size());
+  for (std::size_t c = 0; c < scene_.characters.size(); ++c) {
+    const CharacterInstance& instance = scene_.characters[c];
+    auto lookup = resolver.lookupForScene(instance.source, scene_.file.parent_path());
+    if (!lookup) return fail("character '" + instance.name + "': " + lookup.error().message);
+    if (!lookup->path) return fail("character '" + instance.name + "': " + lookup->missingReason);
+    auto loaded = SceneCharacter::create(instance, *lookup->path);
+    if (!loaded) return std::unexpected(loaded.error());
+    characters_.push_back(std::move(*loaded));
+    SceneCharacter& character = characters_.back();
+    for (const std::string& name : instance.subdividedMeshes)
+      if (auto found = character.findPart(name); !found)
+        return fail("characters[" + std::to_string(c) + "].subdivision.meshes: " + found.error().message);
+    auto materialOf = [&](const std::string& gltfMaterial) {
+      for (const auto& [from, to] : instance.materials)
+        if (from == gltfMaterial) return to;
+      return instance.material;
+    };
+    for (std::size_t p = 0; p < character.partCount(); ++p) {
+      const CharacterMesh& source = character.character().meshes[p];
+      auto deformed = character.deformed(p);
+      if (!deformed) return std::unexpected(deformed.error());
+      const glm::mat4 frame = character.partFrame(p);
+      const physics::SkinnedMeshData& data = source.surface.data();
+      LoadedMesh whole;
+      whole.mesh.name = instance.name + kCharacterPartSeparator + source.name;
+      whole.mesh.positions.resize(data.positions.size());
+      whole.mesh.normals.resize(data.normals.size());
+      intoFrame(frame, (*deformed)->positions, (*deformed)->normals, whole.mesh.positions, whole.mesh.normals);
+      whole.mesh.indices = data.indices;
+      const bool deforms = source.skin >= 0 || !data.morphTargets.empty();
+      const MeshInstance placed{.name = whole.mesh.name, .source = instance.source, .transform = transformOf(frame)};
+      // Each primitive drawn on its own, with its own material; its vertices are a contiguous run.
+      for (std::size_t primitive = 0; primitive < source.primitiveFirstVertex.size(); ++primitive) {
+        const bool last = primitive + 1 == source.primitiveFirstVertex.size();
+        const std::size_t firstVertex = source.primitiveFirstVertex[primitive];
+        const std::size_t endVertex = last ? data.positions.size() : source.primitiveFirstVertex[primitive + 1];
+        const std::size_t firstIndex = source.primitiveFirstIndex[primitive];
+        const std::size_t endIndex = last ? data.indices.size() : source.primitiveFirstIndex[primitive + 1];
+        std::optional<render::GpuSkinnedMesh> gpuSkin;
+        LoadedMesh piece;
+        piece.mesh.name = whole.mesh.name + "#" + std::to_string(primitive);
+        piece.mesh.positions.assign(whole.mesh.positions.begin() + firstVertex, whole.mesh.positions.begin() + endVertex);
+        piece.mesh.normals.assign(whole.mesh.normals.begin() + firstVertex, whole.mesh.normals.begin() + endVertex);
+        for (std::size_t i = firstIndex; i < endIndex; ++i)
+          piece.mesh.indices.push_back(data.indices[i] - static_cast<std::uint32_t>(firstVertex));
+        const bool subdivided = std::ranges::find(instance.subdividedMeshes, source.name) !=
+                                instance.subdividedMeshes.end();
+        std::unique_ptr<SkinnedCage> cage;
+        if (subdivided) {
+          auto made = skinnedCageOf(data, firstVertex, endVertex, piece.mesh.indices, *instance.subdivision);
+          if (!made) return fail("character '" + instance.name + "', mesh " + piece.mesh.name + ": " + made.error().message);
+          cage = std::move(*made);
+        } else if (deforms) {
+          gpuSkin = gpuSkinOf(data, firstVertex, endVertex);
+        }
+        MeshInstance drawn = placed;
+        drawn.name = piece.mesh.name;
+        drawn.material = materialOf(source.primitiveMaterials[primitive]);
+        scene_.meshes.push_back(std::move(drawn));
+        meshes_.push_back(std::move(piece));
+        characterParts_.push_back(CharacterPart{c, p, static_cast<int>(primitive), deforms});
+        gpuSkins_.push_back(std::move(gpuSkin));
+        skinnedCages_.push_back(std::move(cage));
+      }
+      scene_.meshes.push_back(placed);
+      meshes_.push_back(std::move(whole));
+      characterParts_.push_back(CharacterPart{c, p, -1, deforms});
+      gpuSkins_.emplace_back();
+      skinnedCages_.emplace_back();
+    }
+  }
+  // Grooms, cloths and fields may name parts only now that they exist.
+  auto check = [&](const std::string& name, const std::string& where) -> Result<void> {
+    if (scene_.findMesh(name) != nullptr) return {};
+    const std::string character = name.substr(0, name.find(kCharacterPartSeparator));
+    std::string parts;
+    for (std::size_t m = 0; m < scene_.meshes.size(); ++m)
+      if (characterParts_[m] && characterParts_[m]->primitive < 0 &&
+          scene_.characters[characterParts_[m]->character].name == character)
+        parts += (parts.empty() ? "'" : ", '") + scene_.meshes[m].name + "'";
+    return fail(where + ": character '" + character + "' has no mesh named '" + name + "'; its meshes are " + parts);
+  };
+  for (const Groom& groom : scene_.grooms) {
+    if (auto found = check(groom.attachedMesh, "groom " + groom.name + ": attached_mesh"); !found) return found;
+    if (groom.colliders.sdf)
+      if (auto found = check(groom.colliders.sdf->mesh, "groom " + groom.name + ": sdf"); !found) return found;
+  }
+  for (const Cloth& cloth : scene_.cloths) {
+    if (auto found = check(cloth.attachedMesh, "cloth '" + cloth.name + "': attached_mesh"); !found) return found;
+    if (cloth.colliders.sdf)
+      if (auto found = check(cloth.colliders.sdf->mesh, "cloth '" + cloth.name + "': sdf"); !found) return found;
+  }
+  return {};
+}
+
+std::string World::playNextClips(float crossFadeSeconds) {
+  std::string shown;
+  for (SceneCharacter& character : characters_) {
+    const std::size_t clips = character.character().clips.size();
+    if (clips == 0) continue;
+    const std::optional<std::size_t> playing = character.clipPlaying();
+    const std::size_t next = playing ? (*playing + 1) % clips : 0;
+    character.play(next, time_, crossFadeSeconds);
+    shown += (shown.empty() ? "" : ", ") + character.instance().name + ": " + character.character().clips[next].name();
+  }
+  poseCharacters();
+  return shown;
+}
+
+std::string World::nextExpression(float seconds) {
+  expressions_.resize(characters_.size(), ~std::size_t{0});
+  std::string shown;
+  for (std::size_t c = 0; c < characters_.size(); ++c) {
+    SceneCharacter& character = characters_[c];
+    const std::vector<std::string> targets = character.morphTargetNames();
+    if (targets.empty()) continue;
+    std::size_t& current = expressions_[c];
+    // The names come from the character itself, so the blends cannot fail.
+    if (current < targets.size()) (void)character.blendMorph(targets[current], 0.0f, time_, seconds);
+    current = current < targets.size() ? current + 1 : 0;
+    if (current < targets.size()) (void)character.blendMorph(targets[current], 1.0f, time_, seconds);
+    shown += (shown.empty() ? "" : ", ") + character.instance().name + ": " +
+             (current < targets.size() ? targets[current] : std::string("none"));
+  }
+  poseCharacters();
+  return shown;
+}
+
+void World::poseCharacters() {
+  for (SceneCharacter& character : characters_) character.poseAt(time_);
+}
+
+Result<physics::SurfaceBinding> World::bindToPart(std::size_t mesh, std::span<const glm::vec3> points,
+                                                  const std::string& owner) {
+  const CharacterPart& part = *characterParts_[mesh];
+  auto deformed = characters_[part.character].deformed(part.part);
+  if (!deformed) return std::unexpected(deformed.error());
+  auto binding = physics::SurfaceBinding::create((*deformed)->positions, meshes_[mesh].mesh.indices, points);
+  if (!binding) return fail(owner + ": binding to " + scene_.meshes[mesh].name + ": " + binding.error().message);
+  return binding;
+}
+
+Result<void> World::followPart(std::size_t mesh, const physics::SurfaceBinding& binding,
+                               std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+  const CharacterPart& part = *characterParts_[mesh];
+  auto deformed = characters_[part.character].deformed(part.part);
+  if (!deformed) return std::unexpected(deformed.error());
+  positions.resize(binding.points().size());
+  normals.resize(binding.points().size());
+  return binding.evaluate((*deformed)->positions, (*deformed)->normals, positions, normals, {});
 }
 
 Result<void> World::subdivideMeshes() {
@@ -143,6 +389,20 @@ Result<std::vector<std::size_t>> World::refineForCamera(const render::Camera& ca
     if (m < meshCurvatures_.size() && material != nullptr && material->kind == MaterialKind::skin)
       meshCurvatures_[m] = loaded.limitInverseRadius;
     changed.push_back(m);
+  }
+  for (std::size_t m = 0; m < skinnedCages_.size(); ++m) {
+    if (!skinnedCages_[m]) continue;
+    const CharacterPart& part = *characterParts_[m];
+    const SceneCharacter& character = characters_[part.character];
+    // Posed in the part frame, which frameInput() draws the mesh with.
+    const glm::mat4 partFrame = character.partFrame(part.part);
+    auto posed = skinnedCages_[m]->pose(character.jointMatricesInPartFrame(part.part),
+                                        character.morphWeights(part.part), threads);
+    if (!posed) return fail("mesh " + scene_.meshes[m].name + ": " + posed.error().message);
+    LoadedMesh& loaded = meshes_[m];
+    if (skinnedCages_[m]->tessellate(viewProjection * partFrame, viewport, loaded.mesh, loaded.limitInverseRadius,
+                                     threads))
+      changed.push_back(m);
   }
   return changed;
 }
@@ -199,7 +459,7 @@ Result<void> World::loadFurDynamics() {
     solver.shapeStiffness = motion.shapeStiffness;
     auto dynamics = FurDynamics::create(
         meshes_[m].mesh, instance.transform.scale,
-        {.guides = motion.guides, .thickness = material.fur.thickness, .solver = solver}, bodyPlacement(instance, 0.0));
+        {.guides = motion.guides, .thickness = material.fur.thickness, .solver = solver}, bodyPlacement(m, 0.0));
     if (!dynamics)
       return fail("mesh " + instance.name + ", material " + material.name + ": " + dynamics.error().message);
     const auto index = std::ranges::find_if(drawn, [&](const render::FurSurfaceData& fur) { return fur.mesh == m; });
@@ -340,20 +600,44 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       for (std::vector<glm::vec3>& strand : guides)
         for (glm::vec3& point : strand) point *= axes * scale;
     }
-    auto hair = physics::HairSystem::create(guides, solverSettings(groom.simulation, scene_.simulation),
-                                            bodyPlacement(*meshIt, 0.0));
+    const glm::mat4 body = bodyPlacement(meshIndex, 0.0);
+    auto hair = physics::HairSystem::create(guides, solverSettings(groom.simulation, scene_.simulation), body);
     if (!hair) return fail("groom " + groom.name + " (" + sourceList(groom) + "): " + hair.error().message);
+    std::optional<JointColliders> jointColliders;
     if (!groom.colliders.empty()) {
       auto set = colliders.build(groom.colliders, meshIndex);
       if (!set) return fail("groom " + groom.name + ": colliders: " + set.error().message);
+      if (groom.colliders.followsJoints()) {
+        auto joints = JointColliders::create(groom.colliders, std::move(*set),
+                                             characters_[characterParts_[meshIndex]->character]);
+        if (!joints) return fail("groom " + groom.name + ": colliders: " + joints.error().message);
+        jointColliders = std::move(*joints);
+        set = jointColliders->at(characters_[characterParts_[meshIndex]->character], body);
+      }
       if (auto applied = hair->setColliders(std::move(*set)); !applied)
         return fail("groom " + groom.name + ": colliders: " + applied.error().message);
+    }
+    // On a character: each root bound to the surface under it, its rest normal the surface's.
+    std::optional<physics::SurfaceBinding> roots;
+    if (characterParts_[meshIndex]) {
+      std::vector<glm::vec3> rootPoints;
+      for (std::size_t strand = 0; strand < hair->strandCount(); ++strand)
+        rootPoints.push_back(hair->strandPositions(strand).front());
+      auto bound = bindToPart(meshIndex, rootPoints, "groom " + groom.name);
+      if (!bound) return std::unexpected(bound.error());
+      std::vector<glm::vec3> normals;
+      if (auto followed = followPart(meshIndex, *bound, rootPoints, normals); !followed) return followed;
+      const glm::mat3 toHead(glm::inverse(body));
+      for (glm::vec3& normal : normals) normal = toHead * normal;
+      if (auto set = hair->setRootRestNormals(normals); !set) return fail("groom " + groom.name + ": " + set.error().message);
+      roots = std::move(*bound);
     }
     const std::size_t denseStrands = groom.rendering.denseStrands > 0
                                          ? static_cast<std::size_t>(groom.rendering.denseStrands)
                                          : std::max(kDefaultDenseStrands, guides.size());
     grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom,
-                                     denseGroom(guides, denseStrands, groom.rendering.verticesPerStrand)});
+                                     denseGroom(guides, denseStrands, groom.rendering.verticesPerStrand),
+                                     std::move(roots), std::move(jointColliders)});
     if (!grooms_.back().dense)
       notes_.push_back("groom " + groom.name + ": guides of different lengths: simulated, not drawn");
   }
@@ -377,8 +661,10 @@ std::vector<World::HairGuides> World::hairGuides() const {
   return result;
 }
 
-glm::mat4 World::bodyPlacement(const MeshInstance& mesh, double time) const {
-  return bodyMatrix(scene_, mesh, static_cast<float>(time));
+glm::mat4 World::bodyPlacement(std::size_t mesh, double time) const {
+  if (const std::optional<CharacterPart>& part = characterParts_[mesh])
+    return characters_[part->character].partFrame(part->part);
+  return bodyMatrix(scene_, scene_.meshes[mesh], static_cast<float>(time));
 }
 
 Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& colliders) {
@@ -388,17 +674,44 @@ Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& co
     const auto body = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
                                    [&](const MeshInstance& mesh) { return mesh.name == cloth.attachedMesh; });
     const auto bodyIndex = static_cast<std::size_t>(body - scene_.meshes.begin());
+    const glm::mat4 placement = bodyPlacement(bodyIndex, 0.0);
+    ClothOnCharacter follower;
     physics::ColliderSet set;
     if (!cloth.colliders.empty()) {
       auto built = colliders.build(cloth.colliders, bodyIndex);
       if (!built) return fail("cloth '" + cloth.name + "': colliders: " + built.error().message);
       set = std::move(*built);
+      if (cloth.colliders.followsJoints()) {
+        auto joints = JointColliders::create(cloth.colliders, std::move(set),
+                                             characters_[characterParts_[bodyIndex]->character]);
+        if (!joints) return fail("cloth '" + cloth.name + "': colliders: " + joints.error().message);
+        follower.jointColliders = std::move(*joints);
+        set = follower.jointColliders->at(characters_[characterParts_[bodyIndex]->character], placement);
+      }
     }
-    auto created =
-        SceneCloth::create(cloth, std::move(*rest), scene_.simulation, bodyPlacement(*body, 0.0), std::move(set));
+    Cloth placed = cloth;
+    if (const std::optional<CharacterPart>& part = characterParts_[bodyIndex]) {
+      // On a character the transform places the cloth in the character's own frame at time 0
+      // (its axes, metres), where people author it, rather than in the part frame of a joint.
+      const glm::mat4 inCharacter = rigidPart(scene_.characters[part->character].transform.matrix()) *
+                                    glm::translate(glm::mat4(1.0f), cloth.transform.translation) *
+                                    glm::mat4(glm::mat3(Transform{.rotationDegrees = cloth.transform.rotationDegrees}.matrix()));
+      placed.transform = transformOf(glm::inverse(placement) * inCharacter);
+      placed.transform.scale = cloth.transform.scale;
+    }
+    auto created = SceneCloth::create(placed, std::move(*rest), scene_.simulation, placement, std::move(set));
     if (!created) return std::unexpected(created.error());
+    if (characterParts_[bodyIndex]) {
+      // Each pin bound to the surface under it, where the cloth's transform placed it.
+      std::vector<glm::vec3> pins;
+      for (std::uint32_t v : created->cloth().pinnedVertices()) pins.push_back(created->cloth().particles().positions[v]);
+      auto bound = bindToPart(bodyIndex, pins, "cloth '" + cloth.name + "'");
+      if (!bound) return std::unexpected(bound.error());
+      follower.pins = std::move(*bound);
+    }
     cloths_.push_back(std::move(*created));
     clothBodies_.push_back(bodyIndex);
+    clothFollowers_.push_back(std::move(follower));
   }
   return {};
 }
@@ -406,22 +719,44 @@ Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& co
 Result<void> World::advance(double frameDt, unsigned threads) {
   if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("frame time must be finite and ≥ 0");
   time_ += frameDt;
+  poseCharacters();
   return simulate(frameDt, threads);
 }
 
 Result<void> World::simulate(double frameDt, unsigned threads) {
+  std::vector<glm::vec3> targets, normals;
   for (SimulatedGroom& groom : grooms_) {
-    const glm::mat4 head = bodyPlacement(scene_.meshes[groom.mesh], time_);
+    const std::string& name = scene_.grooms[groom.sceneGroom].name;
+    const glm::mat4 head = bodyPlacement(groom.mesh, time_);
     if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
+    if (groom.roots) {
+      if (auto followed = followPart(groom.mesh, *groom.roots, targets, normals); !followed) return followed;
+      if (auto set = groom.hair.setRootTargets(targets, normals); !set)
+        return fail("groom " + name + ": " + set.error().message);
+    }
+    if (groom.jointColliders) {
+      const SceneCharacter& character = characters_[characterParts_[groom.mesh]->character];
+      if (auto set = groom.hair.setColliders(groom.jointColliders->at(character, head)); !set)
+        return fail("groom " + name + ": colliders: " + set.error().message);
+    }
     if (auto advanced = groom.hair.advance(frameDt, threads); !advanced)
       return fail("groom " + scene_.grooms[groom.sceneGroom].name + ": " + advanced.error().message);
   }
-  for (std::size_t i = 0; i < cloths_.size(); ++i)
-    if (auto advanced = cloths_[i].advance(bodyPlacement(scene_.meshes[clothBodies_[i]], time_), frameDt, threads);
-        !advanced)
-      return advanced;
+  for (std::size_t i = 0; i < cloths_.size(); ++i) {
+    const glm::mat4 body = bodyPlacement(clothBodies_[i], time_);
+    const ClothOnCharacter& follower = clothFollowers_[i];
+    if (follower.pins) {
+      if (auto followed = followPart(clothBodies_[i], *follower.pins, targets, normals); !followed) return followed;
+      if (auto set = cloths_[i].setPinTargets(targets); !set) return set;
+    }
+    if (follower.jointColliders) {
+      const SceneCharacter& character = characters_[characterParts_[clothBodies_[i]]->character];
+      if (auto set = cloths_[i].setColliders(follower.jointColliders->at(character, body)); !set) return set;
+    }
+    if (auto advanced = cloths_[i].advance(body, frameDt, threads); !advanced) return advanced;
+  }
   for (MovingFur& fur : movingFurs_)
-    if (auto advanced = fur.dynamics.advance(bodyPlacement(scene_.meshes[fur.mesh], time_), frameDt, threads);
+    if (auto advanced = fur.dynamics.advance(bodyPlacement(fur.mesh, time_), frameDt, threads);
         !advanced)
       return fail("mesh " + scene_.meshes[fur.mesh].name + ": " + advanced.error().message);
   return {};
@@ -435,7 +770,8 @@ render::StaticScene World::staticScene() const {
                                              .normals = mesh.normals,
                                              .uvs = mesh.uvs,
                                              .indices = mesh.indices,
-                                             .curvatures = meshCurvatures_[m]});
+                                             .curvatures = meshCurvatures_[m],
+                                             .skinning = gpuSkins_[m] ? &*gpuSkins_[m] : nullptr});
   }
   for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
     render::MaterialData material{.baseColor = scene_.materials[i].baseColour,
@@ -469,6 +805,18 @@ render::StaticScene World::staticScene() const {
   for (const SceneCloth& cloth : cloths_) {
     const Mesh& surface = cloth.surface();
     result.meshes.push_back(render::MeshData{surface.positions, surface.normals, surface.uvs, surface.indices, true});
+  }
+  return result;
+}
+
+std::vector<World::SkinnedMesh> World::skinnedMeshes() const {
+  std::vector<SkinnedMesh> result;
+  for (std::size_t m = 0; m < meshes_.size(); ++m) {
+    if (!gpuSkins_[m]) continue;
+    const CharacterPart& part = *characterParts_[m];
+    const SceneCharacter& character = characters_[part.character];
+    result.push_back({.mesh = m, .jointMatrices = character.jointMatricesInPartFrame(part.part),
+                      .morphWeights = character.morphWeights(part.part)});
   }
   return result;
 }
@@ -507,9 +855,12 @@ render::FrameInput World::frameInput() const {
   };
   for (std::size_t i = 0; i < scene_.meshes.size(); ++i) {
     const MeshInstance& mesh = scene_.meshes[i];
+    const std::optional<CharacterPart>& part = characterParts_[i];
+    if (part && part->primitive < 0) continue;  // a whole part, for the physics; its primitives draw it
     frame.instances.push_back({.mesh = i,
                                .material = materialIndex(mesh.material),
-                               .model = animatedMatrix(scene_, mesh, static_cast<float>(time_))});
+                               .model = part ? characters_[part->character].partFrame(part->part)
+                                             : animatedMatrix(scene_, mesh, static_cast<float>(time_))});
   }
   for (std::size_t i = 0; i < cloths_.size(); ++i)  // already in world space
     frame.instances.push_back({.mesh = meshes_.size() + i, .material = materialIndex(scene_.cloths[i].material)});
@@ -523,6 +874,23 @@ std::uint64_t World::stateHash() const {
   for (const MovingFur& fur : movingFurs_) hasher.addValue(fur.dynamics.guides().stateHash());
   hasher.addValue(time_);
   return hasher.value();
+}
+
+Result<std::vector<glm::vec3>> World::boundRoots(std::size_t index) {
+  const SimulatedGroom& groom = grooms_.at(index);
+  std::vector<glm::vec3> positions, normals;
+  if (groom.roots)
+    if (auto followed = followPart(groom.mesh, *groom.roots, positions, normals); !followed)
+      return std::unexpected(followed.error());
+  return positions;
+}
+
+Result<std::vector<glm::vec3>> World::boundPins(std::size_t index) {
+  std::vector<glm::vec3> positions, normals;
+  if (const ClothOnCharacter& follower = clothFollowers_.at(index); follower.pins)
+    if (auto followed = followPart(clothBodies_[index], *follower.pins, positions, normals); !followed)
+      return std::unexpected(followed.error());
+  return positions;
 }
 
 std::size_t World::guideStrandCount() const {

@@ -15,13 +15,17 @@
 #include "common/error.hpp"
 #include "common/strand_layout.hpp"
 #include "physics/hair.hpp"
+#include "physics/surface_binding.hpp"
 #include "render/frame.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/fur_dynamics.hpp"
 #include "scenes/image.hpp"
+#include "scenes/joint_colliders.hpp"
 #include "scenes/scene_cloth.hpp"
 #include "scenes/scene.hpp"
+#include "scenes/scene_character.hpp"
 #include "scenes/scene_meshes.hpp"
+#include "scenes/skinned_cage.hpp"
 #include "scenes/subdivided_mesh.hpp"
 
 namespace mane::scenes {
@@ -35,8 +39,14 @@ struct WorldSettings {
 
 class World {
 public:
-  /// Loads every mesh, texture and groom of `scene`. Missing assets fall back to procedural
-  /// content with a note (see `notes`); unusable files are errors.
+  /// Loads every mesh, texture, character and groom of `scene`. Missing assets fall back to
+  /// procedural content with a note (see `notes`); unusable files are errors.
+  ///
+  /// Characters: each mesh of a character's file becomes meshes of `scene().meshes`, after the
+  /// scene's own: "<character>/<glTF mesh>", the whole mesh in its part frame
+  /// (SceneCharacter), which grooms, cloths and collider fields name and follow but which is not
+  /// drawn, and "<character>/<glTF mesh>#<primitive>", each primitive drawn with the scene
+  /// material its glTF material maps to. Both are placed where the part frame is at time 0.
   static Result<World> create(Scene scene, const AssetResolver& resolver, const WorldSettings& settings = {});
 
   const Scene& scene() const { return scene_; }
@@ -45,7 +55,8 @@ public:
   /// Seconds of animation played so far.
   double time() const { return time_; }
 
-  /// Animates the head to `time() + frameDt`, moves hair roots with it and simulates.
+  /// Animates the head and the characters to `time() + frameDt`, moves hair roots, cloth pins
+  /// and colliders with them and simulates.
   /// `threads` ≥ 1 workers; results do not depend on it.
   Result<void> advance(double frameDt, unsigned threads);
 
@@ -64,12 +75,16 @@ public:
   /// collider fields (built at load) do not change; meshes drawn with fur keep their load-time
   /// triangles (their uvs are made for the fur once). `threads` ≥ 1 workers; the triangles do not
   /// depend on it. Errors: a size of zero pixels or a camera that gives no projection.
+  ///
+  /// A character's subdivided meshes are posed at time() and tessellated again here after every
+  /// pose that moved them (they bend): they are among the meshes returned whenever the character
+  /// moved since the last call.
   Result<std::vector<std::size_t>> refineForCamera(const render::Camera& camera, glm::uvec2 size, unsigned threads = 1);
   /// Mesh `mesh` of staticScene() (a scene mesh, not a cloth) as it is now: after
   /// refineForCamera, the triangles to hand to Renderer::replaceMesh. A view into this world.
   render::MeshData meshData(std::size_t mesh) const;
 
-  /// A mesh of staticScene() whose vertices move every frame (cloth), with its current
+  /// A mesh of staticScene() whose vertices move every frame on the CPU (cloth), with its current
   /// world-space positions and normals: hand them to Renderer::updateMesh before rendering.
   struct DynamicMesh {
     std::size_t mesh = 0;
@@ -77,6 +92,16 @@ public:
     std::span<const glm::vec3> normals;
   };
   std::vector<DynamicMesh> dynamicMeshes() const;
+
+  /// A mesh of staticScene() deformed on the GPU (a character's skinned or morphing primitive),
+  /// with this frame's joint matrices (into the mesh's model space, the part frame that
+  /// frameInput() places it with) and morph weights: hand them to Renderer::updateSkinning.
+  struct SkinnedMesh {
+    std::size_t mesh = 0;
+    std::vector<glm::mat4> jointMatrices;
+    std::span<const float> morphWeights;
+  };
+  std::vector<SkinnedMesh> skinnedMeshes() const;
 
   /// A groom of staticScene() (render order) and its simulated guides this frame: hand them to
   /// Renderer::updateHair before rendering.
@@ -95,6 +120,20 @@ public:
   std::vector<FurLeans> furLeans() const;
 
   const std::vector<SceneCloth>& cloths() const { return cloths_; }
+  /// For viewers: every character starts the clip after the one it plays (in file order) now,
+  /// blended in over `crossFadeSeconds`. Returns "<character>: <clip>" for each, for people.
+  std::string playNextClips(float crossFadeSeconds);
+  /// For viewers: every character blends the expression it shows out and its next morph target
+  /// in (in file order; after the last, none) over `seconds`. Returns what now shows, for people.
+  std::string nextExpression(float seconds);
+
+  /// The scene's characters, posed at time().
+  const std::vector<SceneCharacter>& characters() const { return characters_; }
+  /// The root of every guide of simulated groom `index` on its body's deformed surface now,
+  /// for grooms on a character part (empty for others): where the roots must be.
+  Result<std::vector<glm::vec3>> boundRoots(std::size_t index);
+  /// Likewise the pins of cloth `index` (cloth().pinnedVertices() order).
+  Result<std::vector<glm::vec3>> boundPins(std::size_t index);
 
   /// Hash of every simulated state (grooms, then cloths, then moving furs, in scene order) and of
   /// the clock.
@@ -118,6 +157,23 @@ private:
     std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
     /// The dense strands the renderer draws; none when its guides differ in point count.
     std::optional<DenseStrandLayout> dense;
+    /// On a character part: the roots on its surface, and the colliders its joints carry.
+    std::optional<physics::SurfaceBinding> roots;
+    std::optional<JointColliders> jointColliders;
+  };
+  /// What a mesh of scene_.meshes made for a character stands for.
+  struct CharacterPart {
+    std::size_t character = 0;  ///< index into characters_
+    std::size_t part = 0;       ///< index into its meshes
+    /// -1: the whole part, followed by the physics and not drawn; else the primitive it draws.
+    int primitive = -1;
+    /// Skinned over several joints or morphing: its vertices move in the part frame.
+    bool deforms = false;
+  };
+  /// What follows a character part in a cloth: its pins on the surface, its joint-borne colliders.
+  struct ClothOnCharacter {
+    std::optional<physics::SurfaceBinding> pins;
+    std::optional<JointColliders> jointColliders;
   };
 
   World() = default;
@@ -136,11 +192,23 @@ private:
   Result<void> loadMaterials(const AssetResolver& resolver);
   /// The curvature skin materials shade with, for every mesh drawn with one.
   Result<void> computeSkinCurvatures();
+  /// Loads every character and appends its parts to scene_.meshes and meshes_.
+  Result<void> loadCharacters(const AssetResolver& resolver);
+  /// Poses the characters at time().
+  void poseCharacters();
+  /// Binds `points` (world space, at the current pose) to the deformed surface of mesh `mesh`,
+  /// a character part; the error starts with `owner`.
+  Result<physics::SurfaceBinding> bindToPart(std::size_t mesh, std::span<const glm::vec3> points,
+                                             const std::string& owner);
+  /// The points bound to mesh `mesh` (a character part) at the current pose: positions, normals.
+  Result<void> followPart(std::size_t mesh, const physics::SurfaceBinding& binding, std::vector<glm::vec3>& positions,
+                          std::vector<glm::vec3>& normals);
   Result<void> loadGrooms(const AssetResolver& resolver, SceneColliders& colliders);
   Result<void> loadCloths(const AssetResolver& resolver, SceneColliders& colliders);
-  /// The rigid part of the mesh's placement at `time` (its scale divided out, `bodyMatrix`):
-  /// what hair roots, cloth pins and their colliders follow.
-  glm::mat4 bodyPlacement(const MeshInstance& mesh, double time) const;
+  /// The rigid part of mesh `mesh`'s placement at `time` (its scale divided out, `bodyMatrix`):
+  /// what hair roots, cloth pins and their colliders follow. For a character part, its part
+  /// frame at the current pose (poseCharacters keeps that at time()).
+  glm::mat4 bodyPlacement(std::size_t mesh, double time) const;
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
   /// `strandCount` dense strands of `verticesPerStrand` vertices (0: the guides' count) drawn for
@@ -164,6 +232,17 @@ private:
   };
   std::vector<MovingFur> movingFurs_;
   std::vector<std::size_t> clothBodies_;  ///< per cloth: index into scene_.meshes
+  std::vector<ClothOnCharacter> clothFollowers_;  ///< per cloth
+  std::vector<SceneCharacter> characters_;
+  /// Per character: the morph target nextExpression() last blended in (its count: none).
+  std::vector<std::size_t> expressions_;
+  /// Per mesh of scene_.meshes: the character part it stands for, if any.
+  std::vector<std::optional<CharacterPart>> characterParts_;
+  /// Per mesh: what the renderer deforms it with, for a drawn primitive of a deforming part.
+  std::vector<std::optional<render::GpuSkinnedMesh>> gpuSkins_;
+  /// Per mesh: its skinned cage, for a drawn primitive of a part the character subdivides
+  /// (posed and tessellated again by refineForCamera), else null.
+  std::vector<std::unique_ptr<SkinnedCage>> skinnedCages_;
   std::vector<std::string> notes_;
   double time_ = 0.0;
 };

@@ -13,11 +13,25 @@
 //   3 frame           x: vertex count, y: morph target count; then one weight per target
 //   4 joints          per joint: its matrix and, for DQS, rotation, dual part and stretch
 //   5–7 outputs       positions (w 1), normals (w 0), tangents (w handedness), one vec4 per vertex
+//   8–10 vertex targets  other passes' interleaved vertex buffers, as floats: the deformed position
+//                     and normal written into each at its stride and offsets, so those passes draw
+//                     the deformed mesh with their own vertex layouts (kVertexTargets of them)
 
 layout(local_size_x = 64) in;
 
 layout(constant_id = 0) const uint kInfluenceGroups = 1;  // influences per vertex / 4
 layout(constant_id = 1) const bool kDualQuaternion = false;
+layout(constant_id = 2) const uint kVertexTargets = 0;  // 0 to 3
+// Per target: floats per vertex, and from a vertex's start to its position's and normal's x.
+layout(constant_id = 3) const uint kStride0 = 3;
+layout(constant_id = 4) const uint kPosition0 = 0;
+layout(constant_id = 5) const uint kNormal0 = 0;
+layout(constant_id = 6) const uint kStride1 = 3;
+layout(constant_id = 7) const uint kPosition1 = 0;
+layout(constant_id = 8) const uint kNormal1 = 0;
+layout(constant_id = 9) const uint kStride2 = 3;
+layout(constant_id = 10) const uint kPosition2 = 0;
+layout(constant_id = 11) const uint kNormal2 = 0;
 
 struct RestVertex {
   vec4 position;
@@ -51,6 +65,30 @@ layout(std430, set = 0, binding = 4) readonly buffer Joints { Joint joints[]; };
 layout(std430, set = 0, binding = 5) writeonly buffer Positions { vec4 positions[]; };
 layout(std430, set = 0, binding = 6) writeonly buffer Normals { vec4 normals[]; };
 layout(std430, set = 0, binding = 7) writeonly buffer Tangents { vec4 tangents[]; };
+layout(std430, set = 0, binding = 8) writeonly buffer Target0 { float target0[]; };
+layout(std430, set = 0, binding = 9) writeonly buffer Target1 { float target1[]; };
+layout(std430, set = 0, binding = 10) writeonly buffer Target2 { float target2[]; };
+
+#define WRITE_TARGET(target, stride, positionOffset, normalOffset)   \
+  {                                                                  \
+    const uint base = v * stride;                                    \
+    target[base + positionOffset] = position.x;                      \
+    target[base + positionOffset + 1u] = position.y;                \
+    target[base + positionOffset + 2u] = position.z;                \
+    target[base + normalOffset] = normal.x;                          \
+    target[base + normalOffset + 1u] = normal.y;                    \
+    target[base + normalOffset + 2u] = normal.z;                    \
+  }
+
+// The deformed vertex v, written to the outputs and to every vertex target.
+void store(uint v, vec3 position, vec3 normal, vec4 tangent) {
+  positions[v] = vec4(position, 1.0);
+  normals[v] = vec4(normal, 0.0);
+  tangents[v] = tangent;
+  if (kVertexTargets > 0u) WRITE_TARGET(target0, kStride0, kPosition0, kNormal0)
+  if (kVertexTargets > 1u) WRITE_TARGET(target1, kStride1, kPosition1, kNormal1)
+  if (kVertexTargets > 2u) WRITE_TARGET(target2, kStride2, kPosition2, kNormal2)
+}
 
 // Columns c1×c2, c2×c0, c0×c1: det(L)·L⁻ᵀ, which carries normals without a division.
 mat3 cofactor(mat3 l) {
@@ -97,9 +135,8 @@ void main() {
     }
     const mat3 linear = mat3(blended);
     const float mirror = determinant(linear) < 0.0 ? -1.0 : 1.0;
-    positions[v] = vec4((blended * vec4(position, 1.0)).xyz, 1.0);
-    normals[v] = vec4(normalisedOr(mirror * (cofactor(linear) * restNormal), restNormal), 0.0);
-    tangents[v] = vec4(normalisedOr(linear * restTangent, restTangent), tangent.w * mirror);
+    store(v, (blended * vec4(position, 1.0)).xyz, normalisedOr(mirror * (cofactor(linear) * restNormal), restNormal),
+          vec4(normalisedOr(linear * restTangent, restTangent), tangent.w * mirror));
     return;
   }
 
@@ -131,7 +168,7 @@ void main() {
   dual /= len;
   // The blended motion's translation: the vector part of 2·dual·conj(real).
   const vec3 translation = 2.0 * (real.w * dual.xyz - dual.w * real.xyz + cross(real.xyz, dual.xyz));
-  positions[v] = vec4(rotate(real, stretch * position) + translation, 1.0);
-  normals[v] = vec4(normalisedOr(rotate(real, cofactor(stretch) * restNormal), restNormal), 0.0);
-  tangents[v] = vec4(normalisedOr(rotate(real, stretch * restTangent), restTangent), tangent.w);
+  store(v, rotate(real, stretch * position) + translation,
+        normalisedOr(rotate(real, cofactor(stretch) * restNormal), restNormal),
+        vec4(normalisedOr(rotate(real, stretch * restTangent), restTangent), tangent.w));
 }

@@ -144,6 +144,7 @@ Result<MeshEdges> MeshEdges::build(std::span<const glm::vec3> positions, std::sp
     std::uint32_t count = 0;
     std::uint32_t a = 0, b = 0;  // the first face's vertices (their uvs texture the fin)
     std::array<glm::vec3, 2> normals{};
+    std::array<std::uint32_t, 2> triangles{};
   };
   for (std::size_t t = 0; t < indices.size(); ++t)
     if (indices[t] >= positions.size())
@@ -166,7 +167,10 @@ Result<MeshEdges> MeshEdges::build(std::span<const glm::vec3> positions, std::sp
         entry.a = a;
         entry.b = b;
       }
-      if (entry.count < 2) entry.normals[entry.count] = cross / length;
+      if (entry.count < 2) {
+        entry.normals[entry.count] = cross / length;
+        entry.triangles[entry.count] = static_cast<std::uint32_t>(t / 3);
+      }
       ++entry.count;
     }
   }
@@ -182,9 +186,32 @@ Result<MeshEdges> MeshEdges::build(std::span<const glm::vec3> positions, std::sp
     edge.normalA = entry.normals[0];
     edge.boundary = entry.count == 1;
     edge.normalB = edge.boundary ? entry.normals[0] : entry.normals[1];
+    edge.faceA = entry.triangles[0];
+    edge.faceB = edge.boundary ? entry.triangles[0] : entry.triangles[1];
     result.edges_.push_back(edge);
   }
+  result.triangles_.assign(indices.begin(), indices.end());
+  result.vertexCount_ = positions.size();
   return result;
+}
+
+Result<void> MeshEdges::reshape(std::span<const glm::vec3> positions) {
+  if (positions.size() != vertexCount_)
+    return fail("fur mesh edges: " + std::to_string(positions.size()) + " positions for a mesh of " +
+                std::to_string(vertexCount_));
+  const auto faceNormal = [&](std::uint32_t face, const glm::vec3& previous) {
+    const glm::vec3& p0 = positions[triangles_[3 * face]];
+    const glm::vec3 cross =
+        glm::cross(positions[triangles_[3 * face + 1]] - p0, positions[triangles_[3 * face + 2]] - p0);
+    const float length = glm::length(cross);
+    return length > 0.0f ? cross / length : previous;
+  };
+  for (Edge& edge : edges_) {
+    edge.midpoint = 0.5f * (positions[edge.a] + positions[edge.b]);
+    edge.normalA = faceNormal(edge.faceA, edge.normalA);
+    edge.normalB = faceNormal(edge.faceB, edge.normalB);
+  }
+  return {};
 }
 
 void MeshEdges::findSilhouette(const glm::vec4& eye, std::vector<glm::uvec2>& out) const {
@@ -339,6 +366,31 @@ Result<void> FurPass::setMesh(const MeshData& mesh) {
   fins_.reserve(edges_.edges().size());
   finCount_ = 0;
   return {};
+}
+
+Result<void> FurPass::setPose(std::span<const glm::vec4> positions, std::span<const glm::vec4> normals) {
+  if (positions.size() != vertexCount_ || normals.size() != vertexCount_)
+    return fail("fur pose: " + std::to_string(positions.size()) + " positions and " + std::to_string(normals.size()) +
+                " normals for a mesh of " + std::to_string(vertexCount_) + " vertices");
+  std::vector<glm::vec3> shape(vertexCount_);
+  for (std::size_t i = 0; i < shape.size(); ++i) {
+    shape[i] = glm::vec3(positions[i]);
+    const glm::vec3 normal(normals[i]);
+    if (!std::isfinite(shape[i].x + shape[i].y + shape[i].z + normal.x + normal.y + normal.z))
+      return fail("fur pose: vertex " + std::to_string(i) + " is not finite");
+  }
+  if (auto reshaped = edges_.reshape(shape); !reshaped) return reshaped;
+  for (std::size_t i = 0; i < shape.size(); ++i) meshNormals_[i] = glm::vec3(normals[i]);
+  meshPositions_ = std::move(shape);
+  return {};
+}
+
+SkinnedVertexTarget FurPass::vertexTarget() const {
+  constexpr auto floats = [](std::size_t bytes) { return static_cast<std::uint32_t>(bytes / sizeof(float)); };
+  return {.buffer = &vertices_,
+          .stride = floats(sizeof(FurVertex)),
+          .positionOffset = floats(offsetof(FurVertex, position)),
+          .normalOffset = floats(offsetof(FurVertex, normal))};
 }
 
 Result<void> FurPass::setLeans(std::span<const glm::vec3> leans) {

@@ -65,6 +65,7 @@
 #include "render/frame.hpp"
 #include "render/luts/fur_shells.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
+#include "render/passes/skinning_pass.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -126,6 +127,8 @@ public:
     glm::vec3 normalA{0.0f};  ///< unit normal of the first face
     glm::vec3 normalB{0.0f};  ///< of the second; equal to normalA on a boundary edge
     bool boundary = false;    ///< only one face
+    std::uint32_t faceA = 0;  ///< triangle (index into the triangle list / 3) of normalA
+    std::uint32_t faceB = 0;  ///< of normalB
   };
 
   /// Edges of `indices` (a triangle list) with two faces, or one (boundary); edges of three or
@@ -134,6 +137,11 @@ public:
   /// range or a count not a multiple of 3.
   [[nodiscard]] static Result<MeshEdges> build(std::span<const glm::vec3> positions,
                                                std::span<const std::uint32_t> indices);
+
+  /// Moves the edges' midpoints and face normals to `positions` (the same vertices, deformed): a
+  /// skinned mesh's pose. A face that has collapsed keeps its previous normal. Errors: a count
+  /// that is not the mesh's.
+  [[nodiscard]] Result<void> reshape(std::span<const glm::vec3> positions);
 
   /// Appends to `out` the vertex pairs of the silhouette edges seen from `eye` (object space; w
   /// as FurView::eye): (n_A·v)(n_B·v) ≤ 0, v = eye − w·midpoint, and boundary edges. Clears `out`
@@ -144,6 +152,8 @@ public:
 
 private:
   std::vector<Edge> edges_;
+  std::vector<std::uint32_t> triangles_;  ///< the triangle list built from
+  std::size_t vertexCount_ = 0;
 };
 
 /// The tangent the fur's shadow strands tilt along at a vertex of unit normal `normal`:
@@ -166,6 +176,17 @@ public:
   /// Uploads the mesh the fur grows on (object space; normals and uvs required); replaces the
   /// previous one. Errors (nothing changed): missing normals or uvs, bad indices.
   [[nodiscard]] Result<void> setMesh(const MeshData& mesh);
+
+  /// The mesh's current shape, object space, one position and unit normal per vertex (xyz; w is
+  /// ignored): the pose of a mesh deformed on the GPU (a skinned mesh), for the work done on the
+  /// CPU, the fins' silhouette test and the shadow strands, from the next update() on. The draws
+  /// read the vertex buffer whatever wrote it (vertexTarget). Errors: a count that is not the
+  /// mesh's, a non-finite value.
+  [[nodiscard]] Result<void> setPose(std::span<const glm::vec4> positions, std::span<const glm::vec4> normals);
+
+  /// Where a SkinningPass writes the deformed positions and normals for the shells and fins to
+  /// draw (after setMesh; the buffer changes with the next setMesh).
+  [[nodiscard]] SkinnedVertexTarget vertexTarget() const;
 
   /// Per-vertex lean of the fur's tips (world space, in units of h_b, e.g. from simulated guide
   /// strands), one per vertex of the mesh; zero after setMesh. A shell at height s·h_b sits at

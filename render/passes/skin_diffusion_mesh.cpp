@@ -1,6 +1,7 @@
 #include "render/passes/skin_diffusion_mesh.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <exception>
 #include <optional>
 #include <string>
@@ -68,8 +69,8 @@ Result<SkinDiffusionMesh> SkinDiffusionMesh::create(const Device& device, const 
   for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = {mesh.positions[i], mesh.normals[i], mesh.uvs[i]};
   SkinDiffusionMesh result;
   try {
-    result.vertices_ =
-        Buffer::withData(device, std::as_bytes(std::span(vertices)), vk::BufferUsageFlagBits::eVertexBuffer);
+    result.vertices_ = Buffer::withData(device, std::as_bytes(std::span(vertices)),
+                                        vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
     result.indices_ = Buffer::withData(device, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer);
   } catch (const std::exception& error) {
     return fail(std::string("skin diffusion mesh: uploading failed: ") + error.what());
@@ -77,6 +78,14 @@ Result<SkinDiffusionMesh> SkinDiffusionMesh::create(const Device& device, const 
   result.indexCount_ = static_cast<std::uint32_t>(mesh.indices.size());
   result.uvScale_ = *scale;
   return result;
+}
+
+SkinnedVertexTarget SkinDiffusionMesh::vertexTarget() const {
+  constexpr auto floats = [](std::size_t bytes) { return static_cast<std::uint32_t>(bytes / sizeof(float)); };
+  return {.buffer = &vertices_,
+          .stride = floats(sizeof(SkinDiffusionVertex)),
+          .positionOffset = floats(offsetof(SkinDiffusionVertex, position)),
+          .normalOffset = floats(offsetof(SkinDiffusionVertex, normal))};
 }
 
 }  // namespace mane::render

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "render/frame.hpp"
+#include "render/passes/skinning_pass.hpp"
 #include "render/resources.hpp"
 
 namespace mane::render {
@@ -30,6 +31,9 @@ public:
   [[nodiscard]] static Result<SkinDiffusionMesh> create(const Device& device, const MeshData& mesh);
 
   const Buffer& vertices() const { return vertices_; }
+  /// Where a SkinningPass writes the deformed positions and normals of a skinned mesh (the
+  /// vertex buffer is a storage buffer too). uvScale stays the bind pose's.
+  SkinnedVertexTarget vertexTarget() const;
   const Buffer& indices() const { return indices_; }
   std::uint32_t indexCount() const { return indexCount_; }
   /// sqrt(Σ area in mesh units / Σ area in uv): mesh units per unit of uv, the mesh's mean

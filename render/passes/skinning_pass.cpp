@@ -18,6 +18,8 @@ namespace {
 
 constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of skinning.comp
 
+constexpr std::uint32_t kFirstTargetBinding = 8;  // Target0 of skinning.comp
+
 // The std430 elements of skinning.comp.
 struct RestVertex {
   glm::vec4 position;
@@ -100,6 +102,26 @@ Result<void> checkLimits(const GpuSkinnedMesh& mesh, const vk::PhysicalDeviceLim
   return {};
 }
 
+Result<void> checkTargets(std::span<const SkinnedVertexTarget> targets, std::size_t vertices) {
+  if (targets.size() > SkinningPass::kMaxVertexTargets)
+    return fail("Skinning: " + std::to_string(targets.size()) + " vertex targets; the pass writes at most " +
+                std::to_string(SkinningPass::kMaxVertexTargets) + ".");
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    const SkinnedVertexTarget& target = targets[t];
+    const std::string name = "Skinning: vertex target " + std::to_string(t);
+    if (target.buffer == nullptr || !(target.buffer->usage() & vk::BufferUsageFlagBits::eStorageBuffer))
+      return fail(name + " has no buffer, or one without STORAGE_BUFFER usage.");
+    if (std::max(target.positionOffset, target.normalOffset) + 3 > target.stride)
+      return fail(name + "'s position or normal does not fit in its stride of " + std::to_string(target.stride) +
+                  " floats.");
+    const std::uint64_t bytes = std::uint64_t(vertices) * target.stride * sizeof(float);
+    if (target.buffer->size() < bytes)
+      return fail(name + " holds " + std::to_string(target.buffer->size()) + " bytes; " +
+                  std::to_string(vertices) + " vertices need " + std::to_string(bytes) + ".");
+  }
+  return {};
+}
+
 // Influences rounded up to whole groups of 4 (the shader's uvec4/vec4), weights renormalised to
 // sum to 1; padding influences have weight 0, which adds nothing.
 std::vector<Influence> packInfluences(const GpuSkinnedMesh& mesh, std::uint32_t groups) {
@@ -160,6 +182,8 @@ Result<std::unique_ptr<SkinningPass>> SkinningPass::create(const Device& device,
   // The shader indexes joints with the mesh's numbers: one out of range would read outside its buffer.
   if (auto valid = checkMesh(mesh); !valid) return std::unexpected(valid.error());
   if (auto fits = checkLimits(mesh, device.limits()); !fits) return std::unexpected(fits.error());
+  if (auto targets = checkTargets(settings.vertexTargets, mesh.positions.size()); !targets)
+    return std::unexpected(targets.error());
   try {
     return std::unique_ptr<SkinningPass>(new SkinningPass(device, mesh, settings));
   } catch (const std::exception& error) {
@@ -172,7 +196,8 @@ SkinningPass::SkinningPass(const Device& device, const GpuSkinnedMesh& mesh, con
       jointCount_(mesh.jointCount),
       targetCount_(static_cast<std::uint32_t>(mesh.morphTargets.size())),
       method_(mesh.method),
-      hostReadable_(settings.hostReadable) {
+      hostReadable_(settings.hostReadable),
+      vertexTargets_(settings.vertexTargets) {
   const std::uint32_t groups = (mesh.influencesPerVertex + 3) / 4;
   const auto storage = vk::BufferUsageFlagBits::eStorageBuffer;
   const auto hostMemory = vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent;
@@ -202,14 +227,26 @@ SkinningPass::SkinningPass(const Device& device, const GpuSkinnedMesh& mesh, con
 
   const auto compute = vk::ShaderStageFlagBits::eCompute;
   const std::pair<vk::DescriptorType, vk::ShaderStageFlags> binding{vk::DescriptorType::eStorageBuffer, compute};
-  setLayout_ = makeSetLayout(device, {binding, binding, binding, binding, binding, binding, binding, binding});
+  constexpr std::uint32_t kBindings = kFirstTargetBinding + kMaxVertexTargets;
+  static_assert(kBindings == 11);
+  setLayout_ = makeSetLayout(
+      device, {binding, binding, binding, binding, binding, binding, binding, binding, binding, binding, binding});
   const bool dualQuaternion = method_ == GpuSkinningMethod::DualQuaternion;
-  pipeline_ = makeComputePipeline(device, "skinning.comp", setLayout_, 0, {groups, dualQuaternion ? 1u : 0u});
+  SpecializationConstants constants{groups, dualQuaternion ? 1u : 0u, std::uint32_t(vertexTargets_.size())};
+  for (std::uint32_t t = 0; t < kMaxVertexTargets; ++t) {
+    const SkinnedVertexTarget target = t < vertexTargets_.size() ? vertexTargets_[t] : SkinnedVertexTarget{.stride = 3};
+    constants.insert(constants.end(), {target.stride, target.positionOffset, target.normalOffset});
+  }
+  pipeline_ = makeComputePipeline(device, "skinning.comp", setLayout_, 0, constants);
 
-  pool_ = makeDescriptorPool(device, 1, {{vk::DescriptorType::eStorageBuffer, 8}});
+  pool_ = makeDescriptorPool(device, 1, {{vk::DescriptorType::eStorageBuffer, kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
   const Buffer* buffers[] = {&rest_, &influences_, &morphs_, &frame_, &joints_, &positions_, &normals_, &tangents_};
-  for (std::uint32_t b = 0; b < 8; ++b) writeStorageBuffer(device, set_, b, *buffers[b]);
+  for (std::uint32_t b = 0; b < kFirstTargetBinding; ++b) writeStorageBuffer(device, set_, b, *buffers[b]);
+  // Targets the mesh does not have are bound to an output, valid and never written (kVertexTargets).
+  for (std::uint32_t t = 0; t < kMaxVertexTargets; ++t)
+    writeStorageBuffer(device, set_, kFirstTargetBinding + t,
+                       t < vertexTargets_.size() ? *vertexTargets_[t].buffer : positions_);
 }
 
 Result<void> SkinningPass::update(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights) {
@@ -240,12 +277,31 @@ void SkinningPass::declare(FrameGraph::Builder& pass) const {
   // The frame's inputs need nothing: host writes before vkQueueSubmit are visible to it.
   for (const Buffer* output : {&positions_, &normals_, &tangents_})
     pass.write(*output, ResourceUse::storageWrite(vk::PipelineStageFlagBits2::eComputeShader));
+  // Other passes' vertex buffers: they draw them without declaring a read (they are static to
+  // them), so the pass makes its writes visible itself (execute).
+  for (const SkinnedVertexTarget& target : vertexTargets_)
+    pass.produce(*target.buffer, ResourceUse::computedVertices(false));
 }
 
 void SkinningPass::execute(const vk::raii::CommandBuffer& commands) const {
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, {*set_}, {});
   commands.dispatch((vertexCount_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+  if (vertexTargets_.empty()) return;
+  // Earlier readers of the targets (a previous frame's draws) need nothing here: the caller
+  // waits for each frame before the next one updates the joints (update).
+  const ResourceUse readers = ResourceUse::computedVertices(false);
+  std::vector<vk::BufferMemoryBarrier2> barriers;
+  for (const SkinnedVertexTarget& target : vertexTargets_)
+    barriers.push_back({.srcStageMask = vk::PipelineStageFlagBits2::eComputeShader,
+                        .srcAccessMask = vk::AccessFlagBits2::eShaderStorageWrite,
+                        .dstStageMask = readers.stages,
+                        .dstAccessMask = readers.access,
+                        .buffer = *target.buffer->buffer(),
+                        .offset = 0,
+                        .size = VK_WHOLE_SIZE});
+  commands.pipelineBarrier2({.bufferMemoryBarrierCount = static_cast<std::uint32_t>(barriers.size()),
+                             .pBufferMemoryBarriers = barriers.data()});
 }
 
 void SkinningPass::record(const vk::raii::CommandBuffer& commands) const {

@@ -30,35 +30,29 @@
 #include "render/frame_graph.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
+#include "render/skinned_mesh_data.hpp"
 
 namespace mane::render {
 
-enum class GpuSkinningMethod { LinearBlend, DualQuaternion };
-
-/// Per-vertex offsets scaled by the target's weight; an empty array leaves that attribute alone.
-struct GpuMorphTarget {
-  std::vector<glm::vec3> positionDeltas;
-  std::vector<glm::vec3> normalDeltas;
-  std::vector<glm::vec3> tangentDeltas;  ///< added to the tangent's xyz
-};
-
-/// A skinned mesh as the pass takes it (the same data as physics::SkinnedMeshData).
-struct GpuSkinnedMesh {
-  std::vector<glm::vec3> positions;       ///< bind pose
-  std::vector<glm::vec3> normals;         ///< unit, one per position, or empty
-  std::vector<glm::vec4> tangents;        ///< unit xyz and handedness w = ±1, one per position, or empty
-  std::uint32_t influencesPerVertex = 0;  ///< 1 to 8
-  std::vector<std::uint32_t> joints;      ///< vertex v's i-th influence is [v·influencesPerVertex + i]
-  std::vector<float> weights;             ///< ≥ 0, not all zero per vertex; renormalised by `create`
-  std::uint32_t jointCount = 0;
-  std::vector<GpuMorphTarget> morphTargets;
-  GpuSkinningMethod method = GpuSkinningMethod::LinearBlend;
+/// A vertex buffer of another pass (interleaved, its own layout) that the dispatch also writes the
+/// deformed position and normal of every vertex into, as packed xyz floats: that pass then draws
+/// the deformed mesh with no change to its pipeline. Its other fields (uvs, …) are left alone.
+struct SkinnedVertexTarget {
+  /// STORAGE_BUFFER usage, at least vertexCount·stride floats; must outlive the pass.
+  const Buffer* buffer = nullptr;
+  std::uint32_t stride = 0;          ///< floats from one vertex to the next
+  std::uint32_t positionOffset = 0;  ///< floats from a vertex's start to its position's x
+  std::uint32_t normalOffset = 3;    ///< floats from a vertex's start to its normal's x
 };
 
 struct SkinningSettings {
   /// Keep the outputs host-visible (mapped) and make `record` hand them to host reads too (tests,
   /// CPU consumers). Otherwise they are device-local.
   bool hostReadable = false;
+  /// Up to kMaxVertexTargets buffers written besides the outputs. The pass synchronises them
+  /// itself: after its dispatch they are visible to vertex input, vertex-shader storage reads and
+  /// copies (declare produces them).
+  std::vector<SkinnedVertexTarget> vertexTargets;
 };
 
 class SkinningPass {
@@ -66,11 +60,14 @@ public:
   static constexpr std::uint32_t kVertexStride = 16;
   static constexpr vk::Format kVertexFormat = vk::Format::eR32G32B32A32Sfloat;
   static constexpr std::uint32_t kMaxInfluences = 8;
+  static constexpr std::uint32_t kMaxVertexTargets = 3;
 
   /// Uploads `mesh` and builds the pipeline. Fails, naming the vertex or target, when the mesh is
   /// empty, has 0 or more than 8 influences per vertex, an array of the wrong length, a NaN or
   /// infinity, a joint index ≥ jointCount, a negative weight or a vertex whose weights sum to 0,
-  /// or when it exceeds the device's dispatch or storage buffer limits.
+  /// or when it exceeds the device's dispatch or storage buffer limits; or, for a vertex target,
+  /// when there are more than kMaxVertexTargets, one has no buffer, no STORAGE_BUFFER usage, too
+  /// few bytes, or offsets that do not fit its stride.
   [[nodiscard]] static Result<std::unique_ptr<SkinningPass>> create(const Device& device, const GpuSkinnedMesh& mesh,
                                                                     const SkinningSettings& settings = {});
 
@@ -84,9 +81,10 @@ public:
   /// determinant is ≤ 0), which no rotation expresses.
   [[nodiscard]] Result<void> update(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights);
 
-  /// What the dispatch writes, for a frame graph.
+  /// What the dispatch writes, for a frame graph: the outputs, and the vertex targets as produced.
   void declare(FrameGraph::Builder& pass) const;
-  /// Records the dispatch; its barriers come from a frame graph (declare).
+  /// Records the dispatch; its barriers come from a frame graph (declare), but for the vertex
+  /// targets', which it records itself after the dispatch.
   void execute(const vk::raii::CommandBuffer& commands) const;
   /// Records the dispatch alone (tests), leaving the outputs visible to vertex fetches,
   /// vertex-shader storage reads, copies and, when hostReadable, the host.
@@ -120,6 +118,7 @@ private:
   Buffer positions_;
   Buffer normals_;
   Buffer tangents_;
+  std::vector<SkinnedVertexTarget> vertexTargets_;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   Pipeline pipeline_;
   vk::raii::DescriptorPool pool_{nullptr};

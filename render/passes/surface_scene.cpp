@@ -1,6 +1,7 @@
 #include "render/passes/surface_scene.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 #include "render/descriptors.hpp"
@@ -162,17 +163,30 @@ SurfaceScene::GpuMesh SurfaceScene::uploadMesh(const MeshData& mesh) const {
   GpuMesh gpu{.indices = Buffer::withData(*device_, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer),
               .indexCount = static_cast<std::uint32_t>(mesh.indices.size()),
               .vertexCount = vertices.size(),
-              .dynamic = mesh.dynamic};
+              .dynamic = mesh.dynamic,
+              .skinned = mesh.skinning != nullptr};
   if (mesh.dynamic) {
     // Rewritten by the CPU between frames: host-visible, mapped for its lifetime.
     gpu.vertices = Buffer(*device_, std::max<vk::DeviceSize>(bytes.size(), 4), vk::BufferUsageFlagBits::eVertexBuffer,
                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
     std::memcpy(gpu.vertices.mapped().data(), bytes.data(), bytes.size());
+  } else if (gpu.skinned) {
+    // The bind pose until the first skinning dispatch overwrites positions and normals.
+    gpu.vertices = Buffer::withData(*device_, bytes,
+                                    vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
   } else {
     gpu.vertices = Buffer::withData(*device_, bytes, vk::BufferUsageFlagBits::eVertexBuffer);
     if (auto sphere = boundingSphere(mesh.positions)) gpu.bounds = *sphere;
   }
   return gpu;
+}
+
+SkinnedVertexTarget SurfaceScene::skinnedVertexTarget(std::size_t mesh) const {
+  constexpr auto floats = [](std::size_t bytes) { return static_cast<std::uint32_t>(bytes / sizeof(float)); };
+  return {.buffer = &meshes_.at(mesh).vertices,
+          .stride = floats(sizeof(Vertex)),
+          .positionOffset = floats(offsetof(Vertex, position)),
+          .normalOffset = floats(offsetof(Vertex, normal))};
 }
 
 void SurfaceScene::replaceMesh(std::size_t mesh, const MeshData& data) {

@@ -16,6 +16,7 @@
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_depth_pass.hpp"
 #include "render/passes/skin_shading.hpp"
+#include "render/passes/skinning_pass.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -51,6 +52,14 @@ public:
 
   bool hasMesh(std::size_t mesh) const { return mesh < meshes_.size(); }
   bool isDynamic(std::size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].dynamic; }
+  /// Whether mesh `mesh` is deformed on the GPU (MeshData::skinning): its vertex buffer is then
+  /// also a storage buffer, written by a SkinningPass (skinnedVertexTarget) every frame.
+  bool isSkinned(std::size_t mesh) const { return mesh < meshes_.size() && meshes_[mesh].skinned; }
+  /// Whether the mesh's vertices change from frame to frame (dynamic or skinned): the bounds of
+  /// its bind pose say nothing of where it is.
+  bool isDeforming(std::size_t mesh) const { return isDynamic(mesh) || isSkinned(mesh); }
+  /// Where a SkinningPass writes skinned mesh `mesh`'s deformed positions and normals.
+  SkinnedVertexTarget skinnedVertexTarget(std::size_t mesh) const;
   std::size_t vertexCount(std::size_t mesh) const { return meshes_.at(mesh).vertexCount; }
   /// Of a static mesh: a sphere holding its vertices, mesh units.
   const BoundingSphere& bounds(std::size_t mesh) const { return meshes_.at(mesh).bounds; }
@@ -102,6 +111,7 @@ private:
     std::uint32_t indexCount = 0;
     std::size_t vertexCount = 0;
     bool dynamic = false;
+    bool skinned = false;
     BoundingSphere bounds;  ///< mesh units
   };
   struct GpuMaterial {

@@ -29,7 +29,7 @@ TranslucencyPass::TranslucencyPass(const Device& device)
 
 TranslucencyPass::MeshTables TranslucencyPass::trianglesOf(const MeshData& mesh, bool keep) {
   MeshTables tables;
-  if (keep && !mesh.dynamic) {
+  if (keep && !mesh.dynamic && mesh.skinning == nullptr) {
     tables.positions.assign(mesh.positions.begin(), mesh.positions.end());
     tables.triangles.assign(mesh.indices.begin(), mesh.indices.end());
   }
@@ -69,8 +69,8 @@ Result<void> TranslucencyPass::prepareThickness(const FrameInput& frame, const S
     if (translucency.method != TranslucencyMethod::kVoxelLut || thicknessOf(instance, scene)) continue;
     MeshTables& mesh = meshes_[instance.mesh];
     const std::string name = "mesh " + std::to_string(instance.mesh);
-    if (scene.isDynamic(instance.mesh))
-      return fail(name + ": voxel translucency needs a static mesh, and this one is dynamic");
+    if (scene.isDeforming(instance.mesh))
+      return fail(name + ": voxel translucency needs a static mesh, and this one is dynamic or skinned");
     const int resolution = translucency.voxelResolution;
     // The table is one storage buffer: the device's range caps it (128 MiB on lavapipe: a cube
     // at N = 40, 9,128 surface voxels, needs 167 MB).
@@ -108,7 +108,7 @@ void TranslucencyPass::prepareLightDepth(const FrameInput& frame, const SurfaceS
   glm::vec3 lo(std::numeric_limits<float>::max());
   glm::vec3 hi(std::numeric_limits<float>::lowest());
   for (const MeshInstance& instance : frame.instances) {
-    if (scene.material(instance).translucency.method == TranslucencyMethod::kNone || scene.isDynamic(instance.mesh))
+    if (scene.material(instance).translucency.method == TranslucencyMethod::kNone || scene.isDeforming(instance.mesh))
       continue;
     lightDepthDraws_.push_back({.vertices = scene.vertices(instance.mesh),
                                 .indices = scene.indices(instance.mesh),

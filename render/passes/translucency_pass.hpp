@@ -36,7 +36,7 @@ public:
   void replaceMesh(std::size_t mesh, const MeshData& data);
 
   /// Builds the thickness tables that the frame's voxel-translucent instances need and do not
-  /// have yet. Errors name the mesh: a dynamic mesh, or one VoxelThicknessLut cannot voxelize
+  /// have yet. Errors name the mesh: a dynamic or skinned mesh, or one VoxelThicknessLut cannot voxelize
   /// (not closed, say).
   [[nodiscard]] Result<void> prepareThickness(const FrameInput& frame, const SurfaceScene& scene);
 

@@ -359,10 +359,15 @@ Result<CharacterMesh> readCharacterMesh(const GltfContext& ctx, int nodeIndex,
   data.morphTargets.resize(targetCount);
   for (std::size_t t = 0; t < targetCount; ++t) data.morphTargets[t].name = out.morphTargetNames[t];
 
+  for (const tinygltf::Primitive& primitive : mesh.primitives) {
+    const bool named = primitive.material >= 0 && static_cast<std::size_t>(primitive.material) < model.materials.size();
+    out.primitiveMaterials.push_back(named ? model.materials[static_cast<std::size_t>(primitive.material)].name : "");
+  }
   for (Primitive& p : primitives) {
     const std::size_t before = data.positions.size();
     const std::size_t count = p.positions.size();
     out.primitiveFirstVertex.push_back(before);
+    out.primitiveFirstIndex.push_back(data.indices.size());
     for (std::uint32_t index : p.indices) data.indices.push_back(static_cast<std::uint32_t>(before) + index);
     data.positions.insert(data.positions.end(), p.positions.begin(), p.positions.end());
     const std::vector<glm::vec3> normals = p.normals.empty() ? smoothNormals(p) : std::move(p.normals);

@@ -13,6 +13,8 @@
 namespace mane::scenes::detail {
 
 Transform parseTransform(const nlohmann::json& json, const std::string& path);
+/// A mesh's (or character's) "subdivision" block.
+Subdivision parseSubdivision(const nlohmann::json& json, const std::string& path);
 Groom parseGroom(const nlohmann::json& json, const std::string& path);
 Cloth parseCloth(const nlohmann::json& json, const std::string& path);
 render::HairShadowSettings parseHairShadows(const nlohmann::json& json, const std::string& path);

@@ -81,6 +81,27 @@ case $case in
     [ "$one" = "$four" ] || fail "1 thread: $one, 4 threads: $four"
     "$mane" sim scenes/ponytail.json --steps 1 | grep -q "4933 guide strands, 78928 particles" || fail "not the ponytail"
     ;;
+  sim-robot-independent-of-threads)
+    # A skinned, animated character with hair and a cape that follow it: one hash for 1, 2 and 4
+    # threads and for a second run, over 240 steps (2 s of walking: two loops of the clip).
+    hashes=()
+    for threads in 1 2 4 2; do
+      line=$("$mane" sim scenes/robot.json --steps 240 --threads "$threads" | tail -n 1) || fail "sim failed"
+      [[ $line =~ ^state-hash:\ [0-9a-f]{16}$ ]] || fail "last line is not a state hash: $line"
+      hashes+=("$line")
+    done
+    for h in "${hashes[@]}"; do [ "$h" = "${hashes[0]}" ] || fail "hashes differ: ${hashes[*]}"; done
+    ;;
+  view-character-keys)
+    # C plays the next clip of the character, E blends in its next expression; each is printed.
+    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view scenes/robot.json --frames 6 --press CEEC \
+      --screenshot "$scratch/view.png" >"$scratch/log" 2>&1 || fail "mane view failed: $(cat "$scratch/log")"
+    grep -q "^clips: robot: WalkJump$" "$scratch/log" || fail "C did not go from Walking to WalkJump: $(cat "$scratch/log")"
+    grep -q "^expressions: robot: Angry$" "$scratch/log" || fail "E did not blend in Angry: $(cat "$scratch/log")"
+    grep -q "^expressions: robot: Surprised$" "$scratch/log" || fail "E did not go on to Surprised: $(cat "$scratch/log")"
+    grep -q "^clips: robot: Wave$" "$scratch/log" || fail "C did not go on to Wave: $(cat "$scratch/log")"
+    grep -q "^Keys: .*C a character's next animation clip" "$scratch/log" || fail "C is not in the key list"
+    ;;
   render-writes-png)
     "$mane" render --out "$scratch/out" --size 160x90 --msaa 1 >"$scratch/log" 2>&1 || fail "render failed: $(cat "$scratch/log")"
     png=$(ls "$scratch"/out/*.png) || fail "no PNG written"

@@ -7,6 +7,7 @@
 // R turns everything bound to it about the pivot (1, 0, 0): M1 = T(1,0,0)·R·T(−1,0,0).
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <vector>
 
@@ -271,6 +272,84 @@ TEST(Skinning, BadInputIsRejectedNamingTheVertex) {
   EXPECT_THAT(deformedOk.error().message, HasSubstr("mirrors"));
   mesh->setMethod(SkinningMethod::LinearBlend);
   EXPECT_TRUE(mesh->deform(mirrored, {}, out));
+}
+
+
+/// A few thousand vertices along a bar of five joints, four influences each, with normals,
+/// tangents and one morph target: enough vertices that every thread gets a range of its own.
+SkinnedMeshData manyVertexBar(SkinningMethod method) {
+  SkinnedMeshData data;
+  data.influencesPerVertex = 4;
+  data.jointCount = 5;
+  data.method = method;
+  MorphTarget bulge;
+  for (std::uint32_t v = 0; v < 3001; ++v) {
+    const float t = float(v) / 3000.0f;
+    const float angle = 0.37f * float(v);
+    const glm::vec3 radial(0.0f, std::cos(angle), std::sin(angle));
+    data.positions.push_back(glm::vec3(4.0f * t, 0.0f, 0.0f) + 0.2f * radial);
+    data.normals.push_back(radial);
+    data.tangents.push_back(glm::vec4(1.0f, 0.0f, 0.0f, v % 2 == 0 ? 1.0f : -1.0f));
+    const std::uint32_t first = v < 1500 ? 0 : 1;  // joint 4 only from the middle on
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      data.joints.push_back(first + i);
+      data.weights.push_back(1.0f + std::sin(float(v + 7 * i)));
+    }
+    bulge.positionDeltas.push_back(0.05f * radial * std::sin(9.0f * t));
+    bulge.normalDeltas.push_back(glm::vec3(0.1f * std::cos(9.0f * t), 0.0f, 0.0f));
+  }
+  data.morphTargets.push_back(bulge);
+  return data;
+}
+
+std::vector<glm::mat4> barJoints() {
+  std::vector<glm::mat4> joints;
+  for (int j = 0; j < 5; ++j) {
+    const glm::mat4 pivot = glm::translate(glm::mat4(1.0f), glm::vec3(float(j), 0.0f, 0.0f));
+    joints.push_back(pivot * glm::rotate(glm::mat4(1.0f), 0.3f * float(j), glm::normalize(glm::vec3(0.2f, 0.3f, 1.0f))) *
+                     glm::scale(glm::mat4(1.0f), glm::vec3(1.0f + 0.05f * float(j))) * glm::inverse(pivot));
+  }
+  return joints;
+}
+
+template <class T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+TEST(Skinning, AnyThreadCountGivesTheSameBits) {
+  // Each vertex is computed alone, from the same inputs, whichever worker takes it: memcmp-equal.
+  const std::vector<glm::mat4> joints = barJoints();
+  const std::vector<float> morphWeights = {0.7f};
+  for (const SkinningMethod method : {SkinningMethod::LinearBlend, SkinningMethod::DualQuaternion}) {
+    auto mesh = SkinnedMesh::create(manyVertexBar(method));
+    ASSERT_TRUE(mesh) << mesh.error().message;
+    DeformedSurface one;
+    ASSERT_TRUE(mesh->deform(joints, morphWeights, one, 1));
+    for (const unsigned threads : {2u, 3u}) {
+      DeformedSurface many;
+      ASSERT_TRUE(mesh->deform(joints, morphWeights, many, threads));
+      EXPECT_TRUE(sameBytes(one.positions, many.positions)) << threads << " threads";
+      EXPECT_TRUE(sameBytes(one.normals, many.normals)) << threads << " threads";
+      EXPECT_TRUE(sameBytes(one.tangents, many.tangents)) << threads << " threads";
+    }
+  }
+}
+
+TEST(Skinning, AThreadedDeformNamesTheFirstBadVertexAsOneThreadDoes) {
+  auto mesh = SkinnedMesh::create(manyVertexBar(SkinningMethod::DualQuaternion));
+  ASSERT_TRUE(mesh) << mesh.error().message;
+  std::vector<glm::mat4> joints = barJoints();
+  // A mirror, which no rotation expresses, on the joint of the second half only: with 3 threads
+  // the second and third workers both fail, and the error names vertex 1500 as one thread does.
+  joints[4] = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+  DeformedSurface out;
+  const auto alone = mesh->deform(joints, std::vector<float>{0.0f}, out, 1);
+  const auto threaded = mesh->deform(joints, std::vector<float>{0.0f}, out, 3);
+  ASSERT_FALSE(alone);
+  ASSERT_FALSE(threaded);
+  EXPECT_EQ(alone.error().message, threaded.error().message);
+  EXPECT_THAT(alone.error().message, HasSubstr("vertex 1500 is bound to joint 4"));
 }
 
 }  // namespace

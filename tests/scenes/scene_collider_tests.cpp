@@ -106,9 +106,9 @@ TEST(SceneColliders, NonFiniteNumbersAreRejectedWhereTheyAreWritten) {
 
 TEST(SceneColliders, TheFieldMustNameAMeshAtAUsableResolution) {
   EXPECT_EQ(errorOf(sceneWith(R"({"sdf": {"mesh": "torso"}})")),
-            "dir/bad.json: grooms[0].colliders.sdf.mesh: no mesh named \"torso\" in meshes");
+            "dir/bad.json: grooms[0].colliders.sdf.mesh: no mesh named \"torso\" in meshes, nor a character part \"<character>/<mesh>\" of characters");
   EXPECT_EQ(errorOf(sceneWith("", R"({"sdf": {"mesh": "torso", "resolution": 32}})")),
-            "dir/bad.json: cloths[0].colliders.sdf.mesh: no mesh named \"torso\" in meshes");
+            "dir/bad.json: cloths[0].colliders.sdf.mesh: no mesh named \"torso\" in meshes, nor a character part \"<character>/<mesh>\" of characters");
   EXPECT_EQ(errorOf(sceneWith(R"({"sdf": {"resolution": 32}})")),
             "dir/bad.json: grooms[0].colliders.sdf.mesh: required field is missing");
   EXPECT_EQ(errorOf(sceneWith(R"({"sdf": {"mesh": "head", "resolution": 7}})")),

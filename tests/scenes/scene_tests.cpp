@@ -218,7 +218,7 @@ TEST(Scene, ReferencesMustResolve) {
             "dir/bad.json: meshes[0].material: no material named \"skin\" in materials");
   EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                         "grooms": [{"name": "h", "source": "procedural", "attached_mesh": "head"}]})"),
-            "dir/bad.json: grooms[0].attached_mesh: no mesh named \"head\" in meshes");
+            "dir/bad.json: grooms[0].attached_mesh: no mesh named \"head\" in meshes, nor a character part \"<character>/<mesh>\" of characters");
   EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                         "meshes": [{"name": "m", "source": "procedural:cube"}]})"),
             "dir/bad.json: meshes[0].source: unknown procedural mesh \"procedural:cube\" "
