@@ -237,10 +237,10 @@ std::span<const float> SceneCharacter::morphWeights(std::size_t part) const {
 }
 
 Result<const physics::DeformedSurface*> SceneCharacter::deformed(std::size_t part, unsigned threads) {
-  (void)threads;
   if (!deformedValid_.at(part)) {
     const std::vector<glm::mat4> joints = jointMatrices(part);
-    if (auto done = character_.meshes[part].surface.deform(joints, morphWeights(part), deformed_[part]); !done)
+    if (auto done = character_.meshes[part].surface.deform(joints, morphWeights(part), deformed_[part], threads);
+        !done)
       return fail("character '" + instance_.name + "', mesh '" + character_.meshes[part].name +
                   "': " + done.error().message);
     deformedValid_[part] = true;

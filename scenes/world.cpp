@@ -202,71 +202,75 @@ Result<void> World::loadCharacters(const AssetResolver& resolver) {
     if (!lookup->path) return fail("character '" + instance.name + "': " + lookup->missingReason);
     auto loaded = SceneCharacter::create(instance, *lookup->path);
     if (!loaded) return std::unexpected(loaded.error());
-    characters_.push_back(std::move(*loaded));
-    SceneCharacter& character = characters_.back();
     for (const std::string& name : instance.subdividedMeshes)
-      if (auto found = character.findPart(name); !found)
+      if (auto found = loaded->findPart(name); !found)
         return fail("characters[" + std::to_string(c) + "].subdivision.meshes: " + found.error().message);
-    auto materialOf = [&](const std::string& gltfMaterial) {
-      for (const auto& [from, to] : instance.materials)
-        if (from == gltfMaterial) return to;
-      return instance.material;
-    };
-    for (std::size_t p = 0; p < character.partCount(); ++p) {
-      const CharacterMesh& source = character.character().meshes[p];
-      auto deformed = character.deformed(p);
-      if (!deformed) return std::unexpected(deformed.error());
-      const glm::mat4 frame = character.partFrame(p);
-      const physics::SkinnedMeshData& data = source.surface.data();
-      LoadedMesh whole;
-      whole.mesh.name = instance.name + kCharacterPartSeparator + source.name;
-      whole.mesh.positions.resize(data.positions.size());
-      whole.mesh.normals.resize(data.normals.size());
-      intoFrame(frame, (*deformed)->positions, (*deformed)->normals, whole.mesh.positions, whole.mesh.normals);
-      whole.mesh.indices = data.indices;
-      const bool deforms = source.skin >= 0 || !data.morphTargets.empty();
-      const MeshInstance placed{.name = whole.mesh.name, .source = instance.source, .transform = transformOf(frame)};
-      // Each primitive drawn on its own, with its own material; its vertices are a contiguous run.
-      for (std::size_t primitive = 0; primitive < source.primitiveFirstVertex.size(); ++primitive) {
-        const bool last = primitive + 1 == source.primitiveFirstVertex.size();
-        const std::size_t firstVertex = source.primitiveFirstVertex[primitive];
-        const std::size_t endVertex = last ? data.positions.size() : source.primitiveFirstVertex[primitive + 1];
-        const std::size_t firstIndex = source.primitiveFirstIndex[primitive];
-        const std::size_t endIndex = last ? data.indices.size() : source.primitiveFirstIndex[primitive + 1];
-        std::optional<render::GpuSkinnedMesh> gpuSkin;
-        LoadedMesh piece;
-        piece.mesh.name = whole.mesh.name + "#" + std::to_string(primitive);
-        piece.mesh.positions.assign(whole.mesh.positions.begin() + firstVertex, whole.mesh.positions.begin() + endVertex);
-        piece.mesh.normals.assign(whole.mesh.normals.begin() + firstVertex, whole.mesh.normals.begin() + endVertex);
-        for (std::size_t i = firstIndex; i < endIndex; ++i)
-          piece.mesh.indices.push_back(data.indices[i] - static_cast<std::uint32_t>(firstVertex));
-        const bool subdivided = std::ranges::find(instance.subdividedMeshes, source.name) !=
-                                instance.subdividedMeshes.end();
-        std::unique_ptr<SkinnedCage> cage;
-        if (subdivided) {
-          auto made = skinnedCageOf(data, firstVertex, endVertex, piece.mesh.indices, *instance.subdivision);
-          if (!made) return fail("character '" + instance.name + "', mesh " + piece.mesh.name + ": " + made.error().message);
-          cage = std::move(*made);
-        } else if (deforms) {
-          gpuSkin = gpuSkinOf(data, firstVertex, endVertex);
-        }
-        MeshInstance drawn = placed;
-        drawn.name = piece.mesh.name;
-        drawn.material = materialOf(source.primitiveMaterials[primitive]);
-        scene_.meshes.push_back(std::move(drawn));
-        meshes_.push_back(std::move(piece));
-        characterParts_.push_back(CharacterPart{c, p, static_cast<int>(primitive), deforms});
-        gpuSkins_.push_back(std::move(gpuSkin));
-        skinnedCages_.push_back(std::move(cage));
-      }
-      scene_.meshes.push_back(placed);
-      meshes_.push_back(std::move(whole));
-      characterParts_.push_back(CharacterPart{c, p, -1, deforms});
-      gpuSkins_.emplace_back();
-      skinnedCages_.emplace_back();
-    }
+    characters_.push_back(std::move(*loaded));
+    for (std::size_t p = 0; p < characters_.back().partCount(); ++p)
+      if (auto added = addCharacterPart(c, p); !added) return added;
   }
-  // Grooms, cloths and fields may name parts only now that they exist.
+  return checkPartReferences();
+}
+
+Result<void> World::addCharacterPart(std::size_t c, std::size_t p) {
+  SceneCharacter& character = characters_[c];
+  const CharacterInstance& instance = character.instance();
+  const CharacterMesh& source = character.character().meshes[p];
+  auto deformed = character.deformed(p);
+  if (!deformed) return std::unexpected(deformed.error());
+  const glm::mat4 frame = character.partFrame(p);
+  const physics::SkinnedMeshData& data = source.surface.data();
+  LoadedMesh whole;
+  whole.mesh.name = instance.name + kCharacterPartSeparator + source.name;
+  whole.mesh.positions.resize(data.positions.size());
+  whole.mesh.normals.resize(data.normals.size());
+  intoFrame(frame, (*deformed)->positions, (*deformed)->normals, whole.mesh.positions, whole.mesh.normals);
+  whole.mesh.indices = data.indices;
+  const bool deforms = source.skin >= 0 || !data.morphTargets.empty();
+  const bool subdivided = std::ranges::find(instance.subdividedMeshes, source.name) != instance.subdividedMeshes.end();
+  const MeshInstance placed{.name = whole.mesh.name, .source = instance.source, .transform = transformOf(frame)};
+  // Each primitive drawn on its own, with its own material; its vertices are a contiguous run.
+  for (std::size_t primitive = 0; primitive < source.primitiveFirstVertex.size(); ++primitive) {
+    const bool last = primitive + 1 == source.primitiveFirstVertex.size();
+    const std::size_t firstVertex = source.primitiveFirstVertex[primitive];
+    const std::size_t endVertex = last ? data.positions.size() : source.primitiveFirstVertex[primitive + 1];
+    const std::size_t firstIndex = source.primitiveFirstIndex[primitive];
+    const std::size_t endIndex = last ? data.indices.size() : source.primitiveFirstIndex[primitive + 1];
+    LoadedMesh piece;
+    piece.mesh.name = whole.mesh.name + "#" + std::to_string(primitive);
+    piece.mesh.positions.assign(whole.mesh.positions.begin() + firstVertex, whole.mesh.positions.begin() + endVertex);
+    piece.mesh.normals.assign(whole.mesh.normals.begin() + firstVertex, whole.mesh.normals.begin() + endVertex);
+    for (std::size_t i = firstIndex; i < endIndex; ++i)
+      piece.mesh.indices.push_back(data.indices[i] - static_cast<std::uint32_t>(firstVertex));
+    std::optional<render::GpuSkinnedMesh> gpuSkin;
+    std::unique_ptr<SkinnedCage> cage;
+    if (subdivided) {
+      auto made = skinnedCageOf(data, firstVertex, endVertex, piece.mesh.indices, *instance.subdivision);
+      if (!made) return fail("character '" + instance.name + "', mesh " + piece.mesh.name + ": " + made.error().message);
+      cage = std::move(*made);
+    } else if (deforms) {
+      gpuSkin = gpuSkinOf(data, firstVertex, endVertex);
+    }
+    MeshInstance drawn = placed;
+    drawn.name = piece.mesh.name;
+    for (const auto& [gltfMaterial, material] : instance.materials)
+      if (gltfMaterial == source.primitiveMaterials[primitive]) drawn.material = material;
+    if (drawn.material.empty()) drawn.material = instance.material;
+    scene_.meshes.push_back(std::move(drawn));
+    meshes_.push_back(std::move(piece));
+    characterParts_.push_back(CharacterPart{c, p, static_cast<int>(primitive)});
+    gpuSkins_.push_back(std::move(gpuSkin));
+    skinnedCages_.push_back(std::move(cage));
+  }
+  scene_.meshes.push_back(placed);
+  meshes_.push_back(std::move(whole));
+  characterParts_.push_back(CharacterPart{c, p, -1});
+  gpuSkins_.emplace_back();
+  skinnedCages_.emplace_back();
+  return {};
+}
+
+Result<void> World::checkPartReferences() const {
   auto check = [&](const std::string& name, const std::string& where) -> Result<void> {
     if (scene_.findMesh(name) != nullptr) return {};
     const std::string character = name.substr(0, name.find(kCharacterPartSeparator));
@@ -338,9 +342,9 @@ Result<physics::SurfaceBinding> World::bindToPart(std::size_t mesh, std::span<co
 }
 
 Result<void> World::followPart(std::size_t mesh, const physics::SurfaceBinding& binding,
-                               std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
+                               std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals, unsigned threads) {
   const CharacterPart& part = *characterParts_[mesh];
-  auto deformed = characters_[part.character].deformed(part.part);
+  auto deformed = characters_[part.character].deformed(part.part, threads);
   if (!deformed) return std::unexpected(deformed.error());
   positions.resize(binding.points().size());
   normals.resize(binding.points().size());
@@ -730,7 +734,7 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
     const glm::mat4 head = bodyPlacement(groom.mesh, time_);
     if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
     if (groom.roots) {
-      if (auto followed = followPart(groom.mesh, *groom.roots, targets, normals); !followed) return followed;
+      if (auto followed = followPart(groom.mesh, *groom.roots, targets, normals, threads); !followed) return followed;
       if (auto set = groom.hair.setRootTargets(targets, normals); !set)
         return fail("groom " + name + ": " + set.error().message);
     }
@@ -746,7 +750,8 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
     const glm::mat4 body = bodyPlacement(clothBodies_[i], time_);
     const ClothOnCharacter& follower = clothFollowers_[i];
     if (follower.pins) {
-      if (auto followed = followPart(clothBodies_[i], *follower.pins, targets, normals); !followed) return followed;
+      if (auto followed = followPart(clothBodies_[i], *follower.pins, targets, normals, threads); !followed)
+        return followed;
       if (auto set = cloths_[i].setPinTargets(targets); !set) return set;
     }
     if (follower.jointColliders) {

@@ -167,8 +167,6 @@ private:
     std::size_t part = 0;       ///< index into its meshes
     /// -1: the whole part, followed by the physics and not drawn; else the primitive it draws.
     int primitive = -1;
-    /// Skinned over several joints or morphing: its vertices move in the part frame.
-    bool deforms = false;
   };
   /// What follows a character part in a cloth: its pins on the surface, its joint-borne colliders.
   struct ClothOnCharacter {
@@ -194,6 +192,10 @@ private:
   Result<void> computeSkinCurvatures();
   /// Loads every character and appends its parts to scene_.meshes and meshes_.
   Result<void> loadCharacters(const AssetResolver& resolver);
+  /// Appends part `p` of character `c`: its drawn primitives, then the whole part.
+  Result<void> addCharacterPart(std::size_t c, std::size_t p);
+  /// Checks that the grooms, cloths and fields that name character parts name existing ones.
+  Result<void> checkPartReferences() const;
   /// Poses the characters at time().
   void poseCharacters();
   /// Binds `points` (world space, at the current pose) to the deformed surface of mesh `mesh`,
@@ -202,7 +204,7 @@ private:
                                              const std::string& owner);
   /// The points bound to mesh `mesh` (a character part) at the current pose: positions, normals.
   Result<void> followPart(std::size_t mesh, const physics::SurfaceBinding& binding, std::vector<glm::vec3>& positions,
-                          std::vector<glm::vec3>& normals);
+                          std::vector<glm::vec3>& normals, unsigned threads = 1);
   Result<void> loadGrooms(const AssetResolver& resolver, SceneColliders& colliders);
   Result<void> loadCloths(const AssetResolver& resolver, SceneColliders& colliders);
   /// The rigid part of mesh `mesh`'s placement at `time` (its scale divided out, `bodyMatrix`):
