@@ -15,6 +15,38 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+bool finite(const mane::scenes::Transform& t) {
+  return finite(t.translation) && finite(t.rotationDegrees) && std::isfinite(t.scale);
+}
+
+// Shapes carried by joints are placed from these numbers every frame.
+bool finite(const mane::scenes::Colliders& colliders) {
+  for (const auto& sphere : colliders.jointSpheres)
+    if (sphere.joint.empty() || !finite(sphere.sphere.centre) || !std::isfinite(sphere.sphere.radius)) return false;
+  for (const auto& capsule : colliders.jointCapsules)
+    if (capsule.joint.empty() || !finite(capsule.capsule.a) || !finite(capsule.capsule.b) ||
+        !std::isfinite(capsule.capsule.radius))
+      return false;
+  return true;
+}
+
+// A character's clip timeline and morph tracks, and the weights the tracks give between keys.
+bool finite(const mane::scenes::CharacterInstance& character) {
+  if (!finite(character.transform)) return false;
+  for (const auto& clip : character.clips)
+    if (!std::isfinite(clip.startSeconds) || !(clip.speed > 0.0f) || !std::isfinite(clip.crossFadeSeconds)) return false;
+  for (const auto& track : character.morphs) {
+    if (track.keys.empty()) return false;
+    for (std::size_t k = 0; k < track.keys.size(); ++k) {
+      const float t = track.keys[k].timeSeconds;
+      const float between = k + 1 < track.keys.size() ? t + 0.5f * (track.keys[k + 1].timeSeconds - t) : t + 1.0f;
+      if (!std::isfinite(track.weightAt(t)) || !std::isfinite(track.weightAt(between))) return false;
+    }
+    if (!std::isfinite(track.weightAt(0.5f))) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -37,6 +69,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort();
     }
     (void)mane::scenes::animatedMatrix(*scene, mesh, 0.5f);
+  }
+  for (const auto& character : scene->characters)
+    if (!finite(character)) std::abort();
+  for (const auto& groom : scene->grooms)
+    if (!finite(groom.colliders)) std::abort();
+  for (const auto& cloth : scene->cloths) {
+    if (!finite(cloth.colliders)) std::abort();
+    for (const auto& [lower, upper] : cloth.pinRegions)
+      if (!finite(lower) || !finite(upper)) std::abort();
   }
   return 0;
 }
