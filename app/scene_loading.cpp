@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <iostream>
+#include <unistd.h>
 
 namespace mane::app {
 
@@ -9,15 +10,21 @@ std::filesystem::path defaultScenePath() {
   return std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json";
 }
 
-Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings) {
+Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings,
+                                bool printNotes) {
   auto scene = scenes::loadScene(scenePath);
   if (!scene) return std::unexpected(scene.error());
   auto resolver = scenes::AssetResolver::createDefault();
   if (!resolver) return std::unexpected(resolver.error());
   auto world = scenes::World::create(std::move(*scene), *resolver, settings);
   if (!world) return std::unexpected(world.error());
-  for (const std::string& note : world->notes()) std::cout << "note: " << note << '\n';
+  if (printNotes)
+    for (const std::string& note : world->notes()) std::cout << "note: " << note << '\n';
   return world;
+}
+
+bool stdoutIsTerminal() {
+  return isatty(STDOUT_FILENO) != 0;
 }
 
 Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text) {

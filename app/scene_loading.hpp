@@ -14,8 +14,13 @@ namespace mane::app {
 /// scenes/nalu.json of the source tree this program was built from.
 std::filesystem::path defaultScenePath();
 
-/// Loads `scenePath` into a World, printing each fallback note as "note: ..." on stdout.
-Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings);
+/// Loads `scenePath` into a World, printing each fallback note as "note: ..." on stdout unless
+/// `printNotes` is false (machine-readable output carries them itself: World::notes).
+Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings,
+                                bool printNotes = true);
+
+/// Whether stdout is a terminal (a person watching, rather than a file or a pipe).
+bool stdoutIsTerminal();
 
 /// Parses "WIDTHxHEIGHT" (e.g. 1280x720).
 Result<std::pair<std::uint32_t, std::uint32_t>> parseSize(const std::string& text);

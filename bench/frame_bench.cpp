@@ -20,6 +20,16 @@
 //   BM_NaluFrame/variant:8  the same, every hair segment drawn and shaded, hidden or not
 //                           (RendererSettings::hideOccludedHair off)
 //
+// The same frame of scenes/robot.json: a glTF character skinned on the GPU (walking), its crest
+// of hair and its cape simulated against it. The frozen rows empty the character's clips and
+// morph tracks, so the body stands in its rest pose while the hair and the cloth are still
+// simulated: the animated row over the frozen one is what the moving body costs.
+//
+//   BM_RobotFrame/variant:0  animated, 1× MSAA
+//   BM_RobotFrame/variant:1  the body frozen, 1× MSAA
+//   BM_RobotFrame/variant:2  animated, 4× MSAA (`mane render`'s default)
+//   BM_RobotFrame/variant:3  the body frozen, 4× MSAA
+//
 //   build/release/bench/mane_frame_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -28,6 +38,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -70,31 +81,33 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-void BM_NaluFrame(benchmark::State& state) {
-  const auto variant = static_cast<Variant>(state.range(0));
-  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
-  if (!scene) return state.SkipWithError(scene.error().message.c_str());
-  if (variant == kDemoContent || variant == kDemoContentEveryStrand)
-    std::erase_if(scene->meshes, [](const scenes::MeshInstance& mesh) { return mesh.name == "bunny"; });
-  for (scenes::Groom& groom : scene->grooms) {
-    if (variant == kStrands50k) groom.rendering.denseStrands = 50'000;
-    if (variant == kStrands100k) groom.rendering.denseStrands = 100'000;
-  }
+/// What a row changes in how the frame is rendered, the scene itself aside.
+struct FrameOptions {
+  unsigned msaaSamples = 1;
+  bool hideOccludedHair = true;
+  bool furShells = true;
+  /// Untimed frames before the timed ones: first-use work (pipeline compiles, the diffusion's
+  /// first irradiance), and for a moving body, the hair and cloth catching up with its motion.
+  int untimedFrames = 1;
+  /// Techniques other than the scene's own (none: as the scene says).
+  std::function<void(render::StaticScene&)> editStatics;
+};
+
+/// Each iteration: one frame of 1/30 s of `scene` through scenes::FrameLoop at 1280×720, timed by
+/// the wall clock; the counters are the medians described at the top of this file.
+void measureFrames(benchmark::State& state, scenes::Scene scene, const FrameOptions& options) {
   auto resolver = scenes::AssetResolver::createDefault();
   if (!resolver) return state.SkipWithError(resolver.error().message.c_str());
-  auto world = scenes::World::create(std::move(*scene), *resolver);
+  auto world = scenes::World::create(std::move(scene), *resolver);
   if (!world) return state.SkipWithError(world.error().message.c_str());
   // Fallbacks (a missing asset) change what is measured: say so beside the figures.
   for (const std::string& note : world->notes()) std::fprintf(stderr, "note: %s\n", note.c_str());
 
   render::StaticScene statics = world->staticScene();
-  for (render::MaterialData& material : statics.materials)
-    if (variant == kTextureSpace && material.shading == render::SurfaceShading::kSkin)
-      material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
-  if (variant == kDeepOpacity) statics.hairShadows.mode = render::HairShadowMode::kDeepOpacityMap;
+  if (options.editStatics) options.editStatics(statics);
   auto renderer = render::Renderer::create(device(), {.extent = {1280, 720},
-                                                      .msaaSamples = variant == kMsaa4 ? 4u : 1u,
-                                                      .hideOccludedHair = variant != kDemoContentEveryStrand});
+                                                      .msaaSamples = options.msaaSamples,
+                                                      .hideOccludedHair = options.hideOccludedHair});
   if (!renderer) return state.SkipWithError(renderer.error().message.c_str());
   auto loop = scenes::FrameLoop::create(*world, **renderer, {.imageSize = {1280, 720}, .threads = 2});
   if (!loop) return state.SkipWithError(loop.error().message.c_str());
@@ -109,7 +122,7 @@ void BM_NaluFrame(benchmark::State& state) {
     if (auto advanced = loop->advance(kFrameSeconds); !advanced) return std::unexpected(advanced.error());
     render::FrameInput input = world->frameInput();
     input.post.frameSeconds = float(kFrameSeconds);
-    if (variant == kNoFurShells) input.furShells = false;
+    if (!options.furShells) input.furShells = false;
     auto timings = loop->renderFrame(input);
     if (timed) {
       const scenes::FrameStageTimes& stages = loop->lastStageTimes();
@@ -119,8 +132,8 @@ void BM_NaluFrame(benchmark::State& state) {
     }
     return timings;
   };
-  // Untimed: first-use work (pipeline compiles, the diffusion's first irradiance).
-  if (auto first = frame(false); !first) return state.SkipWithError(first.error().message.c_str());
+  for (int untimed = 0; untimed < options.untimedFrames; ++untimed)
+    if (auto done = frame(false); !done) return state.SkipWithError(done.error().message.c_str());
 
   std::vector<double> frameMs, gpuMs, hiddenShare;
   using render::PassName;
@@ -173,9 +186,56 @@ void BM_NaluFrame(benchmark::State& state) {
   state.SetLabel(device().info().name);
 }
 
+void BM_NaluFrame(benchmark::State& state) {
+  const auto variant = static_cast<Variant>(state.range(0));
+  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
+  if (!scene) return state.SkipWithError(scene.error().message.c_str());
+  if (variant == kDemoContent || variant == kDemoContentEveryStrand)
+    std::erase_if(scene->meshes, [](const scenes::MeshInstance& mesh) { return mesh.name == "bunny"; });
+  for (scenes::Groom& groom : scene->grooms) {
+    if (variant == kStrands50k) groom.rendering.denseStrands = 50'000;
+    if (variant == kStrands100k) groom.rendering.denseStrands = 100'000;
+  }
+  measureFrames(state, std::move(*scene),
+                {.msaaSamples = variant == kMsaa4 ? 4u : 1u,
+                 .hideOccludedHair = variant != kDemoContentEveryStrand,
+                 .furShells = variant != kNoFurShells,
+                 .editStatics = [variant](render::StaticScene& statics) {
+                   for (render::MaterialData& material : statics.materials)
+                     if (variant == kTextureSpace && material.shading == render::SurfaceShading::kSkin)
+                       material.skin.diffusion = render::SkinDiffusion::kTextureSpace;
+                   if (variant == kDeepOpacity) statics.hairShadows.mode = render::HairShadowMode::kDeepOpacityMap;
+                 }});
+}
+
 BENCHMARK(BM_NaluFrame)
     ->ArgName("variant")
     ->DenseRange(kShipped, kDemoContentEveryStrand)
+    ->Iterations(9)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+enum RobotVariant : int { kRobotAnimated, kRobotFrozen, kRobotAnimatedMsaa4, kRobotFrozenMsaa4 };
+
+void BM_RobotFrame(benchmark::State& state) {
+  const auto variant = static_cast<RobotVariant>(state.range(0));
+  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "robot.json");
+  if (!scene) return state.SkipWithError(scene.error().message.c_str());
+  if (variant == kRobotFrozen || variant == kRobotFrozenMsaa4)
+    for (scenes::CharacterInstance& character : scene->characters) {
+      character.clips.clear();
+      character.morphs.clear();
+    }
+  // Half a second untimed: past the first-use work, with the crest and the cape already swinging
+  // with the walk rather than starting from the settled rest.
+  measureFrames(state, std::move(*scene),
+                {.msaaSamples = variant == kRobotAnimatedMsaa4 || variant == kRobotFrozenMsaa4 ? 4u : 1u,
+                 .untimedFrames = 15});
+}
+
+BENCHMARK(BM_RobotFrame)
+    ->ArgName("variant")
+    ->DenseRange(kRobotAnimated, kRobotFrozenMsaa4)
     ->Iterations(9)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

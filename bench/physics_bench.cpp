@@ -10,11 +10,16 @@
 //     sways, with the scalar (0) or the AVX2 (1) strand kernel (HairSystem::setVectorised), in
 //     <steps> fixed steps (1: one 1/60 s step, 4 iterations per frame, the headline case; 2: two
 //     1/120 s steps, 8); items/s = particle updates (particles × fixed steps) per second.
+//   BM_HairFrameTasks/<workers>/<host>: the same frame (AVX2, one step) through the task
+//     interface: the built-in pool (host = 0) against a host job system written here (1), each
+//     with <workers> threads.
 //   BM_HairFrameCollisions/<threads>/<vectorised>/<steps>: the same frame with a neck capsule
 //     and the SDF (64³ class) of a 20,480-triangle ellipsoidal head mesh as colliders,
 //     friction 0.3.
 //   BM_NaluFrame/<collisions>: the Nalu case, 762 guides × 16 particles, one 1/60 s frame on one
 //     thread, without (0) or with (1) the capsule + SDF head colliders.
+//   BM_NaluFrameThreads/<threads>: the same frame without colliders on <threads> workers (wall
+//     time): what dispatching the parallel loop costs at this size.
 //   BM_SdfBuild: building that SDF (20,480 triangles, about LeePerrySmith's 17,684) at 64³.
 //   BM_StateHash: FNV-1a over the same groom's state; bytes/s.
 //   BM_CharacterBind: binding 10,000 groom roots to a 50,000-triangle skinned head
@@ -28,10 +33,15 @@
 //     the update's parts evaluate_us, colliders_us, targets_us.
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -45,6 +55,7 @@
 #include "physics/sdf.hpp"
 #include "physics/skinning.hpp"
 #include "physics/surface_binding.hpp"
+#include "physics/thread_pool.hpp"
 
 namespace {
 
@@ -175,6 +186,119 @@ void BM_HairFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_HairFrame)->Apply(hairFrameArgs)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// A host engine's job system as a game might have one: persistent threads that pop single jobs
+// from one locked queue; the thread that waits pops jobs too. Nothing of the built-in pool.
+class HostJobSystem {
+public:
+  explicit HostJobSystem(unsigned threads) {
+    for (unsigned t = 1; t < threads; ++t) threads_.emplace_back([this] { workLoop(); });
+  }
+  ~HostJobSystem() {
+    {
+      const std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+  }
+  mane::physics::TaskRunner runner() {
+    mane::physics::TaskRunner runner;
+    runner.concurrency = static_cast<std::uint32_t>(threads_.size() + 1);
+    runner.enqueue = [this](std::uint32_t count,
+                            const mane::physics::TaskFunction& task) -> mane::Result<mane::physics::TaskGroup> {
+      auto* left = new std::atomic<std::uint32_t>(count);
+      {
+        const std::lock_guard lock(mutex_);
+        for (std::uint32_t i = 0; i < count; ++i) jobs_.push_back({&task, i, left});
+      }
+      wake_.notify_all();
+      return left;
+    };
+    runner.wait = [this](mane::physics::TaskGroup group) -> mane::Result<void> {
+      const std::unique_ptr<std::atomic<std::uint32_t>> left(static_cast<std::atomic<std::uint32_t>*>(group));
+      while (left->load() != 0)
+        if (!runOne()) std::this_thread::yield();
+      return {};
+    };
+    return runner;
+  }
+
+private:
+  struct Job {
+    const mane::physics::TaskFunction* task;
+    std::uint32_t index;
+    std::atomic<std::uint32_t>* left;
+  };
+  bool runOne() {
+    Job job;
+    {
+      const std::lock_guard lock(mutex_);
+      if (jobs_.empty()) return false;
+      job = jobs_.front();
+      jobs_.pop_front();
+    }
+    (*job.task)(job.index);
+    job.left->fetch_sub(1);
+    return true;
+  }
+  void workLoop() {
+    for (;;) {
+      {
+        std::unique_lock lock(mutex_);
+        wake_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
+        if (stop_) return;
+      }
+      while (runOne()) {
+      }
+    }
+  }
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Job> jobs_;
+  bool stop_ = false;
+  std::vector<std::jthread> threads_;
+};
+
+// BM_HairFrameTasks/<workers>/<host>: the 10k × 32 groom's 1/60 s frame in one fixed step (AVX2
+// kernel) through HairSettings::tasks: the built-in pool (host = 0) or the host job system above
+// (1), both with <workers> threads.
+void BM_HairFrameTasks(benchmark::State& state) {
+  const auto workers = static_cast<unsigned>(state.range(0));
+  static const std::vector<std::vector<glm::vec3>> strands = benchGroom();
+  HostJobSystem host(workers);
+  ThreadPool pool(workers);
+  HairSettings settings;
+  settings.strands = strands;
+  settings.solver = benchFrameSettings(1);
+  settings.tasks = state.range(1) != 0 ? host.runner() : pool.runner();
+  auto hair = HairSystem::create(settings);
+  if (!hair) {
+    state.SkipWithError(hair.error().message.c_str());
+    return;
+  }
+  int frame = 0;
+  std::uint64_t particleSteps = 0;
+  for (auto _ : state) {
+    ++frame;
+    const float sway = 0.002f * static_cast<float>(frame % 100 < 50 ? frame % 100 : 100 - frame % 100);
+    (void)hair->setHeadTransform(glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.0f)));
+    const auto before = hair->stepCount();
+    if (!hair->advance(1.0 / 60.0)) {
+      state.SkipWithError("advance failed");
+      return;
+    }
+    particleSteps += (hair->stepCount() - before) * hair->particles().size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(particleSteps));
+}
+BENCHMARK(BM_HairFrameTasks)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Args({4, 0})
+    ->Args({4, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 // A head-sized closed mesh: an icosphere (5 subdivisions, 20,480 triangles) scaled into an
 // ellipsoid inside the groom's r = 0.1 m scalp.
 TriangleMesh benchHeadMesh() {
@@ -240,6 +364,29 @@ void BM_NaluFrame(benchmark::State& state) {
   state.counters["particles"] = static_cast<double>(hair->particles().size());
 }
 BENCHMARK(BM_NaluFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The Nalu groom's frame (no colliders) on <threads> workers: at 762 guides the frame is short
+// enough that starting threads for each parallel loop, rather than waking persistent ones, shows.
+void BM_NaluFrameThreads(benchmark::State& state) {
+  static const std::vector<std::vector<glm::vec3>> strands = [] {
+    GroomSettings groom;
+    groom.seed = 762;
+    groom.strandCount = 762;
+    groom.particlesPerStrand = 16;
+    groom.strandLength = 0.3f;
+    return *generateGroom(groom);
+  }();
+  SolverSettings settings;
+  settings.fixedStep = 1.0 / 120.0;
+  settings.constraintIterations = 4;
+  auto hair = HairSystem::create(strands, settings);
+  if (!hair) {
+    state.SkipWithError(hair.error().message.c_str());
+    return;
+  }
+  runSwayingFrames(state, *hair, static_cast<unsigned>(state.range(0)));
+}
+BENCHMARK(BM_NaluFrameThreads)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 void BM_StateHash(benchmark::State& state) {
   static const std::vector<std::vector<glm::vec3>> strands = benchGroom();

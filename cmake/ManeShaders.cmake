@@ -56,5 +56,5 @@ std::vector<std::string_view> embeddedShaderNames() {
 }  // namespace mane::shaders
 ]==] @ONLY)
   add_library(${target} STATIC "${registry}" ${headers})
-  target_include_directories(${target} PRIVATE "${gen_dir}" PUBLIC "${PROJECT_SOURCE_DIR}")
+  target_include_directories(${target} PRIVATE "${gen_dir}" PUBLIC "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>")
 endfunction()

@@ -1,18 +1,17 @@
 #include "physics/cloth.hpp"
 
 #include <algorithm>
-#include <barrier>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <queue>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "physics/detail/parallel_tasks.hpp"
 #include "physics/hash.hpp"
 
 namespace mane::physics {
@@ -90,25 +89,46 @@ std::vector<Tether> Cloth::attachToPins(const Cloth& cloth) {
 }
 
 Cloth::Cloth(const ClothSettings& settings)
-    : settings_(settings), accumulator_(settings.solver.fixedStep, settings.solver.maxSubstepsPerFrame) {}
+    : settings_{.solver = settings.solver, .bendingStiffness = settings.bendingStiffness, .tasks = settings.tasks},
+      accumulator_(settings.solver.fixedStep, settings.solver.maxSubstepsPerFrame) {}
 
 Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<const std::uint32_t> triangles,
                             std::span<const std::uint32_t> pinnedVertices, const ClothSettings& settings,
                             const glm::mat4& bodyTransform) {
-  if (auto valid = validateSettings(settings.solver); !valid) return std::unexpected(valid.error());
+  ClothSettings cloth = settings;
+  cloth.positions.assign(positions.begin(), positions.end());
+  cloth.triangles.assign(triangles.begin(), triangles.end());
+  cloth.pinnedVertices.assign(pinnedVertices.begin(), pinnedVertices.end());
+  cloth.bodyTransform = bodyTransform;
+  return create(cloth);
+}
+
+Result<Cloth> Cloth::create(const ClothSettings& settings) {
+  const std::span<const glm::vec3> positions = settings.positions;
+  const std::span<const std::uint32_t> triangles = settings.triangles;
+  const std::span<const std::uint32_t> pinnedVertices = settings.pinnedVertices;
+  const glm::mat4& bodyTransform = settings.bodyTransform;
+  if (auto valid = validateSettings(settings.solver); !valid)
+    return fail("ClothSettings.solver: " + valid.error().message);
   if (!(settings.bendingStiffness >= 0.0f && settings.bendingStiffness <= 1.0f))
-    return fail("cloth bendingStiffness must be in [0, 1]");
-  if (!finite(bodyTransform)) return fail("cloth body transform has a NaN or infinite entry");
-  if (positions.empty() || triangles.empty()) return fail("cloth mesh is empty");
-  if (triangles.size() % 3 != 0) return fail("cloth triangle index count is not a multiple of 3");
+    return fail("ClothSettings.bendingStiffness must be in [0, 1], got " + std::to_string(settings.bendingStiffness));
+  if (!finite(bodyTransform)) return fail("ClothSettings.bodyTransform: cloth body transform has a NaN or infinite entry");
+  if (auto valid = validateTaskRunner(settings.tasks, "ClothSettings.tasks"); !valid)
+    return std::unexpected(valid.error());
+  if (positions.empty()) return fail("ClothSettings.positions: the cloth mesh is empty (no vertices)");
+  if (triangles.empty()) return fail("ClothSettings.triangles: the cloth mesh is empty (no triangles)");
+  if (triangles.size() % 3 != 0)
+    return fail("ClothSettings.triangles: cloth triangle index count " + std::to_string(triangles.size()) +
+                " is not a multiple of 3");
   for (std::size_t v = 0; v < positions.size(); ++v)
-    if (!finite(positions[v])) return fail("cloth vertex " + std::to_string(v) + " is NaN or infinite");
+    if (!finite(positions[v]))
+      return fail("ClothSettings.positions: cloth vertex " + std::to_string(v) + " is NaN or infinite");
 
   // Edge (low, high) → the vertices opposite it in the triangles that share it.
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edges;
   for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
     const std::uint32_t* corner = &triangles[3 * t];
-    const std::string name = "cloth triangle " + std::to_string(t);
+    const std::string name = "ClothSettings.triangles: cloth triangle " + std::to_string(t);
     for (int i = 0; i < 3; ++i)
       if (corner[i] >= positions.size())
         return fail(name + " uses vertex " + std::to_string(corner[i]) + " but the mesh has " +
@@ -129,7 +149,7 @@ Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<cons
   std::vector<bool> isPinned(positions.size(), false);
   for (std::uint32_t v : pinnedVertices) {
     if (v >= positions.size())
-      return fail("pinned cloth vertex " + std::to_string(v) + " is out of range (the mesh has " +
+      return fail("ClothSettings.pinnedVertices: pinned cloth vertex " + std::to_string(v) + " is out of range (the mesh has " +
                   std::to_string(positions.size()) + ")");
     if (!isPinned[v]) {
       isPinned[v] = true;
@@ -169,7 +189,16 @@ Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<cons
   cloth.colourStarts_.assign(colourCount + 1, 0);
   for (std::uint32_t c : colours) ++cloth.colourStarts_[c + 1];
   for (std::uint32_t c = 0; c < colourCount; ++c) cloth.colourStarts_[c + 1] += cloth.colourStarts_[c];
+  if (!settings.colliders.empty())
+    if (auto set = cloth.setColliders(settings.colliders); !set)
+      return fail("ClothSettings.colliders: " + set.error().message);
   return cloth;
+}
+
+Result<void> Cloth::setTaskRunner(TaskRunner tasks) {
+  if (auto valid = validateTaskRunner(tasks, "cloth: the task runner"); !valid) return valid;
+  settings_.tasks = std::move(tasks);
+  return {};
 }
 
 Result<void> Cloth::setColliders(ColliderSet colliders) {
@@ -214,21 +243,34 @@ void Cloth::relaxColour(std::size_t colour, std::size_t first, std::size_t end) 
   }
 }
 
+Result<void> Cloth::advance(double frameDt) {
+  return advanceWith(frameDt, settings_.tasks);
+}
+
 Result<void> Cloth::advance(double frameDt, unsigned threads) {
+  return advanceWith(frameDt, builtInTaskRunner(threads));
+}
+
+Result<void> Cloth::advanceWith(double frameDt, const TaskRunner& tasks) {
   if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("cloth frame time must be finite and ≥ 0");
   const StepPlan plan = accumulator_.plan(frameDt);
-  // A worker joins only with enough particles to pay for its barrier waits (one per colour and
-  // iteration); a small cape runs far slower on two threads than on one.
+  // A task is split off only with enough particles to pay for its share of the batches (one
+  // per colour and iteration); a small cape runs far slower on two threads than on one.
   constexpr std::size_t kParticlesPerWorker = 4096;
-  const auto workers =
-      static_cast<unsigned>(std::clamp<std::size_t>(particles_.size() / kParticlesPerWorker, 1, std::max(1u, threads)));
+  const std::uint32_t workers = detail::taskCountFor(tasks, particles_.size(), kParticlesPerWorker);
   const auto step = static_cast<float>(settings_.solver.fixedStep);
   const std::size_t colourCount = colourStarts_.empty() ? 0 : colourStarts_.size() - 1;
 
-  // Each worker owns a fixed slice of the particles (integration) and of every colour
-  // (relaxation); the barrier separates phases, so nothing is read while another writes it.
-  std::barrier sync(static_cast<std::ptrdiff_t>(workers));
-  auto slice = [&](std::size_t count, unsigned w) { return std::pair{count * w / workers, count * (w + 1) / workers}; };
+  // Task w owns a fixed slice of the particles (integration) and of every colour (relaxation);
+  // each phase is one batch and the next starts when it has finished, so nothing is read while
+  // another task writes it.
+  auto slice = [&](std::size_t count, std::uint32_t w) {
+    return std::pair{detail::taskRangeBegin(count, workers, w), detail::taskRangeBegin(count, workers, w + 1)};
+  };
+  Result<void> ran;  // the first failure of the task runner, if any
+  const auto runPhase = [&](auto&& phase) {
+    if (auto done = detail::runTasks(tasks, workers, phase); !done && ran) ran = std::move(done);
+  };
   // Colliders live in body space: particles are taken there with the step's body placement
   // (the two frame-end placements blended; exact at the frame's end), collided, and brought back.
   std::vector<glm::mat4> bodyAt, worldToBody;
@@ -258,52 +300,44 @@ Result<void> Cloth::advance(double frameDt, unsigned threads) {
         pinTargets_.empty() ? transformPoint(previousBody_, pinnedLocal_[p]) : particles_.positions[pinned_[p]];
     pinTo_[p] = pinTargets_.empty() ? transformPoint(body_, pinnedLocal_[p]) : pinTargets_[p];
   }
-  auto work = [&](unsigned w) {
-    for (int k = 1; k <= plan.substeps; ++k) {
-      if (w == 0) {
-        const float t = plan.fractionAt(k);
-        for (std::size_t p = 0; p < pinned_.size(); ++p) {
-          // At the frame's end exactly on the placement (from + (to − from)·1 may round off it),
-          // so a pin that follows targets starts the next frame where a body-carried one would.
-          const glm::vec3 from = pinFrom_[p], to = pinTo_[p];
-          particles_.positions[pinned_[p]] = t >= 1.0f ? to : from + (to - from) * t;
-          particles_.previousPositions[pinned_[p]] = particles_.positions[pinned_[p]];
-        }
-      }
+  for (int k = 1; k <= plan.substeps; ++k) {
+    const float t = plan.fractionAt(k);
+    for (std::size_t p = 0; p < pinned_.size(); ++p) {
+      // At the frame's end exactly on the placement (from + (to − from)·1 may round off it),
+      // so a pin that follows targets starts the next frame where a body-carried one would.
+      const glm::vec3 from = pinFrom_[p], to = pinTo_[p];
+      particles_.positions[pinned_[p]] = t >= 1.0f ? to : from + (to - from) * t;
+      particles_.previousPositions[pinned_[p]] = particles_.positions[pinned_[p]];
+    }
+    runPhase([&](std::uint32_t w) {
       const auto [first, end] = slice(particles_.size(), w);
       integrateVerlet(particles_, first, end - first, settings_.solver.gravity, settings_.solver.damping, step);
       if (!colliders_.empty()) collide(k, first, end, true);
-      if (workers > 1) sync.arrive_and_wait();
-      for (int iteration = 0; iteration < settings_.solver.constraintIterations; ++iteration)
-        for (std::size_t colour = 0; colour < colourCount; ++colour) {
+    });
+    for (int iteration = 0; iteration < settings_.solver.constraintIterations; ++iteration)
+      for (std::size_t colour = 0; colour < colourCount; ++colour)
+        runPhase([&](std::uint32_t w) {
           const auto [from, to] = slice(colourStarts_[colour + 1] - colourStarts_[colour], w);
           relaxColour(colour, from, to);
-          if (workers > 1) sync.arrive_and_wait();
-        }
-      // Tethers last in the step (one particle each, sorted: a slice per worker), so no free
-      // vertex ends it beyond its path length from its pin.
-      if (!tethers_.empty()) {
+        });
+    // Tethers last in the step (one particle each, sorted: a slice per task), so no free vertex
+    // ends it beyond its path length from its pin.
+    if (!tethers_.empty())
+      runPhase([&](std::uint32_t w) {
         const auto [from, to] = slice(tethers_.size(), w);
-        for (std::size_t t = from; t < to; ++t)
-          projectTether(particles_.positions[tethers_[t].particle], particles_.positions[tethers_[t].anchor],
-                        tethers_[t].maxDistance);
-        if (workers > 1) sync.arrive_and_wait();
-      }
-      if (!colliders_.empty()) {
+        for (std::size_t i = from; i < to; ++i)
+          projectTether(particles_.positions[tethers_[i].particle], particles_.positions[tethers_[i].anchor],
+                        tethers_[i].maxDistance);
+      });
+    if (!colliders_.empty())
+      runPhase([&](std::uint32_t w) {
+        const auto [first, end] = slice(particles_.size(), w);
         collide(k, first, end, false);
-        if (workers > 1) sync.arrive_and_wait();
-      }
-    }
-  };
-  if (workers == 1) {
-    work(0);
-  } else {
-    std::vector<std::jthread> pool;
-    for (unsigned w = 1; w < workers; ++w) pool.emplace_back(work, w);
-    work(0);
+      });
   }
   previousBody_ = body_;
 
+  if (!ran) return fail("cloth: " + ran.error().message);
   for (std::size_t i = 0; i < particles_.size(); ++i)
     if (!finite(particles_.positions[i]))
       return fail("cloth particle " + std::to_string(i) + " became NaN or infinite by fixed step " +

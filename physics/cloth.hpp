@@ -29,12 +29,27 @@
 #include "physics/constraints.hpp"
 #include "physics/particles.hpp"
 #include "physics/solver.hpp"
+#include "physics/task_runner.hpp"
 
 namespace mane::physics {
 
+/// Everything a `Cloth` is made from. Plain data: fill it, keep it, make several cloths from it.
 struct ClothSettings {
-  SolverSettings solver;          ///< step, gravity, damping, iterations (tethers unused)
+  SolverSettings solver;          ///< step, gravity, damping, iterations, tethers (to the pins)
   float bendingStiffness = 0.5f;  ///< fraction of the bending error corrected per sweep, [0, 1]
+  /// The mesh in body-local space, metres: finite vertex positions, at least one triangle.
+  std::vector<glm::vec3> positions;
+  /// Three vertex indices per triangle; each triangle's corners distinct and not collinear.
+  std::vector<std::uint32_t> triangles;
+  /// Vertices that follow the body (or `Cloth::setPinTargets`); repeats count once.
+  std::vector<std::uint32_t> pinnedVertices;
+  /// Body-local → world transform at rest (finite).
+  glm::mat4 bodyTransform{1.0f};
+  /// Shapes the cloth collides with, body-local (empty: none).
+  ColliderSet colliders;
+  /// What runs the step's parallel loops (task_runner.hpp); by default the built-in pool with
+  /// one worker per hardware thread. The state does not depend on it.
+  TaskRunner tasks = defaultTaskRunner();
 };
 
 /// A distance constraint relaxed with a stiffness (1 = fully, as DistanceConstraint).
@@ -45,10 +60,15 @@ struct SoftDistanceConstraint {
 
 class Cloth {
 public:
-  /// Builds cloth from a triangle mesh in body-local space (metres): `positions`, `triangles`
-  /// (3 indices each), and the vertices pinned to the body. Fails, naming the triangle or
-  /// vertex, on an index out of range, a degenerate triangle (repeated vertex or zero area), a
-  /// non-finite position, an empty mesh, or invalid settings.
+  /// Builds cloth from `settings`' triangle mesh, pins, body transform, colliders and task
+  /// runner. Fails with a message that starts with the settings field at fault and names the
+  /// triangle or vertex: an index out of range, a degenerate triangle (repeated vertex or zero
+  /// area), a non-finite position, an empty mesh, or invalid solver settings, bending stiffness,
+  /// body transform, colliders or task runner.
+  [[nodiscard]] static Result<Cloth> create(const ClothSettings& settings);
+
+  /// The earlier entry point, kept for existing callers: `create` with `settings`' mesh, pins
+  /// and body transform replaced by these arguments (copied).
   [[nodiscard]] static Result<Cloth> create(std::span<const glm::vec3> positions,
                                             std::span<const std::uint32_t> triangles,
                                             std::span<const std::uint32_t> pinnedVertices,
@@ -79,10 +99,22 @@ public:
   /// frictionless collision pass so that no particle ends a step inside a collider.
   [[nodiscard]] Result<void> setColliders(ColliderSet colliders);
 
-  /// Advances by `frameDt` seconds in whole fixed steps (the remainder carries over), with
-  /// `threads` workers (0 counts as 1); the result does not depend on `threads`. Fails when
-  /// `frameDt` is negative or not finite, or when a particle becomes non-finite (naming it).
-  [[nodiscard]] Result<void> advance(double frameDt, unsigned threads = 1);
+  /// Advances by `frameDt` seconds in whole fixed steps (the remainder carries over), each
+  /// phase of a step (integration, every colour of every sweep, tethers, collisions) one batch
+  /// of tasks on `taskRunner()` over fixed slices; the result does not depend on the runner.
+  /// Fails when `frameDt` is negative or not finite, when the runner fails (the frame is then
+  /// completed on the calling thread, so the state is still right), or when a particle becomes
+  /// non-finite (naming it).
+  [[nodiscard]] Result<void> advance(double frameDt);
+  /// The earlier entry point, kept for existing callers: `advance` on
+  /// `builtInTaskRunner(threads)` for this frame (0 counts as 1).
+  [[nodiscard]] Result<void> advance(double frameDt, unsigned threads);
+
+  /// Replaces the task runner (`ClothSettings::tasks`); fails, changing nothing, when
+  /// `validateTaskRunner` rejects it.
+  [[nodiscard]] Result<void> setTaskRunner(TaskRunner tasks);
+  /// The task runner that `advance(frameDt)` uses.
+  [[nodiscard]] const TaskRunner& taskRunner() const noexcept { return settings_.tasks; }
 
   /// FNV-1a over positions, previous positions, the accumulator's backlog and step count.
   [[nodiscard]] std::uint64_t stateHash() const noexcept;
@@ -100,6 +132,7 @@ public:
 
 private:
   Cloth(const ClothSettings& settings);
+  [[nodiscard]] Result<void> advanceWith(double frameDt, const TaskRunner& tasks);
   void relaxColour(std::size_t colour, std::size_t first, std::size_t end);
   static std::vector<Tether> attachToPins(const Cloth& cloth);
 

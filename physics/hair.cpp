@@ -7,14 +7,14 @@
 #include <cstdio>
 #include <limits>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <utility>
 
 #include <glm/vec4.hpp>
 
 #include "physics/constraints.hpp"
+#include "physics/detail/hair_lanes.hpp"
 #include "physics/detail/hair_math.hpp"
+#include "physics/detail/parallel_tasks.hpp"
 #include "physics/detail/strand_lanes.hpp"
 #include "physics/hash.hpp"
 
@@ -74,21 +74,37 @@ HairSystem::HairSystem(const SolverSettings& settings)
 
 Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> strands, const SolverSettings& settings,
                                       const glm::mat4& headTransform) {
-  if (auto valid = validateSettings(settings); !valid)
-    return std::unexpected(Error{"Hair system: " + valid.error().message});
-  if (auto valid = checkTransform(headTransform, "the initial head transform"); !valid)
-    return std::unexpected(valid.error());
-  if (strands.empty()) return fail("Hair groom is empty: no guide strands were given.");
+  HairSettings hair;
+  hair.strands.assign(strands.begin(), strands.end());
+  hair.solver = settings;
+  hair.headTransform = headTransform;
+  return create(hair);
+}
+
+Result<HairSystem> HairSystem::create(const HairSettings& hair) {
+  // Every message starts with the settings field at fault.
+  const auto inField = [](const char* field, const Error& error) {
+    return std::unexpected(Error{std::string(field) + ": " + error.message});
+  };
+  const SolverSettings& settings = hair.solver;
+  const std::span<const std::vector<glm::vec3>> strands = hair.strands;
+  if (auto valid = validateSettings(settings); !valid) return inField("HairSettings.solver", valid.error());
+  if (auto valid = checkTransform(hair.headTransform, "the initial head transform"); !valid)
+    return inField("HairSettings.headTransform", valid.error());
+  if (auto valid = validateTaskRunner(hair.tasks, "HairSettings.tasks"); !valid) return std::unexpected(valid.error());
+  if (strands.empty()) return fail("HairSettings.strands: the hair groom is empty: no guide strands were given.");
 
   std::size_t total = 0;
   for (std::size_t s = 0; s < strands.size(); ++s) {
-    if (auto valid = validateStrand(s, strands[s]); !valid) return std::unexpected(valid.error());
+    if (auto valid = validateStrand(s, strands[s]); !valid) return inField("HairSettings.strands", valid.error());
     total += strands[s].size();
   }
   if (total > std::numeric_limits<std::uint32_t>::max() - 1)
-    return fail("Hair groom has " + std::to_string(total) + " particles; at most 2^32 − 2 fit.");
+    return fail("HairSettings.strands: the hair groom has " + std::to_string(total) +
+                " particles; at most 2^32 − 2 fit.");
 
   HairSystem system(settings);
+  system.tasks_ = hair.tasks;
   system.particles_.reserve(total);
   system.restLocal_.reserve(total);
   system.segmentLengths_.reserve(total);
@@ -124,8 +140,22 @@ Result<HairSystem> HairSystem::create(std::span<const std::vector<glm::vec3>> st
   system.faultParticle_.assign(strands.size(), kNoFault);
   system.faultStep_.assign(strands.size(), 0);
   system.layOutBlockConstants();
-  system.placeAtRest(headTransform);
+  system.placeAtRest(hair.headTransform);
+  if (!hair.colliders.empty())
+    if (auto set = system.setColliders(hair.colliders); !set) return inField("HairSettings.colliders", set.error());
+  if (hair.wind)
+    if (auto set = system.setWind(*hair.wind); !set) return inField("HairSettings.wind", set.error());
+  if (!hair.rootRestNormals.empty())
+    if (auto set = system.setRootRestNormals(hair.rootRestNormals); !set)
+      return inField("HairSettings.rootRestNormals", set.error());
+  system.setVectorised(hair.vectorised);
   return system;
+}
+
+Result<void> HairSystem::setTaskRunner(TaskRunner tasks) {
+  if (auto valid = validateTaskRunner(tasks, "Hair system: the task runner"); !valid) return valid;
+  tasks_ = std::move(tasks);
+  return {};
 }
 
 void HairSystem::layOutBlockConstants() {
@@ -287,6 +317,25 @@ Result<void> HairSystem::teleport(const glm::mat4& headTransform) {
   return {};
 }
 
+Result<void> HairSystem::setParticleState(std::span<const glm::vec3> positions,
+                                          std::span<const glm::vec3> previousPositions) {
+  const std::size_t count = particles_.size();
+  const std::pair<std::span<const glm::vec3>, const char*> lists[] = {{positions, "positions"},
+                                                                      {previousPositions, "previous positions"}};
+  for (const auto& [list, name] : lists) {
+    if (list.size() != count)
+      return fail(std::string("Hair system: ") + name + " has " + std::to_string(list.size()) + " entries for " +
+                  std::to_string(count) + " particles.");
+    for (std::size_t i = 0; i < count; ++i)
+      if (!isFinite(list[i]))
+        return fail(std::string("Hair system: ") + name + " entry " + std::to_string(i) +
+                    " is not finite (NaN or infinite): " + describe(list[i]) + ".");
+  }
+  std::copy(positions.begin(), positions.end(), particles_.positions.begin());
+  std::copy(previousPositions.begin(), previousPositions.end(), particles_.previousPositions.begin());
+  return {};
+}
+
 std::span<const glm::vec3> HairSystem::strandPositions(std::size_t strand) const {
   assert(strand < strands_.size());
   return {particles_.positions.data() + strands_[strand].firstParticle, strands_[strand].particleCount};
@@ -309,32 +358,33 @@ Error HairSystem::faultError() const {
                std::to_string(time) + " s); the hair system has stopped advancing until teleport() resets it."};
 }
 
+Result<void> HairSystem::advance(double frameDt) {
+  return advanceWith(frameDt, tasks_);
+}
+
 Result<void> HairSystem::advance(double frameDt, unsigned threads) {
+  return advanceWith(frameDt, builtInTaskRunner(threads));
+}
+
+Result<void> HairSystem::advanceWith(double frameDt, const TaskRunner& tasks) {
   if (fault_) return std::unexpected(faultError());
   if (!(std::isfinite(frameDt) && frameDt >= 0.0))
     return fail("Hair system: frame duration must be a finite number of seconds ≥ 0, got " + std::to_string(frameDt) +
                 ".");
 
+  Result<void> ran;
   const StepPlan plan = accumulator_.plan(frameDt);
   if (plan.substeps > 0) {
     if (!colliders_.empty() || settings_.shapeStiffness > 0.0f) planPoses(plan);
-    // Workers take blocks of kBlockLanes whole strands from a shared counter, so the load
+    // Each task takes blocks of kBlockLanes whole strands from a shared counter, so the load
     // balances however the contacts are spread. Each strand's arithmetic is the same whichever
-    // worker runs it, so who runs which block affects speed only, never the result.
-    const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, strands_.size());
-    if (scratch_.size() < workers) scratch_.resize(workers);
+    // task runs it, so who runs which block affects speed only, never the result. Task t keeps
+    // its lane storage in scratch_[t]: a task runs on one thread at a time.
+    const std::uint32_t taskCount = taskCountFor(tasks, strands_.size());
+    if (scratch_.size() < taskCount) scratch_.resize(taskCount);
     std::atomic<std::size_t> nextBlock{0};
-    std::vector<std::jthread> pool;
-    pool.reserve(workers - 1);
-    for (std::size_t w = 1; w < workers; ++w) {
-      try {
-        pool.emplace_back([this, &plan, &nextBlock, w] { simulateStrands(nextBlock, plan, scratch_[w]); });
-      } catch (const std::system_error&) {
-        break;  // no more threads available: the calling thread takes the remaining blocks
-      }
-    }
-    simulateStrands(nextBlock, plan, scratch_[0]);
-    pool.clear();  // joins
+    auto task = [&](std::uint32_t t) { simulateStrands(nextBlock, plan, scratch_[t]); };
+    ran = runTasks(tasks, taskCount, task);
 
     // Lowest strand index first, so the report does not depend on which worker saw it first.
     for (std::size_t s = 0; s < strands_.size(); ++s) {
@@ -345,6 +395,7 @@ Result<void> HairSystem::advance(double frameDt, unsigned threads) {
   }
   previousHead_ = head_;
   previousRootNormals_ = rootNormals_;
+  if (!ran) return fail("Hair system: " + ran.error().message);
   if (fault_) return std::unexpected(faultError());
   return {};
 }
@@ -361,7 +412,8 @@ void HairSystem::simulateStrands(std::atomic<std::size_t>& nextBlock, const Step
     const std::size_t first = claimed, end = std::min(first + kBlock, strands_.size());
     claimed = nextBlock.fetch_add(kBlock);
     if (lanes) {
-      simulateStrandBlockLanes(first, end - first, plan, scratch, claimed < strands_.size() ? claimed : kNoBlock);
+      HairLaneKernel::simulateBlock(*this, first, end - first, plan, scratch,
+                                    claimed < strands_.size() ? claimed : HairLaneKernel::kNoBlock);
       continue;
     }
     for (std::size_t s = first; s < end; s += kStrandLanes)
@@ -369,10 +421,10 @@ void HairSystem::simulateStrands(std::atomic<std::size_t>& nextBlock, const Step
   }
 }
 
-void HairSystem::prefetchBlock(std::size_t firstStrand, int part, int parts) const noexcept {
-  const std::size_t last = std::min(firstStrand + detail::kBlockLanes, strands_.size()) - 1;
-  const std::size_t from = strands_[firstStrand].firstParticle,
-                    to = strands_[last].firstParticle + strands_[last].particleCount;
+void HairLaneKernel::prefetchBlock(const HairSystem& self, std::size_t firstStrand, int part, int parts) noexcept {
+  const std::size_t last = std::min(firstStrand + detail::kBlockLanes, self.strands_.size()) - 1;
+  const std::size_t from = self.strands_[firstStrand].firstParticle,
+                    to = self.strands_[last].firstParticle + self.strands_[last].particleCount;
   const std::size_t block = firstStrand / detail::kBlockLanes;
   const auto fetch = [&](const void* begin, const void* end) {
     const auto b = reinterpret_cast<std::uintptr_t>(begin) & ~std::uintptr_t{63};
@@ -382,9 +434,9 @@ void HairSystem::prefetchBlock(std::size_t firstStrand, int part, int parts) con
     const std::uintptr_t hi = lines * static_cast<std::uintptr_t>(part + 1) / static_cast<std::uintptr_t>(parts);
     for (std::uintptr_t l = lo; l < hi; ++l) __builtin_prefetch(reinterpret_cast<const void*>(b + 64 * l), 0, 3);
   };
-  fetch(particles_.positions.data() + from, particles_.positions.data() + to);
-  fetch(particles_.previousPositions.data() + from, particles_.previousPositions.data() + to);
-  fetch(blockConstants_.data() + blockConstantsAt_[block], blockConstants_.data() + blockConstantsAt_[block + 1]);
+  fetch(self.particles_.positions.data() + from, self.particles_.positions.data() + to);
+  fetch(self.particles_.previousPositions.data() + from, self.particles_.previousPositions.data() + to);
+  fetch(self.blockConstants_.data() + self.blockConstantsAt_[block], self.blockConstants_.data() + self.blockConstantsAt_[block + 1]);
 }
 
 std::uint64_t HairSystem::stateHash() const noexcept {

@@ -23,9 +23,14 @@
 #include "physics/colliders.hpp"
 #include "physics/particles.hpp"
 #include "physics/solver.hpp"
+#include "physics/task_runner.hpp"
 #include "physics/wind.hpp"
 
 namespace mane::physics {
+
+namespace detail {
+struct HairLaneKernel;
+}  // namespace detail
 
 /// Smallest accepted distance between consecutive input points, metres. Shorter segments give
 /// the distance constraint no usable direction (it divides by the current length).
@@ -44,6 +49,30 @@ struct SimulationFault {
   std::size_t strand = 0;    ///< strand index, as in the input
   std::size_t particle = 0;  ///< particle index within the strand (0 = root)
   std::uint64_t step = 0;    ///< fixed step (counted from creation, 1-based) that produced it
+};
+
+/// Everything a `HairSystem` is made from. Plain data: fill it, keep it, make several systems
+/// from it. Lengths in metres, positions in head-local space unless said otherwise.
+struct HairSettings {
+  /// The guide strands, points root first: at least one strand, each with ≥ 2 finite points no
+  /// closer than `kMinSegmentLength` to the previous one.
+  std::vector<std::vector<glm::vec3>> strands;
+  /// Step length, gravity, damping, iterations, tethers, shape stiffness, speed clamp.
+  SolverSettings solver;
+  /// Head-local → world transform at rest (finite; rigid expected).
+  glm::mat4 headTransform{1.0f};
+  /// Shapes every non-root particle collides with (head-local; empty: no collisions).
+  ColliderSet colliders;
+  /// Wind blowing through the hair from the first step (none: still air).
+  std::optional<WindSettings> wind;
+  /// Per strand, the direction of its root's normal at rest (head-local; normalised here), for
+  /// `setRootTargets`; empty: the direction of each strand's first segment.
+  std::vector<glm::vec3> rootRestNormals;
+  /// Whether the step may use the AVX2 strand kernel (same bits as the scalar one).
+  bool vectorised = true;
+  /// What runs the step's parallel loop (task_runner.hpp); by default the built-in pool with one
+  /// worker per hardware thread. The state does not depend on it.
+  TaskRunner tasks = defaultTaskRunner();
 };
 
 /// A set of guide strands attached to a rigid head.
@@ -73,11 +102,16 @@ struct SimulationFault {
 /// transform. Roots themselves move on the straight lines described above.
 class HairSystem {
 public:
-  /// Builds the system from guide strands given as points in head-local space (metres), root
-  /// first, placed in the world by `headTransform` (head-local → world) at rest.
-  /// Fails, naming the strand and particle, when the groom is empty, a strand has fewer than 2
-  /// points, a point is NaN or infinite, or two consecutive points are closer than
-  /// `kMinSegmentLength`; also when `settings` or `headTransform` are invalid.
+  /// Builds the system from `settings`: the strands placed in the world by
+  /// `settings.headTransform` at rest, with its colliders, wind, rest normals and task runner.
+  /// Fails with a message that names the settings field (and the strand and particle) when the
+  /// groom is empty, a strand has fewer than 2 points, a point is NaN or infinite, two
+  /// consecutive points are closer than `kMinSegmentLength`, or the solver settings, head
+  /// transform, colliders, wind, rest normals or task runner are invalid.
+  [[nodiscard]] static Result<HairSystem> create(const HairSettings& settings);
+
+  /// The earlier entry point, kept for existing callers: `create` with a `HairSettings` holding a
+  /// copy of `strands`, `settings` and `headTransform` and everything else at its default.
   [[nodiscard]] static Result<HairSystem> create(std::span<const std::vector<glm::vec3>> strands,
                                                  const SolverSettings& settings,
                                                  const glm::mat4& headTransform = glm::mat4(1.0f));
@@ -146,13 +180,33 @@ public:
   /// clears a recorded fault. For cuts and resets; fails when an entry is NaN or infinite.
   [[nodiscard]] Result<void> teleport(const glm::mat4& headTransform);
 
+  /// Replaces the particles' Verlet state (`particles()` order, world space, metres): the
+  /// current positions, and the positions one fixed step earlier, whose difference is the
+  /// displacement the next step carries on (velocity × fixed step; pass the same positions twice
+  /// to leave the particles at rest). Roots take the positions too, but the next step places them
+  /// on their head or targets again. For scripts and perturbation tests; the step count, the
+  /// fixed-step backlog and a recorded fault stay. Fails, changing nothing, on a count that is not
+  /// `particles().size()` or a NaN or infinite entry (naming the particle).
+  [[nodiscard]] Result<void> setParticleState(std::span<const glm::vec3> positions,
+                                              std::span<const glm::vec3> previousPositions);
+
   /// Advances the simulation by a frame of `frameDt` seconds, split into whole fixed steps (the
-  /// remainder carries over to the next frame). `threads` ≥ 1 workers (0 counts as 1) simulate
-  /// disjoint ranges of strands; the result does not depend on `threads`.
-  /// Fails when `frameDt` is negative or not finite, or when a particle position becomes NaN or
-  /// infinite; in the latter case the message names the strand, the system stops advancing
-  /// (see `fault()`) until `teleport` resets it.
-  [[nodiscard]] Result<void> advance(double frameDt, unsigned threads = 1);
+  /// remainder carries over to the next frame), its parallel loop run by `taskRunner()`: up to
+  /// `concurrency` tasks that take blocks of whole strands in turn; the result does not depend
+  /// on the runner. Fails when `frameDt` is negative or not finite; when the runner fails (the
+  /// frame is then completed on the calling thread, so the state is still right); or when a
+  /// particle position becomes NaN or infinite: the message names the strand and the system
+  /// stops advancing (see `fault()`) until `teleport` resets it.
+  [[nodiscard]] Result<void> advance(double frameDt);
+  /// The earlier entry point, kept for existing callers: `advance` on `builtInTaskRunner(threads)`
+  /// for this frame (0 counts as 1).
+  [[nodiscard]] Result<void> advance(double frameDt, unsigned threads);
+
+  /// Replaces the task runner (`HairSettings::tasks`). Fails, changing nothing, when
+  /// `validateTaskRunner` rejects it.
+  [[nodiscard]] Result<void> setTaskRunner(TaskRunner tasks);
+  /// The task runner that `advance(frameDt)` uses.
+  [[nodiscard]] const TaskRunner& taskRunner() const noexcept { return tasks_; }
 
   /// 64-bit FNV-1a hash (see hash.hpp) of the simulated state: all positions, all previous
   /// positions, then the accumulator's backlog (double, seconds) and the fixed-step count.
@@ -181,15 +235,13 @@ public:
 private:
   explicit HairSystem(const SolverSettings& settings);
 
-  // One worker: simulates blocks of strands taken from `nextBlock` until none are left.
-  // `scratch`: the worker's lane storage for the AVX2 path, kept between frames.
+  // One task: simulates blocks of strands taken from `nextBlock` until none are left.
+  // `scratch`: the task's lane storage for the AVX2 path, kept between frames.
   void simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan, std::vector<float>& scratch);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
-  // The AVX2 path: up to detail::kBlockLanes strands in lane-by-lane scratch storage; during the
-  // last step's constraint iterations it prefetches the block at strand `nextBlock` (kNoBlock:
-  // none).
-  void simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
-                                std::vector<float>& scratch, std::size_t nextBlock);
+  // The AVX2 path lives in physics/detail/hair_lanes.hpp, away from this header; it steps
+  // blocks of this object's strands.
+  friend struct detail::HairLaneKernel;
 
   // The head's rigid pose at one fixed step: world = rotation · local + translation.
   struct HeadPose {
@@ -217,18 +269,16 @@ private:
   void bisectTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& p, const glm::vec3& root,
                     const glm::vec3& parent, float reach) const noexcept;
 
-  // Asks the memory for part `part` of `parts` of the particles and lane constants of the block
-  // starting at strand `firstStrand` (the lane path's next block), spread so that the requests
-  // overlap the current block's work instead of queueing up at once.
-  void prefetchBlock(std::size_t firstStrand, int part, int parts) const noexcept;
-  static constexpr std::size_t kNoBlock = ~std::size_t{0};  // simulateStrandBlockLanes: no next block
-  static constexpr std::size_t kStrandLanes = 8;            // strands advanced side by side
+  static constexpr std::size_t kStrandLanes = 8;  // strands advanced side by side (scalar path)
   void placeAtRest(const glm::mat4& headTransform);
   // Fills blockConstants_ from the strands (at creation: they never change).
   void layOutBlockConstants();
   [[nodiscard]] Error faultError() const;
 
+  [[nodiscard]] Result<void> advanceWith(double frameDt, const TaskRunner& tasks);
+
   SolverSettings settings_;
+  TaskRunner tasks_;
   FixedStepAccumulator accumulator_;
   Particles particles_;
   std::vector<GuideStrand> strands_;
@@ -251,7 +301,7 @@ private:
   std::vector<HeadPose> poses_;    // per advance: pose at the end of fixed step k (0: frame start)
   std::optional<WindField> wind_;  // none: no wind
   bool vectorise_ = true;
-  std::vector<std::vector<float>> scratch_;  // per worker: lane storage of the AVX2 path
+  std::vector<std::vector<float>> scratch_;  // per task: lane storage of the AVX2 path
   // The AVX2 path's constants per block of detail::kBlockLanes strands, lane by lane: inverse
   // masses, segment lengths, reaches (3 arrays of rows × kBlockLanes floats) for block k from
   // blockConstants_[blockConstantsAt_[k]] on.

@@ -7,6 +7,7 @@
 #include "physics/constraints.hpp"
 #include "physics/detail/hair_math.hpp"
 #include "physics/detail/collision_lanes.hpp"
+#include "physics/detail/hair_lanes.hpp"
 #include "physics/detail/lane_transfer.hpp"
 #include "physics/detail/strand_lanes.hpp"
 #include "physics/hair.hpp"
@@ -271,7 +272,7 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
 // register holds one coordinate of 8 strands; detail/lane_transfer.hpp), their constants are
 // laid out that way once at creation (layOutBlockConstants), stepped with the kernels of
 // detail/strand_lanes.hpp — the same operations per strand and in the same order as
-// simulateStrandBlock — and copied back. The collision pass (settlePoint for every particle)
+// HairSystem::simulateStrandBlock — and copied back. The collision pass (settlePoint for every particle)
 // runs in three sweeps over the block, with the same result: the pushes (each reads and writes
 // only its own particle), packed 8 to a register from the whole block (collideBlockAvx2); then
 // settleTether's rounds for those left beyond their tether, 8 at a time (they read only the
@@ -279,15 +280,15 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
 // the few bisections, which read the parent's final position. The velocity clamp runs per
 // particle with the scalar path's code. Only without shape constraints and wind (see
 // vectorised()).
-void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
-                                          std::vector<float>& scratch, std::size_t nextBlock) {
+void HairLaneKernel::simulateBlock(HairSystem& self, std::size_t firstStrand, std::size_t lanes,
+                                   const StepPlan& plan, std::vector<float>& scratch, std::size_t nextBlock) {
 #if MANE_STRAND_LANES_AVX2
   constexpr std::size_t W = detail::kBlockLanes;
   // The block's constants are laid out once (layOutBlockConstants); positions are copied in.
   const std::size_t blockIndex = firstStrand / W;
-  const std::size_t longest = (blockConstantsAt_[blockIndex + 1] - blockConstantsAt_[blockIndex]) / (3 * W);
+  const std::size_t longest = (self.blockConstantsAt_[blockIndex + 1] - self.blockConstantsAt_[blockIndex]) / (3 * W);
   const std::size_t n = longest * W;
-  const float* w = blockConstants_.data() + blockConstantsAt_[blockIndex];
+  const float* w = self.blockConstants_.data() + self.blockConstantsAt_[blockIndex];
   const float *segment = w + n, *reach = w + 2 * n;
   scratch.resize(7 * n + W + detail::collideBlockStorage(longest));
   float* base = scratch.data();
@@ -298,16 +299,16 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
   std::int32_t count[W] = {};
   glm::vec3 rootFrom[W], rootTravel[W];
   for (std::size_t b = 0; b < lanes; ++b) {
-    const GuideStrand& strand = strands_[firstStrand + b];
+    const GuideStrand& strand = self.strands_[firstStrand + b];
     where.first[b] = strand.firstParticle;
     where.count[b] = strand.particleCount;
     count[b] = static_cast<std::int32_t>(strand.particleCount);
-    rootMotion(firstStrand + b, rootFrom[b], rootTravel[b]);
+    self.rootMotion(firstStrand + b, rootFrom[b], rootTravel[b]);
   }
   const std::size_t groups = (lanes + detail::kSimdWidth - 1) / detail::kSimdWidth;
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "positions are read as packed xyz floats");
-  float* positions = &particles_.positions.data()->x;
-  float* previous = &particles_.previousPositions.data()->x;
+  float* positions = &self.particles_.positions.data()->x;
+  float* previous = &self.particles_.previousPositions.data()->x;
   detail::loadLanePositions(where, longest, groups, positions, previous, base);
   const detail::StrandLanes block{x, y, z, px, py, pz, w, segment, reach, count, longest, groups};
   const auto get = [&](const float* cx, const float* cy, const float* cz, std::size_t at) {
@@ -318,12 +319,12 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
   };
 
   const float step = static_cast<float>(plan.fixedStep);
-  const float keep = 1.0f - settings_.damping;
-  const glm::vec3 kick = settings_.gravity * (step * step);
-  const std::uint64_t stepsBefore = accumulator_.stepsTaken() - static_cast<std::uint64_t>(plan.substeps);
-  const bool collide = !colliders_.empty();
-  const bool clampSpeed = settings_.maxSpeed < std::numeric_limits<float>::infinity();
-  const float maxDisplacement = settings_.maxSpeed * step;
+  const float keep = 1.0f - self.settings_.damping;
+  const glm::vec3 kick = self.settings_.gravity * (step * step);
+  const std::uint64_t stepsBefore = self.accumulator_.stepsTaken() - static_cast<std::uint64_t>(plan.substeps);
+  const bool collide = !self.colliders_.empty();
+  const bool clampSpeed = self.settings_.maxSpeed < std::numeric_limits<float>::infinity();
+  const float maxDisplacement = self.settings_.maxSpeed * step;
 
   for (int k = 1; k <= plan.substeps; ++k) {
     const float fraction = plan.fractionAt(k);
@@ -335,29 +336,29 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
     detail::integrateAvx2(block, keep, kick);
 
     const bool prefetch = k == plan.substeps && nextBlock != kNoBlock;
-    if (prefetch && settings_.constraintIterations == 0) prefetchBlock(nextBlock, 0, 1);
-    for (int iteration = 0; iteration < settings_.constraintIterations; ++iteration) {
-      if (prefetch) prefetchBlock(nextBlock, iteration, settings_.constraintIterations);
+    if (prefetch && self.settings_.constraintIterations == 0) prefetchBlock(self, nextBlock, 0, 1);
+    for (int iteration = 0; iteration < self.settings_.constraintIterations; ++iteration) {
+      if (prefetch) prefetchBlock(self, nextBlock, iteration, self.settings_.constraintIterations);
       detail::relaxDistancesAvx2(block);
-      if (settings_.tethers) detail::tethersAvx2(block);
+      if (self.settings_.tethers) detail::tethersAvx2(block);
     }
 
     // settlePoint, 8 particles at a time: the push with friction, then the rare tether repair
     // one particle at a time. Each particle's parent is settled first, as in the scalar path.
     if (collide) {
-      const HeadPose &pose = poses_[static_cast<std::size_t>(k)], &before = poses_[static_cast<std::size_t>(k - 1)];
-      const detail::LaneColliders contacts{&colliders_,
-                                           &colliderBounds_,
-                                           &colliderCull_,
+      const HairSystem::HeadPose &pose = self.poses_[static_cast<std::size_t>(k)], &before = self.poses_[static_cast<std::size_t>(k - 1)];
+      const detail::LaneColliders contacts{&self.colliders_,
+                                           &self.colliderBounds_,
+                                           &self.colliderCull_,
                                            {pose.axes, pose.translation},
                                            {before.axes, before.translation}};
-      detail::collideBlockAvx2(contacts, block, colliders_.friction, collisionWork);
-      if (settings_.tethers) {
-        const std::size_t unmet = detail::repairTethersAvx2(contacts, block, kSettleRounds, kSettleSlack, unmetSlots);
+      detail::collideBlockAvx2(contacts, block, self.colliders_.friction, collisionWork);
+      if (self.settings_.tethers) {
+        const std::size_t unmet = detail::repairTethersAvx2(contacts, block, HairSystem::kSettleRounds, HairSystem::kSettleSlack, unmetSlots);
         for (std::size_t u = 0; u < unmet; ++u) {  // ascending: each parent is final before its child
           const auto n = static_cast<std::size_t>(unmetSlots[u]);
           glm::vec3 settled;
-          bisectTether(pose, settled, get(x, y, z, n), get(x, y, z, n % W), get(x, y, z, n - W), reach[n]);
+          self.bisectTether(pose, settled, get(x, y, z, n), get(x, y, z, n % W), get(x, y, z, n - W), reach[n]);
           put(x, y, z, n, settled);
         }
       }
@@ -381,8 +382,8 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
       if (probe[b] != 0.0f) {
         std::size_t bad = 0;
         while (bad < particles && isFinite(get(x, y, z, bad * W + b))) ++bad;
-        faultParticle_[firstStrand + b] = static_cast<std::uint32_t>(std::min(bad, particles - 1));
-        faultStep_[firstStrand + b] = stepsBefore + static_cast<std::uint64_t>(k);
+        self.faultParticle_[firstStrand + b] = static_cast<std::uint32_t>(std::min(bad, particles - 1));
+        self.faultStep_[firstStrand + b] = stepsBefore + static_cast<std::uint64_t>(k);
         count[b] = 0;  // the strand stops where it is
       }
     }
@@ -391,8 +392,8 @@ void HairSystem::simulateStrandBlockLanes(std::size_t firstStrand, std::size_t l
   detail::storeLanePositions(where, longest, groups, base, positions, previous);
 #else
   (void)scratch, (void)nextBlock;
-  for (std::size_t s = firstStrand; s < firstStrand + lanes; s += kStrandLanes)
-    simulateStrandBlock(s, std::min(kStrandLanes, firstStrand + lanes - s), plan);
+  for (std::size_t s = firstStrand; s < firstStrand + lanes; s += HairSystem::kStrandLanes)
+    self.simulateStrandBlock(s, std::min(HairSystem::kStrandLanes, firstStrand + lanes - s), plan);
 #endif
 }
 

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <system_error>
-#include <thread>
+#include <utility>
 
+#include "physics/detail/parallel_tasks.hpp"
 #include "physics/groom_generator.hpp"
 
 namespace mane::physics {
@@ -355,7 +355,7 @@ void interpolateRange(std::span<const glm::vec3> guides, const DenseStrandLayout
 }  // namespace
 
 Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions, const DenseStrandLayout& layout,
-                                     std::span<glm::vec3> positions, std::span<glm::vec3> tangents, unsigned threads) {
+                                     std::span<glm::vec3> positions, std::span<glm::vec3> tangents, const TaskRunner& tasks) {
   const auto denseGroomError = [](const Error& error) { return fail("Dense groom: " + error.message); };
   if (auto valid = validateStrandLayout(layout); !valid) return denseGroomError(valid.error());
   if (positions.size() != layout.vertexTotal())
@@ -369,28 +369,44 @@ Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions, 
       !valid)
     return denseGroomError(valid.error());
 
-  // A fixed partition into contiguous ranges of whole dense strands; every strand's arithmetic is
-  // independent of the partition, so the output does not depend on `threads`.
+  // A fixed partition into contiguous ranges of whole dense strands, one per task; every
+  // strand's arithmetic is independent of the partition, so the output does not depend on it.
   const std::size_t count = layout.strands.size();
-  const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, count);
-  const auto rangeBegin = [&](std::size_t w) { return count * w / workers; };
-  std::vector<std::jthread> pool;
-  pool.reserve(workers - 1);
-  std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
-  for (std::size_t w = 1; w < workers; ++w) {
-    try {
-      pool.emplace_back([&, b = rangeBegin(w), e = rangeBegin(w + 1)] {
-        interpolateRange(guidePositions, layout, positions, tangents, b, e);
-      });
-    } catch (const std::system_error&) {
-      inlineFrom = w;  // no more threads available: run the remaining ranges here
-      break;
-    }
+  const std::uint32_t taskCount = detail::taskCountFor(tasks, count);
+  auto task = [&](std::uint32_t t) {
+    interpolateRange(guidePositions, layout, positions, tangents, detail::taskRangeBegin(count, taskCount, t),
+                     detail::taskRangeBegin(count, taskCount, t + 1));
+  };
+  if (auto ran = detail::runTasks(tasks, taskCount, task); !ran) return fail("Dense groom: " + ran.error().message);
+  return {};
+}
+
+Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions, const DenseStrandLayout& layout,
+                                     std::span<glm::vec3> positions, std::span<glm::vec3> tangents, unsigned threads) {
+  return interpolateDenseStrands(guidePositions, layout, positions, tangents, builtInTaskRunner(threads));
+}
+
+Result<DenseStrandInterpolator> DenseStrandInterpolator::create(const InterpolationSettings& settings) {
+  if (auto valid = validateTaskRunner(settings.tasks, "InterpolationSettings.tasks"); !valid)
+    return std::unexpected(valid.error());
+  auto layout = buildDenseStrandLayout(settings.restGuides, settings.groom);
+  if (!layout) {
+    // buildDenseStrandLayout checks the groom settings first, in messages of their own.
+    const bool groom = layout.error().message.starts_with("Dense groom settings");
+    return fail(std::string(groom ? "InterpolationSettings.groom: " : "InterpolationSettings.restGuides: ") +
+                layout.error().message);
   }
-  interpolateRange(guidePositions, layout, positions, tangents, rangeBegin(0), rangeBegin(1));
-  if (inlineFrom < workers)
-    interpolateRange(guidePositions, layout, positions, tangents, rangeBegin(inlineFrom), count);
-  pool.clear();  // joins
+  return DenseStrandInterpolator(std::move(*layout), settings.tasks);
+}
+
+Result<void> DenseStrandInterpolator::interpolate(std::span<const glm::vec3> guidePositions,
+                                                  std::span<glm::vec3> positions, std::span<glm::vec3> tangents) const {
+  return interpolateDenseStrands(guidePositions, layout_, positions, tangents, tasks_);
+}
+
+Result<void> DenseStrandInterpolator::setTaskRunner(TaskRunner tasks) {
+  if (auto valid = validateTaskRunner(tasks, "Dense groom: the task runner"); !valid) return valid;
+  tasks_ = std::move(tasks);
   return {};
 }
 

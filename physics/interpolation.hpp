@@ -58,12 +58,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
 #include "common/strand_layout.hpp"
+#include "physics/task_runner.hpp"
 
 namespace mane::physics {
 
@@ -111,19 +113,68 @@ struct DenseGroomSettings {
 [[nodiscard]] Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm::vec3>> restGuides,
                                                               const DenseGroomSettings& settings);
 
+/// Everything a `DenseStrandInterpolator` is made from. Plain data.
+struct InterpolationSettings {
+  /// The guide strands at rest, points root first (metres, any frame), all with the same number
+  /// of points (≥ 2): `resampleGroom` in strand_resample.hpp makes them so.
+  std::vector<std::vector<glm::vec3>> restGuides;
+  /// How the dense strands are laid out around the guides.
+  DenseGroomSettings groom;
+  /// What runs `interpolate`'s parallel loop (task_runner.hpp); by default the built-in pool with
+  /// one worker per hardware thread. The output does not depend on it.
+  TaskRunner tasks = defaultTaskRunner();
+};
+
+/// Dense strands that follow a set of guides: a layout built once (`buildDenseStrandLayout`)
+/// and the task runner that fills the dense strands every frame.
+class DenseStrandInterpolator {
+public:
+  /// Builds the layout from `settings.restGuides` and `settings.groom`. Fails with a message that
+  /// starts with the settings field at fault (restGuides, groom, tasks) and names the guide or
+  /// setting.
+  [[nodiscard]] static Result<DenseStrandInterpolator> create(const InterpolationSettings& settings);
+
+  /// Fills `positions` (and `tangents` when not empty) for the current guide positions:
+  /// `interpolateDenseStrands` with this layout, its loop run by `taskRunner()` over fixed
+  /// ranges of dense strands. Fails as that function does, or when the task runner fails (the
+  /// output is then completed on the calling thread, so it is still right).
+  [[nodiscard]] Result<void> interpolate(std::span<const glm::vec3> guidePositions, std::span<glm::vec3> positions,
+                                         std::span<glm::vec3> tangents = {}) const;
+
+  /// The layout (what the renderer uploads).
+  [[nodiscard]] const DenseStrandLayout& layout() const noexcept { return layout_; }
+  /// Replaces the task runner; fails, changing nothing, when `validateTaskRunner` rejects it.
+  [[nodiscard]] Result<void> setTaskRunner(TaskRunner tasks);
+  /// The task runner `interpolate` uses.
+  [[nodiscard]] const TaskRunner& taskRunner() const noexcept { return tasks_; }
+
+private:
+  DenseStrandInterpolator(DenseStrandLayout layout, TaskRunner tasks)
+      : layout_(std::move(layout)), tasks_(std::move(tasks)) {}
+  DenseStrandLayout layout_;
+  TaskRunner tasks_;
+};
+
 /// Fills `positions` (metres, strand-major: layout.vertexTotal() elements) with the dense
 /// strands for the current guide positions, by the formula at the top of this header, and,
 /// when `tangents` is not empty (then also vertexTotal() elements), the unit tangents.
 ///
 /// `guidePositions` holds guideCount × guideVertexCount points, guide after guide, root first
 /// (for a `HairSystem` whose strands all have that many particles this is exactly
-/// `particles().positions`). `threads` ≥ 1 workers (0 counts as 1) fill fixed contiguous ranges
-/// of dense strands; each strand is computed alone, so the output is bit-identical for any
-/// thread count. No allocation other than worker threads.
+/// `particles().positions`). The tasks of `tasks` fill fixed contiguous ranges of dense strands
+/// (task t the t-th of `concurrency` ranges); each strand is computed alone, so the output is
+/// bit-identical whatever runs the tasks.
 ///
 /// Fails, writing nothing, when the layout is invalid or empty (`validateStrandLayout`), the
 /// guide or output sizes do not match it, a guide position is NaN or infinite (naming guide and
-/// vertex), or a guide's frame partners have collapsed onto its root (`validateGuidePositions`).
+/// vertex), or a guide's frame partners have collapsed onto its root (`validateGuidePositions`);
+/// fails after writing everything when the task runner fails (see task_runner.hpp).
+[[nodiscard]] Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions,
+                                                   const DenseStrandLayout& layout, std::span<glm::vec3> positions,
+                                                   std::span<glm::vec3> tangents, const TaskRunner& tasks);
+
+/// The earlier entry point, kept for existing callers: the above on `builtInTaskRunner(threads)`
+/// (0 counts as 1).
 [[nodiscard]] Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions,
                                                    const DenseStrandLayout& layout, std::span<glm::vec3> positions,
                                                    std::span<glm::vec3> tangents = {}, unsigned threads = 1);

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <optional>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -14,6 +12,7 @@
 #include <glm/matrix.hpp>
 
 #include "common/dual_quaternion_joint.hpp"
+#include "physics/detail/parallel_tasks.hpp"
 
 namespace mane::physics {
 namespace {
@@ -209,6 +208,11 @@ Result<SkinnedMesh> SkinnedMesh::create(SkinnedMeshData data) {
 
 Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
                                  DeformedSurface& out, unsigned threads) const {
+  return deform(jointMatrices, morphWeights, out, builtInTaskRunner(threads));
+}
+
+Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
+                                 DeformedSurface& out, const TaskRunner& tasks) const {
   const SkinnedMeshData& d = data_;
   if (jointMatrices.size() != d.jointCount) {
     return fail("deforming a skinned mesh needs " + std::to_string(d.jointCount) + " joint matrices; got " +
@@ -238,29 +242,15 @@ Result<void> SkinnedMesh::deform(std::span<const glm::mat4> jointMatrices, std::
   out.tangents.resize(d.tangents.empty() ? 0 : vertices);
   if (vertices == 0) return {};
 
-  // A fixed partition into contiguous vertex ranges; each vertex's arithmetic does not depend on
-  // it, so the output has the same bits for every thread count.
-  const std::size_t workers = std::clamp<std::size_t>(threads == 0 ? 1 : threads, 1, vertices);
-  const auto rangeBegin = [&](std::size_t w) { return vertices * w / workers; };
+  // A fixed partition into contiguous vertex ranges, one per task; each vertex's arithmetic does
+  // not depend on it, so the output has the same bits whatever runs the tasks.
+  const std::uint32_t workers = detail::taskCountFor(tasks, vertices);
+  const auto rangeBegin = [&](std::uint32_t w) { return detail::taskRangeBegin(vertices, workers, w); };
   std::vector<std::optional<ImproperBinding>> failures(workers);
-  const auto run = [&](std::size_t w) {
+  auto run = [&](std::uint32_t w) {
     failures[w] = deformRange(d, jointMatrices, dualQuaternions, morphWeights, out, rangeBegin(w), rangeBegin(w + 1));
   };
-  {
-    std::vector<std::jthread> pool;
-    pool.reserve(workers - 1);
-    std::size_t inlineFrom = workers;  // ranges the calling thread runs itself
-    for (std::size_t w = 1; w < workers; ++w) {
-      try {
-        pool.emplace_back(run, w);
-      } catch (const std::system_error&) {
-        inlineFrom = w;  // no more threads available: run the remaining ranges here
-        break;
-      }
-    }
-    run(0);
-    for (std::size_t w = inlineFrom; w < workers; ++w) run(w);
-  }  // joins
+  if (auto ran = detail::runTasks(tasks, workers, run); !ran) return fail("skinning: " + ran.error().message);
   // The first failing vertex in vertex order, whatever the partition.
   for (const std::optional<ImproperBinding>& failure : failures) {
     if (!failure) continue;

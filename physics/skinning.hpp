@@ -32,6 +32,7 @@
 #include <glm/vec4.hpp>
 
 #include "common/error.hpp"
+#include "physics/task_runner.hpp"
 
 namespace mane::physics {
 
@@ -89,8 +90,13 @@ public:
   /// affine), writing to `out` (resized as needed). Fails, leaving `out` unspecified, when a span
   /// has the wrong size or holds a NaN or infinity, or, for DQS, a joint matrix used by a vertex
   /// mirrors or flattens space (its determinant is ≤ 0): a rotation cannot express that.
-  /// `threads` ≥ 1 workers (0 counts as 1) deform fixed contiguous ranges of vertices; the output
-  /// and any error do not depend on `threads`.
+  /// The tasks of `tasks` deform fixed contiguous ranges of vertices (task t the t-th of
+  /// `concurrency` ranges); the output and any error do not depend on what runs them. Also fails
+  /// when the task runner fails (the vertices are then deformed on the calling thread).
+  [[nodiscard]] Result<void> deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
+                                    DeformedSurface& out, const TaskRunner& tasks) const;
+  /// The earlier entry point, kept for existing callers: `deform` on `builtInTaskRunner(threads)`
+  /// (0 counts as 1).
   [[nodiscard]] Result<void> deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
                                     DeformedSurface& out, unsigned threads = 1) const;
 

@@ -661,7 +661,8 @@ std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<g
 std::vector<World::HairGuides> World::hairGuides() const {
   std::vector<HairGuides> result;
   for (const SimulatedGroom& groom : grooms_)
-    if (groom.dense) result.push_back({result.size(), groom.hair.particles().positions});
+    if (groom.dense)
+      result.push_back({result.size(), groom.hair.particles().positions, std::size_t(&groom - grooms_.data())});
   return result;
 }
 
@@ -725,6 +726,13 @@ Result<void> World::advance(double frameDt, unsigned threads) {
   time_ += frameDt;
   poseCharacters();
   return simulate(frameDt, threads);
+}
+
+Result<void> World::showTime(double time) {
+  if (!(time >= 0.0) || !std::isfinite(time)) return fail("time must be finite and ≥ 0");
+  time_ = time;
+  poseCharacters();
+  return {};
 }
 
 Result<void> World::simulate(double frameDt, unsigned threads) {

@@ -59,6 +59,10 @@ public:
   /// and colliders with them and simulates.
   /// `threads` ≥ 1 workers; results do not depend on it.
   Result<void> advance(double frameDt, unsigned threads);
+  /// Sets the clock to `time` (seconds, finite, ≥ 0) and poses the characters there, simulating
+  /// nothing: for frames whose simulated state comes from elsewhere (a simulation cache,
+  /// scenes/sim_cache.hpp), so that placements, poses and skinning match that moment.
+  Result<void> showTime(double time);
 
   /// Meshes, materials and grooms for the renderer; the meshes' and textures' data are views into
   /// this world, valid while it lives.
@@ -108,6 +112,7 @@ public:
   struct HairGuides {
     std::size_t groom = 0;
     std::span<const glm::vec3> positions;  ///< world space, metres, guide after guide
+    std::size_t simulatedGroom = 0;        ///< its index for simulatedGroom()
   };
   std::vector<HairGuides> hairGuides() const;
 
@@ -143,6 +148,14 @@ public:
   /// world space.
   std::size_t simulatedGroomCount() const { return grooms_.size(); }
   const physics::HairSystem& simulatedGroom(std::size_t index) const { return grooms_.at(index).hair; }
+  /// The scene's name of simulated groom `index`.
+  const std::string& simulatedGroomName(std::size_t index) const {
+    return scene_.grooms[grooms_.at(index).sceneGroom].name;
+  }
+  /// The same groom, for hosts that script it between advances (set particle states or root
+  /// targets). advance() still sets its head transform each frame and, for a groom on a
+  /// character part, its root targets and colliders, over what was set here.
+  physics::HairSystem& simulatedGroomMutable(std::size_t index) { return grooms_.at(index).hair; }
   std::size_t particleCount() const;
 
 private:

@@ -211,7 +211,7 @@ FRAME_VARIANTS = [
 
 # The frame's passes in the order the Renderer records them; unknown ones follow alphabetically.
 PASS_ORDER = [
-    "strands", "hair shadows", "skin diffusion", "translucency depth", "skin g-buffer",
+    "skinning", "strands", "hair shadows", "skin diffusion", "translucency depth", "skin g-buffer",
     "hair lighting", "surfaces", "hair", "main pass", "clear", "post downsample", "downsample",
     "auto gain", "glow", "god rays", "post overlay", "overlay", "output",
 ]
@@ -228,6 +228,20 @@ def same_counter(a: str, b: str) -> bool:
 
 def pass_header(key: str) -> str:
     return key[: -len("_ms")].replace("_", " ")
+
+
+ROBOT_VARIANTS = [
+    "animated (walking)",
+    "the body frozen (rest pose; hair and cape still simulated)",
+    "animated, 4× MSAA (`mane render`'s default)",
+    "the body frozen, 4× MSAA",
+]
+
+
+def robot_frozen_row(run: Run) -> Optional[str]:
+    """The frozen row at the same MSAA as an animated row (variants 0 → 1, 2 → 3)."""
+    variant = run.args.get("variant", "")
+    return f"BM_RobotFrame/variant:{int(variant) + 1}" if variant in ("0", "2") else None
 
 
 RENDER_SCENES = {
@@ -261,6 +275,21 @@ def physics_label(run: Run) -> str:
     if run.name == "BM_StateHash":
         return "state hash, 10k × 32 groom"
     return run.name
+
+
+def character_label(run: Run) -> str:
+    if run.name.startswith("BM_CharacterBind"):
+        return "binding 10,000 roots to the head (load time)"
+    if run.name.startswith("BM_CharacterStep"):
+        return f"one step with its root update, {threads(run.args['0'])}"
+    return run.name
+
+
+def skinning_label(run: Run) -> str:
+    method = "dual-quaternion" if run.args.get("0") == "1" else "linear blend"
+    if run.name.startswith("BM_SkinningGpu"):
+        return f"GPU pass, {method}"
+    return f"CPU, {method}, {threads(run.args.get('1', '?'))}"
 
 
 CAGES = {"0": "scan", "1": "coarse"}
@@ -312,6 +341,22 @@ BENCHES: list[Bench] = [
                           "of the frames, then of 5 repetitions. Times in ms; the pass columns are GPU "
                           "timestamps, each pass timed from the end of the one before it; \"hidden hair\" is "
                           "the share of dense hair vertices neither shaded nor drawn.",
+                    more_counters=r"_ms$", counter_order=[pass_key(p) for p in PASS_ORDER],
+                    counter_header=pass_header),
+              Table("The robot frame", r"^BM_RobotFrame/",
+                    lambda r: ROBOT_VARIANTS[int(r.args["variant"])] if r.args["variant"].isdigit()
+                    and int(r.args["variant"]) < len(ROBOT_VARIANTS) else r.name,
+                    [Column("frame (wall, ms)", "frame_ms"), Column("fps", "fps"),
+                     ratio_to("ratio to the frozen body", robot_frozen_row, "frame_ms"),
+                     Column("simulation", "sim_ms"), Column("tessellation", "refine_ms"),
+                     Column("uploads", "upload_ms"), Column("GPU span", "gpu_ms"),
+                     Column("hidden hair", "hidden_hair", percent)],
+                    about="`scenes/robot.json` the same way, at 1280×720: the glTF character skinned on the "
+                          "GPU (walking), 1,500 hair guides (6,000 strands drawn) and a cape simulated against "
+                          "it. The frozen rows empty the character's clips and morph tracks: the body stands "
+                          "in its rest pose while the hair and the cape are still simulated, so the ratio is "
+                          "what the moving body costs. 9 frames of 1/30 s after 15 untimed ones; medians of "
+                          "the frames, then of 5 repetitions; the ratio is of those medians.",
                     more_counters=r"_ms$", counter_order=[pass_key(p) for p in PASS_ORDER],
                     counter_header=pass_header),
           ]),
@@ -375,6 +420,16 @@ BENCHES: list[Bench] = [
               [time_column(), Column("vertices/s", "items_per_second", si_rate)],
               about="positions and tangents of dense strands × 16 from 762 guides."),
     ]),
+    Bench("skinning", "mane_skinning_bench", ["--benchmark_min_time=1"], True, [
+        Table("Skinning", r"", skinning_label,
+              [Column("ns per vertex", "ns_per_vertex"),
+               ratio_to("ratio to the CPU on 1 thread", lambda r: f"BM_SkinningCpu/{r.args.get('0')}/1", "ns_per_vertex"),
+               time_column("per mesh")],
+              about="a 20,000-vertex limb on 40 joints (4 influences a vertex) with 3 morph targets, positions, "
+                    "normals and tangents. The GPU rows are whole frames of the skinning pass alone: the "
+                    "joint and morph upload, recording, submission and the wait for it, so on lavapipe a "
+                    "fixed cost per submission is spread over the vertices."),
+    ]),
     Bench("interpolation", "mane_interpolation_bench", ["--benchmark_min_time=1"], False, [
         Table("Dense strands on the CPU", r"",
               lambda r: ("copy baseline" if "Copy" in r.name else
@@ -387,13 +442,23 @@ BENCHES: list[Bench] = [
               about="dense strands × 16 from 762 guides × 16; the copy is a memcpy of as many vertices."),
     ]),
     Bench("physics", "mane_physics_bench", ["--benchmark_min_time=0.5", "--benchmark_repetitions=3"], False, [
-        Table("Physics", r"", physics_label,
+        Table("Physics", r"^(?!BM_Character)", physics_label,
               [time_column(), Column("rate", "items_per_second", si_rate),
                Column("bytes/s", "bytes_per_second", si_rate)],
               about="10,000 guides × 32 particles on a swaying head, 4 constraint iterations per fixed "
                     "step, tethers on; collisions: a neck capsule and the SDF of a 20,480-triangle head, "
                     "friction 0.3. Rates: constraint projections or particle updates per second. The AVX2 "
                     "kernel is bit-identical to the scalar one; results are the same for any thread count."),
+        Table("A groom on a skinned head", r"^BM_Character", character_label,
+              [time_column(), Column("root update (µs)", "update_us"), Column("step (µs)", "step_us"),
+               Column("update / step", "update_ratio"), Column("surface evaluation", "evaluate_us"),
+               Column("colliders", "colliders_us"), Column("root targets", "targets_us"),
+               Column("triangles", "triangles"), Column("roots", "points")],
+              about="10,000 guides × 32 rooted on a 49,600-triangle skinned head that nods, three joint "
+                    "capsules as colliders. A step's root update (the roots evaluated on the skinned "
+                    "surface, the colliders moved into the head's frame, the root targets set) against the "
+                    "simulation step of 1/120 s it feeds; the skinning itself is not counted. Times of the "
+                    "update's parts in µs."),
     ]),
     Bench("ropes_vs_bullet", "mane_ropes_vs_bullet_bench", [], False, [
         Table("Against Bullet", r"",
@@ -425,6 +490,14 @@ BENCHES: list[Bench] = [
               [ms(), Column("retessellated", "retessellated", percent)],
               about="the cage update alone (the jaw's two poses in turn), and the head as a scene mesh "
                     "turning ±20° at 0.25 Hz through World::refineForCamera."),
+        Table("A skinned cage bending", r"^BM_ElbowTubeFrame/",
+              lambda r: ("the whole tube in view (1 m)" if r.args.get("distance_cm") == "100" else
+                         f"the elbow filling the frame ({r.args.get('distance_cm', '?')} cm)")
+              + f", {threads(r.args.get('threads', '?'))}",
+              [ms(), Column("triangles", "triangles")],
+              about="an open tube of 8 × 12 quads, 10 cm across and 60 cm long, on two joints (dual-quaternion "
+                    "skinning), its elbow sweeping 0° → 90° → 0° over 120 frames; each frame skins the cage, "
+                    "moves its limit surface and tessellates it for a still 1280×720 camera."),
     ]),
     Bench("fur", "mane_fur_bench", ["--benchmark_min_time=2"], True, [
         Table("Fur", r"",

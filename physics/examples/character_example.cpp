@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -168,11 +169,17 @@ int main() {
 
   // Hair and cloth are created in the bind pose's space placed by the upper arm at frame 0.
   ArmPose pose = poseAt(0);
-  SolverSettings solver;  // 1/120 s steps, gravity −9.81 m/s² along y
-  solver.shapeStiffness = 0.3f;
-  auto hair = HairSystem::create(*strands, solver, pose.upperArm);
+  // The host's workers could run the parallel loops (a TaskRunner over its job system); here the
+  // built-in pool does.
+  const TaskRunner tasks = builtInTaskRunner(kThreads);
+  HairSettings hairSettings;  // solver: 1/120 s steps, gravity −9.81 m/s² along y
+  hairSettings.strands = std::move(*strands);
+  hairSettings.solver.shapeStiffness = 0.3f;
+  hairSettings.headTransform = pose.upperArm;
+  hairSettings.rootRestNormals = rootNormals;
+  hairSettings.tasks = tasks;
+  auto hair = HairSystem::create(hairSettings);
   if (!hair) return std::fprintf(stderr, "hair: %s\n", hair.error().message.c_str()), EXIT_FAILURE;
-  if (!check(hair->setRootRestNormals(rootNormals), "rest normals")) return EXIT_FAILURE;
 
   // A 0.5 m × 0.2 m flag under the arm, its top row pinned to the skin's bottom line.
   constexpr int kFlagColumns = 11, kFlagRows = 6;
@@ -189,7 +196,12 @@ int main() {
   for (std::uint32_t i = 0; i < kFlagColumns; ++i) flagPins.push_back(i);
   ClothSettings clothSettings;
   clothSettings.solver.constraintIterations = 8;
-  auto cloth = Cloth::create(flag, flagTriangles, flagPins, clothSettings, pose.upperArm);
+  clothSettings.positions = flag;
+  clothSettings.triangles = flagTriangles;
+  clothSettings.pinnedVertices = flagPins;
+  clothSettings.bodyTransform = pose.upperArm;
+  clothSettings.tasks = tasks;
+  auto cloth = Cloth::create(clothSettings);
   if (!cloth) return std::fprintf(stderr, "cloth: %s\n", cloth.error().message.c_str()), EXIT_FAILURE;
   // The pins bound to the arm's skin like the roots (pinnedVertices() gives their order).
   std::vector<glm::vec3> pinRest;
@@ -210,8 +222,8 @@ int main() {
         !check(hair->setRootTargets(rootTargets, rootNormals), "root targets") ||
         !check(pinBinding->evaluate(skinPositions, {}, pinTargets, {}, {}), "pins") ||
         !check(cloth->setBodyTransform(pose.upperArm), "body") || !check(cloth->setColliders(colliders), "colliders") ||
-        !check(cloth->setPinTargets(pinTargets), "pin targets") || !check(hair->advance(kFrameDt, kThreads), "hair") ||
-        !check(cloth->advance(kFrameDt, kThreads), "cloth"))
+        !check(cloth->setPinTargets(pinTargets), "pin targets") || !check(hair->advance(kFrameDt), "hair") ||
+        !check(cloth->advance(kFrameDt), "cloth"))
       return EXIT_FAILURE;
     for (std::size_t s = 0; s < hair->strandCount(); ++s)
       worstRoot = std::max(worstRoot, glm::distance(hair->strandPositions(s)[0], rootTargets[s]));

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
@@ -25,8 +26,10 @@ int main() {
     return EXIT_FAILURE;
   }
 
-  SolverSettings settings;  // 1/120 s steps, gravity −9.81 m/s² along Y, 4 iterations
-  auto hair = HairSystem::create(*strands, settings);
+  HairSettings settings;  // solver: 1/120 s steps, gravity −9.81 m/s² along Y, 4 iterations
+  settings.strands = std::move(*strands);
+  settings.tasks = builtInTaskRunner(2);  // or a TaskRunner over the host engine's own workers
+  auto hair = HairSystem::create(settings);
   if (!hair) {
     std::fprintf(stderr, "hair: %s\n", hair.error().message.c_str());
     return EXIT_FAILURE;
@@ -44,7 +47,7 @@ int main() {
       std::fprintf(stderr, "head: %s\n", ok.error().message.c_str());
       return EXIT_FAILURE;
     }
-    if (auto ok = hair->advance(kFrameDt, 2); !ok) {
+    if (auto ok = hair->advance(kFrameDt); !ok) {
       std::fprintf(stderr, "advance: %s\n", ok.error().message.c_str());
       return EXIT_FAILURE;
     }

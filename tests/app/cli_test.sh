@@ -92,6 +92,107 @@ case $case in
     done
     for h in "${hashes[@]}"; do [ "$h" = "${hashes[0]}" ] || fail "hashes differ: ${hashes[*]}"; done
     ;;
+  sim-trace-finds-perturbed-step)
+    # The trace holds one "STEP HASH" line per fixed step from the loaded state (0) on; it does not
+    # depend on the threads, and a particle moved before step 17 makes line 17 the first to differ.
+    "$mane" sim --steps 30 --threads 1 --trace "$scratch/one.trace" >"$scratch/one.log" || fail "sim --trace failed"
+    "$mane" sim --steps 30 --threads 2 --trace "$scratch/two.trace" >/dev/null || fail "sim --trace failed"
+    "$mane" sim --steps 30 --threads 2 --trace "$scratch/moved.trace" --perturb 17 >/dev/null ||
+      fail "sim --perturb failed"
+    [ "$(wc -l <"$scratch/one.trace")" -eq 31 ] || fail "expected 31 lines (steps 0 to 30): $(wc -l <"$scratch/one.trace")"
+    grep -qvE '^[0-9]+ [0-9a-f]{16}$' "$scratch/one.trace" && fail "a line is not 'STEP HASH': $(head -3 "$scratch/one.trace")"
+    cmp -s "$scratch/one.trace" "$scratch/two.trace" || fail "the trace depends on the threads"
+    [ "state-hash: $(tail -n 1 "$scratch/one.trace" | cut -d' ' -f2)" = "$(tail -n 1 "$scratch/one.log")" ] ||
+      fail "the trace's last hash is not the printed state hash"
+    # diff exits 1 when the files differ, which is the point here.
+    first=$({ diff "$scratch/one.trace" "$scratch/moved.trace" || true; } | grep -m1 '^>' | cut -d' ' -f2)
+    [ "$first" = 17 ] || fail "the first differing step is '$first', not 17"
+    "$mane" sim --steps 30 --perturb 31 2>"$scratch/err" >/dev/null && fail "--perturb past the end accepted"
+    grep -q "^mane: --perturb 31 is past the last step 30$" "$scratch/err" || fail "message: $(cat "$scratch/err")"
+    ;;
+  sim-save-state-and-hair)
+    # --save FILE --at STEPS: one state file per step (docs/sim-state-format.md) and each groom as a
+    # HAIR file, with the counts of the loaded groom (762 guides × 16 points on nalu's head).
+    "$mane" sim --steps 12 --save "$scratch/saved/nalu.msim" --at 0,12 >"$scratch/log" || fail "sim --save failed"
+    for step in 000000 000012; do
+      state="$scratch/saved/nalu_$step.msim"
+      [ "$(head -c 8 "$state" | od -An -c | tr -d ' ')" = 'MANESIM\0' ] || fail "$state has no MANESIM signature"
+      [ "$(od -An -tu4 -j24 -N4 "$state" | tr -d ' ')" = "$((10#$step))" ] || fail "$state is not step $step"
+      hair=$(ls "$scratch"/saved/nalu_${step}_*.hair) || fail "no .hair for step $step: $(ls "$scratch/saved")"
+      [ "$(head -c 4 "$hair")" = HAIR ] || fail "$hair is no HAIR file"
+      # Hair count and point count: bytes 4..11, little-endian.
+      [ "$(od -An -tu4 -j4 -N8 "$hair" | tr -s ' ')" = " 762 12192" ] || fail "$hair counts: $(od -An -tu4 -j4 -N8 "$hair")"
+      grep -q "^wrote .*nalu_$step.msim$" "$scratch/log" || fail "no 'wrote' line for step $step"
+    done
+    cmp -s "$scratch"/saved/nalu_000000_*.hair "$scratch"/saved/nalu_000012_*.hair && fail "the groom did not move"
+    "$mane" sim --steps 12 --save "$scratch/x.msim" --at 13 2>"$scratch/err" >/dev/null && fail "--at 13 accepted"
+    grep -q "^mane: --at 13 is past the last step 12$" "$scratch/err" || fail "message: $(cat "$scratch/err")"
+    ;;
+  sim-json-version-and-usage-errors)
+    # --json: one JSON object on stdout; --version: the project's version; a usage error: one line
+    # on stderr, status 1, like every other error.
+    "$mane" sim --steps 5 --json >"$scratch/sim.json" || fail "sim --json failed"
+    python3 - "$scratch/sim.json" <<'PY' || fail "sim --json: $(cat "$scratch/sim.json")"
+import json, re, sys
+report = json.load(open(sys.argv[1]))
+assert report["command"] == "sim" and report["steps"] == 5 and report["guide_strands"] == 762, report
+assert re.fullmatch("[0-9a-f]{16}", report["state_hash"]) and report["wall_seconds"] >= 0, report
+PY
+    [ "$("$mane" sim --steps 5 | tail -n 1)" = "state-hash: $(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["state_hash"])' "$scratch/sim.json")" ] ||
+      fail "--json gives another hash than the text"
+    version=$(grep -oP 'project\(mane VERSION \K[0-9.]+' CMakeLists.txt)
+    [ "$("$mane" --version)" = "mane $version" ] || fail "--version: $("$mane" --version), not mane $version"
+    for bad in "sim --steps -1" "sim --no-such-option" "render --msaa 3" "" "sim --frames 3"; do
+      # shellcheck disable=SC2086
+      "$mane" $bad 2>"$scratch/err" >"$scratch/out"
+      status=$?
+      [ "$status" -eq 1 ] || fail "'mane $bad' exited $status, not 1"
+      [ "$(wc -l <"$scratch/err")" -eq 1 ] && grep -q "^mane: " "$scratch/err" || fail "'mane $bad': $(cat "$scratch/err")"
+      [ ! -s "$scratch/out" ] || fail "'mane $bad' printed on stdout: $(cat "$scratch/out")"
+    done
+    ;;
+  render-json-report)
+    # --json: per-frame and per-pass GPU times, frame times and the state hash, nothing else on
+    # stdout; and without a terminal, no progress bar in the text output.
+    "$mane" render scenes/cape.json --frames 2 --size 160x90 --msaa 1 --out "$scratch/out" --json \
+      >"$scratch/render.json" 2>"$scratch/err" || fail "render --json failed: $(cat "$scratch/err")"
+    python3 - "$scratch/render.json" <<'PY' || fail "render --json: $(cat "$scratch/render.json")"
+import json, sys
+report = json.load(open(sys.argv[1]))
+assert report["command"] == "render" and report["width"] == 160 and report["source"] == "simulated", report
+assert [f["frame"] for f in report["frames"]] == [0, 1], report["frames"]
+assert all(f["passes_gpu_ms"] and f["wall_ms"] > 0 for f in report["frames"]), report["frames"]
+assert report["passes"][-1]["pass"] == "all passes" and len(report["state_hash"]) == 16, report["passes"]
+PY
+    "$mane" render scenes/cape.json --frames 3 --size 160x90 --msaa 1 --out "$scratch/out" >"$scratch/log" 2>&1 ||
+      fail "render failed: $(cat "$scratch/log")"
+    grep -q $'\r' "$scratch/log" && fail "a progress bar was drawn into a file"
+    grep -q "^wrote 3 frames" "$scratch/log" || fail "no 'wrote' line: $(cat "$scratch/log")"
+    ;;
+  cache-split-renders-identical)
+    # A simulation cache of 6 frames at 24 fps rendered in two ranges (as two farm machines would)
+    # gives the same bytes as one run over the cache and as a plain render that simulates.
+    "$mane" sim scenes/cape.json --cache "$scratch/cache" --frames 6 --fps 24 >"$scratch/log" ||
+      fail "sim --cache failed: $(cat "$scratch/log")"
+    [ "$(ls "$scratch"/cache/frame_*.msim | wc -l)" -eq 6 ] || fail "expected 6 frames: $(ls "$scratch/cache")"
+    common=(--size 160x90 --msaa 1)
+    "$mane" render --cache "$scratch/cache" --frame-range 0:2 "${common[@]}" --out "$scratch/split" >"$scratch/log" 2>&1 &&
+      "$mane" render --cache "$scratch/cache" --frame-range 3:5 "${common[@]}" --out "$scratch/split" >>"$scratch/log" 2>&1 &&
+      "$mane" render --cache "$scratch/cache" "${common[@]}" --out "$scratch/whole" >>"$scratch/log" 2>&1 &&
+      "$mane" render scenes/cape.json --frames 6 --fps 24 "${common[@]}" --out "$scratch/plain" >>"$scratch/log" 2>&1 ||
+      fail "render failed: $(cat "$scratch/log")"
+    for frame in 0000 0001 0002 0003 0004 0005; do
+      cmp "$scratch/whole/cape_$frame.png" "$scratch/split/cape_$frame.png" || fail "frame $frame: split differs"
+      cmp "$scratch/whole/cape_$frame.png" "$scratch/plain/cape_$frame.png" || fail "frame $frame: plain differs"
+    done
+    cmp -s "$scratch/whole/cape_0000.png" "$scratch/whole/cape_0005.png" && fail "the cape did not move"
+    "$mane" render --cache "$scratch/cache" --frame-range 4:6 "${common[@]}" --out "$scratch/x" 2>"$scratch/err" >/dev/null &&
+      fail "a range past the cache accepted"
+    grep -q "^mane: --frame-range 4:6: the cache .* holds frames 0 to 5$" "$scratch/err" || fail "message: $(cat "$scratch/err")"
+    "$mane" render scenes/robot.json --cache "$scratch/cache" "${common[@]}" --out "$scratch/x" 2>"$scratch/err" >/dev/null &&
+      fail "a cache of another scene accepted"
+    grep -q "^mane: .*frame_000000.msim: .*another scene" "$scratch/err" || fail "message: $(cat "$scratch/err")"
+    ;;
   view-character-keys)
     # C plays the next clip of the character, E blends in its next expression; each is printed.
     xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view scenes/robot.json --frames 6 --press CEEC \

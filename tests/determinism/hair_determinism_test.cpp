@@ -15,6 +15,8 @@
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
 #include "physics/sdf.hpp"
+#include "physics/thread_pool.hpp"
+#include "tests/support/host_task_runner.hpp"
 
 namespace mane::physics {
 namespace {
@@ -26,7 +28,9 @@ struct RunResult {
 
 // A curly 301-strand groom (301 = 7·43: 2, 3 and 4 workers all get uneven ranges) on a
 // moving head, for 90 frames of irregular length.
-RunResult simulate(unsigned threads, bool collisions = false, bool vectorised = true) {
+// `runner`, when given, runs the frames instead of `threads` built-in workers.
+RunResult simulate(unsigned threads, bool collisions = false, bool vectorised = true,
+                   const TaskRunner* runner = nullptr) {
   GroomSettings groom;
   groom.seed = 2024;
   groom.strandCount = 301;
@@ -45,6 +49,9 @@ RunResult simulate(unsigned threads, bool collisions = false, bool vectorised = 
   auto hair = HairSystem::create(*strands, settings);
   EXPECT_TRUE(hair);
   hair->setVectorised(vectorised);
+  if (runner) {
+    EXPECT_TRUE(hair->setTaskRunner(*runner));
+  }
   if (collisions) {
     // A sphere, a neck capsule and the SDF of an ellipsoidal head, with friction.
     static const auto sdf = [] {
@@ -71,7 +78,7 @@ RunResult simulate(unsigned threads, bool collisions = false, bool vectorised = 
     glm::mat4 head = glm::translate(glm::mat4(1.0f), glm::vec3(sway, 0.0f, 0.5f * sway));
     head = glm::rotate(head, static_cast<float>(0.25 * t), glm::vec3(1.0f, 0.0f, 0.0f));
     EXPECT_TRUE(hair->setHeadTransform(head));
-    EXPECT_TRUE(hair->advance(dt, threads));
+    EXPECT_TRUE(runner ? hair->advance(dt) : hair->advance(dt, threads));
   }
   return {hair->stateHash(), hair->particles().positions};
 }
@@ -108,6 +115,25 @@ TEST(HairDeterminism, WithCollisionsShapeAndClampSameHashForOneToFourThreads) {
     EXPECT_TRUE(sameBytes(run.positions, reference.positions)) << threads << " threads";
   }
   EXPECT_NE(reference.hash, simulate(1).hash);
+}
+
+TEST(HairDeterminism, SameHashForPoolsOfOneTwoAndFourWorkersAndAHostRunner) {
+  // Whatever runs the tasks: the built-in pool at 1, 2 and 4 workers, and a host's runner that
+  // takes them in reverse order on threads of its own, with and without colliders.
+  for (const bool collisions : {false, true}) {
+    const RunResult reference = simulate(1, collisions);
+    for (unsigned workers : {1u, 2u, 4u}) {
+      ThreadPool pool(workers);
+      const TaskRunner runner = pool.runner();
+      const RunResult run = simulate(0, collisions, true, &runner);
+      EXPECT_EQ(run.hash, reference.hash) << workers << " workers";
+      EXPECT_TRUE(sameBytes(run.positions, reference.positions)) << workers << " workers";
+    }
+    const TaskRunner host = test::reversedHostRunner(2);
+    const RunResult run = simulate(0, collisions, true, &host);
+    EXPECT_EQ(run.hash, reference.hash) << "host runner";
+    EXPECT_TRUE(sameBytes(run.positions, reference.positions)) << "host runner";
+  }
 }
 
 TEST(HairDeterminism, HashChangesWhenTheStateChanges) {

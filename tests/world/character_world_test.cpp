@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -101,6 +102,8 @@ TEST(CharacterWorld, RootsPinsAndCollidersFollowTheBodyOverWholeClips) {
                              glm::distance(transformPoint(headFrame, capsule.a), glm::vec3(robot.jointFrame(*neck)[3])),
                              glm::distance(transformPoint(headFrame, capsule.b), glm::vec3(robot.jointFrame(*head)[3]))});
   }
+  std::printf("largest distance from target: roots %.3g m, pins %.3g m, capsule ends %.3g m; roots travelled %.3g m\n",
+              double(rootError), double(pinError), double(capsuleError), double(rootTravel));
   EXPECT_LE(rootError, 1e-5f);
   EXPECT_LE(pinError, 1e-5f);
   EXPECT_LE(capsuleError, 1e-5f);
