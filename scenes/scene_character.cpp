@@ -58,6 +58,22 @@ glm::mat4 rigidPart(const glm::mat4& placement) {
   return rigid;
 }
 
+Transform transformOf(const glm::mat4& frame) {
+  Transform transform;
+  transform.translation = glm::vec3(frame[3]);
+  const float sinY = std::clamp(-frame[0][2], -1.0f, 1.0f);
+  glm::vec3 radians(0.0f, std::asin(sinY), 0.0f);
+  if (std::abs(sinY) < 0.99999f) {
+    radians.x = std::atan2(frame[1][2], frame[2][2]);
+    radians.z = std::atan2(frame[0][1], frame[0][0]);
+  } else {  // gimbal lock: the x and z turns share an axis; all of it goes to z
+    radians.z = std::atan2(-frame[1][0], frame[1][1]);
+  }
+  transform.rotationDegrees = glm::degrees(radians);
+  return transform;
+}
+
+
 Result<SceneCharacter> SceneCharacter::create(const CharacterInstance& instance, const std::filesystem::path& file) {
   auto loaded = loadCharacter(file);
   if (!loaded) return std::unexpected(loaded.error());

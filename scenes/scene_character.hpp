@@ -34,6 +34,10 @@ namespace mane::scenes {
 /// positive scale (a joint placement): the columns made orthonormal (Gram–Schmidt, x first).
 [[nodiscard]] glm::mat4 rigidPart(const glm::mat4& placement);
 
+/// The Transform whose matrix is the rigid `frame` (rotation and translation): Euler angles for
+/// T · Rz · Ry · Rx, the order Transform composes.
+[[nodiscard]] Transform transformOf(const glm::mat4& frame);
+
 class SceneCharacter {
 public:
   /// Loads `file` for `instance` (errors name the file and what is wrong): every clip of the

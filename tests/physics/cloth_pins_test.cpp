@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "physics/cloth.hpp"
+#include "tests/support/cloth_grid.hpp"
 
 namespace mane::physics {
 namespace {
@@ -19,31 +20,15 @@ namespace {
 using ::testing::HasSubstr;
 using Pins = std::vector<std::uint32_t>;
 
-// An n × n vertex grid of side `size` metres in the XY plane, hanging from row 0.
-struct Grid {
-  std::vector<glm::vec3> positions;
-  std::vector<std::uint32_t> triangles;
-};
-
-Grid makeGrid(int n, float size) {
-  Grid grid;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      grid.positions.push_back({size * float(i) / float(n - 1), -size * float(j) / float(n - 1), 0.0f});
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const std::uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      grid.triangles.insert(grid.triangles.end(), {a, c, b, b, c, d});
-    }
-  return grid;
-}
+using Grid = mane::testing::ClothGrid;
+using mane::testing::makeClothGrid;
 
 glm::vec3 transformed(const glm::mat4& m, const glm::vec3& p) {
   return glm::vec3(m * glm::vec4(p, 1.0f));
 }
 
 TEST(ClothPins, PinnedVerticesAreListedOnceInFirstAppearanceOrder) {
-  const Grid grid = makeGrid(6, 0.4f);
+  const Grid grid = makeClothGrid(6, 0.4f);
   auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{5, 0, 5, 2}, {});
   ASSERT_TRUE(cloth) << cloth.error().message;
   EXPECT_EQ(std::vector<std::uint32_t>(cloth->pinnedVertices().begin(), cloth->pinnedVertices().end()),
@@ -52,7 +37,7 @@ TEST(ClothPins, PinnedVerticesAreListedOnceInFirstAppearanceOrder) {
 }
 
 TEST(ClothPins, PinsEndTheFrameExactlyOnTheirTargets) {
-  const Grid grid = makeGrid(8, 0.4f);
+  const Grid grid = makeClothGrid(8, 0.4f);
   auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 7, 3}, {});
   ASSERT_TRUE(cloth);
   // Targets that no rigid motion of the pins gives (the pins spread apart and twist). Pin 1
@@ -75,7 +60,7 @@ TEST(ClothPins, PinsEndTheFrameExactlyOnTheirTargets) {
 
 TEST(ClothPins, ThreadCountDoesNotChangeTheResult) {
   // 128² = 16,384 vertices: enough for several workers (Cloth::advance takes one per 4,096).
-  const Grid grid = makeGrid(128, 0.6f);
+  const Grid grid = makeClothGrid(128, 0.6f);
   const Pins pins = {0, 32, 64, 96, 127};
   std::uint64_t hashes[3];
   const unsigned threads[3] = {1, 2, 4};
@@ -104,7 +89,7 @@ TEST(ClothPins, TargetsCarriedByARigidBodyReproduceTheBodyTransformBitForBit) {
   // bit for bit, as long as every frame ends on a whole fixed step (1/60 s here): otherwise the
   // body-carried pin restarts from the body's last placement, the target-following one from
   // where its last step left it.
-  const Grid grid = makeGrid(10, 0.5f);
+  const Grid grid = makeClothGrid(10, 0.5f);
   const Pins pins = {0, 4, 9};
   ClothSettings settings;
   auto carried = Cloth::create(grid.positions, grid.triangles, pins, settings);
@@ -131,7 +116,7 @@ TEST(ClothPins, TargetsCarriedByARigidBodyReproduceTheBodyTransformBitForBit) {
 }
 
 TEST(ClothPins, BadTargetsAreRejectedByPinAndChangeNothing) {
-  const Grid grid = makeGrid(4, 0.3f);
+  const Grid grid = makeClothGrid(4, 0.3f);
   auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 3}, {});
   ASSERT_TRUE(cloth);
   auto result = cloth->setPinTargets(std::vector<glm::vec3>{glm::vec3(0.0f)});

@@ -11,36 +11,22 @@
 #include <gtest/gtest.h>
 
 #include "physics/cloth.hpp"
+#include "tests/support/cloth_grid.hpp"
 
 namespace mane::physics {
 namespace {
 
 // An n × n vertex grid of side `size` metres in the XY plane (a hanging sheet), two triangles
 // per cell. Vertex (i, j) is at index j·n + i, row j = 0 at the top.
-struct Grid {
-  std::vector<glm::vec3> positions;
-  std::vector<std::uint32_t> triangles;
-};
+using Grid = mane::testing::ClothGrid;
+using mane::testing::makeClothGrid;
 
 using Pins = std::vector<std::uint32_t>;
-
-Grid makeGrid(int n, float size) {
-  Grid grid;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      grid.positions.push_back({size * float(i) / float(n - 1), -size * float(j) / float(n - 1), 0.0f});
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const std::uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
-      grid.triangles.insert(grid.triangles.end(), {a, c, b, b, c, d});
-    }
-  return grid;
-}
 
 TEST(Cloth, BuildsOneConstraintPerEdgeAndOneBendPerInteriorEdge) {
   // A 4×4 grid: 3·4 horizontal + 3·4 vertical + 9 diagonal edges = 33; interior edges (shared by
   // two triangles) = 33 − 12 boundary edges = 21.
-  const Grid grid = makeGrid(4, 1.0f);
+  const Grid grid = makeClothGrid(4, 1.0f);
   auto cloth = Cloth::create(grid.positions, grid.triangles, {}, {});
   ASSERT_TRUE(cloth.has_value()) << cloth.error().message;
   EXPECT_EQ(cloth->edgeCount(), 33u);
@@ -48,7 +34,7 @@ TEST(Cloth, BuildsOneConstraintPerEdgeAndOneBendPerInteriorEdge) {
 }
 
 TEST(Cloth, NoTwoConstraintsOfAColourShareAParticle) {
-  const Grid grid = makeGrid(12, 1.0f);
+  const Grid grid = makeClothGrid(12, 1.0f);
   auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 11}, {});
   ASSERT_TRUE(cloth.has_value());
   const auto starts = cloth->colourStarts();
@@ -68,7 +54,7 @@ TEST(Cloth, NoTwoConstraintsOfAColourShareAParticle) {
 // Internal constraints move equal masses by equal and opposite amounts, so the centre of mass
 // of free cloth falls exactly as a particle: c(t) = c0 + ½·g·t² (no damping).
 TEST(Cloth, FreeClothsCentreOfMassFallsLikeAParticle) {
-  const Grid grid = makeGrid(8, 0.5f);
+  const Grid grid = makeClothGrid(8, 0.5f);
   ClothSettings settings;
   settings.solver.damping = 0.0f;
   settings.solver.fixedStep = 1.0 / 120.0;
@@ -91,7 +77,7 @@ TEST(Cloth, FreeClothsCentreOfMassFallsLikeAParticle) {
 }
 
 TEST(Cloth, PinnedVerticesFollowTheBody) {
-  const Grid grid = makeGrid(6, 0.4f);
+  const Grid grid = makeClothGrid(6, 0.4f);
   auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 5}, {});
   ASSERT_TRUE(cloth.has_value());
   const glm::mat4 moved = glm::rotate(glm::translate(glm::mat4(1.0f), {0.3f, 0.1f, -0.2f}), 0.7f, {0, 1, 0});
@@ -107,7 +93,7 @@ TEST(Cloth, PinnedVerticesFollowTheBody) {
 // worst edge stretch must fall with every doubling of the iterations (measured here: 7.8 %,
 // 3.9 %, 1.8 %, 0.8 %, 0.3 % for 5…80) and be under 1 % by 40.
 TEST(Cloth, HangingSheetStretchFallsWithIterations) {
-  const Grid grid = makeGrid(10, 0.5f);
+  const Grid grid = makeClothGrid(10, 0.5f);
   float previous = 1.0f;
   for (int iterations : {5, 10, 20, 40, 80}) {
     ClothSettings settings;
@@ -133,7 +119,7 @@ TEST(Cloth, HangingSheetStretchFallsWithIterations) {
 // with tethers no free vertex ends a step farther from its pin than its rest path along the
 // edges (Kim et al. 2012's guarantee; + 1e-5 m for rounding).
 TEST(Cloth, TethersBoundEveryVertexByItsPathToAPin) {
-  const Grid grid = makeGrid(12, 0.5f);
+  const Grid grid = makeClothGrid(12, 0.5f);
   ClothSettings settings;
   settings.solver.constraintIterations = 3;
   auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0, 11}, settings);
@@ -184,7 +170,7 @@ TEST(Cloth, StifferBendingDroopsLess) {
 // inside the ball (signed distance ≥ −1e-4 m, the frictionless last pass puts them on the
 // surface), and the sheet ends up draped over it rather than falling through.
 TEST(Cloth, DrapesOverABallColliderAndNeverEntersIt) {
-  Grid grid = makeGrid(15, 0.8f);
+  Grid grid = makeClothGrid(15, 0.8f);
   for (auto& p : grid.positions) p = glm::vec3(p.x - 0.4f, 0.3f, p.y + 0.4f);  // horizontal, above
   ClothSettings settings;
   settings.solver.constraintIterations = 8;
@@ -213,7 +199,7 @@ TEST(Cloth, DrapesOverABallColliderAndNeverEntersIt) {
 
 TEST(Cloth, ThreadCountDoesNotChangeTheResult) {
   // 128² = 16,384 vertices: enough for 4 workers (Cloth::advance takes one per 4,096).
-  const Grid grid = makeGrid(128, 0.6f);
+  const Grid grid = makeClothGrid(128, 0.6f);
   std::uint64_t hashes[3];
   const unsigned threads[3] = {1, 2, 4};
   for (int run = 0; run < 3; ++run) {
@@ -231,7 +217,7 @@ TEST(Cloth, ThreadCountDoesNotChangeTheResult) {
 }
 
 TEST(Cloth, BadInputIsNamed) {
-  const Grid grid = makeGrid(3, 1.0f);
+  const Grid grid = makeClothGrid(3, 1.0f);
   auto message = [&](std::vector<glm::vec3> positions, std::vector<std::uint32_t> triangles,
                      std::vector<std::uint32_t> pins) {
     auto cloth = Cloth::create(positions, triangles, pins, {});
