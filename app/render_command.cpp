@@ -19,6 +19,7 @@
 #include "app/timing_report.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
+#include "physics/hash.hpp"
 #include "scenes/frame_loop.hpp"
 #include "scenes/sim_cache.hpp"
 
@@ -68,12 +69,6 @@ Result<std::pair<int, int>> parseFrameRange(const std::string& text) {
   return std::pair{first, last};
 }
 
-std::string hex(std::uint64_t value) {
-  char text[20];
-  std::snprintf(text, sizeof text, "%016" PRIx64, value);
-  return text;
-}
-
 /// One rendered frame, for the JSON report.
 struct FrameRecord {
   int frame = 0;
@@ -91,7 +86,10 @@ nlohmann::json jsonReport(const RenderOptions& options, const std::string& scene
   std::vector<std::vector<render::PassTiming>> timings;
   for (const FrameRecord& record : frames) {
     nlohmann::json passes = nlohmann::json::object();
-    for (const auto& timing : record.passes) passes[std::string(timing.pass.name())] = timing.milliseconds;
+    for (const auto& timing : record.passes) {
+      const std::string name(timing.pass.name());
+      passes[name] = passes.value(name, 0.0) + timing.milliseconds;  // a pass may run more than once a frame
+    }
     perFrame.push_back({{"frame", record.frame},
                         {"file", record.file},
                         {"wall_ms", record.wallMs},
@@ -118,7 +116,7 @@ nlohmann::json jsonReport(const RenderOptions& options, const std::string& scene
           {"first_frame", frames.empty() ? 0 : frames.front().frame},
           {"last_frame", frames.empty() ? 0 : frames.back().frame},
           {"wall_seconds", wallSeconds},
-          {"state_hash", hex(stateHash)},
+          {"state_hash", physics::hashText(stateHash)},
           {"notes", notes},
           {"passes", passes},
           {"frames", perFrame}};

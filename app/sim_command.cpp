@@ -15,6 +15,7 @@
 #include "app/commands.hpp"
 #include "app/scene_loading.hpp"
 #include "app/sim_outputs.hpp"
+#include "physics/hash.hpp"
 #include "scenes/sim_cache.hpp"
 
 namespace mane::app {
@@ -50,12 +51,6 @@ Result<void> perturbOneParticle(scenes::World& world) {
   positions[tip].x += kPerturbMetres;
   previous[tip].x += kPerturbMetres;
   return hair.setParticleState(positions, previous);
-}
-
-std::string hex(std::uint64_t value) {
-  char text[20];
-  std::snprintf(text, sizeof text, "%016" PRIx64, value);
-  return text;
 }
 
 void run(const SimOptions& options) {
@@ -133,7 +128,7 @@ void run(const SimOptions& options) {
         {"particles", world->particleCount()},
         {"wall_seconds", seconds},
         {"steps_per_second", seconds > 0.0 ? double(steps) / seconds : 0.0},
-        {"state_hash", hex(world->stateHash())},
+        {"state_hash", physics::hashText(world->stateHash())},
         {"notes", world->notes()},
         {"saved", files},
         {"trace", options.trace.empty() ? nlohmann::json() : nlohmann::json(options.trace)},
@@ -148,7 +143,7 @@ void run(const SimOptions& options) {
   std::printf("simulated %" PRIu64 " %s of %.6f s: %zu guide strands, %zu particles, %u thread%s, %.3f s wall\n", steps,
               caching ? "frames" : "steps", step, world->guideStrandCount(), world->particleCount(), options.threads,
               options.threads == 1 ? "" : "s", seconds);
-  std::printf("state-hash: %s\n", hex(world->stateHash()).c_str());
+  std::printf("state-hash: %s\n", physics::hashText(world->stateHash()).c_str());
   succeed();
 }
 

@@ -196,7 +196,7 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
 }
 
 Result<void> Cloth::setTaskRunner(TaskRunner tasks) {
-  if (auto valid = validateTaskRunner(tasks, "cloth: the task runner"); !valid) return valid;
+  if (auto valid = validateTaskRunner(tasks, "Cloth::setTaskRunner: the runner"); !valid) return valid;
   settings_.tasks = std::move(tasks);
   return {};
 }

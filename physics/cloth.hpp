@@ -67,8 +67,8 @@ public:
   /// body transform, colliders or task runner.
   [[nodiscard]] static Result<Cloth> create(const ClothSettings& settings);
 
-  /// The earlier entry point, kept for existing callers: `create` with `settings`' mesh, pins
-  /// and body transform replaced by these arguments (copied).
+  /// Shorthand: `create` with `settings`' mesh, pins and body transform replaced by these
+  /// arguments (copied).
   [[nodiscard]] static Result<Cloth> create(std::span<const glm::vec3> positions,
                                             std::span<const std::uint32_t> triangles,
                                             std::span<const std::uint32_t> pinnedVertices,
@@ -106,8 +106,8 @@ public:
   /// completed on the calling thread, so the state is still right), or when a particle becomes
   /// non-finite (naming it).
   [[nodiscard]] Result<void> advance(double frameDt);
-  /// The earlier entry point, kept for existing callers: `advance` on
-  /// `builtInTaskRunner(threads)` for this frame (0 counts as 1).
+  /// Shorthand for a caller that counts workers: `advance` on `builtInTaskRunner(threads)` for
+  /// this frame (0 counts as 1).
   [[nodiscard]] Result<void> advance(double frameDt, unsigned threads);
 
   /// Replaces the task runner (`ClothSettings::tasks`); fails, changing nothing, when

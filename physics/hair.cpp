@@ -153,7 +153,7 @@ Result<HairSystem> HairSystem::create(const HairSettings& hair) {
 }
 
 Result<void> HairSystem::setTaskRunner(TaskRunner tasks) {
-  if (auto valid = validateTaskRunner(tasks, "Hair system: the task runner"); !valid) return valid;
+  if (auto valid = validateTaskRunner(tasks, "HairSystem::setTaskRunner: the runner"); !valid) return valid;
   tasks_ = std::move(tasks);
   return {};
 }

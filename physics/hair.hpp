@@ -110,8 +110,8 @@ public:
   /// transform, colliders, wind, rest normals or task runner are invalid.
   [[nodiscard]] static Result<HairSystem> create(const HairSettings& settings);
 
-  /// The earlier entry point, kept for existing callers: `create` with a `HairSettings` holding a
-  /// copy of `strands`, `settings` and `headTransform` and everything else at its default.
+  /// Shorthand: `create` with a `HairSettings` holding a copy of `strands`, `settings` and
+  /// `headTransform` and everything else at its default.
   [[nodiscard]] static Result<HairSystem> create(std::span<const std::vector<glm::vec3>> strands,
                                                  const SolverSettings& settings,
                                                  const glm::mat4& headTransform = glm::mat4(1.0f));
@@ -198,8 +198,8 @@ public:
   /// particle position becomes NaN or infinite: the message names the strand and the system
   /// stops advancing (see `fault()`) until `teleport` resets it.
   [[nodiscard]] Result<void> advance(double frameDt);
-  /// The earlier entry point, kept for existing callers: `advance` on `builtInTaskRunner(threads)`
-  /// for this frame (0 counts as 1).
+  /// Shorthand for a caller that counts workers: `advance` on `builtInTaskRunner(threads)` for
+  /// this frame (0 counts as 1).
   [[nodiscard]] Result<void> advance(double frameDt, unsigned threads);
 
   /// Replaces the task runner (`HairSettings::tasks`). Fails, changing nothing, when

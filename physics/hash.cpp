@@ -1,5 +1,8 @@
 #include "physics/hash.hpp"
 
+#include <cinttypes>
+#include <cstdio>
+
 namespace mane::physics {
 
 std::uint64_t fnv1a(std::span<const std::byte> bytes, std::uint64_t hash) noexcept {
@@ -16,6 +19,12 @@ std::uint64_t stateHash(const Particles& particles) noexcept {
   hasher.add(std::span<const glm::vec3>(particles.positions));
   hasher.add(std::span<const glm::vec3>(particles.previousPositions));
   return hasher.value();
+}
+
+std::string hashText(std::uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016" PRIx64, hash);
+  return text;
 }
 
 }  // namespace mane::physics

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <type_traits>
 
 #include "physics/particles.hpp"
@@ -51,5 +52,8 @@ private:
 /// Hash of a particle store: positions, then previous positions (all x, y, z floats in particle
 /// order). Inverse masses are configuration, not simulated, and are left out.
 [[nodiscard]] std::uint64_t stateHash(const Particles& particles) noexcept;
+
+/// A hash as text: 16 lower-case hex digits, as `mane sim` prints its state hash.
+[[nodiscard]] std::string hashText(std::uint64_t hash);
 
 }  // namespace mane::physics

@@ -405,7 +405,7 @@ Result<void> DenseStrandInterpolator::interpolate(std::span<const glm::vec3> gui
 }
 
 Result<void> DenseStrandInterpolator::setTaskRunner(TaskRunner tasks) {
-  if (auto valid = validateTaskRunner(tasks, "Dense groom: the task runner"); !valid) return valid;
+  if (auto valid = validateTaskRunner(tasks, "DenseStrandInterpolator::setTaskRunner: the runner"); !valid) return valid;
   tasks_ = std::move(tasks);
   return {};
 }

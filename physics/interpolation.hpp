@@ -173,8 +173,8 @@ private:
                                                    const DenseStrandLayout& layout, std::span<glm::vec3> positions,
                                                    std::span<glm::vec3> tangents, const TaskRunner& tasks);
 
-/// The earlier entry point, kept for existing callers: the above on `builtInTaskRunner(threads)`
-/// (0 counts as 1).
+/// Shorthand for a caller that counts workers: the above on `builtInTaskRunner(threads)` (0
+/// counts as 1).
 [[nodiscard]] Result<void> interpolateDenseStrands(std::span<const glm::vec3> guidePositions,
                                                    const DenseStrandLayout& layout, std::span<glm::vec3> positions,
                                                    std::span<glm::vec3> tangents = {}, unsigned threads = 1);

@@ -95,8 +95,8 @@ public:
   /// when the task runner fails (the vertices are then deformed on the calling thread).
   [[nodiscard]] Result<void> deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
                                     DeformedSurface& out, const TaskRunner& tasks) const;
-  /// The earlier entry point, kept for existing callers: `deform` on `builtInTaskRunner(threads)`
-  /// (0 counts as 1).
+  /// Shorthand for a caller that counts workers: `deform` on `builtInTaskRunner(threads)` (0
+  /// counts as 1).
   [[nodiscard]] Result<void> deform(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
                                     DeformedSurface& out, unsigned threads = 1) const;
 

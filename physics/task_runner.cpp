@@ -3,6 +3,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "physics/detail/parallel_tasks.hpp"
 
@@ -24,21 +25,26 @@ Result<void> runTaskBatch(const TaskRunner& runner, std::uint32_t count, void (*
     for (std::uint32_t task = 0; task < count; ++task) body(context, task);
     return {};
   }
-  // One flag per task: a task runs only the first time it is called, so a runner that calls a
-  // task twice cannot apply its work twice, and the ones it never called are found afterwards.
+  // Per task: 0 not started, 1 running, 2 done. A task runs only when it moves from 0 to 1, so a
+  // runner that calls a task twice cannot apply its work twice. After `wait`, the tasks never
+  // started are run here, and any still running (a runner whose wait returned early) are waited
+  // for, so no task outlives this batch.
+  enum : std::uint8_t { kNotStarted, kRunning, kDone };
   struct Batch {
     void (*body)(void*, std::uint32_t);
     void* context;
     std::uint32_t count;
-    std::unique_ptr<std::atomic<std::uint8_t>[]> ran;
+    std::unique_ptr<std::atomic<std::uint8_t>[]> state;
     std::atomic<std::uint32_t> misuse{0};  // calls with an index out of range or a repeated one
   } batch{body, context, count, std::make_unique<std::atomic<std::uint8_t>[]>(count)};
   const TaskFunction task = [b = &batch](std::uint32_t index) {
-    if (index >= b->count || b->ran[index].exchange(1, std::memory_order_acq_rel) != 0) {
+    std::uint8_t expected = kNotStarted;
+    if (index >= b->count || !b->state[index].compare_exchange_strong(expected, kRunning, std::memory_order_acq_rel)) {
       b->misuse.fetch_add(1, std::memory_order_relaxed);
       return;
     }
     b->body(b->context, index);
+    b->state[index].store(kDone, std::memory_order_release);
   };
 
   std::string failure;
@@ -47,12 +53,22 @@ Result<void> runTaskBatch(const TaskRunner& runner, std::uint32_t count, void (*
   } else if (auto waited = runner.wait(*group); !waited) {
     failure = "the task runner's wait failed: " + waited.error().message;
   }
-  std::uint32_t missed = 0;
+  std::uint32_t missed = 0, running = 0;
   for (std::uint32_t index = 0; index < count; ++index) {
-    if (batch.ran[index].exchange(1, std::memory_order_acq_rel) != 0) continue;
-    ++missed;
-    body(context, index);
+    std::uint8_t expected = kNotStarted;
+    if (batch.state[index].compare_exchange_strong(expected, kRunning, std::memory_order_acq_rel)) {
+      ++missed;
+      body(context, index);
+      batch.state[index].store(kDone, std::memory_order_release);
+      continue;
+    }
+    if (batch.state[index].load(std::memory_order_acquire) == kDone) continue;
+    ++running;
+    while (batch.state[index].load(std::memory_order_acquire) != kDone) std::this_thread::yield();
   }
+  if (failure.empty() && running > 0)
+    failure = "the task runner returned from wait with " + std::to_string(running) + " of " + std::to_string(count) +
+              " tasks still running";
   if (failure.empty() && missed > 0)
     failure = "the task runner returned from wait with " + std::to_string(missed) + " of " + std::to_string(count) +
               " tasks not run";

@@ -2,10 +2,10 @@
 // How the physics runs its parallel loops on somebody else's threads.
 //
 // Every parallel loop of a step (hair strands, cloth colours, dense strands, skinned vertices) is
-// handed to a `TaskRunner` as one batch of independent tasks numbered 0 … count − 1. The work of
-// each task is fixed by its index alone, and no value is combined across tasks, so the simulated
-// state has the same bits whichever threads run the tasks, in whatever order, and for any task
-// count (docs/design.md#determinism). A host engine with its own job system fills in `enqueue`
+// handed to a `TaskRunner` as one batch of independent tasks numbered 0 … count − 1. Each item of
+// the loop (a strand, a constraint, a vertex) comes out the same whichever task computes it, and
+// no value is combined across items, so the simulated state has the same bits whichever threads
+// run the tasks, in whatever order, and for any task count (docs/design.md#determinism). A host engine with its own job system fills in `enqueue`
 // and `wait`; otherwise `builtInTaskRunner` (thread_pool.hpp) runs the batches on a persistent
 // pool of threads.
 
@@ -34,9 +34,10 @@ using TaskFunction = std::function<void(std::uint32_t task)>;
 /// runner may also run them on the thread that calls `wait`.
 ///
 /// A runner that breaks the contract in a detectable way (an error from `enqueue` or `wait`, or
-/// `wait` returning before every task ran) does not corrupt the simulation: the tasks it did not
-/// run are run on the calling thread, so the state is the one a working runner gives, and the
-/// call that used it (`advance`, `interpolate`, ...) returns an error naming the failure.
+/// `wait` returning before every task ran or while some still run) does not corrupt the
+/// simulation: the tasks it did not start are run on the calling thread and those still running
+/// are waited for, so the state is the one a working runner gives, and the call that used it
+/// (`advance`, `interpolate`, ...) returns an error naming the failure.
 struct TaskRunner {
   /// How many tasks each parallel loop is split into (≥ 1), typically the number of workers the
   /// runner has. Loops with less work use fewer. The results do not depend on it.

@@ -167,13 +167,14 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
 
 Result<void> Renderer::setSkinnedMeshes(const StaticScene& scene) {
   skinned_.clear();
-  skinned_.resize(scene.meshes.size());
+  // Built aside and kept only whole: a scene whose skinning failed has none, not some.
+  std::vector<SkinnedMesh> built(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const MeshData& mesh = scene.meshes[m];
     if (mesh.skinning == nullptr) continue;
     const std::string name = "mesh " + std::to_string(m);
     SkinningSettings settings{.vertexTargets = {scene_.skinnedVertexTarget(m)}};
-    SkinnedMesh& skinned = skinned_[m];
+    SkinnedMesh& skinned = built[m];
     for (std::size_t f = 0; f < furs_.size(); ++f) {
       if (furs_.mesh(f) != m) continue;
       skinned.furs.push_back(f);
@@ -189,6 +190,7 @@ Result<void> Renderer::setSkinnedMeshes(const StaticScene& scene) {
     if (!pass) return fail(name + ": " + pass.error().message);
     skinned.pass = std::move(*pass);
   }
+  skinned_ = std::move(built);
   return {};
 }
 

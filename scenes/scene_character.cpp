@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -73,7 +74,6 @@ Transform transformOf(const glm::mat4& frame) {
   return transform;
 }
 
-
 Result<SceneCharacter> SceneCharacter::create(const CharacterInstance& instance, const std::filesystem::path& file) {
   auto loaded = loadCharacter(file);
   if (!loaded) return std::unexpected(loaded.error());
@@ -131,8 +131,12 @@ void SceneCharacter::play(std::size_t clip, double start, float crossFadeSeconds
   while (!timeline_.empty() && timeline_.back().play.startSeconds >= start) timeline_.pop_back();
   // A fade needs a clip to come from; with none the new clip simply starts.
   const float fade = timeline_.empty() ? 0.0f : crossFadeSeconds;
+  // Stored in float like the scene's starts, rounded down so that the clip has started at `start`.
+  float startSeconds = static_cast<float>(start);
+  if (static_cast<double>(startSeconds) > start)
+    startSeconds = std::nextafter(startSeconds, -std::numeric_limits<float>::infinity());
   timeline_.push_back({clip, ClipPlay{.clip = character_.clips.at(clip).name(),
-                                      .startSeconds = static_cast<float>(start),
+                                      .startSeconds = startSeconds,
                                       .crossFadeSeconds = fade}});
   posed_ = false;
 }

@@ -52,8 +52,6 @@ public:
   /// Poses the character at scene time `time` (seconds ≥ 0): the clip that has started last
   /// (blended with the one before while its cross-fade lasts), then the morph tracks.
   void poseAt(double time);
-  /// The time of the current pose.
-  [[nodiscard]] double time() const { return time_; }
 
   /// Plays clip `clip` (an index into character().clips) from scene time `start` on, looping at
   /// its own speed, blended in over `crossFadeSeconds` from what plays then; what the timeline
@@ -75,8 +73,6 @@ public:
   [[nodiscard]] Result<std::size_t> findPart(std::string_view name) const;
   /// The part's rigid frame in the world at the current pose (see the file comment).
   [[nodiscard]] glm::mat4 partFrame(std::size_t part) const;
-  /// The node whose placement is the part's frame.
-  [[nodiscard]] int partFrameNode(std::size_t part) const { return frameNodes_.at(part); }
 
   /// The node named `name`; the error names the file and lists the nodes.
   [[nodiscard]] Result<int> findJoint(std::string_view name) const;

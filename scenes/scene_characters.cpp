@@ -37,17 +37,19 @@ MorphTrack parseMorphTrack(const Json& json, const std::string& path) {
   const Json* weight = fields.take("weight");
   const Json& keys = fields.array("keys", false);
   require((weight != nullptr) != !keys.empty(), fields.path(), "expected either \"weight\" or \"keys\"");
-  if (weight) track.keys.push_back({0.0f, read<float>(*weight, fields.child("weight"))});
+  const auto checkedWeight = [](float value, const std::string& path) {
+    require(value >= -10.0f && value <= 10.0f, path, "expected a weight in [-10, 10]");
+    return value;
+  };
+  if (weight) track.keys.push_back({0.0f, checkedWeight(read<float>(*weight, fields.child("weight")), fields.child("weight"))});
   for (std::size_t i = 0; i < keys.size(); ++i) {
     ObjectFields key(keys[i], indexPath(fields.child("keys"), i));
-    MorphKey morph{key.required<float>("time"), key.required<float>("weight")};
+    MorphKey morph{key.required<float>("time"), checkedWeight(key.required<float>("weight"), key.child("weight"))};
     key.finish();
     require(track.keys.empty() || morph.timeSeconds > track.keys.back().timeSeconds, key.child("time"),
             "expected times in strictly increasing order");
     track.keys.push_back(morph);
   }
-  for (const MorphKey& key : track.keys)
-    require(key.weight >= -10.0f && key.weight <= 10.0f, fields.path(), "expected weights in [-10, 10]");
   fields.finish();
   return track;
 }

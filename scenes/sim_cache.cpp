@@ -1,11 +1,11 @@
 #include "scenes/sim_cache.hpp"
 
-#include <cinttypes>
-#include <cstdio>
+#include <charconv>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
+#include "physics/hash.hpp"
 #include "scenes/mesh.hpp"
 
 namespace mane::scenes {
@@ -14,12 +14,6 @@ namespace {
 constexpr const char* kManifestName = "cache.json";
 constexpr const char* kFormat = "mane-sim-cache";
 constexpr int kVersion = 1;
-
-std::string hex(std::uint64_t value) {
-  char text[20];
-  std::snprintf(text, sizeof text, "%016" PRIx64, value);
-  return text;
-}
 
 /// Whether `state` has the shape of `world`'s simulated state; the error says what differs.
 Result<void> checkFits(const SimulatedState& state, const World& world, const std::string& name) {
@@ -62,7 +56,7 @@ std::filesystem::path cacheFramePath(const std::filesystem::path& folder, std::u
 
 Result<void> writeCacheManifest(const std::filesystem::path& folder, const SimCacheManifest& manifest) {
   nlohmann::json hashes = nlohmann::json::array();
-  for (std::uint64_t hash : manifest.stateHashes) hashes.push_back(hex(hash));
+  for (std::uint64_t hash : manifest.stateHashes) hashes.push_back(physics::hashText(hash));
   const nlohmann::json json = {{"format", kFormat},   {"version", kVersion},       {"scene", manifest.scene},
                                {"fps", manifest.fps}, {"frames", manifest.frames}, {"state_hashes", hashes}};
   const std::string text = json.dump(2) + "\n";
@@ -87,8 +81,15 @@ Result<SimCacheManifest> readCacheManifest(const std::filesystem::path& folder) 
     manifest.scene = json.at("scene").get<std::string>();
     manifest.fps = json.at("fps").get<double>();
     manifest.frames = json.at("frames").get<std::uint32_t>();
-    for (const auto& hash : json.at("state_hashes"))
-      manifest.stateHashes.push_back(std::stoull(hash.get<std::string>(), nullptr, 16));
+    const nlohmann::json& hashes = json.at("state_hashes");
+    for (std::size_t i = 0; i < hashes.size(); ++i) {
+      const std::string text = hashes[i].get<std::string>();
+      std::uint64_t hash = 0;
+      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), hash, 16);
+      if (error != std::errc() || end != text.data() + text.size() || text.size() != 16)
+        return fail(name + ": state_hashes[" + std::to_string(i) + "]: expected 16 hex digits, got \"" + text + "\"");
+      manifest.stateHashes.push_back(hash);
+    }
   } catch (const std::exception& error) {
     return fail(name + ": " + error.what());
   }
@@ -107,8 +108,8 @@ Result<SimulatedState> readCacheFrame(const std::filesystem::path& folder, const
   if (!state) return state;
   if (state->step != frame || state->stateHash != manifest.stateHashes[frame])
     return fail(file.string() + ": holds step " + std::to_string(state->step) + " with state hash " +
-                hex(state->stateHash) + ", not frame " + std::to_string(frame) + " with the manifest's " +
-                hex(manifest.stateHashes[frame]));
+                physics::hashText(state->stateHash) + ", not frame " + std::to_string(frame) + " with the manifest's " +
+                physics::hashText(manifest.stateHashes[frame]));
   if (auto fits = checkFits(*state, world, file.string()); !fits) return std::unexpected(fits.error());
   return state;
 }

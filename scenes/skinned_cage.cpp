@@ -54,7 +54,7 @@ Result<std::unique_ptr<SkinnedCage>> SkinnedCage::create(subdiv::Cage cage, phys
 
 Result<bool> SkinnedCage::pose(std::span<const glm::mat4> jointMatrices, std::span<const float> morphWeights,
                                unsigned threads) {
-  if (auto deformed = skin_.deform(jointMatrices, morphWeights, posed_); !deformed) return failWith(deformed.error());
+  if (auto deformed = skin_.deform(jointMatrices, morphWeights, posed_, threads); !deformed) return failWith(deformed.error());
   const std::vector<glm::vec3>& current = surface_.cage().positions;
   // Exact equality: a held frame gives the same floats, and any other change is a new shape.
   if (std::equal(posed_.positions.begin(), posed_.positions.end(), current.begin(), current.end())) return false;

@@ -141,9 +141,6 @@ Result<std::vector<std::size_t>> World::refineForCamera(const render::Camera& ca
     const glm::mat4 modelViewProjection = viewProjection * animatedMatrix(scene_, instance, float(time_));
     if (!subdivided_[m]->tessellate(modelViewProjection, viewport, loaded.mesh, loaded.limitInverseRadius, threads))
       continue;
-    // Skin shades with the limit surface's own curvature (computeSkinCurvatures).
-    if (m < meshCurvatures_.size() && material != nullptr && material->kind == MaterialKind::skin)
-      meshCurvatures_[m] = loaded.limitInverseRadius;
     changed.push_back(m);
   }
   for (std::size_t m = 0; m < skinnedCages_.size(); ++m) {
@@ -159,6 +156,12 @@ Result<std::vector<std::size_t>> World::refineForCamera(const render::Camera& ca
     if (skinnedCages_[m]->tessellate(viewProjection * partFrame, viewport, loaded.mesh, loaded.limitInverseRadius,
                                      threads))
       changed.push_back(m);
+  }
+  // Skin shades with the limit surface's own curvature (computeSkinCurvatures).
+  for (const std::size_t m : changed) {
+    const Material* material = scene_.findMaterial(scene_.meshes[m].material);
+    if (m < meshCurvatures_.size() && material != nullptr && material->kind == MaterialKind::skin)
+      meshCurvatures_[m] = meshes_[m].limitInverseRadius;
   }
   return changed;
 }
@@ -494,7 +497,8 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
     const glm::mat4 head = bodyPlacement(groom.mesh, time_);
     if (auto set = groom.hair.setHeadTransform(head); !set) return std::unexpected(set.error());
     if (groom.roots) {
-      if (auto followed = followPart(groom.mesh, *groom.roots, targets, normals, threads); !followed) return followed;
+      if (auto followed = followPart(groom.mesh, *groom.roots, targets, normals, threads); !followed)
+        return fail("groom " + name + ": " + followed.error().message);
       if (auto set = groom.hair.setRootTargets(targets, normals); !set)
         return fail("groom " + name + ": " + set.error().message);
     }
@@ -511,7 +515,7 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
     const ClothOnCharacter& follower = clothFollowers_[i];
     if (follower.pins) {
       if (auto followed = followPart(clothBodies_[i], *follower.pins, targets, normals, threads); !followed)
-        return followed;
+        return fail("cloth '" + scene_.cloths[i].name + "': " + followed.error().message);
       if (auto set = cloths_[i].setPinTargets(targets); !set) return set;
     }
     if (follower.jointColliders) {

@@ -165,8 +165,11 @@ Result<void> World::addCharacterPart(std::size_t c, std::size_t p) {
 }
 
 Result<void> World::checkPartReferences() const {
+  // A whole part, never one of its drawn primitives ("…#k"): their vertices are a slice of the
+  // part's, which roots, pins and fields are bound to.
   auto check = [&](const std::string& name, const std::string& where) -> Result<void> {
-    if (scene_.findMesh(name) != nullptr) return {};
+    for (std::size_t m = 0; m < scene_.meshes.size(); ++m)
+      if (scene_.meshes[m].name == name && (!characterParts_[m] || characterParts_[m]->primitive < 0)) return {};
     const std::string character = name.substr(0, name.find(kCharacterPartSeparator));
     std::string parts;
     for (std::size_t m = 0; m < scene_.meshes.size(); ++m)

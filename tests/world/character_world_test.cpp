@@ -134,6 +134,8 @@ TEST(CharacterWorld, BadReferencesAreClearErrors) {
   expectError(robotScene("Moonwalk"), {"RobotExpressive.glb", "Moonwalk", "'Dance'"});
   expectError(robotScene("Dance", "Bored"), {"RobotExpressive.glb", "Bored", "'Surprised'"});
   expectError(robotScene("Dance", "Surprised", "robot/Hat"), {"groom crest", "robot/Hat", "'robot/Head'"});
+  // A drawn primitive is not a part: roots and pins bind to whole parts.
+  expectError(robotScene("Dance", "Surprised", "robot/Head#1"), {"groom crest", "robot/Head#1", "'robot/Head'"});
   expectError(robotScene("Dance", "Surprised", "robot/Head", "Nek"), {"groom crest", "Nek", "'Neck'"});
 }
 
