@@ -38,6 +38,7 @@ struct RenderOptions {
   std::string cache;       ///< empty: simulate; else render the simulation cache in this folder
   std::string frameRange;  ///< "FIRST:LAST", inclusive; empty: every frame
   bool json = false;
+  bool strict = false;  ///< every groom strict
 };
 
 constexpr const char* kFrameNumber = "%04d";
@@ -166,6 +167,7 @@ void run(const RenderOptions& options, bool sceneGiven) {
   const int frameCount = lastFrame - firstFrame + 1;
 
   scenes::WorldSettings worldSettings;
+  worldSettings.strictGrooms = options.strict;
   auto world = loadWorld(scenePath, worldSettings, !options.json);
   if (!world) return failWith(world.error().message);
   std::uint32_t width = static_cast<std::uint32_t>(world->scene().output.width);
@@ -301,6 +303,7 @@ void addRenderCommand(CLI::App& app) {
   range->excludes(frames);
   cache->excludes(frames);
   cache->excludes(fps);
+  command->add_flag("--strict", options->strict, kStrictGroomsHelp);
   command->add_flag("--json", options->json,
                     "Print a JSON report (per-frame and per-pass GPU times, frame times, state hash) instead of text");
   command->callback([options, scene] { run(*options, scene->count() > 0); });

@@ -14,6 +14,8 @@ Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const sc
                                 bool printNotes) {
   auto scene = scenes::loadScene(scenePath);
   if (!scene) return std::unexpected(scene.error());
+  if (settings.strictGrooms)
+    for (scenes::Groom& groom : scene->grooms) groom.strict = !groom.isProcedural();
   auto resolver = scenes::AssetResolver::createDefault();
   if (!resolver) return std::unexpected(resolver.error());
   auto world = scenes::World::create(std::move(*scene), *resolver, settings);

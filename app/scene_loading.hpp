@@ -15,9 +15,15 @@ namespace mane::app {
 std::filesystem::path defaultScenePath();
 
 /// Loads `scenePath` into a World, printing each fallback note as "note: ..." on stdout unless
-/// `printNotes` is false (machine-readable output carries them itself: World::notes).
+/// `printNotes` is false (machine-readable output carries them itself: World::notes). With
+/// `settings.strictGrooms`, every groom file of the scene is loaded strictly (`Groom::strict`).
 Result<scenes::World> loadWorld(const std::filesystem::path& scenePath, const scenes::WorldSettings& settings,
                                 bool printNotes = true);
+
+/// Help of the commands' `--strict` flag, which sets `WorldSettings::strictGrooms`.
+inline constexpr const char* kStrictGroomsHelp =
+    "Refuse groom files with flawed strands (repeated or non-finite points, too few points, absurd lengths) "
+    "instead of repairing or dropping them with a note, as if every groom of the scene said \"strict\": true";
 
 /// Whether stdout is a terminal (a person watching, rather than a file or a pipe).
 bool stdoutIsTerminal();

@@ -33,6 +33,7 @@ struct SimOptions {
   double fps = 30.0;
   std::uint64_t perturb = 0;  // 0: none; else the step before which a particle is moved
   bool json = false;
+  bool strict = false;  // every groom strict
 };
 
 /// How far the tests' --perturb moves a particle, metres: far above rounding, far below anything
@@ -56,7 +57,7 @@ Result<void> perturbOneParticle(scenes::World& world) {
 void run(const SimOptions& options) {
   const bool caching = !options.cache.empty();
   // A cache's frames carry the leans of the furs the renderer draws, which need their photos.
-  auto world = loadWorld(options.scene, {.loadTextures = caching}, !options.json);
+  auto world = loadWorld(options.scene, {.loadTextures = caching, .strictGrooms = options.strict}, !options.json);
   if (!world) return failWith(world.error().message);
   // The loop's unit: one fixed step, or with --cache one frame of 1/fps (several fixed steps),
   // the World::advance calls `mane render` makes.
@@ -196,6 +197,7 @@ void addSimCommand(CLI::App& app) {
       ->type_name("STEP")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100000000}))
       ->group("Testing");
+  command->add_flag("--strict", options->strict, kStrictGroomsHelp);
   command->add_flag("--json", options->json, "Print a JSON summary (steps, times, state hash) instead of text");
   command->callback([options] { run(*options); });
 }

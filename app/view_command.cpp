@@ -37,6 +37,7 @@ struct ViewOptions {
   unsigned msaa = 1;
   unsigned threads = 2;
   std::string press;  ///< keys pressed one per frame from the second frame on
+  bool strict = false;  ///< every groom strict
 };
 
 constexpr const char* kKeyHelp =
@@ -257,7 +258,7 @@ void run(const ViewOptions& options) {
     if (!key) return failWith(std::string("--press: no key for '") + character + "' (letters and space only)");
     scripted.push_back(*key);
   }
-  auto world = loadWorld(options.scene, {});
+  auto world = loadWorld(options.scene, {.strictGrooms = options.strict});
   if (!world) return failWith(world.error().message);
   const auto width = static_cast<std::uint32_t>(world->scene().output.width);
   const auto height = static_cast<std::uint32_t>(world->scene().output.height);
@@ -374,6 +375,7 @@ void addViewCommand(CLI::App& app) {
   command->add_option("--msaa", options->msaa, "Samples per pixel (1 or 4)")
       ->check(CLI::IsMember({1u, 4u}))
       ->capture_default_str();
+  command->add_flag("--strict", options->strict, kStrictGroomsHelp);
   command->add_option("--threads", options->threads, "Simulation threads")
       ->check(CLI::Range(1u, 64u))
       ->capture_default_str();

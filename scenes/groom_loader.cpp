@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <span>
 #include <string>
+#include <type_traits>
 
 namespace mane::scenes {
 namespace {
@@ -21,10 +23,14 @@ static_assert(std::endian::native == std::endian::little, "groom files are littl
 // reserved words put `verticesOffset` at byte 144; 6 offsets and 32 reserved words end it at 296.
 constexpr std::uint64_t kTfx3HeaderBytes = 296;
 constexpr std::uint64_t kTfx3VertexOffsetField = 144;
+constexpr std::uint64_t kTfx3StrandUvField = 148;
+constexpr std::uint64_t kTfx3StrandThicknessField = 156;
 constexpr std::uint64_t kTfx3VertexBytes = 12;  // float3
 // AMD TressFX 4.x `TressFXTFXFileHeader`: version, 2 counts, 5 offsets, 32 reserved words.
 constexpr std::uint64_t kTfx4HeaderBytes = 160;
 constexpr std::uint64_t kTfx4VertexOffsetField = 12;
+constexpr std::uint64_t kTfx4StrandUvField = 16;
+constexpr std::uint64_t kTfx4StrandThicknessField = 24;
 constexpr std::uint64_t kTfx4VertexBytes = 16;  // float4, w unused here
 
 // Cem Yuksel's cyHairFile.h: a 128-byte header, then the arrays its flags announce, in this order.
@@ -101,31 +107,92 @@ private:
   std::ifstream stream_;
 };
 
-/// Appends one strand of `count` points, the first at `bytes[first]` and each `stride` bytes
-/// after it (the file offset of `bytes[0]` is `fileOffset`), rejecting non-finite points and
-/// coincident consecutive ones. `pointWord` is how the format calls a point, for messages.
-Result<void> addStrand(StrandSet& set, const std::string& file, std::span<const unsigned char> bytes,
-                       std::uint64_t fileOffset, std::size_t first, std::size_t count, std::size_t stride,
-                       const char* pointWord) {
-  const std::size_t strand = set.strands.size();
+/// Appends one strand of `count` points as stored, the first at `bytes[first]` and each `stride`
+/// bytes after it; flaws are left for `finishGroom`.
+void addStrand(StrandSet& set, std::span<const unsigned char> bytes, std::size_t first, std::size_t count,
+               std::size_t stride) {
   std::vector<glm::vec3> points;
   points.reserve(count);
   for (std::size_t v = 0; v < count; ++v) {
     const std::size_t at = first + v * stride;
-    const glm::vec3 p(readF32(bytes, at), readF32(bytes, at + 4), readF32(bytes, at + 8));
-    const auto where = [&] {
-      return file + ": strand " + str(strand) + ", " + pointWord + " " + str(v) + " (byte " + str(fileOffset + at) +
-             ")";
-    };
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      return fail(where() + ": position " + describe(p) + " is not finite (NaN or infinite)");
-    if (v > 0 && p == points.back())
-      return fail(where() + ": same position " + describe(p) + " as " + pointWord + " " + str(v - 1) +
-                  " (zero-length segment)");
-    points.push_back(p);
+    points.emplace_back(readF32(bytes, at), readF32(bytes, at + 4), readF32(bytes, at + 8));
   }
   set.strands.push_back(std::move(points));
-  return {};
+}
+
+/// Where a point lies in the file, for messages: "FILE: strand S, vertex V (byte B)".
+struct PointLocator {
+  const std::string& file;
+  const char* pointWord;  ///< how the format calls a point
+  std::function<std::uint64_t(std::size_t strand, std::size_t point)> byteOf;
+
+  [[nodiscard]] std::string at(std::size_t strand, std::size_t point) const {
+    return file + ": strand " + str(strand) + ", " + pointWord + " " + str(point) + " (byte " +
+           str(byteOf(strand, point)) + ")";
+  }
+};
+
+/// The strict refusal of `repair`, a flaw of `stored` (the strand as read).
+std::string strictError(const PointLocator& locate, const StrandRepair& repair, const std::vector<glm::vec3>& stored,
+                        std::size_t flawedStrands) {
+  const std::string where = locate.at(repair.strand, repair.point);
+  const std::string previous = std::string(locate.pointWord) + " " + str(repair.point == 0 ? 0 : repair.point - 1);
+  std::string what;
+  switch (repair.flaw) {
+    case StrandFlaw::kNonFinitePoint:
+      what = "position " + describe(stored[repair.point]) + " is not finite (NaN or infinite)";
+      break;
+    case StrandFlaw::kRepeatedPoint:
+      what = "same position " + describe(stored[repair.point]) + " as " + previous + " (zero-length segment)";
+      break;
+    case StrandFlaw::kZeroLengthSegment:
+      what = "position " + describe(stored[repair.point]) + " all but coincides with " + previous +
+             " (zero-length segment)";
+      break;
+    case StrandFlaw::kTooFewPoints:
+      what = stored.size() < 2 ? "the strand has " + str(stored.size()) + " " + locate.pointWord +
+                                     "; a strand needs at least 2"
+                               : "fewer than 2 distinct positions (repeated points); a strand needs at least 2";
+      break;
+    case StrandFlaw::kAbsurdLength:
+      what = "the strand is absurdly long here (a segment or the strand over " +
+             str(static_cast<std::uint64_t>(kAbsurdLengthFactor)) + "× the groom's median)";
+      break;
+  }
+  return where + ": " + what + "; strict loading refuses flawed strands (" + str(flawedStrands) +
+         " in this file) rather than repairing or dropping them";
+}
+
+/// Repairs the strands as read (groom_repair.hpp), or under `strict` refuses the first flawed one.
+Result<StrandSet> finishGroom(StrandSet set, const PointLocator& locate, const GroomLoadOptions& options) {
+  std::vector<std::vector<glm::vec3>> stored;
+  if (options.strict) stored = set.strands;
+  set.repairs = repairStrands(set);
+  if (options.strict && !set.repairs.clean()) {
+    const StrandRepair& first = set.repairs.repairs.front();
+    return fail(strictError(locate, first, stored[first.strand], set.repairs.repairs.size()));
+  }
+  if (set.strands.empty())
+    return fail(locate.file + ": every strand is flawed, none is left to load (" + set.repairs.summary() + ")");
+  return set;
+}
+
+/// `count` records of `recordBytes` each at the offset stored at `field` of the header, or
+/// nothing where that offset is 0 (the array is absent).
+Result<std::vector<unsigned char>> readOptionalArray(GroomFile& file, std::span<const unsigned char> head,
+                                                     std::uint64_t field, std::uint64_t headerBytes,
+                                                     std::uint64_t count, std::uint64_t recordBytes, const char* what) {
+  const std::uint32_t offset = readU32(head, static_cast<std::size_t>(field));
+  if (offset == 0) return std::vector<unsigned char>{};
+  const std::string& name = file.name();
+  if (offset < headerBytes)
+    return fail(name + ": the " + what + " array offset " + str(offset) + " (byte " + str(field) +
+                ") points into the " + str(headerBytes) + "-byte header");
+  if (offset > file.size() || count > (file.size() - offset) / recordBytes)
+    return fail(name + ": the " + what + " array (" + str(count) + " × " + str(recordBytes) + " bytes from byte " +
+                str(offset) + ", offset at byte " + str(field) + ") runs past the end of the file (" +
+                str(file.size()) + " bytes): truncated, or the offset is corrupt");
+  return file.read(offset, count * recordBytes);
 }
 
 std::string lowerExtension(const std::filesystem::path& file) {
@@ -143,7 +210,7 @@ std::size_t StrandSet::pointCount() const {
   return count;
 }
 
-Result<StrandSet> loadTfx(const std::filesystem::path& path) {
+Result<StrandSet> loadTfx(const std::filesystem::path& path, const GroomLoadOptions& options) {
   auto opened = GroomFile::open(path);
   if (!opened) return std::unexpected(opened.error());
   GroomFile& file = *opened;
@@ -200,16 +267,26 @@ Result<StrandSet> loadTfx(const std::filesystem::path& path) {
   StrandSet set;
   set.strands.reserve(strandCount);
   const std::size_t strandBytes = static_cast<std::size_t>(verticesPerStrand * vertexBytes);
-  for (std::size_t s = 0; s < strandCount; ++s) {
-    if (auto added = addStrand(set, name, *vertices, vertexOffset, s * strandBytes, verticesPerStrand,
-                               static_cast<std::size_t>(vertexBytes), "vertex");
-        !added)
-      return std::unexpected(added.error());
-  }
-  return set;
+  for (std::size_t s = 0; s < strandCount; ++s)
+    addStrand(set, *vertices, s * strandBytes, verticesPerStrand, static_cast<std::size_t>(vertexBytes));
+
+  auto thickness = readOptionalArray(file, *head, v3 ? kTfx3StrandThicknessField : kTfx4StrandThicknessField,
+                                     headerBytes, strandCount, 4, "per-strand thickness");
+  if (!thickness) return std::unexpected(thickness.error());
+  for (std::size_t s = 0; s < thickness->size() / 4; ++s) set.strandThickness.push_back(readF32(*thickness, 4 * s));
+  auto uvs = readOptionalArray(file, *head, v3 ? kTfx3StrandUvField : kTfx4StrandUvField, headerBytes, strandCount,
+                               8, "per-strand UV");
+  if (!uvs) return std::unexpected(uvs.error());
+  for (std::size_t s = 0; s < uvs->size() / 8; ++s)
+    set.strandUvs.emplace_back(readF32(*uvs, 8 * s), readF32(*uvs, 8 * s + 4));
+
+  const PointLocator locate{name, "vertex", [&](std::size_t strand, std::size_t vertex) {
+                              return vertexOffset + (std::uint64_t{strand} * verticesPerStrand + vertex) * vertexBytes;
+                            }};
+  return finishGroom(std::move(set), locate, options);
 }
 
-Result<StrandSet> loadCyHair(const std::filesystem::path& path) {
+Result<StrandSet> loadCyHair(const std::filesystem::path& path, const GroomLoadOptions& options) {
   auto opened = GroomFile::open(path);
   if (!opened) return std::unexpected(opened.error());
   GroomFile& file = *opened;
@@ -277,7 +354,8 @@ Result<StrandSet> loadCyHair(const std::filesystem::path& path) {
     std::uint64_t total = 0;
     for (std::size_t h = 0; h < hairCount; ++h) {
       const std::uint16_t count = readU16(*segments, 2 * h);
-      if (count == 0)
+      // A hair of 0 segments is one point: a flawed strand, dropped by finishGroom unless strict.
+      if (count == 0 && options.strict)
         return fail(name + ": strand " + str(h) + " has 0 segments (byte " + str(kHairHeaderBytes + 2 * h) +
                     "); a strand needs at least 1");
       pointsPerHair[h] = std::uint32_t{count} + 1;
@@ -297,25 +375,59 @@ Result<StrandSet> loadCyHair(const std::filesystem::path& path) {
     pointsPerHair.assign(hairCount, static_cast<std::uint32_t>(perHair));
   }
 
-  const Span& pointArray = *std::find_if(layout.begin(), layout.end(),
-                                         [](const Span& array) { return std::strcmp(array.what, "points") == 0; });
+  const auto arrayOf = [&](const char* what) {
+    return std::find_if(layout.begin(), layout.end(),
+                        [&](const Span& array) { return std::strcmp(array.what, what) == 0; });
+  };
+  const Span& pointArray = *arrayOf("points");
   auto points = file.read(pointArray.begin, pointArray.bytes);
   if (!points) return std::unexpected(points.error());
   StrandSet set;
   set.strands.reserve(hairCount);
-  std::size_t first = 0;
+  std::vector<std::uint64_t> firstPoint;  // of each hair, in the point array
+  firstPoint.reserve(hairCount);
+  std::uint64_t next = 0;
   for (std::uint32_t count : pointsPerHair) {
-    if (auto added = addStrand(set, name, *points, pointArray.begin, first, count, 12, "point"); !added)
-      return std::unexpected(added.error());
-    first += std::size_t{count} * 12;
+    firstPoint.push_back(next);
+    addStrand(set, *points, static_cast<std::size_t>(next * 12), count, 12);
+    next += count;
   }
-  return set;
+
+  // The per-point arrays, split by hair like the points.
+  const auto readPerPoint = [&]<class T>(const char* what, std::size_t components,
+                                         std::vector<std::vector<T>>& perHair) -> Result<void> {
+    const auto array = arrayOf(what);
+    if (array == layout.end()) return {};
+    auto bytes = file.read(array->begin, array->bytes);
+    if (!bytes) return std::unexpected(bytes.error());
+    perHair.resize(hairCount);
+    for (std::size_t h = 0; h < hairCount; ++h) {
+      perHair[h].resize(pointsPerHair[h]);
+      for (std::size_t i = 0; i < pointsPerHair[h]; ++i) {
+        const std::size_t at = static_cast<std::size_t>((firstPoint[h] + i) * 4 * components);
+        if constexpr (std::is_same_v<T, float>) {
+          perHair[h][i] = readF32(*bytes, at);
+        } else {
+          perHair[h][i] = T(readF32(*bytes, at), readF32(*bytes, at + 4), readF32(*bytes, at + 8));
+        }
+      }
+    }
+    return {};
+  };
+  if (auto read = readPerPoint("thickness", 1, set.thickness); !read) return std::unexpected(read.error());
+  if (auto read = readPerPoint("transparency", 1, set.transparency); !read) return std::unexpected(read.error());
+  if (auto read = readPerPoint("colours", 3, set.colours); !read) return std::unexpected(read.error());
+
+  const PointLocator locate{name, "point", [&](std::size_t strand, std::size_t point) {
+                              return pointArray.begin + (firstPoint[strand] + point) * 12;
+                            }};
+  return finishGroom(std::move(set), locate, options);
 }
 
-Result<StrandSet> loadGroomFile(const std::filesystem::path& file) {
+Result<StrandSet> loadGroomFile(const std::filesystem::path& file, const GroomLoadOptions& options) {
   const std::string extension = lowerExtension(file);
-  if (extension == ".tfx") return loadTfx(file);
-  if (extension == ".hair") return loadCyHair(file);
+  if (extension == ".tfx") return loadTfx(file, options);
+  if (extension == ".hair") return loadCyHair(file, options);
   return fail(file.string() + ": unsupported groom file extension \"" + extension +
               "\" (expected .tfx for AMD TressFX or .hair for Cem Yuksel's HAIR format)");
 }

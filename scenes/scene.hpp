@@ -257,6 +257,9 @@ struct Groom {
   /// Files only: negate the points' z on load. TressFX's Maya exporter can write z inverted (for
   /// left-handed renderers); the TressFX ponytail's strands sit on its head only with this.
   bool invertZ = false;
+  /// Files only: refuse a file with a flawed strand (a repeated or non-finite point, fewer than
+  /// two points, an absurd length) rather than repair or drop the strand with a note.
+  bool strict = false;
   HairSimulation simulation;
   Colliders colliders;  ///< in the attached mesh's body frame
   GroomRendering rendering;

@@ -240,6 +240,9 @@ Groom parseGroom(const Json& json, const std::string& path) {
   groom.invertZ = fields.optional<bool>("invert_z", false);
   require(!groom.invertZ || !groom.isProcedural(), fields.child("invert_z"),
           "applies to groom files only, not to \"procedural\"");
+  groom.strict = fields.optional<bool>("strict", false);
+  require(!groom.strict || !groom.isProcedural(), fields.child("strict"),
+          "applies to groom files only, not to \"procedural\"");
   if (const Json* scalp = fields.take("scalp")) {
     require(groom.isProcedural(), fields.child("scalp"), "applies to \"procedural\" grooms only");
     groom.scalp = parseScalp(*scalp, fields.child("scalp"));

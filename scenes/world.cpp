@@ -349,12 +349,20 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
         files.push_back(*lookup->path);
       }
       if (files.size() < groom.sources.size()) continue;
-      for (const std::filesystem::path& file : files) {
-        auto loaded = loadGroomFile(file);
+      // Flawed strands are repaired or dropped by the loader; one note per groom says which.
+      std::string repairs;
+      for (std::size_t f = 0; f < files.size(); ++f) {
+        const std::filesystem::path& file = files[f];
+        auto loaded = loadGroomFile(file, {.strict = groom.strict});
         if (!loaded) return fail("groom " + groom.name + ": " + loaded.error().message);
+        if (!loaded->repairs.clean())
+          repairs += (repairs.empty() ? "" : "; ") + groom.sources[f] + ": " + loaded->repairs.summary();
         guides.insert(guides.end(), std::make_move_iterator(loaded->strands.begin()),
                       std::make_move_iterator(loaded->strands.end()));
       }
+      if (!repairs.empty())
+        notes_.push_back("groom " + groom.name + ": flawed strands repaired or dropped (\"strict\": true refuses them): " +
+                         repairs);
       const glm::vec3 axes(1.0f, 1.0f, groom.invertZ ? -1.0f : 1.0f);
       for (std::vector<glm::vec3>& strand : guides)
         for (glm::vec3& point : strand) point *= axes * scale;

@@ -35,6 +35,8 @@ class SceneColliders;
 struct WorldSettings {
   /// Decode the materials' textures (the renderer needs them; `mane sim` does not).
   bool loadTextures = true;
+  /// Treat every groom as `Groom::strict`: a flawed strand in a groom file is an error, not a note.
+  bool strictGrooms = false;
 };
 
 class World {

@@ -19,93 +19,22 @@
 #include "scenes/gltf_loader.hpp"
 #include "scenes/groom_loader.hpp"
 #include "scenes/world.hpp"
+#include "groom_test_files.hpp"
 #include "test_support.hpp"
 
 namespace mane::scenes {
 namespace {
 
+using testing::cyHair;
+using testing::expectError;
+using testing::putF32;
+using testing::putU32;
 using testing::readFile;
+using testing::syntheticPoint;
+using testing::tfxV3;
+using testing::tfxV4;
 using testing::ScratchDir;
 using testing::sharedResolver;
-
-// --- Synthetic files ---------------------------------------------------------------------
-
-void putU32(std::string& bytes, std::size_t at, std::uint32_t value) {
-  if (bytes.size() < at + 4) bytes.resize(at + 4, '\0');
-  std::memcpy(bytes.data() + at, &value, 4);
-}
-void putF32(std::string& bytes, std::size_t at, float value) {
-  if (bytes.size() < at + 4) bytes.resize(at + 4, '\0');
-  std::memcpy(bytes.data() + at, &value, 4);
-}
-
-/// Point v of strand s in the synthetic grooms: strands hang down −Y, 1 cm apart, from roots
-/// spread along X.
-glm::vec3 syntheticPoint(std::size_t s, std::size_t v) {
-  return {0.01f * static_cast<float>(s), -0.01f * static_cast<float>(v), 0.002f * static_cast<float>(v * v)};
-}
-
-/// A TressFX 3.x file as AMD's `TressFXFileObject` lays it out (296-byte header, float3
-/// vertices at byte 296) with the counts and offset as given.
-std::string tfxV3(std::uint32_t strands, std::uint32_t verts, std::size_t pointsWritten) {
-  std::string bytes(296, '\0');
-  putF32(bytes, 0, 3.0f);
-  putU32(bytes, 4, strands);
-  putU32(bytes, 8, verts);
-  putU32(bytes, 144, 296);
-  for (std::size_t i = 0; i < pointsWritten; ++i) {
-    const glm::vec3 p = syntheticPoint(i / std::max<std::uint32_t>(verts, 1), i % std::max<std::uint32_t>(verts, 1));
-    for (int c = 0; c < 3; ++c) putF32(bytes, bytes.size(), p[c]);
-  }
-  return bytes;
-}
-
-/// A TressFX 4.x file (`TressFXTFXFileHeader`, 160 bytes; float4 vertices at byte 160).
-std::string tfxV4(std::uint32_t strands, std::uint32_t verts) {
-  std::string bytes(160, '\0');
-  putF32(bytes, 0, 4.0f);
-  putU32(bytes, 4, strands);
-  putU32(bytes, 8, verts);
-  putU32(bytes, 12, 160);
-  for (std::size_t i = 0; i < std::size_t{strands} * verts; ++i) {
-    const glm::vec3 p = syntheticPoint(i / verts, i % verts);
-    for (int c = 0; c < 3; ++c) putF32(bytes, bytes.size(), p[c]);
-    putF32(bytes, bytes.size(), i % verts == 0 ? 0.0f : 1.0f);  // w: TressFX's inverse mass
-  }
-  return bytes;
-}
-
-/// A HAIR file (cyHairFile.h): 128-byte header, then the announced arrays. `segments` empty:
-/// no segments array, every hair has `defaultSegments`.
-std::string cyHair(const std::vector<std::uint16_t>& segments, std::uint32_t hairs, std::uint32_t defaultSegments,
-                   std::uint32_t extraArrays = 0) {
-  std::string bytes(128, '\0');
-  std::memcpy(bytes.data(), "HAIR", 4);
-  std::uint32_t points = 0;
-  for (std::uint32_t h = 0; h < hairs; ++h) points += (segments.empty() ? defaultSegments : segments[h]) + 1;
-  putU32(bytes, 4, hairs);
-  putU32(bytes, 8, points);
-  putU32(bytes, 12, (segments.empty() ? 0u : 1u) | 2u | extraArrays);
-  putU32(bytes, 16, defaultSegments);
-  for (std::uint16_t s : segments) bytes.append(reinterpret_cast<const char*>(&s), 2);
-  for (std::uint32_t h = 0; h < hairs; ++h) {
-    const std::uint32_t count = (segments.empty() ? defaultSegments : segments[h]) + 1;
-    for (std::uint32_t v = 0; v < count; ++v) {
-      const glm::vec3 p = syntheticPoint(h, v);
-      for (int c = 0; c < 3; ++c) putF32(bytes, bytes.size(), p[c]);
-    }
-  }
-  return bytes;
-}
-
-/// Expects an error whose message contains every one of `parts`.
-template <class T>
-void expectError(const Result<T>& result, std::initializer_list<const char*> parts) {
-  ASSERT_FALSE(result.has_value()) << "expected an error mentioning " << *parts.begin();
-  for (const char* part : parts)
-    EXPECT_NE(result.error().message.find(part), std::string::npos)
-        << "missing \"" << part << "\" in: " << result.error().message;
-}
 
 // --- The shipped data --------------------------------------------------------------------
 
@@ -236,9 +165,9 @@ TEST(GroomLoader, CyHairSegmentsArrayGivesStrandsOfDifferentLengths) {
   EXPECT_EQ(hair->strands[1][4], syntheticPoint(1, 4));
 }
 
-TEST(GroomLoader, CyHairOptionalArraysAfterThePointsAreSkipped) {
-  // Thickness (4 B/point) and colours (12 B/point) follow the points; they are not returned but
-  // must be in the file.
+TEST(GroomLoader, CyHairOptionalArraysAfterThePointsMustBeComplete) {
+  // Thickness (4 B/point) and colours (12 B/point) follow the points and must be in the file
+  // (their values: groom_repair_tests.cpp).
   ScratchDir dir;
   std::string bytes = cyHair({}, 2, 3, 4u | 16u);
   bytes.append(8 * 16, '\0');
@@ -319,24 +248,30 @@ TEST(GroomLoaderMalformed, TfxWrongVersionIsNotATfxFile) {
               {"png.tfx", "not supported"});
 }
 
-TEST(GroomLoaderMalformed, NanVertexNamesStrandVertexAndByte) {
+// Flaws in single strands are repaired or dropped (groom_repair_tests.cpp); loaded strictly,
+// they are errors naming the strand, the point and the byte.
+constexpr GroomLoadOptions kStrict{.strict = true};
+
+TEST(GroomLoaderMalformed, StrictNanVertexNamesStrandVertexAndByte) {
   ScratchDir dir;
   std::string bytes = tfxV3(3, 4, 12);
   // Strand 1, vertex 2 = vertex 6 of the array, which starts at byte 296 + 6·12 = 368; its y is NaN.
   putF32(bytes, 296 + 6 * 12 + 4, std::numeric_limits<float>::quiet_NaN());
-  expectError(loadTfx(dir.write("nan.tfx", bytes)), {"nan.tfx", "strand 1, vertex 2", "byte 368", "not finite"});
+  expectError(loadTfx(dir.write("nan.tfx", bytes), kStrict), {"nan.tfx", "strand 1, vertex 2", "byte 368", "not finite"});
 
   std::string hair = cyHair({}, 2, 3);
   putF32(hair, 128 + 5 * 12, std::numeric_limits<float>::infinity());  // hair 1, point 1, x
-  expectError(loadCyHair(dir.write("inf.hair", hair)), {"inf.hair", "strand 1, point 1", "byte 188", "not finite"});
+  expectError(loadCyHair(dir.write("inf.hair", hair), kStrict),
+              {"inf.hair", "strand 1, point 1", "byte 188", "not finite"});
 }
 
-TEST(GroomLoaderMalformed, ZeroLengthSegmentNamesBothVertices) {
+TEST(GroomLoaderMalformed, StrictZeroLengthSegmentNamesBothVertices) {
   ScratchDir dir;
   std::string bytes = tfxV3(2, 4, 8);
   // Strand 1, vertex 3 := vertex 2.
   std::memmove(bytes.data() + 296 + 7 * 12, bytes.data() + 296 + 6 * 12, 12);
-  expectError(loadTfx(dir.write("flat.tfx", bytes)), {"flat.tfx", "strand 1, vertex 3", "vertex 2", "zero-length"});
+  expectError(loadTfx(dir.write("flat.tfx", bytes), kStrict),
+              {"flat.tfx", "strand 1, vertex 3", "vertex 2", "zero-length"});
 }
 
 TEST(GroomLoaderMalformed, CyHairHeaderProblems) {
@@ -367,7 +302,7 @@ TEST(GroomLoaderMalformed, CyHairHeaderProblems) {
   putU32(huge, 8, 0xFFFFFFFFu);
   expectError(loadCyHair(dir.write("huge.hair", huge)), {"huge.hair", "points array", "truncated"});
 
-  expectError(loadCyHair(dir.write("zeroseg.hair", cyHair({2, 0, 1}, 3, 0))),
+  expectError(loadCyHair(dir.write("zeroseg.hair", cyHair({2, 0, 1}, 3, 0)), kStrict),
               {"zeroseg.hair", "strand 1 has 0 segments", "byte 130"});
 }
 
