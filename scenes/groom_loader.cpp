@@ -13,6 +13,8 @@
 #include <string>
 #include <type_traits>
 
+#include "scenes/detail/hair_format.hpp"
+
 namespace mane::scenes {
 namespace {
 
@@ -33,13 +35,12 @@ constexpr std::uint64_t kTfx4StrandUvField = 16;
 constexpr std::uint64_t kTfx4StrandThicknessField = 24;
 constexpr std::uint64_t kTfx4VertexBytes = 16;  // float4, w unused here
 
-// Cem Yuksel's cyHairFile.h: a 128-byte header, then the arrays its flags announce, in this order.
-constexpr std::uint64_t kHairHeaderBytes = 128;
-constexpr std::uint32_t kHairSegmentsBit = 1;
-constexpr std::uint32_t kHairPointsBit = 2;
-constexpr std::uint32_t kHairThicknessBit = 4;
-constexpr std::uint32_t kHairTransparencyBit = 8;
-constexpr std::uint32_t kHairColoursBit = 16;
+using detail::kHairColoursBit;
+using detail::kHairHeaderBytes;
+using detail::kHairPointsBit;
+using detail::kHairSegmentsBit;
+using detail::kHairThicknessBit;
+using detail::kHairTransparencyBit;
 
 std::uint32_t readU32(std::span<const unsigned char> bytes, std::size_t at) {
   std::uint32_t value = 0;

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "scenes/detail/hair_format.hpp"
 #include "scenes/sim_state.hpp"
 
 namespace mane::scenes {
@@ -12,11 +13,6 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "HAIR files are little-endian; add byte swapping");
 
-// Cem Yuksel's cyHairFile.h: the header's size, its array flags and the text field's length.
-constexpr std::size_t kHeaderBytes = 128;
-constexpr std::uint32_t kSegmentsBit = 1;
-constexpr std::uint32_t kPointsBit = 2;
-constexpr std::size_t kInfoBytes = 88;
 constexpr std::uint32_t kMaxPointsPerStrand = 65536;  // 65,535 segments in a uint16
 
 template <class T>
@@ -41,18 +37,18 @@ Result<std::vector<unsigned char>> encodeCyHair(std::span<const std::uint32_t> p
     return fail("HAIR: the strands' point counts add up to " + std::to_string(total) + ", not the " +
                 std::to_string(points.size()) + " points given");
   std::vector<unsigned char> bytes;
-  bytes.reserve(kHeaderBytes + 2 * pointsPerStrand.size() + 12 * points.size());
+  bytes.reserve(detail::kHairHeaderBytes + 2 * pointsPerStrand.size() + 12 * points.size());
   bytes.insert(bytes.end(), {'H', 'A', 'I', 'R'});
   put(bytes, static_cast<std::uint32_t>(pointsPerStrand.size()));
   put(bytes, static_cast<std::uint32_t>(points.size()));
-  put(bytes, kSegmentsBit | kPointsBit);
+  put(bytes, detail::kHairSegmentsBit | detail::kHairPointsBit);
   put(bytes, static_cast<std::uint32_t>(pointsPerStrand[0] - 1));  // default segments: unused with the array
   put(bytes, 1.0f);                                                // default thickness
   put(bytes, 0.0f);                                                // default transparency
   for (int i = 0; i < 3; ++i) put(bytes, 0.5f);                    // default colour
-  char text[kInfoBytes] = {};
-  std::memcpy(text, info.data(), std::min(info.size(), kInfoBytes - 1));
-  bytes.insert(bytes.end(), text, text + kInfoBytes);
+  char text[detail::kHairInfoBytes] = {};
+  std::memcpy(text, info.data(), std::min(info.size(), detail::kHairInfoBytes - 1));
+  bytes.insert(bytes.end(), text, text + detail::kHairInfoBytes);
   for (std::uint32_t count : pointsPerStrand) put(bytes, static_cast<std::uint16_t>(count - 1));
   for (const glm::vec3& p : points) put(bytes, p.x), put(bytes, p.y), put(bytes, p.z);
   return bytes;

@@ -462,6 +462,15 @@ constexpr vk::PipelineStageFlags2 kReaders = kMapReaders;
 
 }  // namespace
 
+void OpacityShadowMapPass::drawSegments(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline) const {
+  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *pipeline.pipeline);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipeline.layout, 0, {*set_}, {});
+  commands.pushConstants<BuildConstants>(
+      *pipeline.layout, kGraphicsStages, 0,
+      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_));
+  commands.draw(2 * segmentCount_, 1, 0, 0);
+}
+
 void OpacityShadowMapPass::recordGraphics(const vk::raii::CommandBuffer& commands) const {
   const auto color = vk::ImageAspectFlagBits::eColor;
   transitionAll(commands, *opacity_.image, color, opacity_.layers, Layout::eUndefined, Layout::eColorAttachmentOptimal,
@@ -479,12 +488,7 @@ void OpacityShadowMapPass::recordGraphics(const vk::raii::CommandBuffer& command
                                             .colorAttachmentCount = static_cast<std::uint32_t>(targets.size()),
                                             .pColorAttachments = targets.data()});
   setViewportAndScissor(commands, opacity_.extent);
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *opacityPipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *opacityPipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<BuildConstants>(
-      *opacityPipeline_.layout, kGraphicsStages, 0,
-      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_));
-  commands.draw(2 * segmentCount_, 1, 0, 0);
+  drawSegments(commands, opacityPipeline_);
   commands.endRendering();
   transitionAll(commands, *opacity_.image, color, opacity_.layers, Layout::eColorAttachmentOptimal,
                 Layout::eShaderReadOnlyOptimal, Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, kReaders,
@@ -506,12 +510,7 @@ void OpacityShadowMapPass::recordFirstDepth(const vk::raii::CommandBuffer& comma
   commands.beginRendering(
       vk::RenderingInfo{.renderArea = {{0, 0}, firstDepth_.extent}, .layerCount = 1, .pDepthAttachment = &depth});
   setViewportAndScissor(commands, firstDepth_.extent);
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *depthPipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *depthPipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<BuildConstants>(
-      *depthPipeline_.layout, kGraphicsStages, 0,
-      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_));
-  commands.draw(2 * segmentCount_, 1, 0, 0);
+  drawSegments(commands, depthPipeline_);
   commands.endRendering();
   transitionAll(commands, *firstDepth_.image, depthAspect, 1, Layout::eDepthAttachmentOptimal,
                 Layout::eShaderReadOnlyOptimal, depthTests, Access::eDepthStencilAttachmentWrite, kReaders,
@@ -535,12 +534,7 @@ void OpacityShadowMapPass::recordDeep(const vk::raii::CommandBuffer& commands) c
                                             .colorAttachmentCount = 1,
                                             .pColorAttachments = &target});
   setViewportAndScissor(commands, opacity_.extent);
-  commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *opacityPipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *opacityPipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<BuildConstants>(
-      *opacityPipeline_.layout, kGraphicsStages, 0,
-      buildConstants(uniforms_, settings_, strictLines_, strandCount_, verticesPerStrand_, segmentCount_));
-  commands.draw(2 * segmentCount_, 1, 0, 0);
+  drawSegments(commands, opacityPipeline_);
   commands.endRendering();
   transitionAll(commands, *opacity_.image, color, 1, Layout::eColorAttachmentOptimal, Layout::eShaderReadOnlyOptimal,
                 Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, kReaders,

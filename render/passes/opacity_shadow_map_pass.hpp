@@ -227,6 +227,8 @@ private:
                        const OpacityShadowSettings& settings);
   GraphResource opacityImage() const;
   GraphResource firstDepthImage() const;
+  /// Every hair segment drawn as a line with `pipeline` (one of the graphics pipelines).
+  void drawSegments(const vk::raii::CommandBuffer& commands, const Pipeline& pipeline) const;
   void recordGraphics(const vk::raii::CommandBuffer& commands) const;
   void recordFirstDepth(const vk::raii::CommandBuffer& commands) const;
   void recordDeep(const vk::raii::CommandBuffer& commands) const;
