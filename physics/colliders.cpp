@@ -123,6 +123,7 @@ ColliderCull cullBoxes(const ColliderSet& colliders) {
     add(s.centre - glm::vec3(s.radius + grow), s.centre + glm::vec3(s.radius + grow));
   for (const CapsuleCollider& c : colliders.capsules)
     add(glm::min(c.a, c.b) - glm::vec3(c.radius + grow), glm::max(c.a, c.b) + glm::vec3(c.radius + grow));
+  cull.shapeBoxes = cull.lower.size();
   if (colliders.sdf) {
     const SignedDistanceField& f = *colliders.sdf;
     if (colliders.thickness < f.contactLevel() - 1e-6f) {

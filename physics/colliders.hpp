@@ -79,6 +79,8 @@ struct ColliderBounds {
 struct ColliderCull {
   std::vector<glm::vec3> lower;  ///< per box, metres
   std::vector<glm::vec3> upper;  ///< per box, metres
+  /// The first `shapeBoxes` boxes hold the spheres and capsules; the field's box, if any, follows.
+  std::size_t shapeBoxes = 0;
 
   /// False only when `p` is outside every box.
   [[nodiscard]] bool mayTouch(const glm::vec3& p) const noexcept {

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <utility>
@@ -180,6 +181,34 @@ void HairSystem::layOutBlockConstants() {
       }
   }
   blockConstantsAt_[blocks] = blockConstants_.size();
+
+  blockPlainRows_.assign(blocks * detail::kSimdGroups, 0);
+  allMoving_ = true;
+  blockRootsLocal_.assign(blocks * 3 * W, 0.0f);
+  for (std::size_t k = 0; k < blocks; ++k) {
+    const std::size_t rows = (blockConstantsAt_[k + 1] - blockConstantsAt_[k]) / (3 * W);
+    std::int32_t count[W] = {};
+    for (std::size_t b = 0; b < W && k * W + b < strands_.size(); ++b)
+      count[b] = static_cast<std::int32_t>(strands_[k * W + b].particleCount);
+    const float* w = blockConstants_.data() + blockConstantsAt_[k];
+    detail::StrandLanes lanes{};
+    lanes.w = w;
+    lanes.count = count;
+    lanes.longest = rows;
+    lanes.groups = (std::min(W, strands_.size() - k * W) + detail::kSimdWidth - 1) / detail::kSimdWidth;
+    detail::markPlainRows(lanes);
+    std::copy(std::begin(lanes.plainRows), std::end(lanes.plainRows), blockPlainRows_.begin() + k * detail::kSimdGroups);
+    for (std::size_t b = 0; b < W; ++b)
+      for (std::size_t i = 1; i < static_cast<std::size_t>(count[b]); ++i)
+        if (!(w[i * W + b] > 0.0f)) allMoving_ = false;
+    float* rootsLocal = blockRootsLocal_.data() + k * 3 * W;
+    for (std::size_t b = 0; b < W && k * W + b < strands_.size(); ++b) {
+      const glm::vec3& root = strands_[k * W + b].rootLocal;
+      rootsLocal[b] = root.x, rootsLocal[W + b] = root.y, rootsLocal[2 * W + b] = root.z;
+    }
+  }
+  laneState_.assign(2 * blockConstants_.size(), 0.0f);
+  lanesCurrent_ = false;
 }
 
 void HairSystem::placeAtRest(const glm::mat4& headTransform) {
@@ -187,6 +216,7 @@ void HairSystem::placeAtRest(const glm::mat4& headTransform) {
     particles_.positions[i] = transformPoint(headTransform, restLocal_[i]);
     particles_.previousPositions[i] = particles_.positions[i];
   }
+  lanesCurrent_ = false;
   previousHead_ = headTransform;
   head_ = headTransform;
   rootTargets_.clear();
@@ -333,6 +363,7 @@ Result<void> HairSystem::setParticleState(std::span<const glm::vec3> positions,
   }
   std::copy(positions.begin(), positions.end(), particles_.positions.begin());
   std::copy(previousPositions.begin(), previousPositions.end(), particles_.previousPositions.begin());
+  lanesCurrent_ = false;
   return {};
 }
 
@@ -382,9 +413,18 @@ Result<void> HairSystem::advanceWith(double frameDt, const TaskRunner& tasks) {
     // its lane storage in scratch_[t]: a task runs on one thread at a time.
     const std::uint32_t taskCount = taskCountFor(tasks, strands_.size());
     if (scratch_.size() < taskCount) scratch_.resize(taskCount);
+    // After a single step with every particle but the roots moving and no velocity clamp, each
+    // previous position is where the particle was at the step's start, which the positions'
+    // array still holds: the AVX2 path then writes the new positions into the previous array and
+    // the two trade places, instead of copying one array into the other.
+    const bool intoPrevious = vectorised() && plan.substeps == 1 && allMoving_ &&
+                              !(settings_.maxSpeed < std::numeric_limits<float>::infinity());
     std::atomic<std::size_t> nextBlock{0};
-    auto task = [&](std::uint32_t t) { simulateStrands(nextBlock, plan, scratch_[t]); };
+    auto task = [&](std::uint32_t t) { simulateStrands(nextBlock, plan, scratch_[t], intoPrevious); };
     ran = runTasks(tasks, taskCount, task);
+    // Every block ran (a failing runner's leftovers run here), through the lanes or not.
+    lanesCurrent_ = vectorised();
+    if (intoPrevious) std::swap(particles_.positions, particles_.previousPositions);
 
     // Lowest strand index first, so the report does not depend on which worker saw it first.
     for (std::size_t s = 0; s < strands_.size(); ++s) {
@@ -400,43 +440,19 @@ Result<void> HairSystem::advanceWith(double frameDt, const TaskRunner& tasks) {
   return {};
 }
 
-void HairSystem::simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan,
-                                 std::vector<float>& scratch) {
+void HairSystem::simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan, LaneFloats& scratch,
+                                 bool intoPrevious) {
   constexpr std::size_t kBlock = detail::kBlockLanes;
   const bool lanes = vectorised();
-  // Each worker claims its next block before stepping this one, so the lane path can ask the
-  // memory for that block's particles and constants meanwhile (a step reads each of them once
-  // per block: without that it waits on memory at the start of every block).
-  std::size_t claimed = nextBlock.fetch_add(kBlock);
-  while (claimed < strands_.size()) {
-    const std::size_t first = claimed, end = std::min(first + kBlock, strands_.size());
-    claimed = nextBlock.fetch_add(kBlock);
+  for (std::size_t first = nextBlock.fetch_add(kBlock); first < strands_.size(); first = nextBlock.fetch_add(kBlock)) {
+    const std::size_t end = std::min(first + kBlock, strands_.size());
     if (lanes) {
-      HairLaneKernel::simulateBlock(*this, first, end - first, plan, scratch,
-                                    claimed < strands_.size() ? claimed : HairLaneKernel::kNoBlock);
+      HairLaneKernel::simulateBlock(*this, first, end - first, plan, scratch, intoPrevious);
       continue;
     }
     for (std::size_t s = first; s < end; s += kStrandLanes)
       simulateStrandBlock(s, std::min(kStrandLanes, end - s), plan);
   }
-}
-
-void HairLaneKernel::prefetchBlock(const HairSystem& self, std::size_t firstStrand, int part, int parts) noexcept {
-  const std::size_t last = std::min(firstStrand + detail::kBlockLanes, self.strands_.size()) - 1;
-  const std::size_t from = self.strands_[firstStrand].firstParticle,
-                    to = self.strands_[last].firstParticle + self.strands_[last].particleCount;
-  const std::size_t block = firstStrand / detail::kBlockLanes;
-  const auto fetch = [&](const void* begin, const void* end) {
-    const auto b = reinterpret_cast<std::uintptr_t>(begin) & ~std::uintptr_t{63};
-    const auto e = reinterpret_cast<std::uintptr_t>(end);
-    const std::uintptr_t lines = (e - b + 63) / 64;
-    const std::uintptr_t lo = lines * static_cast<std::uintptr_t>(part) / static_cast<std::uintptr_t>(parts);
-    const std::uintptr_t hi = lines * static_cast<std::uintptr_t>(part + 1) / static_cast<std::uintptr_t>(parts);
-    for (std::uintptr_t l = lo; l < hi; ++l) __builtin_prefetch(reinterpret_cast<const void*>(b + 64 * l), 0, 3);
-  };
-  fetch(self.particles_.positions.data() + from, self.particles_.positions.data() + to);
-  fetch(self.particles_.previousPositions.data() + from, self.particles_.previousPositions.data() + to);
-  fetch(self.blockConstants_.data() + self.blockConstantsAt_[block], self.blockConstants_.data() + self.blockConstantsAt_[block + 1]);
 }
 
 std::uint64_t HairSystem::stateHash() const noexcept {

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <new>
 #include <optional>
 #include <span>
 #include <vector>
@@ -163,9 +164,10 @@ public:
   /// The wind in use, if any.
   [[nodiscard]] std::optional<WindSettings> wind() const;
 
-  /// Whether the step may use the AVX2 strand kernel when the CPU has it (default: true). It
-  /// gives the same bits as the scalar kernel; the switch exists for tests and benchmarks. The
-  /// vector kernel runs the steps without wind and shape constraints; others stay scalar.
+  /// Whether the step may use the AVX2 strand kernel when the CPU has it (default: true), with
+  /// AVX-512 registers for the constraint sweeps where the CPU has those too. It gives the same
+  /// bits as the scalar kernel; the switch exists for tests and benchmarks. The vector kernel
+  /// runs the steps without wind and shape constraints; others stay scalar.
   void setVectorised(bool allowed) noexcept { vectorise_ = allowed; }
   /// True when the next step would run the AVX2 kernel.
   [[nodiscard]] bool vectorised() const noexcept;
@@ -216,12 +218,15 @@ public:
   [[nodiscard]] std::size_t strandCount() const noexcept { return strands_.size(); }
   /// Layout of every strand.
   [[nodiscard]] std::span<const GuideStrand> strands() const noexcept { return strands_; }
-  /// Current world positions (metres) of strand `strand`'s particles, root first.
+  /// Current world positions (metres) of strand `strand`'s particles, root first. The view is
+  /// good until the next `advance`, `teleport` or `setParticleState` (a step may hand the
+  /// positions' storage to the previous positions): ask again after those.
   [[nodiscard]] std::span<const glm::vec3> strandPositions(std::size_t strand) const;
   /// Rest distance (metres) from strand `strand`'s root to each of its particles along the
   /// strand (0 for the root): the tether lengths.
   [[nodiscard]] std::span<const float> strandRestDistances(std::size_t strand) const;
-  /// All particles, strands one after another.
+  /// All particles, strands one after another. The reference stays good; pointers into its
+  /// arrays (and views of them) only until the next `advance`, `teleport` or `setParticleState`.
   [[nodiscard]] const Particles& particles() const noexcept { return particles_; }
   /// The settings this system was created with.
   [[nodiscard]] const SolverSettings& settings() const noexcept { return settings_; }
@@ -235,9 +240,28 @@ public:
 private:
   explicit HairSystem(const SolverSettings& settings);
 
+  // Allocates on cache-line boundaries, so that no lane row of the vector path (32 bytes in an
+  // AVX2 register, 64 in an AVX-512 one) straddles two lines (a split store is not forwarded to
+  // the load that follows it).
+  template <class T>
+  struct CacheLineAllocator {
+    using value_type = T;
+    static constexpr std::align_val_t kAlignment{64};
+    CacheLineAllocator() = default;
+    template <class U>
+    CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+    void deallocate(T* p, std::size_t n) noexcept { ::operator delete(p, n * sizeof(T), kAlignment); }
+    friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) noexcept { return true; }
+  };
+  using LaneFloats = std::vector<float, CacheLineAllocator<float>>;
+
   // One task: simulates blocks of strands taken from `nextBlock` until none are left.
   // `scratch`: the task's lane storage for the AVX2 path, kept between frames.
-  void simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan, std::vector<float>& scratch);
+  // `intoPrevious` (AVX2 path only): write the new positions into the previous positions' array,
+  // whose contents the caller then swaps with the positions' (see advanceWith).
+  void simulateStrands(std::atomic<std::size_t>& nextBlock, const StepPlan& plan, LaneFloats& scratch,
+                       bool intoPrevious);
   void simulateStrandBlock(std::size_t firstStrand, std::size_t lanes, const StepPlan& plan);
   // The AVX2 path lives in physics/detail/hair_lanes.hpp, away from this header; it steps
   // blocks of this object's strands.
@@ -301,12 +325,26 @@ private:
   std::vector<HeadPose> poses_;    // per advance: pose at the end of fixed step k (0: frame start)
   std::optional<WindField> wind_;  // none: no wind
   bool vectorise_ = true;
-  std::vector<std::vector<float>> scratch_;  // per task: lane storage of the AVX2 path
+  std::vector<LaneFloats> scratch_;  // per task: work space of the AVX2 path
   // The AVX2 path's constants per block of detail::kBlockLanes strands, lane by lane: inverse
   // masses, segment lengths, reaches (3 arrays of rows × kBlockLanes floats) for block k from
   // blockConstants_[blockConstantsAt_[k]] on.
-  std::vector<float> blockConstants_;
+  LaneFloats blockConstants_;
   std::vector<std::size_t> blockConstantsAt_;
+  // Per block, what the AVX2 kernels may assume (StrandLanes::plainRows, kSimdGroups each); and
+  // whether every particle but the roots moves (inverse mass > 0).
+  std::vector<std::size_t> blockPlainRows_;
+  bool allMoving_ = true;
+  // Per block, the strands' roots in head-local space, lane by lane (x, y, z rows of
+  // detail::kBlockLanes floats), for the AVX2 path's root motion.
+  LaneFloats blockRootsLocal_;
+  // The AVX2 path's particle state, lane by lane (positions, then previous positions: 6 arrays of
+  // rows × kBlockLanes floats) for block k from laneState_[2 · blockConstantsAt_[k]] on. Kept
+  // between steps so that a step only writes the particles back, not reads them in again;
+  // `lanesCurrent_` says whether it still equals `particles_` (anything else that moves the
+  // particles clears it).
+  LaneFloats laneState_;
+  bool lanesCurrent_ = false;
 };
 
 }  // namespace mane::physics

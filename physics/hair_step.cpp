@@ -7,9 +7,11 @@
 #include "physics/constraints.hpp"
 #include "physics/detail/hair_math.hpp"
 #include "physics/detail/collision_lanes.hpp"
+#include "physics/detail/tether_lanes.hpp"
 #include "physics/detail/hair_lanes.hpp"
 #include "physics/detail/lane_transfer.hpp"
 #include "physics/detail/strand_lanes.hpp"
+#include "physics/detail/strand_lanes_avx512.hpp"
 #include "physics/hair.hpp"
 
 namespace mane::physics {
@@ -28,6 +30,9 @@ glm::vec3 toHeadLocal(const glm::vec3 (&axes)[3], const glm::vec3& translation, 
 glm::vec3 toWorld(const glm::vec3 (&axes)[3], const glm::vec3& translation, const glm::vec3& local) {
   return axes[0] * local.x + axes[1] * local.y + axes[2] * local.z + translation;
 }
+
+// Halvings of bisectTether's search (its AVX2 twin takes the same count).
+constexpr int kTetherHalvings = 12;
 
 float distanceSquared(const glm::vec3& a, const glm::vec3& b) {
   const glm::vec3 d = a - b;
@@ -91,7 +96,7 @@ void HairSystem::bisectTether(const HeadPose& pose, glm::vec3& x, const glm::vec
                colliders_.thickness - kSettleSlack;
   };
   float good = 0.0f, bad = 1.0f;
-  for (int halving = 0; halving < 12; ++halving) {
+  for (int halving = 0; halving < kTetherHalvings; ++halving) {
     const float middle = 0.5f * (good + bad);
     (clear(parent + (p - parent) * middle) ? good : bad) = middle;
   }
@@ -268,49 +273,70 @@ void HairSystem::simulateStrandBlock(std::size_t firstStrand, std::size_t lanes,
   }
 }
 
-// The AVX2 path. The strands' positions are copied into lane-by-lane scratch storage (so a
-// register holds one coordinate of 8 strands; detail/lane_transfer.hpp), their constants are
-// laid out that way once at creation (layOutBlockConstants), stepped with the kernels of
-// detail/strand_lanes.hpp — the same operations per strand and in the same order as
-// HairSystem::simulateStrandBlock — and copied back. The collision pass (settlePoint for every particle)
-// runs in three sweeps over the block, with the same result: the pushes (each reads and writes
-// only its own particle), packed 8 to a register from the whole block (collideBlockAvx2); then
-// settleTether's rounds for those left beyond their tether, 8 at a time (they read only the
-// particle and its root; repairTethersAvx2); then, root to tip with the scalar path's code,
-// the few bisections, which read the parent's final position. The velocity clamp runs per
-// particle with the scalar path's code. Only without shape constraints and wind (see
-// vectorised()).
+// The AVX2 path. The strands' particles live lane by lane in laneState_ (so a register holds
+// one coordinate of 8 strands; detail/lane_transfer.hpp), copied in only when something other
+// than this path moved them; their constants are laid out that way once at creation
+// (layOutBlockConstants). They are stepped with the kernels of detail/strand_lanes.hpp (the
+// constraint sweeps with AVX-512 registers where the CPU has them, strand_lanes_avx512.hpp) —
+// the same operations per strand and in the same order as HairSystem::simulateStrandBlock — and
+// the positions are copied back to the particles' arrays after every frame, which also checks
+// them for non-finite values after the frame's last step. The collision pass (settlePoint for
+// every particle) runs in three sweeps over the block, with the same result: the pushes (each
+// reads and writes only its own particle), packed 8 to a register from the whole block
+// (collideBlockAvx2); then settleTether's rounds for those left beyond their tether, 8 at a time
+// (they read only the particle and its root; repairTethersAvx2); then, root to tip, the few
+// bisections, which read the parent's final position (bisectTethersAvx2). The velocity
+// clamp runs per particle with the scalar path's code. Only without shape constraints and wind
+// (see vectorised()).
 void HairLaneKernel::simulateBlock(HairSystem& self, std::size_t firstStrand, std::size_t lanes,
-                                   const StepPlan& plan, std::vector<float>& scratch, std::size_t nextBlock) {
+                                   const StepPlan& plan, HairSystem::LaneFloats& scratch, bool intoPrevious) {
 #if MANE_STRAND_LANES_AVX2
   constexpr std::size_t W = detail::kBlockLanes;
-  // The block's constants are laid out once (layOutBlockConstants); positions are copied in.
+  // The block's constants are laid out once (layOutBlockConstants); its particles stay lane by
+  // lane in laneState_ between steps, copied in only when something else moved them.
   const std::size_t blockIndex = firstStrand / W;
   const std::size_t longest = (self.blockConstantsAt_[blockIndex + 1] - self.blockConstantsAt_[blockIndex]) / (3 * W);
   const std::size_t n = longest * W;
   const float* w = self.blockConstants_.data() + self.blockConstantsAt_[blockIndex];
   const float *segment = w + n, *reach = w + 2 * n;
-  scratch.resize(7 * n + W + detail::collideBlockStorage(longest));
-  float* base = scratch.data();
-  float* unmetSlots = base + 6 * n + W;   // the tether repairs left to bisection
-  float* collisionWork = unmetSlots + n;  // collideBlockAvx2's lists
+  const int iterations = self.settings_.constraintIterations;
+  scratch.resize(n + W + detail::collideBlockStorage(longest) + detail::stepStorage(iterations) + 6 * W);
+  float* unmetSlots = scratch.data() + W;  // the tether repairs left to bisection
+  float* collisionWork = unmetSlots + n;   // collideBlockAvx2's lists
+  float* stepWork = collisionWork + detail::collideBlockStorage(longest);  // stepAvx2's root copies
+  float* rootFrom = stepWork + detail::stepStorage(iterations);  // x, y, z rows of W floats
+  float* rootTravel = rootFrom + 3 * W;
+  float* base = self.laneState_.data() + 2 * self.blockConstantsAt_[blockIndex];
   float *x = base, *y = base + n, *z = base + 2 * n, *px = base + 3 * n, *py = base + 4 * n, *pz = base + 5 * n;
   detail::LaneStrands where{};
   std::int32_t count[W] = {};
-  glm::vec3 rootFrom[W], rootTravel[W];
   for (std::size_t b = 0; b < lanes; ++b) {
     const GuideStrand& strand = self.strands_[firstStrand + b];
     where.first[b] = strand.firstParticle;
     where.count[b] = strand.particleCount;
     count[b] = static_cast<std::int32_t>(strand.particleCount);
-    self.rootMotion(firstStrand + b, rootFrom[b], rootTravel[b]);
   }
   const std::size_t groups = (lanes + detail::kSimdWidth - 1) / detail::kSimdWidth;
+  // Where each root is at the frame's start and how far it moves by its end (rootMotion).
+  if (self.rootTargets_.empty()) {
+    const float* rootsLocal = self.blockRootsLocal_.data() + blockIndex * 3 * W;
+    detail::transformRootsAvx2(self.previousHead_, rootsLocal, rootFrom, groups);
+    detail::transformRootsAvx2(self.head_, rootsLocal, rootTravel, groups);
+    for (std::size_t k = 0; k < 3 * W; ++k) rootTravel[k] -= rootFrom[k];
+  } else {
+    for (std::size_t b = 0; b < lanes; ++b) {
+      glm::vec3 from, travel;
+      self.rootMotion(firstStrand + b, from, travel);
+      for (std::size_t c = 0; c < 3; ++c) rootFrom[c * W + b] = from[c], rootTravel[c * W + b] = travel[c];
+    }
+  }
   static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "positions are read as packed xyz floats");
   float* positions = &self.particles_.positions.data()->x;
   float* previous = &self.particles_.previousPositions.data()->x;
-  detail::loadLanePositions(where, longest, groups, positions, previous, base);
-  const detail::StrandLanes block{x, y, z, px, py, pz, w, segment, reach, count, longest, groups};
+  if (!self.lanesCurrent_) detail::loadLanePositions(where, longest, groups, positions, previous, base);
+  detail::StrandLanes block{x, y, z, px, py, pz, w, segment, reach, count, longest, groups};
+  std::copy_n(self.blockPlainRows_.begin() + static_cast<std::ptrdiff_t>(blockIndex * detail::kSimdGroups),
+              detail::kSimdGroups, block.plainRows);
   const auto get = [&](const float* cx, const float* cy, const float* cz, std::size_t at) {
     return glm::vec3(cx[at], cy[at], cz[at]);
   };
@@ -325,23 +351,28 @@ void HairLaneKernel::simulateBlock(HairSystem& self, std::size_t firstStrand, st
   const bool collide = !self.colliders_.empty();
   const bool clampSpeed = self.settings_.maxSpeed < std::numeric_limits<float>::infinity();
   const float maxDisplacement = self.settings_.maxSpeed * step;
+  // A strand with a non-finite coordinate after step k stops where it is; the others carry on.
+  const auto stopFaulty = [&](const float (&probe)[W], int k) {
+    for (std::size_t b = 0; b < lanes; ++b) {
+      const auto particles = static_cast<std::size_t>(count[b]);
+      if (particles == 0 || probe[b] == 0.0f) continue;
+      std::size_t bad = 0;
+      while (bad < particles && isFinite(get(x, y, z, bad * W + b))) ++bad;
+      self.faultParticle_[firstStrand + b] = static_cast<std::uint32_t>(std::min(bad, particles - 1));
+      self.faultStep_[firstStrand + b] = stepsBefore + static_cast<std::uint64_t>(k);
+      count[b] = 0;
+      detail::markPlainRows(block);
+    }
+  };
 
   for (int k = 1; k <= plan.substeps; ++k) {
-    const float fraction = plan.fractionAt(k);
-    for (std::size_t b = 0; b < lanes; ++b) {
-      if (count[b] == 0) continue;
-      put(px, py, pz, b, get(x, y, z, b));
-      put(x, y, z, b, rootFrom[b] + rootTravel[b] * fraction);
-    }
-    detail::integrateAvx2(block, keep, kick);
-
-    const bool prefetch = k == plan.substeps && nextBlock != kNoBlock;
-    if (prefetch && self.settings_.constraintIterations == 0) prefetchBlock(self, nextBlock, 0, 1);
-    for (int iteration = 0; iteration < self.settings_.constraintIterations; ++iteration) {
-      if (prefetch) prefetchBlock(self, nextBlock, iteration, self.settings_.constraintIterations);
-      detail::relaxDistancesAvx2(block);
-      if (self.settings_.tethers) detail::tethersAvx2(block);
-    }
+    detail::placeRootsAvx2(block, rootFrom, rootTravel, plan.fractionAt(k));
+    // Verlet, then the constraint sweeps, in one wavefront over the block (stepAvx2; the same
+    // bits in fewer instructions with AVX-512).
+    if (detail::cpuHasAvx512())
+      detail::stepAvx512(block, keep, kick, iterations, self.settings_.tethers, stepWork);
+    else
+      detail::stepAvx2(block, keep, kick, iterations, self.settings_.tethers, stepWork);
 
     // settlePoint, 8 particles at a time: the push with friction, then the rare tether repair
     // one particle at a time. Each particle's parent is settled first, as in the scalar path.
@@ -355,12 +386,8 @@ void HairLaneKernel::simulateBlock(HairSystem& self, std::size_t firstStrand, st
       detail::collideBlockAvx2(contacts, block, self.colliders_.friction, collisionWork);
       if (self.settings_.tethers) {
         const std::size_t unmet = detail::repairTethersAvx2(contacts, block, HairSystem::kSettleRounds, HairSystem::kSettleSlack, unmetSlots);
-        for (std::size_t u = 0; u < unmet; ++u) {  // ascending: each parent is final before its child
-          const auto n = static_cast<std::size_t>(unmetSlots[u]);
-          glm::vec3 settled;
-          self.bisectTether(pose, settled, get(x, y, z, n), get(x, y, z, n % W), get(x, y, z, n - W), reach[n]);
-          put(x, y, z, n, settled);
-        }
+        // Ascending: each parent is final before its child.
+        detail::bisectTethersAvx2(contacts, block, kTetherHalvings, HairSystem::kSettleSlack, unmetSlots, unmet);
       }
     }
 
@@ -374,24 +401,23 @@ void HairLaneKernel::simulateBlock(HairSystem& self, std::size_t firstStrand, st
           put(px, py, pz, at, q);
         }
 
+    if (k == plan.substeps) break;  // the write-back below checks the last step
     float probe[W] = {};
     detail::nonFiniteProbeAvx2(block, probe);
-    for (std::size_t b = 0; b < lanes; ++b) {
-      const auto particles = static_cast<std::size_t>(count[b]);
-      if (particles == 0) continue;
-      if (probe[b] != 0.0f) {
-        std::size_t bad = 0;
-        while (bad < particles && isFinite(get(x, y, z, bad * W + b))) ++bad;
-        self.faultParticle_[firstStrand + b] = static_cast<std::uint32_t>(std::min(bad, particles - 1));
-        self.faultStep_[firstStrand + b] = stepsBefore + static_cast<std::uint64_t>(k);
-        count[b] = 0;  // the strand stops where it is
-      }
-    }
+    stopFaulty(probe, k);
   }
 
-  detail::storeLanePositions(where, longest, groups, base, positions, previous);
+  // After a single step whose previous positions are where the particles started, the previous
+  // positions' array still holds them: the new positions go there and the caller swaps the two
+  // arrays (advanceWith), instead of a second transposition.
+  float probe[W] = {};
+  if (intoPrevious)
+    detail::storeLanePositions(where, longest, groups, base, previous, nullptr, probe);
+  else
+    detail::storeLanePositions(where, longest, groups, base, positions, previous, probe);
+  stopFaulty(probe, plan.substeps);
 #else
-  (void)scratch, (void)nextBlock;
+  (void)scratch, (void)intoPrevious;
   for (std::size_t s = firstStrand; s < firstStrand + lanes; s += HairSystem::kStrandLanes)
     self.simulateStrandBlock(s, std::min(HairSystem::kStrandLanes, firstStrand + lanes - s), plan);
 #endif

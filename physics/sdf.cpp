@@ -325,16 +325,22 @@ void SignedDistanceField::findContactBox() {
   // Half a cell: nodes within that of the surface sit at least one padding cell minus half a
   // cell inside the grid, so the contact cells stay off the boundary with the minimum padding.
   const float level = 0.5f * cellSize_;
+  contactCells_.assign((values_.size() + 31) / 32, 0u);
   glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
   for (int k = 0; k + 1 < dims_.z; ++k)
     for (int j = 0; j + 1 < dims_.y; ++j)
       for (int i = 0; i + 1 < dims_.x; ++i) {
-        const float* v = values_.data() + static_cast<std::size_t>(i) +
-                         static_cast<std::size_t>(dims_.x) * (static_cast<std::size_t>(j) +
-                                                              static_cast<std::size_t>(dims_.y) * static_cast<std::size_t>(k));
+        const float* v =
+            values_.data() + static_cast<std::size_t>(i) +
+            static_cast<std::size_t>(dims_.x) *
+                (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims_.y) * static_cast<std::size_t>(k));
         const std::size_t sy = static_cast<std::size_t>(dims_.x), sz = sy * static_cast<std::size_t>(dims_.y);
         const float lowest = std::min({v[0], v[1], v[sy], v[sy + 1], v[sz], v[sz + 1], v[sz + sy], v[sz + sy + 1]});
-        if (!(lowest >= level)) lo = glm::min(lo, glm::ivec3(i, j, k)), hi = glm::max(hi, glm::ivec3(i, j, k));
+        if (!(lowest >= level)) {
+          lo = glm::min(lo, glm::ivec3(i, j, k)), hi = glm::max(hi, glm::ivec3(i, j, k));
+          const auto cell = static_cast<std::size_t>(v - values_.data());
+          contactCells_[cell / 32] |= 1u << (cell % 32);
+        }
       }
   if (lo.x > hi.x) {  // nothing below the level anywhere: an empty box
     contactLevel_ = level;
@@ -346,6 +352,7 @@ void SignedDistanceField::findContactBox() {
   // the contact cells stay off the boundary cells.
   if (lo.x < 1 || lo.y < 1 || lo.z < 1 || hi.x > dims_.x - 3 || hi.y > dims_.y - 3 || hi.z > dims_.z - 3) {
     contactLevel_ = -std::numeric_limits<float>::infinity();
+    contactCells_.clear();
     return;
   }
   contactLevel_ = level;

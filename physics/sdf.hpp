@@ -98,13 +98,21 @@ public:
   [[nodiscard]] const glm::vec3& contactUpper() const noexcept { return contactUpper_; }
   /// The level of the contact box: half a cell (or −∞, see above), metres.
   [[nodiscard]] float contactLevel() const noexcept { return contactLevel_; }
-  /// False only when `sample(p)` is certainly ≥ `level`: p lies outside the contact box and
-  /// `level` is below `contactLevel()` by more than trilinear rounding. A cheap cull for
-  /// collisions; it never changes a result.
+  /// One bit per cell, set when a node of the cell lies below `contactLevel()`: a sample
+  /// elsewhere is a convex combination of nodes at or above that level. Bit n (word n / 32,
+  /// bit n % 32) belongs to the cell whose lowest node is values()[n]. Empty when
+  /// `contactLevel()` is −∞.
+  [[nodiscard]] std::span<const std::uint32_t> contactCells() const noexcept { return contactCells_; }
+  /// False only when `sample(p)` is certainly ≥ `level`: `level` is below `contactLevel()` by
+  /// more than trilinear rounding, and p lies outside the contact box or in a cell with no node
+  /// below `contactLevel()`. A cheap cull for collisions; it never changes a result.
   [[nodiscard]] bool mayBeBelow(const glm::vec3& p, float level) const noexcept {
     if (!(level < contactLevel_ - 1e-6f)) return true;
-    return p.x >= contactLower_.x && p.y >= contactLower_.y && p.z >= contactLower_.z && p.x <= contactUpper_.x &&
-           p.y <= contactUpper_.y && p.z <= contactUpper_.z;
+    if (!(p.x >= contactLower_.x && p.y >= contactLower_.y && p.z >= contactLower_.z && p.x <= contactUpper_.x &&
+          p.y <= contactUpper_.y && p.z <= contactUpper_.z))
+      return false;
+    const std::size_t cell = cellOf((p - origin_) * inverseCellSize_);
+    return (contactCells_[cell / 32] >> (cell % 32) & 1u) != 0;
   }
 
 private:
@@ -113,6 +121,9 @@ private:
   float evaluate(const glm::vec3& p, glm::vec3* gradient) const noexcept;
   // Trilinear value (and optionally gradient) at grid coordinates inside the box.
   float interpolate(const glm::vec3& p, glm::vec3* gradient) const noexcept;
+  // Index of the lowest node of the cell that `evaluate` interpolates in at grid coordinates u
+  // (not NaN).
+  std::size_t cellOf(const glm::vec3& u) const noexcept;
 
   glm::vec3 origin_{0.0f};
   float cellSize_ = 1.0f;
@@ -122,8 +133,20 @@ private:
   glm::vec3 contactLower_{0.0f};
   glm::vec3 contactUpper_{0.0f};
   float contactLevel_ = -std::numeric_limits<float>::infinity();
+  std::vector<std::uint32_t> contactCells_;
   void findContactBox();
 };
+
+inline std::size_t SignedDistanceField::cellOf(const glm::vec3& u) const noexcept {
+  // The clamp and the cell of `evaluate` and `interpolate`, operation for operation.
+  const glm::vec3 top(dims_ - 1);
+  const int i = std::min(static_cast<int>(std::clamp(u.x, 0.0f, top.x)), dims_.x - 2);
+  const int j = std::min(static_cast<int>(std::clamp(u.y, 0.0f, top.y)), dims_.y - 2);
+  const int k = std::min(static_cast<int>(std::clamp(u.z, 0.0f, top.z)), dims_.z - 2);
+  return static_cast<std::size_t>(i) +
+         static_cast<std::size_t>(dims_.x) *
+             (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims_.y) * static_cast<std::size_t>(k));
+}
 
 // Sampling is inline: it runs several times per particle contact in the hair step.
 inline float SignedDistanceField::interpolate(const glm::vec3& u, glm::vec3* gradient) const noexcept {

@@ -4,6 +4,9 @@
 // preset. No Vulkan here: scenes fill these in.
 
 #include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "common/strand_layout.hpp"
 
@@ -26,6 +29,23 @@ struct HairGroomSettings {
   /// render/passes/opacity_shadow_map_pass.hpp, where each strand crossing adds `opacity`).
   float shadowExtinction = 1.0f;
 };
+
+/// One dense strand's look relative to its groom's HairGroomSettings: factors, 1 leaving the
+/// settings as they are, so that the groom-wide settings stay the knobs a scene or a viewer turns
+/// and scale every strand alike. Groom files give strands their own widths, colours and
+/// opacities this way (scenes/README.md says which file attribute becomes which factor). The
+/// layout is the two vec4s per strand the hair shaders read (render/strand_looks.hpp).
+struct HairStrandLook {
+  float widthScale = 1.0f;     ///< × HairGroomSettings::width: the strand's root width; > 0
+  float tipWidthScale = 1.0f;  ///< × HairGroomSettings::tipWidthScale; in [0, 1]
+  float opacityScale = 1.0f;   ///< × HairGroomSettings::opacity; in [0, 1]
+  float unused = 0.0f;
+  /// Multiplies the light that crosses the fibre (the TT and TRT lobes and the ambient term);
+  /// the reflection off its surface (R) keeps the light's colour. Each component in [0, 1].
+  glm::vec3 colour{1.0f};
+  float unused2 = 0.0f;
+};
+static_assert(sizeof(HairStrandLook) == 32, "two std430 vec4s per strand");
 
 /// Which Marschner parameters a groom is shaded with (render/luts/marschner.hpp presets).
 enum class HairLook : std::uint32_t {
@@ -52,6 +72,8 @@ struct HairGroomData {
   DenseStrandLayout layout;  ///< uploaded by setScene
   HairLook look = HairLook::kBlonde;
   HairGroomSettings settings;
+  /// One per dense strand (layout.strands), or empty: every strand as `settings` say.
+  std::vector<HairStrandLook> strandLooks;
 };
 
 }  // namespace mane::render

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "render/frame_validation.hpp"
+#include "render/strand_looks.hpp"
 
 namespace mane::render {
 namespace {
@@ -64,6 +65,9 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     const HairGroomData& groom = scene.grooms[g];
     auto strands = StrandInterpolationPass::create(*device_, groom.layout);
     if (!strands) return fail("groom " + std::to_string(g) + ": " + strands.error().message);
+    if (auto looks = validateStrandLooks(groom.strandLooks, groom.layout.strands.size()); !looks)
+      return fail("groom " + std::to_string(g) + ": " + looks.error().message);
+    const ShadowedLook shadowLook = shadowedLook(groom.settings, groom.strandLooks);
     float stray = 0.0f;
     for (const DenseStrand& strand : groom.layout.strands)
       stray = std::max(stray, glm::length(strand.rootOffset) + glm::length(strand.tipJitter));
@@ -71,11 +75,14 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     shadowed.push_back({.strands = {.positions = &pass.positions(),
                                     .strandCount = pass.strandCount(),
                                     .verticesPerStrand = pass.vertexCount()},
-                        .width = groom.settings.width,
-                        .opacity = groom.settings.opacity,
+                        .width = shadowLook.width,
+                        .opacity = shadowLook.opacity,
                         .extinction = groom.settings.shadowExtinction});
+    Buffer looks;
+    if (!groom.strandLooks.empty()) looks = uploadStrandLooks(*device_, groom.strandLooks, pass.strandCount());
     hair_.push_back({.strands = std::move(*strands),
                      .order = std::make_unique<StrandDrawOrder>(groom.layout),
+                     .looks = std::move(looks),
                      .settings = groom.settings,
                      .strayFromGuides = stray});
   }
@@ -131,6 +138,10 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
                                            .verticesPerStrand = pass.vertexCount()});
         !set)
       return failed(set.error());
+    if (drawn.looks.size() != 0) {
+      if (auto set = (*ribbons)->setStrandLooks(drawn.looks); !set) return failed(set.error());
+      if (auto set = (*lighting)->setStrandLooks(drawn.looks); !set) return failed(set.error());
+    }
     if (hideOccludedHair_) (*ribbons)->setOcclusion(occlusion_.tileMaxDepth(), occlusion_.tiles());
     (*lighting)->setShadeList((*ribbons)->shadeList());
     drawn.lighting = std::move(*lighting);

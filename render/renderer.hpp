@@ -166,6 +166,7 @@ private:
     std::unique_ptr<HairLightingPass> lighting;
     std::unique_ptr<HairPass> ribbons;
     std::unique_ptr<StrandDrawOrder> order;
+    Buffer looks;                         // the strands' own looks, where the groom has them
     std::vector<glm::vec3> guideMiddles;  // of the last updateHair: the sort keys
     HairGroomSettings settings;
     float strayFromGuides = 0.0f;  // metres: bound on a dense vertex's distance from its guides

@@ -384,6 +384,11 @@ Result<StrandSet> loadCyHair(const std::filesystem::path& path, const GroomLoadO
   auto points = file.read(pointArray.begin, pointArray.bytes);
   if (!points) return std::unexpected(points.error());
   StrandSet set;
+  // Header bytes 20–39, after the default segment count.
+  set.hairDefaults = StrandSet::HairDefaults{
+      .thickness = readF32(*head, 20),
+      .transparency = readF32(*head, 24),
+      .colour = glm::vec3(readF32(*head, 28), readF32(*head, 32), readF32(*head, 36))};
   set.strands.reserve(hairCount);
   std::vector<std::uint64_t> firstPoint;  // of each hair, in the point array
   firstPoint.reserve(hairCount);

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -40,6 +41,14 @@ struct StrandSet {
   std::vector<std::vector<float>> transparency;
   /// `.hair` colour array: `colours[s][i]` at `strands[s][i]`, RGB as stored (nominally 0–1).
   std::vector<std::vector<glm::vec3>> colours;
+  /// `.hair` header defaults: the thickness, transparency and colour of every point where the
+  /// file has no array of its own (the arrays above then stay empty). Absent for `.tfx`.
+  struct HairDefaults {
+    float thickness = 0.0f;     ///< file units
+    float transparency = 0.0f;  ///< 0 opaque to 1 invisible
+    glm::vec3 colour{0.0f};     ///< RGB as stored (nominally 0–1)
+  };
+  std::optional<HairDefaults> hairDefaults;
   /// `.tfx` per-strand thickness: `strandThickness[s]` for strand s, as stored (TressFX uses it
   /// as a multiplier of the groom's width).
   std::vector<float> strandThickness;
@@ -86,7 +95,8 @@ struct GroomLoadOptions {
 /// float thickness, float transparency, float3 colours (per point). A hair with k segments has
 /// k + 1 points; without a segments array every hair has the default count (a hair with 0
 /// segments has one point: a flawed strand). Positions, thickness, transparency and colours are
-/// returned (the header's defaults, for arrays the file lacks, are not).
+/// returned, and the header's default thickness, transparency and colour (`hairDefaults`), which
+/// stand for the arrays the file lacks.
 /// Errors name the file and, as it applies, the hair (strand), the point and the byte offset:
 /// wrong signature, a file shorter than its header or its arrays, no point array, no hairs,
 /// segment counts that do not add up to the point count, every hair flawed; under `strict`, the

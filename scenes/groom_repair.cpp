@@ -54,11 +54,25 @@ std::size_t longestSegment(const std::vector<glm::vec3>& points) {
   return longest;
 }
 
+/// The mean of `a` and `b`, halved before adding so that two finite values near the float
+/// limit give a finite mean (the same value as (a + b) / 2 wherever that does not overflow).
+template <class T>
+T midpoint(const T& a, const T& b) {
+  return a * 0.5f + b * 0.5f;
+}
+
 /// Inserts the mean of `values[at]` and `values[at + 1]` between them.
 template <class T>
 void insertMidpoint(std::vector<T>& values, std::size_t at) {
-  const T middle = (values[at] + values[at + 1]) * 0.5f;
+  const T middle = midpoint(values[at], values[at + 1]);
   values.insert(values.begin() + static_cast<std::ptrdiff_t>(at + 1), middle);
+}
+
+/// Whether `middle` cuts the segment a–b into two that are neither repeated points nor
+/// zero-length segments. A segment at float resolution (a few units in the last place, or
+/// subnormal coordinates) has no such point: its rounded midpoint is one of its ends.
+bool splits(const glm::vec3& a, const glm::vec3& middle, const glm::vec3& b, float zeroLength) {
+  return middle != a && middle != b && glm::distance(a, middle) >= zeroLength && glm::distance(middle, b) >= zeroLength;
 }
 
 const char* reasonPhrase(StrandFlaw flaw) {
@@ -216,6 +230,12 @@ GroomRepairReport repairStrands(StrandSet& set) {
     // is kept, and a groom of strands with one count stays so (the renderer draws only those).
     while (strands[s].size() < storedCount) {
       const std::size_t at = longestSegment(strands[s]);
+      if (!splits(strands[s][at], midpoint(strands[s][at], strands[s][at + 1]), strands[s][at + 1], zeroLength)) {
+        // Even its longest segment cannot be halved: the whole strand is at the zero-length
+        // bound, as good as a single point (rule 3).
+        drop(s, found[s]->point, StrandFlaw::kTooFewPoints);
+        break;
+      }
       insertMidpoint(strands[s], at);
       if (!set.thickness.empty()) insertMidpoint(set.thickness[s], at);
       if (!set.transparency.empty()) insertMidpoint(set.transparency[s], at);

@@ -18,7 +18,10 @@
 //    strands share one count, as TressFX grooms do, keeps sharing it. The bound is
 //    far below anything groomed: real fur (the TressFX bear) has segments down to ~1e-5 of its
 //    median, a float's resolution at its coordinates, and those strands load untouched.
-// 3. A strand left with fewer than two points is dropped (nothing to simulate or draw).
+// 3. A strand left with fewer than two points is dropped (nothing to simulate or draw), and so
+//    is one that cannot be brought back to its count because even its longest segment is too
+//    short to halve into two segments over the zero-length bound (or, at float resolution, into
+//    two at all): such a strand is as good as a single point.
 // 4. A strand with a segment longer than `kAbsurdLengthFactor` × the groom's median segment
 //    length, or a total length over `kAbsurdLengthFactor` × the groom's median strand length, is
 //    dropped: such a strand is a stray point (a coordinate off by orders of magnitude), and one
@@ -46,7 +49,7 @@ enum class StrandFlaw : std::uint8_t {
   kRepeatedPoint,      ///< repaired: a point equal to the one before it, merged
   kZeroLengthSegment,  ///< repaired: a point nearly at the one before it, merged
   kNonFinitePoint,     ///< dropped: a NaN or infinite coordinate
-  kTooFewPoints,       ///< dropped: fewer than two points (as stored, or after merging)
+  kTooFewPoints,       ///< dropped: fewer than two points (stored or after merging), or too short to split (rule 3)
   kAbsurdLength,       ///< dropped: a segment or the whole strand far longer than the groom's median
 };
 

@@ -43,9 +43,11 @@ Result<std::vector<unsigned char>> encodeCyHair(std::span<const std::uint32_t> p
   put(bytes, static_cast<std::uint32_t>(points.size()));
   put(bytes, detail::kHairSegmentsBit | detail::kHairPointsBit);
   put(bytes, static_cast<std::uint32_t>(pointsPerStrand[0] - 1));  // default segments: unused with the array
-  put(bytes, 1.0f);                                                // default thickness
+  // Defaults that read back as "no look": thickness 0 is none (scenes/groom_looks.hpp), opaque,
+  // white leaves the look's own colour. A scene drawing the file then draws it as it says.
+  put(bytes, 0.0f);                                                // default thickness
   put(bytes, 0.0f);                                                // default transparency
-  for (int i = 0; i < 3; ++i) put(bytes, 0.5f);                    // default colour
+  for (int i = 0; i < 3; ++i) put(bytes, 1.0f);                    // default colour
   char text[detail::kHairInfoBytes] = {};
   std::memcpy(text, info.data(), std::min(info.size(), detail::kHairInfoBytes - 1));
   bytes.insert(bytes.end(), text, text + detail::kHairInfoBytes);

@@ -16,8 +16,9 @@ namespace mane::scenes {
 
 /// The HAIR bytes of strands laid out one after another in `points` (`pointsPerStrand[s]` points
 /// each, root first, in the caller's units): the 128-byte header with the segments and points
-/// arrays announced (flags 1 | 2), a default thickness of 1, transparency 0 and a mid-grey
-/// colour, `info` (at most 87 bytes kept, zero-padded) in the header's text field; then uint16
+/// arrays announced (flags 1 | 2), a default thickness of 0 (none), transparency 0 and a white
+/// colour (no look of their own: scenes/groom_looks.hpp), `info` (at most 87 bytes kept,
+/// zero-padded) in the header's text field; then uint16
 /// segments per strand and float3 points, little-endian. Errors: no strands, a strand of fewer
 /// than 2 or more than 65,536 points (the format's uint16 segment count), counts that do not add
 /// up to `points.size()`.

@@ -1,7 +1,15 @@
 #include "scenes/image.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "stb_image.h"
 
@@ -14,17 +22,106 @@ namespace {
 constexpr int kMaxImageSide = 16384;                  // Vulkan's usual maxImageDimension2D
 constexpr long long kMaxImagePixels = 8192LL * 8192;  // 256 MiB of RGBA8
 
+/// stb_image 2.27 sums the digits of a binary PGM/PPM header's numbers in an int without a
+/// bound, undefined behaviour past 2147483647 (fixed upstream in 2.28). This reads such a
+/// header ("P5" or "P6", the kinds stb_image reads) the way stb_image does, whitespace and '#'
+/// comments then digits, and returns the first number too large for an int, with its name
+/// ("height 5555222552"); nothing for any other file.
+std::optional<std::string> overlongPnmNumber(std::span<const unsigned char> bytes) {
+  if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6')) return std::nullopt;
+  std::size_t at = 2;
+  const auto isSpace = [](unsigned char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };  // \t \n \v \f \r
+  const auto isDigit = [](unsigned char c) { return c >= '0' && c <= '9'; };
+  for (const char* what : {"width", "height", "maximum value"}) {
+    for (;;) {
+      while (at < bytes.size() && isSpace(bytes[at])) ++at;
+      if (at == bytes.size() || bytes[at] != '#') break;
+      while (at < bytes.size() && bytes[at] != '\n' && bytes[at] != '\r') ++at;
+    }
+    std::string digits;
+    for (; at < bytes.size() && isDigit(bytes[at]); ++at)
+      if (!digits.empty() || bytes[at] != '0') digits += static_cast<char>(bytes[at]);  // leading zeros add nothing
+    if (digits.size() > 10 || (digits.size() == 10 && digits > "2147483647"))
+      return std::string(what) + " " + (digits.size() > 20 ? digits.substr(0, 20) + "…" : digits);
+  }
+  return std::nullopt;
+}
+
+/// Whether `bytes` are too few for the TGA image their header declares (stb_image reads past the
+/// end of a TGA file as zeros, so a few bytes declaring thousands of pixels on a side decoded
+/// into a black image, slowly). The bound is exact for uncompressed data; run-length-encoded
+/// data needs at least one packet byte and one pixel per 128 pixels. Describes the shortfall, or
+/// nothing for a complete TGA and for any other file (none of stb_image's other formats has a
+/// second byte of 0 or 1, TGA's colour-map type).
+std::optional<std::string> truncatedTga(std::span<const unsigned char> bytes) {
+  if (bytes.size() < 18 || bytes[1] > 1) return std::nullopt;
+  const auto u16 = [&](std::size_t at) { return std::uint64_t{bytes[at]} | std::uint64_t{bytes[at + 1]} << 8; };
+  const unsigned type = bytes[2];
+  const bool runLength = type >= 8;
+  if (type % 8 < 1 || type % 8 > 3 || type > 11) return std::nullopt;
+  const std::uint64_t width = u16(12);
+  const std::uint64_t height = u16(14);
+  const std::uint64_t pixelBytes = (std::uint64_t{bytes[16]} + 7) / 8;
+  std::uint64_t needed = 18 + std::uint64_t{bytes[0]};  // header and image id
+  // The colour map, as stb_image skips to it and reads it.
+  if (bytes[1] == 1) needed += u16(3) + u16(5) * ((std::uint64_t{bytes[7]} + 7) / 8);
+  needed += runLength ? (width * height + 127) / 128 * (1 + pixelBytes) : width * height * pixelBytes;
+  if (width == 0 || height == 0 || bytes.size() >= needed) return std::nullopt;
+  return "its header declares " + std::to_string(width) + " x " + std::to_string(height) + " pixels of " +
+         std::to_string(pixelBytes) + (pixelBytes == 1 ? " byte" : " bytes") +
+         (runLength ? " run-length encoded" : "") + ", which need at least " + std::to_string(needed) +
+         " bytes, but the file has " + std::to_string(bytes.size());
+}
+
+/// Removes a PNG's empty IDAT chunks from `bytes`. They carry no image data, but stb_image 2.27
+/// copies a first one into its not yet allocated buffer, memcpy(nullptr, …, 0): undefined
+/// behaviour. Anything but a PNG, and a PNG from where its chunks stop fitting, is left as it is
+/// for stb_image to judge.
+void dropEmptyPngDataChunks(std::vector<unsigned char>& bytes) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin())) return;
+  std::vector<std::size_t> empty;  // offsets of empty IDAT chunks
+  for (std::size_t at = 8; bytes.size() - at >= 12;) {
+    const std::uint64_t length = std::uint64_t{bytes[at]} << 24 | std::uint64_t{bytes[at + 1]} << 16 |
+                                 std::uint64_t{bytes[at + 2]} << 8 | bytes[at + 3];  // big-endian
+    if (length > bytes.size() - at - 12) break;
+    if (length == 0 && std::equal(bytes.begin() + static_cast<std::ptrdiff_t>(at + 4),
+                                  bytes.begin() + static_cast<std::ptrdiff_t>(at + 8), "IDAT"))
+      empty.push_back(at);
+    at += 12 + length;  // length, type, data, CRC
+  }
+  for (auto at = empty.rbegin(); at != empty.rend(); ++at) {
+    const auto chunk = bytes.begin() + static_cast<std::ptrdiff_t>(*at);
+    bytes.erase(chunk, chunk + 12);
+  }
+}
+
 }  // namespace
 
 Result<Image> loadImage(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return fail(name + ": file not found");
+  // Decoded from memory: stb_image reading a file calls fread for every byte it asks for past
+  // the end, so a truncated file declaring a large image took seconds to decode into zeros.
+  std::vector<unsigned char> bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return fail(name + ": cannot open the file");
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  dropEmptyPngDataChunks(bytes);
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    return fail(name + ": cannot decode image: the file is over 2 GiB");
+  const int size = static_cast<int>(bytes.size());
+  if (auto number = overlongPnmNumber(bytes))
+    return fail(name + ": cannot decode image: the PNM header's " + *number + " is too large (at most 2147483647)");
+  if (auto shortfall = truncatedTga(bytes)) return fail(name + ": cannot decode image: truncated TGA: " + *shortfall);
   int width = 0;
   int height = 0;
   int channels = 0;
   // Only the header: an unreadable one falls through to stbi_load, which gives the reason.
-  if (stbi_info(name.c_str(), &width, &height, &channels) != 0 &&
+  if (stbi_info_from_memory(bytes.data(), size, &width, &height, &channels) != 0 &&
       (width > kMaxImageSide || height > kMaxImageSide || static_cast<long long>(width) * height > kMaxImagePixels)) {
     return fail(name + ": image too large: " + std::to_string(width) + " x " + std::to_string(height) +
                 " pixels (at most " + std::to_string(kMaxImageSide) + " on a side and " +
@@ -35,8 +132,8 @@ Result<Image> loadImage(const std::filesystem::path& file) {
   // the buffer (found by tests/fuzz/fuzz_image; fixed upstream in 2.28).
   // stbi_load is reentrant apart from its failure-reason string, which is per thread only
   // with STBI_THREAD_LOCAL; good enough for a message.
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load(name.c_str(), &width, &height, &channels, 0),
-                                                   &stbi_image_free);
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load_from_memory(bytes.data(), size, &width, &height, &channels, 0), &stbi_image_free);
   if (!pixels) {
     const char* reason = stbi_failure_reason();
     return fail(name + ": cannot decode image: " + (reason ? reason : "unknown error"));

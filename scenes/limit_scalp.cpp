@@ -103,7 +103,11 @@ Result<std::vector<LimitRoot>> sampleScalpOnLimitSurface(const subdiv::LimitSurf
           std::min(std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
                    cells.size() - 1);
       const Cell& cell = cells[k];
-      const glm::dvec2 uv((cell.i + uniform(rng)) * step, (cell.j + uniform(rng)) * step);
+      // One draw per statement: C++ leaves the order of a call's arguments open, and compilers
+      // differ. v is drawn before u, the order the shipped scenes' grooms were made with.
+      const double v = uniform(rng);
+      const double u = uniform(rng);
+      const glm::dvec2 uv((cell.i + u) * step, (cell.j + v) * step);
       const double keep = uniform(rng);
       const subdiv::LimitSample s = surface.evaluate(cell.face, uv.x, uv.y);
       const double jacobian = glm::length(glm::cross(glm::dvec3(s.du), glm::dvec3(s.dv)));

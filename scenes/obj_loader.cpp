@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <tuple>
@@ -27,6 +29,46 @@ Result<void> checkIndex(const std::string& file, int index, std::size_t size, co
   return {};
 }
 
+/// `text` with its `vw` lines (tinyobjloader's skin-weight extension) turned into comments. No
+/// skin weights are read from OBJ here, and tinyobjloader 2.0.0rc10 converts their joint ids from
+/// float to int unchecked, undefined behaviour for an id beyond int's range. A line starts after
+/// '\n' or '\r' and its keyword after spaces and tabs, as tinyobjloader splits and trims them.
+std::string withoutSkinWeights(std::string text) {
+  bool atLineStart = true;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n' || c == '\r') {
+      atLineStart = true;
+    } else if (atLineStart && c != ' ' && c != '\t') {
+      atLineStart = false;
+      if (c == 'v' && i + 2 < text.size() && text[i + 1] == 'w' && (text[i + 2] == ' ' || text[i + 2] == '\t'))
+        text[i] = '#';
+    }
+  }
+  return text;
+}
+
+/// The 1-based line of the first number in `text` whose exponent has ten digits or more (leading
+/// zeros aside), or 0 if there is none. tinyobjloader 2.0.0rc10 sums an exponent's digits in an
+/// int whose overflow, at 2147483648, is undefined behaviour; any exponent that long is far
+/// beyond a float's range. Lines are counted as tinyobjloader splits them ('\n', '\r' or "\r\n").
+std::size_t lineWithOverlongExponent(const std::string& text) {
+  const auto digit = [&](std::size_t i) { return i < text.size() && text[i] >= '0' && text[i] <= '9'; };
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n' || (c == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) ++line;
+    if ((c != 'e' && c != 'E') || i == 0 || !(digit(i - 1) || text[i - 1] == '.')) continue;
+    std::size_t at = i + 1;
+    if (at < text.size() && (text[at] == '+' || text[at] == '-')) ++at;
+    while (at < text.size() && text[at] == '0') ++at;
+    std::size_t digits = 0;
+    while (digit(at + digits)) ++digits;
+    if (digits >= 10) return line;
+  }
+  return 0;
+}
+
 }  // namespace
 
 Result<Mesh> loadObj(const std::filesystem::path& file) {
@@ -39,10 +81,17 @@ Result<Mesh> loadObj(const std::filesystem::path& file) {
   // positions through unchecked indices.
   config.triangulate = false;
   config.vertex_color = false;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return fail(name + ": cannot open the file");
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (const std::size_t line = lineWithOverlongExponent(text); line != 0)
+    return fail(name + ": line " + std::to_string(line) +
+                ": a number's exponent has ten digits or more (far beyond a float's range)");
   tinyobj::ObjReader reader;
   bool parsed = false;
   try {
-    parsed = reader.ParseFromFile(name, config);
+    // From memory, with no material library: materials are not read (obj_loader.hpp).
+    parsed = reader.ParseFromString(withoutSkinWeights(std::move(text)), "", config);
   } catch (const std::exception& e) {
     return fail(name + ": not a valid OBJ file: " + e.what());
   }

@@ -228,6 +228,16 @@ struct GroomRendering {
   render::HairLook look = render::HairLook::kBlonde;
   /// Ribbons 0.4 mm wide at the root: 4,095 strands stand for a head of ~100,000 hairs.
   render::HairGroomSettings settings{.width = 4e-4f};
+  /// The strands' colour (render::HairStrandLook::colour, each component in [0, 1]), where the
+  /// scene gives one; else a groom file's colours, else 1 (the look's own).
+  std::optional<glm::vec3> colour;
+  /// Which of `settings`' width, tip width scale and opacity the scene gave: those hold for every
+  /// strand; the others come from the groom file where it has them (scenes/README.md).
+  struct GivenLook {
+    bool width = false;
+    bool tipWidthScale = false;
+    bool opacity = false;
+  } given;
   /// Dense strands, 1..kMaxDenseStrands; 0: 4,095, or one per guide where there are more guides.
   int denseStrands = 0;
   /// Vertices along each dense strand, 2..kMaxDenseStrandVertices, resampled from its guide; 0:

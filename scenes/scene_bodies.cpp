@@ -138,9 +138,16 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   require(look == "blonde" || look == "dark", fields.child("look"),
           "expected \"blonde\" or \"dark\", got \"" + look + "\"");
   rendering.look = look == "dark" ? render::HairLook::kDark : render::HairLook::kBlonde;
-  settings.width = fields.optional<float>("width", settings.width);
-  settings.tipWidthScale = fields.optional<float>("tip_width_scale", settings.tipWidthScale);
-  settings.opacity = fields.optional<float>("opacity", settings.opacity);
+  // What the scene gives here holds for every strand; a groom file fills in the rest.
+  const auto given = [&](const char* key, float& value) {
+    const Json* field = fields.take(key);
+    if (field) value = detail::read<float>(*field, fields.child(key));
+    return field != nullptr;
+  };
+  rendering.given.width = given("width", settings.width);
+  rendering.given.tipWidthScale = given("tip_width_scale", settings.tipWidthScale);
+  rendering.given.opacity = given("opacity", settings.opacity);
+  if (const Json* colour = fields.take("colour")) rendering.colour = detail::read<glm::vec3>(*colour, fields.child("colour"));
   settings.minimumPixelWidth = fields.optional<float>("min_pixel_width", settings.minimumPixelWidth);
   settings.shadowExtinction = fields.optional<float>("shadow_extinction", settings.shadowExtinction);
   const Json* strands = fields.take("strands");
@@ -160,6 +167,9 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   // Not 0: a groom's strands add its opacity to the shadow maps, which need it positive.
   require(settings.opacity > 0.0f && settings.opacity <= 1.0f, fields.child("opacity"),
           "expected an opacity in (0, 1]");
+  for (int c = 0; rendering.colour && c < 3; ++c)
+    require((*rendering.colour)[c] >= 0.0f && (*rendering.colour)[c] <= 1.0f, fields.child("colour"),
+            "expected an RGB colour with components in [0, 1]");
   require(settings.minimumPixelWidth >= 0.25f, fields.child("min_pixel_width"),
           "expected a minimum width >= 0.25 pixels");
   require(settings.shadowExtinction > 0.0f, fields.child("shadow_extinction"), "expected a shadow extinction > 0");

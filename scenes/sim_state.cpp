@@ -60,7 +60,8 @@ public:
   Result<std::vector<glm::vec3>> points(std::uint64_t count, const char* what) {
     if (auto room = need(12 * count, what); !room) return std::unexpected(room.error());
     std::vector<glm::vec3> result(count);
-    std::memcpy(result.data(), bytes_.data() + at_, 12 * count);
+    // An empty vector's data() may be null, and memcpy may not be given null even for 0 bytes.
+    if (count > 0) std::memcpy(result.data(), bytes_.data() + at_, 12 * count);
     at_ += 12 * count;
     return result;
   }

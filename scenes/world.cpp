@@ -12,6 +12,7 @@
 #include "physics/hash.hpp"
 #include "physics/interpolation.hpp"
 #include "scenes/groom_loader.hpp"
+#include "scenes/groom_looks.hpp"
 #include "scenes/limit_scalp.hpp"
 #include "scenes/mesh_curvature.hpp"
 #include "scenes/scene_colliders.hpp"
@@ -298,6 +299,7 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
     // the guide points here and out of the transform (bodyPlacement).
     const float scale = meshIt->transform.scale;
     std::vector<std::vector<glm::vec3>> guides;
+    GuideLooks looks;
     if (groom.isProcedural()) {
       // Guides rooted by area on the mesh's scalp, the groom's ScalpRegion (by default the
       // upward-facing triangles, normal y ≥ 0.2, in the top quarter of its height). Lengths are
@@ -333,6 +335,7 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
         if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
         guides = std::move(*generated);
       }
+      appendSceneLooks(guides.size(), groom.rendering, looks);
     } else {
       // Like meshes: a missing asset is a note and the groom is skipped (all its files or
       // nothing); a file that does not parse is an error. Groom files hold strands in their head
@@ -357,12 +360,15 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
         if (!loaded) return fail("groom " + groom.name + ": " + loaded.error().message);
         if (!loaded->repairs.clean())
           repairs += (repairs.empty() ? "" : "; ") + groom.sources[f] + ": " + loaded->repairs.summary();
+        // Widths in file units become metres as the points do (below), by the mesh's scale.
+        appendFileLooks(*loaded, groom.rendering, scale, looks);
         guides.insert(guides.end(), std::make_move_iterator(loaded->strands.begin()),
                       std::make_move_iterator(loaded->strands.end()));
       }
       if (!repairs.empty())
         notes_.push_back("groom " + groom.name + ": flawed strands repaired or dropped (\"strict\": true refuses them): " +
                          repairs);
+      if (const std::string note = looks.note(); !note.empty()) notes_.push_back("groom " + groom.name + ": " + note);
       const glm::vec3 axes(1.0f, 1.0f, groom.invertZ ? -1.0f : 1.0f);
       for (std::vector<glm::vec3>& strand : guides)
         for (glm::vec3& point : strand) point *= axes * scale;
@@ -402,8 +408,10 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
     const std::size_t denseStrands = groom.rendering.denseStrands > 0
                                          ? static_cast<std::size_t>(groom.rendering.denseStrands)
                                          : std::max(kDefaultDenseStrands, guides.size());
-    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom,
-                                     denseGroom(guides, denseStrands, groom.rendering.verticesPerStrand),
+    std::optional<DenseStrandLayout> dense = denseGroom(guides, denseStrands, groom.rendering.verticesPerStrand);
+    std::vector<render::HairStrandLook> denseLooks;
+    if (dense) denseLooks = denseStrandLooks(*dense, looks.guides);
+    grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom, std::move(dense), std::move(denseLooks),
                                      std::move(roots), std::move(jointColliders)});
     if (!grooms_.back().dense)
       notes_.push_back("groom " + groom.name + ": guides of different lengths: simulated, not drawn");
@@ -573,8 +581,8 @@ render::StaticScene World::staticScene() const {
   for (const SimulatedGroom& groom : grooms_) {
     if (!groom.dense) continue;
     const GroomRendering& rendering = scene_.grooms[groom.sceneGroom].rendering;
-    result.grooms.push_back(
-        render::HairGroomData{.layout = *groom.dense, .look = rendering.look, .settings = rendering.settings});
+    result.grooms.push_back(render::HairGroomData{
+        .layout = *groom.dense, .look = rendering.look, .settings = rendering.settings, .strandLooks = groom.denseLooks});
   }
   result.hairShadows = scene_.hairShadows;
   result.furs = furSurfaces();

@@ -172,6 +172,9 @@ private:
     std::size_t sceneGroom = 0;  ///< index into scene_.grooms (skipped grooms leave gaps)
     /// The dense strands the renderer draws; none when its guides differ in point count.
     std::optional<DenseStrandLayout> dense;
+    /// Their looks where the groom's files or scene give them (scenes/groom_looks.hpp); empty:
+    /// every strand as the groom's settings say.
+    std::vector<render::HairStrandLook> denseLooks;
     /// On a character part: the roots on its surface, and the colliders its joints carry.
     std::optional<physics::SurfaceBinding> roots;
     std::optional<JointColliders> jointColliders;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages mane needs, only those that are missing.
+# Installs the Debian 12 packages mane needs, only those that are missing, and any packages
+# named as arguments (scripts/test.sh adds what only the tests use).
 # Idempotent: a second run installs nothing. Runs as root, or through sudo otherwise.
 set -euo pipefail
 
@@ -14,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev libbullet-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
   curl
+  "$@"
 )
 
 missing=()

@@ -17,17 +17,21 @@ layout(set = 0, binding = 3, std430) readonly buffer Radiance {
   vec4 radiance[];  // rgb towards the eye, shaded per vertex (render/passes/hair_lighting_pass.hpp)
 };
 
+layout(set = 0, binding = 16) uniform samplerBuffer hairStrandLooks;
+#include "hair_strand_look.glsl"
+
 layout(location = 0) out vec3 outRadiance;
-layout(location = 1) out float outCoverage;  // true width / drawn width, ≤ 1
+layout(location = 1) out float outCoverage;  // true width / drawn width × the strand's opacity factor, ≤ 1
 
 void main() {
   uint vertex = uint(gl_VertexIndex) >> 1u;
   float sideSign = (gl_VertexIndex & 1) == 0 ? -1.0 : 1.0;
 
   vec4 point = positions[vertex];
-  HairRibbon ribbon = hairRibbon(point, tangents[vertex].xyz);
+  vec4 shape = hairStrandShape(vertex / hair.counts.y);
+  HairRibbon ribbon = hairRibbon(point, tangents[vertex].xyz, shape);
   float drawnHalfWidth = max(ribbon.halfWidth, ribbon.minimumHalfWidth);
-  outCoverage = ribbon.halfWidth / drawnHalfWidth;
+  outCoverage = ribbon.halfWidth / drawnHalfWidth * shape.z;
 
   vec3 world = point.xyz + ribbon.side * (sideSign * drawnHalfWidth);
   outRadiance = radiance[vertex].rgb;

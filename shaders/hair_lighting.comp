@@ -56,6 +56,8 @@ layout(set = 0, binding = 2) uniform samplerBuffer tangents;   // xyz unit, root
 // whatever radiance they had, which no drawn segment uses. Words 0-2 are the indirect dispatch's
 // workgroups, word 3 the vertices listed, then the list.
 layout(set = 0, binding = 14) uniform usamplerBuffer shadeList;
+layout(set = 0, binding = 15) uniform samplerBuffer hairStrandLooks;
+#include "hair_strand_look.glsl"
 
 // Half the angle between `tangent` and the tangent at vertex `other`.
 float halfTurn(vec3 tangent, uint other) {
@@ -72,6 +74,7 @@ void main() {
   uvec4 counts = texelFetch(lightingTexels, kCountsTexel);
   // The angle the tangent turns over this vertex's share of the strand, half a segment each way.
   uint along = vertex % counts.y;
+  vec3 bodyColour = hairStrandColour(vertex / counts.y);
   float spread = 0.0;
   if (along > 0u) spread += halfTurn(tangent, vertex - 1u);
   if (along + 1u < counts.y) spread += halfTurn(tangent, vertex + 1u);
@@ -79,7 +82,9 @@ void main() {
   vec4 eye = lightingVector(kEyeTexel);
   vec3 toEye = normalize(eye.xyz - eye.w * position);
   float shadow = hairShadowTransmittance(readShadows(), position);
-  vec3 result = lightingVector(kAmbientTexel).rgb;
+  // The ambient term stands for light scattered many times inside the hair: all of it has
+  // crossed fibres, so the strand's colour multiplies it whole.
+  vec3 result = lightingVector(kAmbientTexel).rgb * bodyColour;
   // Each light's vectors fetched where they are used: indexing an array of them by the loop's
   // counter made lavapipe load them lane by lane. And the test at the end of the loop: lavapipe
   // (Mesa 22.3) runs the body once more, every lane masked off, lookups and all, before a test at
@@ -88,7 +93,7 @@ void main() {
   uint i = 0u;
   do {
     vec3 toLight = lightingVector(kLightDirectionTexel + int(i)).xyz;
-    vec3 scattered = hairScattering(longitudinalLut, azimuthalLut, toLight, toEye, tangent, spread);
+    vec3 scattered = hairScattering(longitudinalLut, azimuthalLut, toLight, toEye, tangent, spread, bodyColour);
     vec3 lit = result + scattered * lightingVector(kLightRadianceTexel + int(i)).rgb * (i == 0u ? shadow : 1.0);
     result = i < counts.x ? lit : result;
     ++i;

@@ -5,7 +5,7 @@
 // lavapipe, vertex shading runs on one thread, where reading the strands a second time is
 // expensive (docs/lavapipe.md#vertex-shading-is-single-threaded).
 layout(location = 0) in vec4 inClip;       // the strand's centre, clip space
-layout(location = 1) in float inCoverage;  // true width / drawn width, ≤ 1
+layout(location = 1) in float inCoverage;  // true width / drawn width × the strand's opacity factor, ≤ 1
 layout(location = 2) in vec4 inRadiance;   // rgb towards the eye (render/passes/hair_lighting_pass.hpp)
 
 layout(location = 0) out vec3 outRadiance;

@@ -29,6 +29,8 @@ const float kLargestWidth = 1024.0;
 // (render/passes/hair_pass.hpp, "Lines").
 layout(set = 0, binding = 14) uniform samplerBuffer positionTexels;  // xyz metres, w = t along the strand
 layout(set = 0, binding = 15) uniform samplerBuffer tangentTexels;   // xyz unit tangent root → tip
+layout(set = 0, binding = 16) uniform samplerBuffer hairStrandLooks;
+#include "hair_strand_look.glsl"
 
 // VkDrawIndexedIndirectCommand.
 struct IndexedDraw {
@@ -279,16 +281,17 @@ void main() {
   uint words = segmentWords();
   ScreenPoint previous;
   bool previousSegmentHidden = true;  // the root has no segment before it
+  vec4 shape = hairStrandShape(strand);
   uint vertex = first;
   do {  // a strand has at least two vertices; tested at the end, as segmentHidden's loops
     vec4 position = texelFetch(positionTexels, int(vertex));
-    HairRibbon ribbon = hairRibbon(position, texelFetch(tangentTexels, int(vertex)).xyz);
+    HairRibbon ribbon = hairRibbon(position, texelFetch(tangentTexels, int(vertex)).xyz, shape);
     // A vertex is hidden when both segments it joins are.
     ScreenPoint point = screenPoint(position.xyz, ribbon);
     // Written whichever draw is chosen: a branch on the uniforms alone would make lavapipe compile
     // this shader again every frame (tests/support/jit_compile_counter.hpp).
     lineClips[vertex] = point.centre;
-    lineCoverage[vertex] = ribbon.halfWidth / max(ribbon.halfWidth, ribbon.minimumHalfWidth);
+    lineCoverage[vertex] = ribbon.halfWidth / max(ribbon.halfWidth, ribbon.minimumHalfWidth) * shape.z;
     if (vertex > first) {
       uint segment = vertex - 1u - first;
       bool segmentIsHidden = segmentHidden(previous, point);

@@ -33,9 +33,11 @@ vec2 hairLutParameter(uvec2 texel, uvec2 size) {
 // whose texels span that angle, so a strand that curls within a shading sample gets the
 // filtered lobe rather than an aliased peak (the tables are mip-mapped for this, as in Nalu).
 // asin and acos may be approximations of ~1e-4 rad (lavapipe); that moves a lookup by < 0.05
-// texel.
+// texel. `bodyColour` multiplies the two lobes that cross the fibre (TT, TRT), not its surface
+// reflection (R): a strand's own colour (render/hair_data.hpp, HairStrandLook), 1 for the
+// preset's.
 vec3 hairScattering(sampler2D longitudinalLut, sampler2DArray azimuthalLut, vec3 toLight, vec3 toEye, vec3 tangent,
-                    float spread) {
+                    float spread, vec3 bodyColour) {
   float sinThetaI = clamp(dot(toLight, tangent), -1.0, 1.0);
   float sinThetaR = clamp(dot(toEye, tangent), -1.0, 1.0);
   vec2 theta = asin(vec2(sinThetaI, sinThetaR));
@@ -55,5 +57,5 @@ vec3 hairScattering(sampler2D longitudinalLut, sampler2DArray azimuthalLut, vec3
   vec2 n = hairLutCoordinates(vec2(acos(cosPhi) / kHairPi, cosThetaR), nSize);
   vec4 nTTR = textureLod(azimuthalLut, vec3(n, 0.0), nLod);
   vec4 nTRT = textureLod(azimuthalLut, vec3(n, 1.0), nLod);
-  return m.r * nTTR.a + m.g * nTTR.rgb + m.b * nTRT.rgb;
+  return m.r * nTTR.a + m.g * nTTR.rgb * bodyColour + m.b * nTRT.rgb * bodyColour;
 }

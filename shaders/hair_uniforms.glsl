@@ -18,14 +18,15 @@ vec3 hairToEye(vec3 position) {
 // A strand vertex's ribbon (render/passes/hair_pass.hpp): the unit vector it is widened along,
 // perpendicular to the strand and to the view; the strand's half width there; and half the
 // minimum drawn width there (both metres). The ribbon is drawn max(halfWidth, minimumHalfWidth)
-// to each side.
+// to each side. `shape` is the strand's hairStrandShape (hair_strand_look.glsl): its factors of
+// the groom's root width and tip width scale.
 struct HairRibbon {
   vec3 side;
   float halfWidth;
   float minimumHalfWidth;
 };
 
-HairRibbon hairRibbon(vec4 point, vec3 tangent) {
+HairRibbon hairRibbon(vec4 point, vec3 tangent, vec4 shape) {
   HairRibbon ribbon;
   vec3 toEye = hairToEye(point.xyz);
   // Any perpendicular to the view where the strand points at the eye (or its tangent is zero:
@@ -36,13 +37,13 @@ HairRibbon hairRibbon(vec4 point, vec3 tangent) {
 
   // Pixels per metre along `side` here, from projecting the root half-width offset (exact for any
   // projection, including the obliquity of off-axis strands under perspective).
-  float rootHalfWidth = 0.5 * hair.groom.x;
+  float rootHalfWidth = 0.5 * hair.groom.x * shape.x;
   vec4 centre = hair.viewProjection * vec4(point.xyz, 1.0);
   vec4 edge = hair.viewProjection * vec4(point.xyz + ribbon.side * rootHalfWidth, 1.0);
   vec2 offsetPixels = (edge.xy / edge.w - centre.xy / centre.w) * 0.5 * hair.viewport.xy;
   float pixelsPerMetre = length(offsetPixels) / rootHalfWidth;
 
-  ribbon.halfWidth = rootHalfWidth * mix(1.0, hair.groom.y, point.w);
+  ribbon.halfWidth = rootHalfWidth * mix(1.0, hair.groom.y * shape.y, point.w);
   ribbon.minimumHalfWidth = 0.5 * hair.groom.w / max(pixelsPerMetre, 1e-6);
   return ribbon;
 }

@@ -4,29 +4,31 @@
 //
 // Bit-exactness: `collidePointLanes` and `collideBlockAvx2` perform, per lane, the IEEE
 // operations of the scalar HairSystem::collidePoint → collideParticle →
-// SignedDistanceField::sampleWithGradient chain (colliders.cpp, sdf.hpp), in the same order, so a
-// lane ends with the bits the scalar code gives that particle: the same cull tests, the same
-// rounds, pushes, Newton steps and friction; `repairTethersAvx2` does the same for
-// HairSystem::settleTether's rounds. Branches become lane masks; a lane leaves a loop where the
-// scalar code would break out of it, and its values are then left untouched. Which lanes share a
+// SignedDistanceField::sampleWithGradient chain (colliders.cpp, sdf.hpp, field_lanes.hpp), in the
+// same order, so a lane ends with the bits the scalar code gives that particle: the same cull
+// tests, the same rounds, pushes, Newton steps and friction (tether_lanes.hpp does the same for
+// HairSystem::settleTether). Branches become lane masks; a lane leaves a loop where the scalar
+// code would break out of it, and its values are then left untouched. Which lanes share a
 // register (the row's, or particles packed from anywhere in the block) changes nothing in any
 // lane. The scalar code's cache of the last field sample only saves work (it returns what
 // sampling again returns); the lanes keep one too (FieldSamples), which may also be handed a
-// sample taken earlier at the same position. Field samples gather their 8 node values per lane,
-// as 4 pairs of x-neighbours (8 bytes each); lanes that do not sample read nodes 0 and 1 and
-// discard them, so no gather leaves the grid.
+// sample taken earlier at the same position. Culls (the bounding ball, the cull boxes, the
+// field's contact box and cells) skip only lanes whose result they prove, never change one.
 // tests/physics/hair_test.cpp checks the AVX2 step against the scalar step bit for bit, with
 // spheres, capsules, the field, friction and draped, taut strands.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 
 #include <glm/vec3.hpp>
 
 #include "physics/colliders.hpp"
+#include "physics/detail/field_lanes.hpp"
+#include "physics/detail/lane_math.hpp"
 #include "physics/detail/strand_lanes.hpp"
-#include "physics/sdf.hpp"
 
 #if MANE_STRAND_LANES_AVX2
 
@@ -52,61 +54,22 @@ struct LaneColliders {
 
 namespace lanes {
 
-struct Vec {
-  __m256 x, y, z;
-};
-
-MANE_AVX2 inline __m256 splat(float v) noexcept {
-  return _mm256_set1_ps(v);
-}
-MANE_AVX2 inline __m256 add(__m256 a, __m256 b) noexcept {
-  return _mm256_add_ps(a, b);
-}
-MANE_AVX2 inline __m256 sub(__m256 a, __m256 b) noexcept {
-  return _mm256_sub_ps(a, b);
-}
-MANE_AVX2 inline __m256 mul(__m256 a, __m256 b) noexcept {
-  return _mm256_mul_ps(a, b);
-}
-MANE_AVX2 inline __m256 div(__m256 a, __m256 b) noexcept {
-  return _mm256_div_ps(a, b);
-}
-MANE_AVX2 inline __m256 both(__m256 a, __m256 b) noexcept {
-  return _mm256_and_ps(a, b);
-}
-MANE_AVX2 inline __m256 either(__m256 a, __m256 b) noexcept {
-  return _mm256_or_ps(a, b);
-}
-MANE_AVX2 inline __m256 butNot(__m256 a, __m256 b) noexcept {
-  return _mm256_andnot_ps(b, a);
-}
-MANE_AVX2 inline bool any(__m256 mask) noexcept {
-  return _mm256_movemask_ps(mask) != 0;
-}
-MANE_AVX2 inline __m256 pick(__m256 keep, __m256 take, __m256 mask) noexcept {
-  return _mm256_blendv_ps(keep, take, mask);
-}
-MANE_AVX2 inline Vec pick(const Vec& keep, const Vec& take, __m256 mask) noexcept {
-  return {pick(keep.x, take.x, mask), pick(keep.y, take.y, mask), pick(keep.z, take.z, mask)};
-}
-// a.x*b.x + a.y*b.y + a.z*b.z, left to right.
-MANE_AVX2 inline __m256 dot(const Vec& a, const Vec& b) noexcept {
-  return add(add(mul(a.x, b.x), mul(a.y, b.y)), mul(a.z, b.z));
-}
-MANE_AVX2 inline Vec sub(const Vec& a, const Vec& b) noexcept {
-  return {sub(a.x, b.x), sub(a.y, b.y), sub(a.z, b.z)};
-}
-MANE_AVX2 inline Vec scaled(const Vec& a, __m256 s) noexcept {
-  return {mul(a.x, s), mul(a.y, s), mul(a.z, s)};
-}
-MANE_AVX2 inline Vec splat(const glm::vec3& v) noexcept {
-  return {splat(v.x), splat(v.y), splat(v.z)};
-}
-
 // HairSystem's toHeadLocal: Rᵀ(x − t), each row a left-to-right dot product.
 MANE_AVX2 inline Vec toLocal(const LanePose& pose, const Vec& world) noexcept {
   const Vec d = sub(world, splat(pose.translation));
   return {dot(splat(pose.axes[0]), d), dot(splat(pose.axes[1]), d), dot(splat(pose.axes[2]), d)};
+}
+
+// A pose's rows and translation spread over the lanes, for loops that transform many registers.
+struct PoseLanes {
+  Vec row[3];
+  Vec translation;
+  MANE_AVX2 explicit PoseLanes(const LanePose& pose) noexcept
+      : row{splat(pose.axes[0]), splat(pose.axes[1]), splat(pose.axes[2])}, translation(splat(pose.translation)) {}
+};
+MANE_AVX2 inline Vec toLocal(const PoseLanes& pose, const Vec& world) noexcept {
+  const Vec d = sub(world, pose.translation);
+  return {dot(pose.row[0], d), dot(pose.row[1], d), dot(pose.row[2], d)};
 }
 
 // One coordinate of HairSystem's toWorld: ((a0·l.x + a1·l.y) + a2·l.z) + t.
@@ -118,12 +81,6 @@ MANE_AVX2 inline Vec toWorld(const LanePose& pose, const Vec& local) noexcept {
   const glm::vec3& t = pose.translation;
   return {worldCoordinate(a[0].x, a[1].x, a[2].x, t.x, local), worldCoordinate(a[0].y, a[1].y, a[2].y, t.y, local),
           worldCoordinate(a[0].z, a[1].z, a[2].z, t.z, local)};
-}
-
-// std::clamp(v, lo, hi) lane by lane: v < lo ? lo : (hi < v ? hi : v).
-MANE_AVX2 inline __m256 clampLanes(__m256 v, __m256 lo, __m256 hi) noexcept {
-  const __m256 low = pick(v, lo, _mm256_cmp_ps(v, lo, _CMP_LT_OQ));
-  return pick(low, hi, _mm256_cmp_ps(hi, low, _CMP_LT_OQ));
 }
 
 // colliders.cpp's applyFriction, for the lanes of `mask`.
@@ -173,109 +130,6 @@ MANE_AVX2 inline Vec closestOnSegment(const glm::vec3& a, const glm::vec3& b, co
           add(splat(a.z), mul(splat(ab.z), t))};
 }
 
-// The node values at[lane] + offset and at[lane] + offset + 1 (neighbours along x, adjacent in
-// memory) of the 8 lanes: one 8-byte read per lane, two 4-lane gathers, instead of two 8-lane
-// gathers of 4 bytes.
-MANE_AVX2 inline void gatherNodePair(const float* values, __m256i at, int offset, __m256& first,
-                                     __m256& second) noexcept {
-  const __m256i index = _mm256_add_epi32(at, _mm256_set1_epi32(offset));
-  const auto* base = reinterpret_cast<const double*>(values);  // read as bytes by the gather
-  const __m256d zero = _mm256_setzero_pd(), all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
-  const __m256 low = _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, base, _mm256_castsi256_si128(index), all, 4));
-  const __m256 high =
-      _mm256_castpd_ps(_mm256_mask_i32gather_pd(zero, base, _mm256_extracti128_si256(index, 1), all, 4));
-  // low = a0 b0 a1 b1 | a2 b2 a3 b3, high = a4 b4 a5 b5 | a6 b6 a7 b7.
-  first = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(low, high, 0x88)), 0xD8));
-  second = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(_mm256_shuffle_ps(low, high, 0xDD)), 0xD8));
-}
-
-// SignedDistanceField::sampleWithGradient for the lanes of `mask`; other lanes of `value` and
-// `gradient` keep what they held.
-MANE_AVX2 inline void sampleField(const SignedDistanceField& field, const Vec& p, __m256 mask, __m256& value,
-                                  Vec& gradient) noexcept {
-  const glm::vec3 origin = field.origin();
-  const __m256 inverse = splat(field.inverseCellSize());
-  Vec u{mul(sub(p.x, splat(origin.x)), inverse), mul(sub(p.y, splat(origin.y)), inverse),
-        mul(sub(p.z, splat(origin.z)), inverse)};
-  const __m256 nan = either(either(_mm256_cmp_ps(u.x, u.x, _CMP_UNORD_Q), _mm256_cmp_ps(u.y, u.y, _CMP_UNORD_Q)),
-                            _mm256_cmp_ps(u.z, u.z, _CMP_UNORD_Q));
-  const __m256 nanValue = add(add(u.x, u.y), u.z);  // NaN in, NaN out
-  const __m256 gathering = butNot(mask, nan);
-  // Lanes that do not sample read node 0 (their results are discarded).
-  u = pick({_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()}, u, gathering);
-  const glm::ivec3 dims = field.dimensions();
-  const Vec c{clampLanes(u.x, _mm256_setzero_ps(), splat(static_cast<float>(dims.x - 1))),
-              clampLanes(u.y, _mm256_setzero_ps(), splat(static_cast<float>(dims.y - 1))),
-              clampLanes(u.z, _mm256_setzero_ps(), splat(static_cast<float>(dims.z - 1)))};
-  const __m256 inside = both(both(_mm256_cmp_ps(c.x, u.x, _CMP_EQ_OQ), _mm256_cmp_ps(c.y, u.y, _CMP_EQ_OQ)),
-                             _mm256_cmp_ps(c.z, u.z, _CMP_EQ_OQ));
-
-  // SignedDistanceField::interpolate at the clamped grid coordinates.
-  const __m256i i = _mm256_min_epi32(_mm256_cvttps_epi32(c.x), _mm256_set1_epi32(dims.x - 2));
-  const __m256i j = _mm256_min_epi32(_mm256_cvttps_epi32(c.y), _mm256_set1_epi32(dims.y - 2));
-  const __m256i k = _mm256_min_epi32(_mm256_cvttps_epi32(c.z), _mm256_set1_epi32(dims.z - 2));
-  const __m256 fx = sub(c.x, _mm256_cvtepi32_ps(i)), fy = sub(c.y, _mm256_cvtepi32_ps(j)),
-               fz = sub(c.z, _mm256_cvtepi32_ps(k));
-  const int sy = dims.x, sz = dims.x * dims.y;
-  const __m256i at = _mm256_add_epi32(_mm256_add_epi32(i, _mm256_mullo_epi32(j, _mm256_set1_epi32(sy))),
-                                      _mm256_mullo_epi32(k, _mm256_set1_epi32(sz)));
-  const float* v = field.values().data();
-  __m256 v000, v100, v010, v110, v001, v101, v011, v111;
-  gatherNodePair(v, at, 0, v000, v100);
-  gatherNodePair(v, at, sy, v010, v110);
-  gatherNodePair(v, at, sz, v001, v101);
-  gatherNodePair(v, at, sy + sz, v011, v111);
-  const __m256 c00 = add(v000, mul(sub(v100, v000), fx)), c10 = add(v010, mul(sub(v110, v010), fx));
-  const __m256 c01 = add(v001, mul(sub(v101, v001), fx)), c11 = add(v011, mul(sub(v111, v011), fx));
-  const __m256 c0 = add(c00, mul(sub(c10, c00), fy)), c1 = add(c01, mul(sub(c11, c01), fy));
-  const __m256 interpolated = add(c0, mul(sub(c1, c0), fz));
-  const __m256 dx0 = add(sub(v100, v000), mul(sub(sub(v110, v010), sub(v100, v000)), fy));
-  const __m256 dx1 = add(sub(v101, v001), mul(sub(sub(v111, v011), sub(v101, v001)), fy));
-  const __m256 dy0 = sub(c10, c00), dy1 = sub(c11, c01);
-  const Vec interpolatedGradient{mul(add(dx0, mul(sub(dx1, dx0), fz)), inverse),
-                                 mul(add(dy0, mul(sub(dy1, dy0), fz)), inverse), mul(sub(c1, c0), inverse)};
-
-  __m256 sampled = interpolated;
-  Vec sampledGradient = interpolatedGradient;
-  if (_mm256_movemask_ps(both(gathering, inside)) != _mm256_movemask_ps(gathering)) {
-    // Outside the grid: the nearest grid point's value plus the way there.
-    const __m256 cell = splat(field.cellSize());
-    const Vec outward = scaled(sub(u, c), cell);
-    const __m256 gap = _mm256_sqrt_ps(dot(outward, outward));
-    const Vec outwardGradient{div(outward.x, gap), div(outward.y, gap), div(outward.z, gap)};
-    sampled = pick(add(interpolated, gap), interpolated, inside);
-    sampledGradient = pick(outwardGradient, interpolatedGradient, inside);
-  }
-  value = pick(value, pick(nanValue, sampled, gathering), mask);
-  gradient = pick(gradient, sampledGradient, gathering);
-}
-
-// Lanes where a and b hold the same bytes.
-MANE_AVX2 inline __m256 sameBits(__m256 a, __m256 b) noexcept {
-  return _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_castps_si256(a), _mm256_castps_si256(b)));
-}
-
-// The field samples of one collideParticle call, lane by lane: like the scalar code's cache, a
-// lane whose position has not changed (byte for byte) since its last sample reuses it, which is
-// bit for bit what sampling again would return.
-struct FieldSamples {
-  const SignedDistanceField* field;
-  __m256 value = _mm256_setzero_ps();
-  Vec gradient{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
-  Vec at{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
-  __m256 held = _mm256_setzero_ps();  // lanes with a sample
-
-  MANE_AVX2 void sample(const Vec& position, __m256 mask) noexcept {
-    const __m256 current =
-        both(held, both(both(sameBits(position.x, at.x), sameBits(position.y, at.y)), sameBits(position.z, at.z)));
-    const __m256 needed = butNot(mask, current);
-    if (!any(needed)) return;
-    sampleField(*field, position, needed, value, gradient);
-    at = pick(at, position, needed);
-    held = either(held, needed);
-  }
-};
-
 // collideParticle's Newton steps while below `thickness`, onto thickness + kContactSkin, for
 // the lanes of `mask`.
 MANE_AVX2 inline void newtonToLevel(FieldSamples& samples, Vec& position, float thickness, __m256 mask) noexcept {
@@ -293,17 +147,6 @@ MANE_AVX2 inline void newtonToLevel(FieldSamples& samples, Vec& position, float 
   }
 }
 
-// SignedDistanceField::mayBeBelow(p, thickness) for the lanes of `mask`.
-MANE_AVX2 inline __m256 fieldMayBeBelow(const SignedDistanceField& field, float thickness, const Vec& p,
-                                        __m256 mask) noexcept {
-  if (!(thickness < field.contactLevel() - 1e-6f)) return mask;
-  const glm::vec3 lo = field.contactLower(), hi = field.contactUpper();
-  mask = both(mask, both(both(_mm256_cmp_ps(p.x, splat(lo.x), _CMP_GE_OQ), _mm256_cmp_ps(p.y, splat(lo.y), _CMP_GE_OQ)),
-                         _mm256_cmp_ps(p.z, splat(lo.z), _CMP_GE_OQ)));
-  return both(mask, both(both(_mm256_cmp_ps(p.x, splat(hi.x), _CMP_LE_OQ), _mm256_cmp_ps(p.y, splat(hi.y), _CMP_LE_OQ)),
-                         _mm256_cmp_ps(p.z, splat(hi.z), _CMP_LE_OQ)));
-}
-
 // collideParticle for the lanes of `mask` (positions and previous positions in the set's frame);
 // returns the lanes that touched anything. `samples` may already hold field samples (taken at
 // the lanes' current positions or anywhere else): they are reused where the position matches.
@@ -319,8 +162,8 @@ MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, c
     for (const CapsuleCollider& c : set.capsules)
       contact = either(contact, pushOutOfBall(position, previous, closestOnSegment(c.a, c.b, position),
                                               c.radius + thickness, mu, going));
-    if (const SignedDistanceField* field = samples.field) {
-      const __m256 testing = fieldMayBeBelow(*field, thickness, position, going);
+    if (samples.field.field) {
+      const __m256 testing = fieldMayBeBelow(samples.field, position, going);
       if (any(testing)) {
         samples.sample(position, testing);
         const __m256 level = splat(thickness);
@@ -350,9 +193,9 @@ MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, c
   return touched;
 }
 
-MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, Vec& position, const Vec& previous, float mu,
-                                        __m256 mask) noexcept {
-  FieldSamples samples{set.sdf.get()};
+MANE_AVX2 inline __m256 collideParticle(const ColliderSet& set, const FieldLanes& field, Vec& position,
+                                        const Vec& previous, float mu, __m256 mask) noexcept {
+  FieldSamples samples{field};
   return collideParticle(set, position, previous, mu, mask, samples);
 }
 
@@ -376,12 +219,12 @@ MANE_AVX2 inline __m256 insideShapes(const ColliderSet& set, const Vec& position
 // capsule that holds the position (pushOutOfBall's test), or a field sample below the thickness.
 // Where no sphere or capsule holds it, none moves it, so the first round samples the field at
 // this very position: a lane left out touches nothing and keeps its position. The field samples
-// taken (at `position`) are left in `samples`.
-MANE_AVX2 inline __m256 mayTouch(const ColliderSet& set, const Vec& position, __m256 mask,
+// taken (at `position`) are left in `samples`. `nearField`: the lanes that fieldMayTouch keeps.
+MANE_AVX2 inline __m256 mayTouch(const ColliderSet& set, const Vec& position, __m256 mask, __m256 nearField,
                                  FieldSamples& samples) noexcept {
   __m256 maybe = insideShapes(set, position, mask);
-  if (samples.field) {
-    const __m256 testing = butNot(fieldMayBeBelow(*samples.field, set.thickness, position, mask), maybe);
+  if (samples.field.field) {
+    const __m256 testing = butNot(both(nearField, mask), maybe);
     if (any(testing)) {
       samples.sample(position, testing);
       maybe = either(maybe, both(testing, _mm256_cmp_ps(samples.value, splat(set.thickness), _CMP_LT_OQ)));
@@ -448,9 +291,10 @@ struct LaneList {
   float* v[C];
   int count = 0;
 
+  // Without a branch (whether a row has lanes to list is hard to predict): an empty mask
+  // stores past the end and counts nothing.
   MANE_AVX2 void push(const __m256 (&lane)[C], __m256 mask) noexcept {
     const unsigned m = static_cast<unsigned>(_mm256_movemask_ps(mask));
-    if (m == 0) return;
     const __m256i order = compressOrder(m);
     for (int c = 0; c < C; ++c) _mm256_storeu_ps(v[c] + count, _mm256_permutevar8x32_ps(lane[c], order));
     count += __builtin_popcount(m);
@@ -458,31 +302,13 @@ struct LaneList {
   [[nodiscard]] MANE_AVX2 __m256 at(int c, int from) const noexcept { return _mm256_loadu_ps(v[c] + from); }
 };
 
-// Asks the memory for the field nodes that sampleField reads at the lanes of `mask`.
-MANE_AVX2 inline void prefetchField(const SignedDistanceField& field, const Vec& p, __m256 mask) noexcept {
-  const glm::vec3 origin = field.origin();
-  const __m256 inverse = splat(field.inverseCellSize());
-  const glm::ivec3 dims = field.dimensions();
-  const auto cell = [&](__m256 coordinate, float lowest, int top) MANE_AVX2 {
-    const __m256 u = mul(sub(coordinate, splat(lowest)), inverse);
-    return _mm256_min_epi32(_mm256_cvttps_epi32(clampLanes(u, _mm256_setzero_ps(), splat(static_cast<float>(top - 1)))),
-                            _mm256_set1_epi32(top - 2));
-  };
-  const __m256i i = cell(p.x, origin.x, dims.x), j = cell(p.y, origin.y, dims.y), k = cell(p.z, origin.z, dims.z);
-  const int sy = dims.x, sz = dims.x * dims.y;
-  alignas(32) std::int32_t at[kSimdWidth];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(at),
-                     _mm256_add_epi32(_mm256_add_epi32(i, _mm256_mullo_epi32(j, _mm256_set1_epi32(sy))),
-                                      _mm256_mullo_epi32(k, _mm256_set1_epi32(sz))));
-  const float* v = field.values().data();
-  for (unsigned m = static_cast<unsigned>(_mm256_movemask_ps(mask)); m != 0; m &= m - 1) {
-    const float* node = v + at[__builtin_ctz(m)];  // NaN lanes: an address never read
-    for (const int offset : {0, sy, sz, sy + sz}) __builtin_prefetch(node + offset);
-  }
-}
-
+// values[slot] for the 8 lanes' slots, read lane by lane (AVX2 gathers are microcoded and slow
+// on many AMD cores).
 MANE_AVX2 inline __m256 gatherLanes(const float* values, __m256i slots) noexcept {
-  return _mm256_i32gather_ps(values, slots, 4);
+  alignas(32) std::int32_t at[kSimdWidth];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(at), slots);
+  return _mm256_setr_ps(values[at[0]], values[at[1]], values[at[2]], values[at[3]], values[at[4]], values[at[5]],
+                        values[at[6]], values[at[7]]);
 }
 
 // Stores the lanes of `mask` of v at values[slot].
@@ -497,10 +323,11 @@ MANE_AVX2 inline void scatterLanes(float* x, float* y, float* z, __m256i slots, 
   }
 }
 
-// Lanes of `mask` whose body-frame position lies in one of the cull boxes.
-MANE_AVX2 inline __m256 inCullBoxes(const ColliderCull& cull, const Vec& local, __m256 mask) noexcept {
+// Lanes of `mask` whose body-frame position lies in one of the cull boxes [first, last).
+MANE_AVX2 inline __m256 inCullBoxes(const ColliderCull& cull, std::size_t first, std::size_t last, const Vec& local,
+                                    __m256 mask) noexcept {
   __m256 inBox = _mm256_setzero_ps();
-  for (std::size_t box = 0; box < cull.lower.size(); ++box) {
+  for (std::size_t box = first; box < last; ++box) {
     const glm::vec3 lo = cull.lower[box], hi = cull.upper[box];
     const __m256 above =
         both(both(_mm256_cmp_ps(local.x, splat(lo.x), _CMP_GE_OQ), _mm256_cmp_ps(local.y, splat(lo.y), _CMP_GE_OQ)),
@@ -511,6 +338,9 @@ MANE_AVX2 inline __m256 inCullBoxes(const ColliderCull& cull, const Vec& local, 
     inBox = either(inBox, both(above, below));
   }
   return both(mask, inBox);
+}
+MANE_AVX2 inline __m256 inCullBoxes(const ColliderCull& cull, const Vec& local, __m256 mask) noexcept {
+  return inCullBoxes(cull, 0, cull.lower.size(), local, mask);
 }
 
 // The world-space centre of the colliders' bounding ball in `pose`, as HairSystem::collidePoint.
@@ -525,8 +355,8 @@ inline glm::vec3 boundsCentre(const LaneColliders& c) noexcept {
 /// HairSystem::collidePoint for 8 particles at once (world space): the lanes of `mask` that touch
 /// a collider move; friction against `previous` (in the pose before); returns the lanes that
 /// touched anything.
-MANE_AVX2 inline __m256 collidePointLanes(const LaneColliders& c, lanes::Vec& world, const lanes::Vec& previous,
-                                          __m256 mask, float friction) noexcept {
+MANE_AVX2 inline __m256 collidePointLanes(const LaneColliders& c, const lanes::FieldLanes& field, lanes::Vec& world,
+                                          const lanes::Vec& previous, __m256 mask, float friction) noexcept {
   using namespace lanes;
   const Vec offset = sub(world, splat(boundsCentre(c)));
   const float radius = c.bounds->radius;
@@ -536,14 +366,14 @@ MANE_AVX2 inline __m256 collidePointLanes(const LaneColliders& c, lanes::Vec& wo
   mask = inCullBoxes(*c.cull, local, mask);
   if (!any(mask)) return mask;
   const Vec previousLocal = friction > 0.0f ? toLocal(c.before, previous) : local;
-  const __m256 touched = collideParticle(*c.set, local, previousLocal, friction, mask);
+  const __m256 touched = collideParticle(*c.set, field, local, previousLocal, friction, mask);
   if (any(touched)) world = pick(world, toWorld(c.pose, local), touched);
   return touched;
 }
 
 /// Floats of working storage collideBlockAvx2 needs for a block of `rows` rows.
 constexpr std::size_t collideBlockStorage(std::size_t rows) noexcept {
-  return 4 * (rows * kBlockLanes + kSimdWidth);
+  return 5 * (rows * kBlockLanes + kSimdWidth);
 }
 
 /// HairSystem::collidePoint for every simulated particle (within its strand, inverse mass > 0,
@@ -554,41 +384,64 @@ constexpr std::size_t collideBlockStorage(std::size_t rows) noexcept {
 /// One particle's push reads and writes only that particle, so the order does not matter, and
 /// the particles are not taken row by row (where on average 4.9 of 8 lanes were still in play
 /// after the culls) but packed into full registers in two stages: those that pass the bounding
-/// ball and the cull boxes are listed (and their field nodes prefetched), then screened
-/// (mayTouch: one field sample), and only those that can make contact (about half) run the
-/// whole of collideParticle, starting from the screen's sample. Every lane performs the same
-/// operations as the row-by-row version, bit for bit.
+/// ball and the cull boxes (the field's refined by its contact cells) are listed, then screened
+/// (mayTouch: one field sample), and only those that can make contact run the whole of
+/// collideParticle, starting from the screen's sample. Every lane performs the same operations
+/// as the row-by-row version, bit for bit.
 MANE_AVX2 inline void collideBlockAvx2(const LaneColliders& c, const StrandLanes& block, float friction,
                                        float* work) noexcept {
   using namespace lanes;
   const glm::vec3 centre = boundsCentre(c);
   const float radius = c.bounds->radius;
   const ColliderSet& set = *c.set;
+  const FieldLanes field(set.sdf.get(), set.thickness);
+  const PoseLanes pose(c.pose);
+  const Vec ballCentre = splat(centre);
+  const __m256 ballReach = splat(radius * radius);
+  // The spheres' and capsules' cull boxes, spread over the lanes (a few; more take the loop).
+  constexpr std::size_t kSpreadBoxes = 4;
+  Vec lower[kSpreadBoxes], upper[kSpreadBoxes];
+  const std::size_t shapeBoxes = c.cull->shapeBoxes, spread = shapeBoxes <= kSpreadBoxes ? shapeBoxes : 0;
+  for (std::size_t b = 0; b < spread; ++b) lower[b] = splat(c.cull->lower[b]), upper[b] = splat(c.cull->upper[b]);
+  const auto inShapeBoxes = [&](const Vec& local, __m256 mask) MANE_AVX2 {
+    if (spread != shapeBoxes) return inCullBoxes(*c.cull, 0, shapeBoxes, local, mask);
+    __m256 inBox = _mm256_setzero_ps();
+    for (std::size_t b = 0; b < spread; ++b)
+      inBox = either(
+          inBox,
+          both(
+              both(
+                  both(_mm256_cmp_ps(local.x, lower[b].x, _CMP_GE_OQ), _mm256_cmp_ps(local.y, lower[b].y, _CMP_GE_OQ)),
+                  both(_mm256_cmp_ps(local.z, lower[b].z, _CMP_GE_OQ), _mm256_cmp_ps(local.x, upper[b].x, _CMP_LE_OQ))),
+              both(_mm256_cmp_ps(local.y, upper[b].y, _CMP_LE_OQ), _mm256_cmp_ps(local.z, upper[b].z, _CMP_LE_OQ))));
+    return both(mask, inBox);
+  };
   const std::size_t room = block.longest * kBlockLanes + kSimdWidth;
-  LaneList<4> candidates{{work, work + room, work + 2 * room, work + 3 * room}};  // slot, body-frame position
+  // slot, body-frame position, near the field (fieldMayTouch)
+  LaneList<5> candidates{{work, work + room, work + 2 * room, work + 3 * room, work + 4 * room}};
   for (std::size_t i = 1; i < block.longest; ++i)
     for (std::size_t g = 0; g < block.groups; ++g) {
       const std::size_t at = i * kBlockLanes + g * kSimdWidth;
       __m256 mask =
           both(laneMask(block, g, i), _mm256_cmp_ps(_mm256_loadu_ps(block.w + at), _mm256_setzero_ps(), _CMP_GT_OQ));
       const Vec world{_mm256_loadu_ps(block.x + at), _mm256_loadu_ps(block.y + at), _mm256_loadu_ps(block.z + at)};
-      const Vec offset = sub(world, splat(centre));
-      mask = both(mask, _mm256_cmp_ps(dot(offset, offset), splat(radius * radius), _CMP_NGT_UQ));
+      const Vec offset = sub(world, ballCentre);
+      mask = both(mask, _mm256_cmp_ps(dot(offset, offset), ballReach, _CMP_NGT_UQ));
       if (!any(mask)) continue;
-      const Vec local = toLocal(c.pose, world);
-      mask = inCullBoxes(*c.cull, local, mask);
-      if (!any(mask)) continue;
+      const Vec local = toLocal(pose, world);
+      // The cull boxes, the field's refined by its contact cells.
+      const __m256 nearField = field.field ? fieldMayTouch(field, local, mask) : _mm256_setzero_ps();
+      mask = either(inShapeBoxes(local, mask), nearField);
       const __m256 slot = _mm256_castsi256_ps(
           _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(at)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-      candidates.push({slot, local.x, local.y, local.z}, mask);
-      if (set.sdf) prefetchField(*set.sdf, local, fieldMayBeBelow(*set.sdf, set.thickness, local, mask));
+      candidates.push({slot, local.x, local.y, local.z, nearField}, mask);
     }
 
   LaneQueue<9> contacts;  // slot, body-frame position, field value, gradient, sampled lanes
   const auto resolve = [&]() MANE_AVX2 {
     const __m256 mask = firstLanes(contacts.count);
     const __m256i slots = contacts.slots();
-    FieldSamples samples{set.sdf.get()};
+    FieldSamples samples{field};
     samples.at = {contacts.front(1), contacts.front(2), contacts.front(3)};
     samples.value = contacts.front(4);
     samples.gradient = {contacts.front(5), contacts.front(6), contacts.front(7)};
@@ -601,98 +454,30 @@ MANE_AVX2 inline void collideBlockAvx2(const LaneColliders& c, const StrandLanes
     const __m256 touched = collideParticle(set, local, previousLocal, friction, mask, samples);
     if (any(touched)) scatterLanes(block.x, block.y, block.z, slots, toWorld(c.pose, local), touched);
   };
-  for (int from = 0; from < candidates.count; from += static_cast<int>(kSimdWidth)) {
-    FieldSamples samples{set.sdf.get()};
-    const Vec local{candidates.at(1, from), candidates.at(2, from), candidates.at(3, from)};
-    const __m256 maybe = mayTouch(set, local, firstLanes(candidates.count - from), samples);
-    const __m256 lane[9] = {
-        candidates.at(0, from), local.x,     local.y, local.z, samples.value, samples.gradient.x, samples.gradient.y,
-        samples.gradient.z,     samples.held};
-    contacts.push(lane, maybe);
-    if (contacts.count >= static_cast<int>(kSimdWidth)) {
-      resolve();
-      contacts.pop();
+  // Two registers of candidates are screened before either is queued: their field samples do
+  // not depend on each other, so their latencies overlap.
+  constexpr int kScreened = 2;
+  for (int from = 0; from < candidates.count; from += kScreened * static_cast<int>(kSimdWidth)) {
+    __m256 lane[kScreened][9], maybe[kScreened];
+    for (int r = 0; r < kScreened; ++r) {
+      const int at = from + r * static_cast<int>(kSimdWidth);
+      FieldSamples samples{field};
+      const Vec local{candidates.at(1, at), candidates.at(2, at), candidates.at(3, at)};
+      maybe[r] = mayTouch(set, local, firstLanes(candidates.count - at), candidates.at(4, at), samples);
+      const __m256 screened[9] = {
+          candidates.at(0, at), local.x,     local.y, local.z, samples.value, samples.gradient.x, samples.gradient.y,
+          samples.gradient.z,   samples.held};
+      std::copy(std::begin(screened), std::end(screened), lane[r]);
+    }
+    for (int r = 0; r < kScreened; ++r) {
+      contacts.push(lane[r], maybe[r]);
+      if (contacts.count >= static_cast<int>(kSimdWidth)) {
+        resolve();
+        contacts.pop();
+      }
     }
   }
   if (contacts.count > 0) resolve();
-}
-
-// Lanes of group g, row i of `block` holding a simulated particle farther than its reach +
-// `slack` from its root, as HairSystem::settlePoint tests (x − root, squared length left to
-// right, against (reach + slack)²).
-MANE_AVX2 inline __m256 beyondTetherLanes(const StrandLanes& block, std::size_t g, std::size_t i,
-                                          float slack) noexcept {
-  using namespace lanes;
-  const std::size_t at = i * kBlockLanes + g * kSimdWidth, root = g * kSimdWidth;
-  const Vec d{sub(_mm256_loadu_ps(block.x + at), _mm256_loadu_ps(block.x + root)),
-              sub(_mm256_loadu_ps(block.y + at), _mm256_loadu_ps(block.y + root)),
-              sub(_mm256_loadu_ps(block.z + at), _mm256_loadu_ps(block.z + root))};
-  const __m256 limit = add(_mm256_loadu_ps(block.reach + at), splat(slack));
-  const __m256 beyond = _mm256_cmp_ps(dot(d, d), mul(limit, limit), _CMP_GT_OQ);
-  const __m256 simulated =
-      both(laneMask(block, g, i), _mm256_cmp_ps(_mm256_loadu_ps(block.w + at), _mm256_setzero_ps(), _CMP_GT_OQ));
-  return both(beyond, simulated);
-}
-
-/// After collideBlockAvx2: the tether repair of HairSystem::settlePoint for every simulated
-/// particle of `block` that the push left beyond its reach + `slack` — HairSystem::settleTether's
-/// `rounds` alternating projections (onto the tether ball, then frictionless out of the
-/// colliders), 8 particles at a time. The rounds read only the particle and its root, so they
-/// run in any order; a particle whose rounds do not meet is left at the rounds' last point, and
-/// its slot goes to `unmet` (as a float: exact below 2²⁴), ascending, for the bisection, which
-/// needs its parent's final position and so runs afterwards, root to tip. Returns how many.
-MANE_AVX2 inline std::size_t repairTethersAvx2(const LaneColliders& c, const StrandLanes& block, int rounds,
-                                               float slack, float* unmet) noexcept {
-  using namespace lanes;
-  LaneQueue<1> beyond;  // slot
-  std::size_t unmetCount = 0;
-  const auto repair = [&]() MANE_AVX2 {
-    const __m256i slots = beyond.slots();
-    __m256 going = firstLanes(beyond.count);
-    const __m256i roots = _mm256_and_si256(slots, _mm256_set1_epi32(static_cast<int>(kBlockLanes - 1)));
-    const Vec root{gatherLanes(block.x, roots), gatherLanes(block.y, roots), gatherLanes(block.z, roots)};
-    Vec p{gatherLanes(block.x, slots), gatherLanes(block.y, slots), gatherLanes(block.z, slots)};
-    const __m256 reach = gatherLanes(block.reach, slots);
-    const __m256 limit = mul(add(reach, splat(slack)), add(reach, splat(slack)));
-    for (int round = 0; round < rounds; ++round) {
-      // projectTether(p, root, reach), operation for operation.
-      const Vec delta = sub(p, root);
-      const __m256 lengthSquared = dot(delta, delta);
-      const __m256 stretched = both(going, _mm256_cmp_ps(lengthSquared, mul(reach, reach), _CMP_GT_OQ));
-      if (any(stretched)) {
-        const __m256 ratio = div(reach, _mm256_sqrt_ps(lengthSquared));
-        p = pick(p,
-                 {add(root.x, mul(delta.x, ratio)), add(root.y, mul(delta.y, ratio)), add(root.z, mul(delta.z, ratio))},
-                 stretched);
-      }
-      const __m256 touched = collidePointLanes(c, p, p, going, 0.0f);
-      const Vec d = sub(p, root);
-      const __m256 done = butNot(going, both(touched, _mm256_cmp_ps(dot(d, d), limit, _CMP_GT_OQ)));
-      scatterLanes(block.x, block.y, block.z, slots, p, done);
-      going = butNot(going, done);
-      if (!any(going)) return;
-    }
-    scatterLanes(block.x, block.y, block.z, slots, p, going);
-    alignas(32) std::int32_t at[kSimdWidth];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(at), slots);
-    for (unsigned m = static_cast<unsigned>(_mm256_movemask_ps(going)); m != 0; m &= m - 1)
-      unmet[unmetCount++] = static_cast<float>(at[__builtin_ctz(m)]);
-  };
-  for (std::size_t i = 1; i < block.longest; ++i)
-    for (std::size_t g = 0; g < block.groups; ++g) {
-      const __m256 mask = beyondTetherLanes(block, g, i, slack);
-      if (!any(mask)) continue;
-      const std::size_t at = i * kBlockLanes + g * kSimdWidth;
-      const __m256 slot = _mm256_castsi256_ps(
-          _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(at)), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
-      beyond.push({slot}, mask);
-      if (beyond.count >= static_cast<int>(kSimdWidth)) {
-        repair();
-        beyond.pop();
-      }
-    }
-  if (beyond.count > 0) repair();
-  return unmetCount;
 }
 
 #undef MANE_AVX2

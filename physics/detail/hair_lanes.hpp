@@ -10,20 +10,14 @@
 namespace mane::physics::detail {
 
 struct HairLaneKernel {
-  /// `simulateBlock`'s `nextBlock` when there is no next block to prefetch.
-  static constexpr std::size_t kNoBlock = ~std::size_t{0};
-
-  /// Steps up to detail::kBlockLanes strands from `firstStrand` in lane-by-lane storage
-  /// (`scratch`, the calling task's, kept between frames); during the last step's constraint
-  /// iterations it prefetches the block at strand `nextBlock` (kNoBlock: none). Same bits as
-  /// HairSystem::simulateStrandBlock; without AVX2 it falls back to that.
+  /// Steps up to detail::kBlockLanes strands from `firstStrand` in lane-by-lane storage (the
+  /// system's, kept between steps; `scratch` is the calling task's work space, kept between
+  /// frames). Same bits as HairSystem::simulateStrandBlock; without AVX2 it falls back to that.
+  /// `intoPrevious`: after a single step whose previous positions are the positions it started
+  /// from, write the new positions into the previous positions' array and leave both arrays'
+  /// other entries alone (the caller swaps the arrays once every block has run).
   static void simulateBlock(HairSystem& self, std::size_t firstStrand, std::size_t lanes, const StepPlan& plan,
-                            std::vector<float>& scratch, std::size_t nextBlock);
-
-  /// Asks the memory for part `part` of `parts` of the particles and lane constants of the block
-  /// starting at strand `firstStrand`, spread so that the requests overlap the current block's
-  /// work instead of queueing up at once.
-  static void prefetchBlock(const HairSystem& self, std::size_t firstStrand, int part, int parts) noexcept;
+                            HairSystem::LaneFloats& scratch, bool intoPrevious);
 };
 
 }  // namespace mane::physics::detail

@@ -3,8 +3,9 @@
 // particle, strands one after another) and the lane layout of strand_lanes.hpp. Not part of the
 // public API.
 //
-// The hair step copies every particle in and out once per block and step; done one float at a
-// time, those copies would be a large share of a step (docs/performance.md). Here 8 strands × 8 particles move as a tile: a
+// The hair step keeps the lanes between steps and writes every particle's position back once
+// per block and step (reading them in only when something else moved them); done one float at
+// a time, those copies would be a large share of a step. Here 8 strands × 8 particles move as a tile: a
 // strand's 8 particles are 24 consecutive floats, 3 registers, and the 8 × 24 matrix (strands ×
 // floats) transposed is 24 registers whose j-th holds coordinate j % 3 of particle j / 3 of the 8
 // strands: exactly 3 lane rows. So each tile is three 8 × 8 transposes; rows that do not fill a
@@ -59,13 +60,17 @@ inline std::uint32_t groupRows(const LaneStrands& s, std::size_t g) noexcept {
 
 // Tile (group g, particles i0 … i0 + 7) of xyz-interleaved `source` into lane arrays
 // lanes[0], lanes[n], lanes[2n] (x, y, z).
+// The loops over a tile's floats are unrolled so that each float's coordinate and row are
+// constants: worked out at run time, the divisions by 3 would cost more than the transposition.
 MANE_AVX2 inline void loadTile(const LaneStrands& s, std::size_t g, std::size_t i0, const float* source, float* lanes,
                                std::size_t n) noexcept {
+#pragma GCC unroll 3
   for (int chunk = 0; chunk < 3; ++chunk) {
     __m256 r[8];
     for (std::size_t k = 0; k < kSimdWidth; ++k)
       r[k] = _mm256_loadu_ps(source + 3 * (std::size_t{s.first[g * kSimdWidth + k]} + i0) + 8 * chunk);
     transpose8(r);
+#pragma GCC unroll 8
     for (int j = 0; j < 8; ++j) {
       const int f = 8 * chunk + j;  // float f of the tile: coordinate f % 3 of particle i0 + f / 3
       _mm256_storeu_ps(lanes + static_cast<std::size_t>(f % 3) * n +
@@ -75,15 +80,26 @@ MANE_AVX2 inline void loadTile(const LaneStrands& s, std::size_t g, std::size_t 
   }
 }
 
-// The inverse of loadTile.
+// The inverse of loadTile. Unless `probe` is null, ORs v − v for every value v it moves into it
+// (per lane of the group): v − v is +0 (all bits clear) for finite v and NaN for NaN or ±∞, and
+// an OR with a NaN stays a NaN, so each lane ends +0 exactly when all its values are finite.
 MANE_AVX2 inline void storeTile(const LaneStrands& s, std::size_t g, std::size_t i0, const float* lanes, std::size_t n,
-                                float* target) noexcept {
+                                float* target, __m256* probe) noexcept {
+#pragma GCC unroll 3
   for (int chunk = 0; chunk < 3; ++chunk) {
     __m256 r[8];
+#pragma GCC unroll 8
     for (int j = 0; j < 8; ++j) {
       const int f = 8 * chunk + j;
       r[j] = _mm256_loadu_ps(lanes + static_cast<std::size_t>(f % 3) * n +
                              (i0 + static_cast<std::size_t>(f / 3)) * kBlockLanes + g * kSimdWidth);
+    }
+    if (probe) {
+      __m256 d[8];
+      for (int j = 0; j < 8; ++j) d[j] = _mm256_sub_ps(r[j], r[j]);
+      // A tree, not a chain: the probe must not add a long dependency to the copy.
+      *probe = _mm256_or_ps(*probe, _mm256_or_ps(_mm256_or_ps(_mm256_or_ps(d[0], d[1]), _mm256_or_ps(d[2], d[3])),
+                                                 _mm256_or_ps(_mm256_or_ps(d[4], d[5]), _mm256_or_ps(d[6], d[7]))));
     }
     transpose8(r);
     for (std::size_t k = 0; k < kSimdWidth; ++k)
@@ -118,23 +134,31 @@ MANE_AVX2 inline void loadLanePositions(const LaneStrands& s, std::size_t rows, 
   }
 }
 
-/// The inverse of loadLanePositions for each strand's own particles.
+/// The inverse of loadLanePositions for each strand's own particles; `previous` null: the
+/// positions only. On the way, per lane of the first `groups` groups, `probe` gets 0 when every
+/// position coordinate of the lane's strand is finite and NaN otherwise (see storeTile), so
+/// that the step's fault check needs no pass of its own.
 MANE_AVX2 inline void storeLanePositions(const LaneStrands& s, std::size_t rows, std::size_t groups, const float* lanes,
-                                         float* positions, float* previous) noexcept {
+                                         float* positions, float* previous, float (&probe)[kBlockLanes]) noexcept {
   const std::size_t n = rows * kBlockLanes;
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t tiled = transfer::groupRows(s, g) / 8 * 8;
+    __m256 groupProbe = _mm256_setzero_ps();
     for (std::size_t i0 = 0; i0 < tiled; i0 += 8) {
-      transfer::storeTile(s, g, i0, lanes, n, positions);
-      transfer::storeTile(s, g, i0, lanes + 3 * n, n, previous);
+      transfer::storeTile(s, g, i0, lanes, n, positions, &groupProbe);
+      if (previous) transfer::storeTile(s, g, i0, lanes + 3 * n, n, previous, nullptr);
     }
+    _mm256_storeu_ps(probe + g * kSimdWidth, groupProbe);
     for (std::size_t b = g * kSimdWidth; b < (g + 1) * kSimdWidth; ++b)
       for (std::size_t i = tiled; i < s.count[b]; ++i) {
         const std::size_t at = i * kBlockLanes + b, to = 3 * (std::size_t{s.first[b]} + i);
         for (std::size_t c = 0; c < 3; ++c) {
-          positions[to + c] = lanes[c * n + at];
-          previous[to + c] = lanes[(3 + c) * n + at];
+          const float v = lanes[c * n + at];
+          positions[to + c] = v;
+          probe[b] += v - v;
         }
+        if (previous)
+          for (std::size_t c = 0; c < 3; ++c) previous[to + c] = lanes[(3 + c) * n + at];
       }
   }
 }

@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "render/descriptors.hpp"
+#include "render/strand_looks.hpp"
 
 namespace mane::render {
 namespace {
 
-constexpr std::uint32_t kWorkgroupSize = HairLightingPass::kWorkgroupSize;
 constexpr std::uint32_t kFirstShadowBinding = 6;
 
 // Read by shaders/hair_lighting.comp as a texel buffer, vec4 k as texel k (its k*Texel constants).
@@ -88,12 +88,13 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler,
-                                      sampler,                                 // shadow first depth, 4 slots
-                                      {Type::eUniformTexelBuffer, compute}});  // the shade list
+                                      sampler,                               // shadow first depth, 4 slots
+                                      {Type::eUniformTexelBuffer, compute},    // the shade list
+                                      {Type::eUniformTexelBuffer, compute}});  // the strands' looks
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
                              {{Type::eStorageBuffer, 1},
-                              {Type::eUniformTexelBuffer, 4},
+                              {Type::eUniformTexelBuffer, 5},
                               {Type::eCombinedImageSampler, 2 + HairShadowPass::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
@@ -114,6 +115,8 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   writeStorageBuffer(device, set_, 3, radiance_);
   everyVertex_ = everyVertex(device, vertexCount);
   setShadeList(everyVertex_);
+  everyStrandPlain_ = uploadStrandLooks(device, {}, vertexCount / verticesPerStrand);
+  bindStrandLooks(everyStrandPlain_);
   writeSampledImage(device, set_, 4, lut.longitudinalView(), lut.sampler());
   writeSampledImage(device, set_, 5, lut.azimuthalView(), lut.sampler());
   refreshShadows();
@@ -127,6 +130,22 @@ void HairLightingPass::setShadeList(const Buffer& shadeList) {
   shadeListTexels_ = makeTexelView(*device_, *shadeList.buffer(), vk::Format::eR32Uint);
   writeUniformTexelBuffer(*device_, set_, 14, shadeListTexels_);
   shadeList_ = &shadeList;
+}
+
+Result<void> HairLightingPass::setStrandLooks(const Buffer& looks) {
+  const auto strands = static_cast<std::uint32_t>(radiance_.size() / sizeof(glm::vec4) / verticesPerStrand_);
+  const vk::DeviceSize needed = vk::DeviceSize(strands) * sizeof(HairStrandLook);
+  if (looks.size() < needed)
+    return fail("hair lighting: " + std::to_string(strands) + " strands need " + std::to_string(needed) +
+                " bytes of looks, the buffer holds " + std::to_string(looks.size()));
+  bindStrandLooks(looks);
+  return {};
+}
+
+void HairLightingPass::bindStrandLooks(const Buffer& looks) {
+  // Written once when uploaded and only read since: no frame graph needs to order it.
+  strandLookTexels_ = makeTexelView(*device_, *looks.buffer(), vk::Format::eR32G32B32A32Sfloat);
+  writeUniformTexelBuffer(*device_, set_, 15, strandLookTexels_);
 }
 
 Buffer HairLightingPass::everyVertex(const Device& device, std::uint32_t vertices) {

@@ -16,7 +16,9 @@
 // with E_i the light's perpendicular irradiance (colour × intensity), T the hair shadows'
 // transmittance (render/passes/hair_shadow_pass.hpp) at the vertex, La the ambient radiance and A the
 // groom's white-furnace albedo at θr = 0 (render/luts/marschner.hpp, azimuthalAlbedo). ωr points
-// from the vertex to the eye.
+// from the vertex to the eye. A strand's colour (setStrandLooks, HairStrandLook::colour)
+// multiplies the TT and TRT lobes of S and the ambient term: the light that has crossed fibres.
+// The R lobe, reflected off the fibre's surface before entering it, keeps the light's colour.
 
 #include <cstdint>
 #include <memory>
@@ -68,6 +70,11 @@ public:
   /// pass. Until then every vertex is shaded.
   void setShadeList(const Buffer& shadeList);
 
+  /// Each strand's colour, from `looks` in uploadStrandLooks' layout (render/strand_looks.hpp),
+  /// which must outlive the pass; until then every strand's colour is 1 (the preset's own).
+  /// Between frames. Errors (nothing changed): a buffer smaller than two texels per strand.
+  [[nodiscard]] Result<void> setStrandLooks(const Buffer& looks);
+
   /// A shade list of every vertex 0 .. vertices − 1.
   [[nodiscard]] static Buffer everyVertex(const Device& device, std::uint32_t vertices);
 
@@ -90,6 +97,7 @@ private:
   HairLightingPass(const Device& device, const MarschnerLut& lut, const HairShadowPass& shadows,
                    const Buffer& positions, const Buffer& tangents, std::uint32_t vertexCount,
                    std::uint32_t verticesPerStrand);
+  void bindStrandLooks(const Buffer& looks);
 
   const Device* device_;
   const HairShadowPass* shadows_;
@@ -104,6 +112,8 @@ private:
   vk::raii::BufferView tangentTexels_{nullptr};    ///< and their tangents
   vk::raii::BufferView shadeListTexels_{nullptr};  ///< the shade list, R32UI texels
   Buffer everyVertex_;                             ///< the shade list until setShadeList
+  Buffer everyStrandPlain_;                        ///< looks of factor 1, until setStrandLooks
+  vk::raii::BufferView strandLookTexels_{nullptr};  ///< the strands' looks, RGBA32F texels
   const Buffer* shadeList_ = nullptr;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};

@@ -10,6 +10,7 @@
 
 #include "render/descriptors.hpp"
 #include "render/passes/hair_lighting_pass.hpp"
+#include "render/strand_looks.hpp"
 
 namespace mane::render {
 namespace {
@@ -119,8 +120,10 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                       {Type::eStorageBuffer, Stage::eCompute},  // 11: the vertices to shade
                                       {Type::eStorageBuffer, Stage::eCompute},  // 12: the lines' clip positions
                                       {Type::eStorageBuffer, Stage::eCompute},  // 13: and coverage
-                                      {Type::eUniformTexelBuffer, Stage::eCompute},    // 14: positions
-                                      {Type::eUniformTexelBuffer, Stage::eCompute}});  // 15: tangents
+                                      {Type::eUniformTexelBuffer, Stage::eCompute},  // 14: positions
+                                      {Type::eUniformTexelBuffer, Stage::eCompute},  // 15: tangents
+                                      // 16: the strands' looks
+                                      {Type::eUniformTexelBuffer, Stage::eVertex | Stage::eCompute}});
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
   // The lines' vertex attributes (hair_line.vert): clip position, coverage, radiance.
   std::vector<vk::VertexInputBindingDescription> lineBindings{{0, sizeof(glm::vec4), vk::VertexInputRate::eVertex},
@@ -153,7 +156,7 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
   choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
   indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u});
   pool_ = makeDescriptorPool(device, 1,
-                             {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 13}, {Type::eUniformTexelBuffer, 2}});
+                             {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 13}, {Type::eUniformTexelBuffer, 3}});
   set_ = allocateSet(device, pool_, setLayout_);
   uniforms_ = Buffer(device, sizeof(HairUniforms), vk::BufferUsageFlagBits::eUniformBuffer,
                      vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
@@ -246,6 +249,8 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   writeUniformTexelBuffer(*device_, set_, 14, positionTexels_);
   writeUniformTexelBuffer(*device_, set_, 15, tangentTexels_);
   strandCount_ = strands.strandCount;
+  everyStrandPlain_ = uploadStrandLooks(*device_, {}, strands.strandCount);
+  bindStrandLooks(everyStrandPlain_);
   indexCount_ = static_cast<std::uint32_t>(6 * segments);
   verticesPerStrand_ = strands.verticesPerStrand;
   PrimitiveDraws draws{};  // the sums start at zero
@@ -259,6 +264,21 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
   std::memcpy(uniforms_.mapped().data() + offsetof(HairUniforms, counts) + 3 * sizeof(std::uint32_t), &indexCount_,
               sizeof(indexCount_));
   return {};
+}
+
+Result<void> HairPass::setStrandLooks(const Buffer& looks) {
+  const vk::DeviceSize needed = vk::DeviceSize(strandCount_) * sizeof(HairStrandLook);
+  if (strandCount_ == 0 || looks.size() == 0 || looks.size() < needed)
+    return fail("hair strand looks: " + std::to_string(strandCount_) + " strands need " + std::to_string(needed) +
+                " bytes of looks, the buffer holds " + std::to_string(looks.size()));
+  bindStrandLooks(looks);
+  return {};
+}
+
+void HairPass::bindStrandLooks(const Buffer& looks) {
+  // Written once when uploaded and only read since: no frame graph needs to order it.
+  strandLookTexels_ = makeTexelView(*device_, *looks.buffer(), vk::Format::eR32G32B32A32Sfloat);
+  writeUniformTexelBuffer(*device_, set_, 16, strandLookTexels_);
 }
 
 Result<void> HairPass::setDrawOrder(std::span<const std::uint32_t> order) {

@@ -89,6 +89,11 @@
 // Colour: the radiance of the segment's two end vertices, interpolated linearly along it (it is
 // constant across the width: see hair_lighting_pass.hpp), times the coverage alpha.
 //
+// Per-strand looks (setStrandLooks, render/strand_looks.hpp): each strand's root width and tip
+// width scale are the groom's times the strand's factors, and its coverage alpha is scaled by
+// its opacity factor (opacity is the fraction of the ribbon the fibre covers). Without looks
+// every factor is 1.
+//
 // Units: metres, radians, pixels where named.
 
 #include <array>
@@ -166,6 +171,12 @@ public:
   /// vertices than the device's texel buffers hold (maxTexelBufferElements).
   [[nodiscard]] Result<void> setStrands(const HairStrands& strands);
 
+  /// Each strand's width, tip width and opacity factors, from `looks` in uploadStrandLooks' layout
+  /// (render/strand_looks.hpp), which must outlive the pass. Between frames, after setStrands
+  /// (which goes back to factors of 1). Errors (nothing changed): no strands yet, or a buffer
+  /// smaller than two texels per strand.
+  [[nodiscard]] Result<void> setStrandLooks(const Buffer& looks);
+
   /// The order to draw the strands in, first to last: a permutation of 0..strandCount − 1
   /// (back to front for correct "over" blending). Between frames only. Errors (nothing
   /// changed): a wrong length, an index out of range or repeated.
@@ -226,6 +237,7 @@ private:
   /// Whether lines `width` pixels wide have the area of a ribbon of that width on this device.
   bool linesDrawable(float width) const;
   void writeOcclusionUniforms();
+  void bindStrandLooks(const Buffer& looks);
 
   const Device* device_;
   vk::Extent2D extent_{};
@@ -255,6 +267,8 @@ private:
   vk::Buffer occlusionTiles_;  ///< setOcclusion's tiles
   vk::raii::BufferView positionTexels_{nullptr};  ///< the strands' positions and tangents as RGBA32F texel buffers
   vk::raii::BufferView tangentTexels_{nullptr};
+  Buffer everyStrandPlain_;                    ///< looks of factor 1, until setStrandLooks
+  vk::raii::BufferView strandLookTexels_{nullptr};  ///< the strands' looks as RGBA32F texels
   HairOcclusionTiles occlusion_;
   std::uint32_t strandCount_ = 0;
   std::uint32_t indexCount_ = 0;

@@ -482,7 +482,7 @@ void OpacityShadowMapPass::recordGraphics(const vk::raii::CommandBuffer& command
                        .imageLayout = Layout::eColorAttachmentOptimal,
                        .loadOp = vk::AttachmentLoadOp::eClear,
                        .storeOp = vk::AttachmentStoreOp::eStore,
-                       .clearValue = vk::ClearColorValue(std::array{0.0f, 0.0f, 0.0f, 0.0f})});
+                       .clearValue = {.color = {.float32 = std::array{0.0f, 0.0f, 0.0f, 0.0f}}}});
   commands.beginRendering(vk::RenderingInfo{.renderArea = {{0, 0}, opacity_.extent},
                                             .layerCount = 1,
                                             .colorAttachmentCount = static_cast<std::uint32_t>(targets.size()),
@@ -528,7 +528,7 @@ void OpacityShadowMapPass::recordDeep(const vk::raii::CommandBuffer& commands) c
                                            .imageLayout = Layout::eColorAttachmentOptimal,
                                            .loadOp = vk::AttachmentLoadOp::eClear,
                                            .storeOp = vk::AttachmentStoreOp::eStore,
-                                           .clearValue = vk::ClearColorValue(std::array{0.0f, 0.0f, 0.0f, 0.0f})};
+                                           .clearValue = {.color = {.float32 = std::array{0.0f, 0.0f, 0.0f, 0.0f}}}};
   commands.beginRendering(vk::RenderingInfo{.renderArea = {{0, 0}, opacity_.extent},
                                             .layerCount = 1,
                                             .colorAttachmentCount = 1,

@@ -311,7 +311,7 @@ void SkinDiffusionPass::recordIrradiance(const vk::raii::CommandBuffer& commands
                                        .imageLayout = Layout::eColorAttachmentOptimal,
                                        .loadOp = vk::AttachmentLoadOp::eClear,
                                        .storeOp = vk::AttachmentStoreOp::eStore,
-                                       .clearValue = vk::ClearColorValue(std::array{0.0f, 0.0f, 0.0f, 0.0f})};
+                                       .clearValue = {.color = {.float32 = std::array{0.0f, 0.0f, 0.0f, 0.0f}}}};
   };
   const std::array attachments{attachment(irradiance_), attachment(stretch_)};
   const vk::Extent2D extent{settings_.size, settings_.size};

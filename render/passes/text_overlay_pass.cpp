@@ -105,7 +105,7 @@ bool empty(const vk::Rect2D& rect) {
 vk::ClearAttachment clearColor(const glm::vec3& color) {
   return {.aspectMask = vk::ImageAspectFlagBits::eColor,
           .colorAttachment = 0,
-          .clearValue = vk::ClearColorValue(std::array<float, 4>{color.r, color.g, color.b, 1.0f})};
+          .clearValue = {.color = {.float32 = std::array{color.r, color.g, color.b, 1.0f}}}};
 }
 
 }  // namespace

@@ -121,7 +121,7 @@ TEST_F(TextOverlayPass, DrawsWhiteGlyphsOnABlackPanelAndLeavesTheRestOfTheImage)
         .imageLayout = vk::ImageLayout::eColorAttachmentOptimal,
         .loadOp = vk::AttachmentLoadOp::eClear,
         .storeOp = vk::AttachmentStoreOp::eStore,
-        .clearValue = vk::ClearColorValue(std::array<float, 4>{0.2f, 0.2f, 0.2f, 1.0f})};
+        .clearValue = {.color = {.float32 = std::array{0.2f, 0.2f, 0.2f, 1.0f}}}};
     commands.beginRendering(vk::RenderingInfo{
         .renderArea = {.extent = kExtent}, .layerCount = 1, .colorAttachmentCount = 1, .pColorAttachments = &color});
     commands.endRendering();

@@ -2,7 +2,8 @@
 // same bytes through both parsers), repairing and strict. Must return strands or an error, never
 // crash, hang or leak; strands it returns must keep StrandSet's promises (≥ 2 finite points per
 // strand, no zero-length segment, attribute arrays aligned with the strands), and a strict load
-// must succeed only where the repairing one found nothing to repair.
+// must succeed only where the repairing one found nothing to repair. The looks its attributes
+// give (scenes/groom_looks.hpp) must be ones the renderer accepts, whatever the file holds.
 
 #include <cmath>
 #include <cstddef>
@@ -11,6 +12,7 @@
 #include <filesystem>
 
 #include "scenes/groom_loader.hpp"
+#include "scenes/groom_looks.hpp"
 #include "tests/fuzz/fuzz_input_file.hpp"
 
 namespace {
@@ -38,6 +40,19 @@ void check(const mane::Result<mane::scenes::StrandSet>& groom) {
       const glm::vec3& p = strand[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) std::abort();
       if (i > 0 && p == strand[i - 1]) std::abort();
+    }
+  }
+  // As a groom of its own, and at an odd scale that can push widths out of range.
+  for (const float metresPerUnit : {0.01f, 3e38f}) {
+    mane::scenes::GuideLooks looks;
+    mane::scenes::appendFileLooks(*groom, mane::scenes::GroomRendering{}, metresPerUnit, looks);
+    if (looks.guides.size() != groom->strands.size()) std::abort();
+    // The ranges render::validateStrandLooks checks (its source needs a Vulkan device's types).
+    const auto unit = [](float value) { return std::isfinite(value) && value >= 0.0f && value <= 1.0f; };
+    for (const mane::render::HairStrandLook& look : looks.guides) {
+      if (!(std::isfinite(look.widthScale) && look.widthScale > 0.0f)) std::abort();
+      if (!unit(look.tipWidthScale) || !unit(look.opacityScale)) std::abort();
+      if (!unit(look.colour.r) || !unit(look.colour.g) || !unit(look.colour.b)) std::abort();
     }
   }
 }

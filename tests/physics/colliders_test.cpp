@@ -1,10 +1,13 @@
 // Colliders (physics/colliders.hpp): analytic sphere and capsule distances, projection to the
-// surface, Coulomb friction against its analytic laws, and a violent head shake in which no hair
-// particle may end a step inside a sphere, a capsule or a mesh SDF.
+// surface, Coulomb friction against its analytic laws, the culls and the AVX2 field lanes
+// against the scalar field, and a violent head shake in which no hair particle may end a step
+// inside a sphere, a capsule or a mesh SDF.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -13,6 +16,8 @@
 #include <gtest/gtest.h>
 
 #include "physics/colliders.hpp"
+#include "physics/detail/field_lanes.hpp"
+#include "physics/detail/tether_lanes.hpp"
 #include "physics/groom_generator.hpp"
 #include "physics/hair.hpp"
 #include "physics/sdf.hpp"
@@ -227,6 +232,78 @@ TEST(Colliders, CullBoxesNeverSkipAContact) {
     ASSERT_FALSE(collideParticle(set, q, q)) << p.x << ", " << p.y << ", " << p.z;
   }
   EXPECT_GT(skipped, 50000);  // the cull does skip most of empty space
+}
+
+#if MANE_STRAND_LANES_AVX2
+// What the collision lanes (detail/field_lanes.hpp, detail/tether_lanes.hpp) make of 8 points:
+// the field's sample and gradient, its cull (fieldMayTouch) and outsideColliders at `level`.
+struct FieldLaneResults {
+  float value[8], gradient[3][8];
+  int nearField, outside;
+};
+__attribute__((target("avx2"))) FieldLaneResults fieldLanes(const ColliderSet& set, const float (&p)[3][8],
+                                                            float level) {
+  using namespace detail::lanes;
+  const FieldLanes field(set.sdf.get(), set.thickness);
+  const Vec at{_mm256_loadu_ps(p[0]), _mm256_loadu_ps(p[1]), _mm256_loadu_ps(p[2])};
+  const __m256 all = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+  __m256 value = _mm256_setzero_ps();
+  Vec gradient{value, value, value};
+  sampleField(field, at, all, value, gradient);
+  FieldLaneResults r;
+  _mm256_storeu_ps(r.value, value);
+  _mm256_storeu_ps(r.gradient[0], gradient.x), _mm256_storeu_ps(r.gradient[1], gradient.y);
+  _mm256_storeu_ps(r.gradient[2], gradient.z);
+  r.nearField = _mm256_movemask_ps(fieldMayTouch(field, at, all));
+  r.outside = _mm256_movemask_ps(detail::outsideColliders(set, field, at, _mm256_set1_ps(level), all));
+  return r;
+}
+#endif
+
+TEST(Colliders, FieldLanesMatchTheScalarFieldBitForBit) {
+  // The AVX2 collision pass's field samples and culls against the scalar functions they mirror,
+  // lane by lane: 40,000 points in and around the grid of an ellipsoidal head SDF (a quarter
+  // outside the grid, one NaN lane in every 16th batch of 8) with a neck capsule, thickness
+  // 1 mm. Sample and gradient bytes equal sampleWithGradient's; the cull equals mayBeBelow;
+  // outsideColliders equals signedDistance(set, p) ≥ level for the bisection's level and for 0.
+  // Tolerance 0.
+  if (!detail::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2; the scalar path is used";
+#if MANE_STRAND_LANES_AVX2
+  TriangleMesh mesh = makeIcosphere(1.0f, 3);
+  for (glm::vec3& p : mesh.positions) p *= glm::vec3(0.085f, 0.097f, 0.095f);
+  auto sdf = SignedDistanceField::build(mesh.positions, mesh.indices, {.resolution = 40});
+  ASSERT_TRUE(sdf);
+  ColliderSet set;
+  set.capsules = {{{0.0f, -0.06f, -0.01f}, {0.0f, -0.3f, -0.01f}, 0.05f}};
+  set.sdf = std::make_shared<const SignedDistanceField>(std::move(*sdf));
+  set.thickness = 0.001f;
+  ASSERT_LT(set.thickness, set.sdf->contactLevel());
+  SplitMix64 random(17);
+  for (int batch = 0; batch < 5000; ++batch) {
+    float p[3][8];
+    for (int lane = 0; lane < 8; ++lane)
+      for (int axis = 0; axis < 3; ++axis) p[axis][lane] = random.nextFloat(-0.14f, 0.14f);
+    if (batch % 16 == 0) p[1][7] = std::numeric_limits<float>::quiet_NaN();
+    for (const float level : {set.thickness - 1e-5f, 0.0f}) {
+      const FieldLaneResults lanes = fieldLanes(set, p, level);
+      for (int lane = 0; lane < 8; ++lane) {
+        const glm::vec3 q(p[0][lane], p[1][lane], p[2][lane]);
+        glm::vec3 gradient(0.0f);
+        const float value = set.sdf->sampleWithGradient(q, gradient);
+        ASSERT_EQ(std::memcmp(&lanes.value[lane], &value, sizeof value), 0) << q.x << ", " << q.y << ", " << q.z;
+        if (!std::isnan(value)) {
+          for (int axis = 0; axis < 3; ++axis) {
+            ASSERT_EQ(std::memcmp(&lanes.gradient[axis][lane], &gradient[axis], sizeof(float)), 0) << axis;
+          }
+        }
+        ASSERT_EQ((lanes.nearField >> lane & 1) != 0, set.sdf->mayBeBelow(q, set.thickness))
+            << q.x << ", " << q.y << ", " << q.z;
+        ASSERT_EQ((lanes.outside >> lane & 1) != 0, signedDistance(set, q) >= level)
+            << q.x << ", " << q.y << ", " << q.z;
+      }
+    }
+  }
+#endif
 }
 
 // The head used by the shake tests and the benchmark: a cranium ball, a neck capsule and the

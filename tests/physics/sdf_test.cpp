@@ -1,11 +1,14 @@
 // The signed distance field of a triangle mesh (physics/sdf.hpp) against analytic distances:
-// a sphere (icosphere mesh) and a cube, with the sign right inside and outside, and the exact
-// point–triangle distance against brute-force sampling of the triangle.
+// a sphere (icosphere mesh) and a cube, with the sign right inside and outside, the exact
+// point–triangle distance against brute-force sampling of the triangle, and the contact cells
+// that cull samples against the node values they summarise.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -191,6 +194,47 @@ TEST(SignedDistanceField, ClosestPointOnTriangleMatchesBruteForce) {
     EXPECT_GE(exact, brute - spacing);
     EXPECT_GE(feature, 0);
     EXPECT_LE(feature, 6);
+  }
+}
+
+TEST(SignedDistanceField, ContactCellsMarkExactlyTheCellsWithANodeBelowTheContactLevel) {
+  // Reference: each cell's 8 node values against contactLevel() (half a cell), cell by cell over
+  // the whole grid of an ellipsoidal head. Then mayBeBelow may skip only points whose sample is
+  // ≥ the level: 200,000 points in the contact box, levels 0 and 0.4 of a cell (below the
+  // contact level), where the cells skip more than the box alone.
+  TriangleMesh mesh = makeIcosphere(1.0f, 3);
+  for (glm::vec3& p : mesh.positions) p *= glm::vec3(0.085f, 0.097f, 0.095f);
+  auto sdf = SignedDistanceField::build(mesh.positions, mesh.indices, {.resolution = 40});
+  ASSERT_TRUE(sdf);
+  ASSERT_GT(sdf->contactLevel(), 0.0f);
+  const glm::ivec3 dims = sdf->dimensions();
+  const std::span<const float> v = sdf->values();
+  const std::span<const std::uint32_t> cells = sdf->contactCells();
+  ASSERT_EQ(cells.size(), (v.size() + 31) / 32);
+  std::size_t marked = 0;
+  for (int k = 0; k + 1 < dims.z; ++k)
+    for (int j = 0; j + 1 < dims.y; ++j)
+      for (int i = 0; i + 1 < dims.x; ++i) {
+        const std::size_t n = static_cast<std::size_t>(i + dims.x * (j + dims.y * k));
+        const std::size_t sy = static_cast<std::size_t>(dims.x), sz = sy * static_cast<std::size_t>(dims.y);
+        const float lowest = std::min(
+            {v[n], v[n + 1], v[n + sy], v[n + sy + 1], v[n + sz], v[n + sz + 1], v[n + sz + sy], v[n + sz + sy + 1]});
+        const bool bit = (cells[n / 32] >> (n % 32) & 1u) != 0;
+        ASSERT_EQ(bit, lowest < sdf->contactLevel()) << i << ", " << j << ", " << k;
+        marked += bit;
+      }
+  EXPECT_GT(marked, 0u);
+  const glm::vec3 lo = sdf->contactLower(), hi = sdf->contactUpper();
+  SplitMix64 rng(5);
+  for (const float level : {0.0f, 0.4f * sdf->cellSize()}) {
+    int inBoxSkipped = 0;
+    for (int n = 0; n < 200000; ++n) {
+      const glm::vec3 p(rng.nextFloat(lo.x, hi.x), rng.nextFloat(lo.y, hi.y), rng.nextFloat(lo.z, hi.z));
+      if (sdf->mayBeBelow(p, level)) continue;
+      ++inBoxSkipped;
+      ASSERT_GE(sdf->sample(p), level) << p.x << ", " << p.y << ", " << p.z;
+    }
+    EXPECT_GT(inBoxSkipped, 50000) << "the cells skip the box's corners, outside the head";
   }
 }
 

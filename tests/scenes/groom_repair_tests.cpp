@@ -217,6 +217,33 @@ TEST(GroomAttributes, CyHairThicknessTransparencyAndColoursReadBackAsWritten) {
   EXPECT_TRUE(bare->thickness.empty() && bare->transparency.empty() && bare->colours.empty());
 }
 
+TEST(GroomAttributes, CyHairHeaderDefaultsStandForTheArraysTheFileLacks) {
+  // cyHairFile.h: bytes 20–39 of the header hold the default thickness, transparency and colour,
+  // which every point has where the file carries no array of its own. They come back as stored,
+  // beside whatever arrays the file has; a TressFX file has no such defaults.
+  ScratchDir dir;
+  std::string bytes = cyHair({}, 3, 3, 16u);  // a colour array, no thickness or transparency
+  for (int i = 0; i < 12 * 3; ++i) putF32(bytes, bytes.size(), 0.5f);
+  putF32(bytes, 20, 0.25f);
+  putF32(bytes, 24, 0.4f);
+  putF32(bytes, 28, 0.9f);
+  putF32(bytes, 32, 0.1f);
+  putF32(bytes, 36, 0.2f);
+  auto hair = loadCyHair(dir.write("defaults.hair", bytes));
+  ASSERT_TRUE(hair.has_value()) << hair.error().message;
+  ASSERT_TRUE(hair->hairDefaults.has_value());
+  EXPECT_EQ(hair->hairDefaults->thickness, 0.25f);
+  EXPECT_EQ(hair->hairDefaults->transparency, 0.4f);
+  EXPECT_EQ(hair->hairDefaults->colour, glm::vec3(0.9f, 0.1f, 0.2f));
+  EXPECT_TRUE(hair->thickness.empty() && hair->transparency.empty());
+  ASSERT_EQ(hair->colours.size(), 3u);
+  EXPECT_EQ(hair->colours[2][3], glm::vec3(0.5f));
+
+  auto tfx = loadTfx(dir.write("plain.tfx", tfxV3(2, 3, 6)));
+  ASSERT_TRUE(tfx.has_value()) << tfx.error().message;
+  EXPECT_FALSE(tfx->hairDefaults.has_value());
+}
+
 TEST(GroomAttributes, CyHairAttributesFollowTheirPointsThroughRepairs) {
   // Hair 0 gets a NaN (dropped); hair 1's point 2 repeats point 1 (merged): what was hair 1 is
   // now strand 0, its point-2 attributes are gone with the point, and the point put back in the

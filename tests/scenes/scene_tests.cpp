@@ -272,6 +272,9 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
   EXPECT_EQ(rendering.settings.shadowExtinction, defaults.shadowExtinction);
   EXPECT_EQ(rendering.denseStrands, 0);
   EXPECT_EQ(rendering.verticesPerStrand, 0);
+  // Nothing given: a groom file's own widths, opacities and colours may fill them in.
+  EXPECT_FALSE(rendering.colour.has_value());
+  EXPECT_FALSE(rendering.given.width || rendering.given.tipWidthScale || rendering.given.opacity);
   EXPECT_EQ(scene->hairShadows.mode, render::HairShadowMode::kOpacityShadowMap);
   EXPECT_EQ(scene->hairShadows.resolution, 512u);
 }
@@ -279,8 +282,8 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
 TEST(Scene, GroomRenderBlockSetsEveryField) {
   auto scene = parseScene(groomScene(R"(, "source": "procedural",
       "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
-                 "min_pixel_width": 0.25, "shadow_extinction": 3.5, "strands": 1000000,
-                 "vertices_per_strand": 4096})"),
+                 "colour": [0.5, 0.25, 0], "min_pixel_width": 0.25, "shadow_extinction": 3.5,
+                 "strands": 1000000, "vertices_per_strand": 4096})"),
                           "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering& rendering = scene->grooms[0].rendering;
@@ -292,6 +295,8 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_FLOAT_EQ(rendering.settings.shadowExtinction, 3.5f);
   EXPECT_EQ(rendering.denseStrands, 1'000'000);
   EXPECT_EQ(rendering.verticesPerStrand, 4096);
+  EXPECT_EQ(rendering.colour, glm::vec3(0.5f, 0.25f, 0.0f));
+  EXPECT_TRUE(rendering.given.width && rendering.given.tipWidthScale && rendering.given.opacity);
   // The closed ends of the ranges are accepted.
   EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural",
       "render": {"look": "blonde", "width": 0.01, "tip_width_scale": 0, "opacity": 0.001, "strands": 1})")),
@@ -358,6 +363,10 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
     EXPECT_EQ(renderError(std::string(R"({"opacity": )") + opacity + "}"),
               "dir/bad.json: grooms[0].render.opacity: expected an opacity in (0, 1]")
         << opacity;
+  for (const char* colour : {"[1.5, 0, 0]", "[0, -0.1, 0]"})
+    EXPECT_EQ(renderError(std::string(R"({"colour": )") + colour + "}"),
+              "dir/bad.json: grooms[0].render.colour: expected an RGB colour with components in [0, 1]")
+        << colour;
   EXPECT_EQ(renderError(R"({"min_pixel_width": 0.2})"),
             "dir/bad.json: grooms[0].render.min_pixel_width: expected a minimum width >= 0.25 pixels");
   for (const char* kappa : {"0", "-1"})
@@ -377,8 +386,8 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
         << vertices;
   EXPECT_EQ(renderError(R"({"strands": 2.5})"),
             "dir/bad.json: grooms[0].render.strands: expected an integer, got a fraction");
-  const std::string typo = renderError(R"({"colour": "blonde"})");
-  EXPECT_NE(typo.find("dir/bad.json: grooms[0].render.colour: unknown field"), std::string::npos) << typo;
+  const std::string typo = renderError(R"({"color": [1, 0, 0]})");
+  EXPECT_NE(typo.find("dir/bad.json: grooms[0].render.color: unknown field"), std::string::npos) << typo;
   EXPECT_NE(typo.find("min_pixel_width"), std::string::npos) << typo;  // lists the known ones
   EXPECT_EQ(renderError("\"dark\""), "dir/bad.json: grooms[0].render: expected an object, got a string");
 }
