@@ -3,7 +3,7 @@
 //   BM_DistanceProjections/<particles>: one Gauss–Seidel sweep of distance constraints along a
 //     single long strand (Jakobsen 2001 relaxation); items/s = constraint projections per second.
 //   BM_StrandLaneProjections/<particles>/<avx2>: the hair step's distance sweep over a block of
-//     32 strands of <particles> each, lane by lane (physics/detail/strand_lanes.hpp), scalar
+//     kBlockLanes strands of <particles> each, lane by lane (physics/detail/strand_lanes.hpp), scalar
 //     (avx2 = 0) or AVX2 (1, bit-identical); items/s = constraint projections per second, one core.
 //   BM_HairFrame/<threads>/<vectorised>/<steps>: one 1/60 s frame of a 10,000-guide ×
 //     32-particle groom with 4 constraint iterations per fixed step and tethers, on a head that

@@ -49,7 +49,9 @@ Buffer Buffer::withData(const Device& device, std::span<const std::byte> bytes, 
   const vk::DeviceSize size = std::max<vk::DeviceSize>(bytes.size(), 4);
   Buffer staging(device, size, vk::BufferUsageFlagBits::eTransferSrc,
                  vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
-  std::memcpy(staging.mapped().data(), bytes.data(), bytes.size());
+  // Not memcpy: an empty span (the buffer is then 4 bytes of nothing) has a null data(), which
+  // memcpy may not be given even for zero bytes.
+  std::ranges::copy(bytes, staging.mapped().begin());
   Buffer result(device, size, usage | vk::BufferUsageFlagBits::eTransferDst, vk::MemoryPropertyFlagBits::eDeviceLocal);
   device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
     commands.copyBuffer(*staging.buffer(), *result.buffer(), vk::BufferCopy{.size = size});

@@ -153,7 +153,8 @@ std::string strictError(const PointLocator& locate, const StrandRepair& repair, 
     case StrandFlaw::kTooFewPoints:
       what = stored.size() < 2 ? "the strand has " + str(stored.size()) + " " + locate.pointWord +
                                      "; a strand needs at least 2"
-                               : "fewer than 2 distinct positions (repeated points); a strand needs at least 2";
+                               : "its points coincide or all but coincide (fewer than 2 distinct positions); a strand "
+                                 "needs at least 2";
       break;
     case StrandFlaw::kAbsurdLength:
       what = "the strand is absurdly long here (a segment or the strand over " +

@@ -80,7 +80,7 @@ const char* reasonPhrase(StrandFlaw flaw) {
     case StrandFlaw::kRepeatedPoint: return "with a repeated point";
     case StrandFlaw::kZeroLengthSegment: return "with a zero-length segment";
     case StrandFlaw::kNonFinitePoint: return "with a non-finite point";
-    case StrandFlaw::kTooFewPoints: return "with fewer than two points";
+    case StrandFlaw::kTooFewPoints: return "with fewer than two distinct points";
     case StrandFlaw::kAbsurdLength: return "of absurd length";
   }
   return "flawed";

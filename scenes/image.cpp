@@ -22,17 +22,22 @@ namespace {
 constexpr int kMaxImageSide = 16384;                  // Vulkan's usual maxImageDimension2D
 constexpr long long kMaxImagePixels = 8192LL * 8192;  // 256 MiB of RGBA8
 
-/// stb_image 2.27 sums the digits of a binary PGM/PPM header's numbers in an int without a
-/// bound, undefined behaviour past 2147483647 (fixed upstream in 2.28). This reads such a
-/// header ("P5" or "P6", the kinds stb_image reads) the way stb_image does, whitespace and '#'
-/// comments then digits, and returns the first number too large for an int, with its name
-/// ("height 5555222552"); nothing for any other file.
-std::optional<std::string> overlongPnmNumber(std::span<const unsigned char> bytes) {
+/// What is wrong with a binary PGM/PPM ("P5"/"P6", the kinds stb_image reads) that stb_image
+/// 2.27 would not say (both fixed upstream in 2.28); nothing for a sound one or another format:
+/// - a header number too large for an int, which it sums digit by digit in an int (undefined
+///   behaviour past 2147483647);
+/// - a file shorter than the pixels its header declares, whose missing pixels it leaves as
+///   whatever its fresh allocation held.
+/// The header is read the way stb_image reads it: whitespace and '#' comments, then digits, and
+/// the pixels start after the one character that ends the maximum value.
+std::optional<std::string> pnmProblem(std::span<const unsigned char> bytes) {
   if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6')) return std::nullopt;
   std::size_t at = 2;
   const auto isSpace = [](unsigned char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };  // \t \n \v \f \r
   const auto isDigit = [](unsigned char c) { return c >= '0' && c <= '9'; };
-  for (const char* what : {"width", "height", "maximum value"}) {
+  std::uint64_t numbers[3] = {};
+  const char* names[3] = {"width", "height", "maximum value"};
+  for (int n = 0; n < 3; ++n) {
     for (;;) {
       while (at < bytes.size() && isSpace(bytes[at])) ++at;
       if (at == bytes.size() || bytes[at] != '#') break;
@@ -42,9 +47,21 @@ std::optional<std::string> overlongPnmNumber(std::span<const unsigned char> byte
     for (; at < bytes.size() && isDigit(bytes[at]); ++at)
       if (!digits.empty() || bytes[at] != '0') digits += static_cast<char>(bytes[at]);  // leading zeros add nothing
     if (digits.size() > 10 || (digits.size() == 10 && digits > "2147483647"))
-      return std::string(what) + " " + (digits.size() > 20 ? digits.substr(0, 20) + "…" : digits);
+      return "the PNM header's " + std::string(names[n]) + " " +
+             (digits.size() > 20 ? digits.substr(0, 20) + "…" : digits) + " is too large (at most 2147483647)";
+    numbers[n] = digits.empty() ? 0 : std::stoull(digits);
   }
-  return std::nullopt;
+  const std::uint64_t sampleBytes = numbers[2] > 255 ? 2 : 1;
+  const std::uint64_t pixelBytes = (bytes[1] == '6' ? 3 : 1) * sampleBytes;
+  const std::uint64_t start = at + 1;
+  // Each number is below 2^31, so the pixel count fits; one past 2^56 needs more bytes than any file has.
+  const std::uint64_t pixels = numbers[0] * numbers[1];
+  const std::uint64_t needed = pixels >> 56 ? UINT64_MAX : start + pixels * pixelBytes;
+  if (numbers[2] > 65535 || bytes.size() >= needed) return std::nullopt;  // stb_image refuses the first itself
+  return "truncated PNM: its header declares " + std::to_string(numbers[0]) + " x " + std::to_string(numbers[1]) +
+         " pixels of " + std::to_string(pixelBytes) + (pixelBytes == 1 ? " byte" : " bytes") + " from byte " +
+         std::to_string(start) + ", which need " + std::to_string(needed) + " bytes, but the file has " +
+         std::to_string(bytes.size());
 }
 
 /// Whether `bytes` are too few for the TGA image their header declares (stb_image reads past the
@@ -73,27 +90,40 @@ std::optional<std::string> truncatedTga(std::span<const unsigned char> bytes) {
          " bytes, but the file has " + std::to_string(bytes.size());
 }
 
-/// Removes a PNG's empty IDAT chunks from `bytes`. They carry no image data, but stb_image 2.27
-/// copies a first one into its not yet allocated buffer, memcpy(nullptr, …, 0): undefined
-/// behaviour. Anything but a PNG, and a PNG from where its chunks stop fitting, is left as it is
-/// for stb_image to judge.
-void dropEmptyPngDataChunks(std::vector<unsigned char>& bytes) {
+/// Readies a PNG for stb_image 2.27, guarding it in two places (both fixed upstream in 2.28):
+/// - a chunk declaring more data than the file holds, for which it allocates before reading (a
+///   few bytes declaring 1 GiB of IDAT took 2 GiB): refused, naming the chunk; such a file never
+///   decoded anyway;
+/// - empty IDAT chunks, which carry nothing, but a first one it copied into its not yet
+///   allocated buffer, memcpy(nullptr, …, 0), undefined behaviour: removed.
+/// Chunks are read up to IEND, as stb_image reads them; anything but a PNG is left as it is.
+std::optional<std::string> preparePng(std::vector<unsigned char>& bytes) {
   static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin())) return;
+  if (bytes.size() < 8 || !std::equal(kSignature, kSignature + 8, bytes.begin())) return std::nullopt;
+  const auto typeIs = [&](std::size_t at, const char* type) {
+    return std::equal(bytes.begin() + static_cast<std::ptrdiff_t>(at + 4),
+                      bytes.begin() + static_cast<std::ptrdiff_t>(at + 8), type);
+  };
   std::vector<std::size_t> empty;  // offsets of empty IDAT chunks
-  for (std::size_t at = 8; bytes.size() - at >= 12;) {
+  // A chunk is its length, type, data and CRC; stb_image reads a last one whose CRC is cut off.
+  for (std::size_t at = 8; bytes.size() - at >= 8 && !typeIs(at, "IEND");) {
     const std::uint64_t length = std::uint64_t{bytes[at]} << 24 | std::uint64_t{bytes[at + 1]} << 16 |
                                  std::uint64_t{bytes[at + 2]} << 8 | bytes[at + 3];  // big-endian
-    if (length > bytes.size() - at - 12) break;
-    if (length == 0 && std::equal(bytes.begin() + static_cast<std::ptrdiff_t>(at + 4),
-                                  bytes.begin() + static_cast<std::ptrdiff_t>(at + 8), "IDAT"))
-      empty.push_back(at);
-    at += 12 + length;  // length, type, data, CRC
+    if (length > bytes.size() - at - 8) {
+      std::string type;
+      for (std::size_t i = at + 4; i < at + 8; ++i)
+        type += bytes[i] >= 0x20 && bytes[i] < 0x7f ? static_cast<char>(bytes[i]) : '?';
+      return "truncated PNG: its \"" + type + "\" chunk at byte " + std::to_string(at) + " declares " +
+             std::to_string(length) + " bytes of data, but only " + std::to_string(bytes.size() - at - 8) + " follow";
+    }
+    if (length == 0 && typeIs(at, "IDAT")) empty.push_back(at);
+    at += std::min<std::uint64_t>(12 + length, bytes.size() - at);
   }
   for (auto at = empty.rbegin(); at != empty.rend(); ++at) {
     const auto chunk = bytes.begin() + static_cast<std::ptrdiff_t>(*at);
-    bytes.erase(chunk, chunk + 12);
+    bytes.erase(chunk, chunk + static_cast<std::ptrdiff_t>(std::min<std::size_t>(12, bytes.size() - *at)));
   }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -110,12 +140,11 @@ Result<Image> loadImage(const std::filesystem::path& file) {
     if (!in) return fail(name + ": cannot open the file");
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  dropEmptyPngDataChunks(bytes);
+  if (auto problem = preparePng(bytes)) return fail(name + ": cannot decode image: " + *problem);
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     return fail(name + ": cannot decode image: the file is over 2 GiB");
   const int size = static_cast<int>(bytes.size());
-  if (auto number = overlongPnmNumber(bytes))
-    return fail(name + ": cannot decode image: the PNM header's " + *number + " is too large (at most 2147483647)");
+  if (auto problem = pnmProblem(bytes)) return fail(name + ": cannot decode image: " + *problem);
   if (auto shortfall = truncatedTga(bytes)) return fail(name + ": cannot decode image: truncated TGA: " + *shortfall);
   int width = 0;
   int height = 0;

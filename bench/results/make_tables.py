@@ -263,7 +263,7 @@ def physics_label(run: Run) -> str:
     if run.name.startswith("BM_DistanceProjections"):
         return f"distance projections, one strand of {int(a['0']):,} particles"
     if run.name.startswith("BM_StrandLaneProjections"):
-        return f"lane projections, 32 strands × {a['0']}, {'AVX2' if a['1'] == '1' else 'scalar'}"
+        return f"lane projections, 64 strands × {a['0']}, {'AVX2' if a['1'] == '1' else 'scalar'}"
     if HAIR_FRAME.match(run.name):
         what = "10k × 32 frame" + (" + collisions" if "Collisions" in run.name else "")
         steps = "1 step" if a["2"] == "1" else f"{a['2']} steps"

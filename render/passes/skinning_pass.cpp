@@ -268,8 +268,10 @@ Result<void> SkinningPass::update(std::span<const glm::mat4> jointMatrices, std:
                   " mirrors or flattens space (determinant <= 0); dual-quaternion skinning needs a rotation.");
     decompose(joints[j]);
   }
-  std::memcpy(joints_.mapped().data(), joints.data(), joints.size() * sizeof(Joint));
-  std::memcpy(frame_.mapped().data() + sizeof(FrameHeader), morphWeights.data(), morphWeights.size_bytes());
+  // Copied as byte ranges, not with memcpy: a mesh without morph targets (or joints) hands over
+  // an empty span whose data() is null, which memcpy may not be given even for zero bytes.
+  std::ranges::copy(std::as_bytes(std::span(joints)), joints_.mapped().begin());
+  std::ranges::copy(std::as_bytes(morphWeights), frame_.mapped().begin() + sizeof(FrameHeader));
   return {};
 }
 

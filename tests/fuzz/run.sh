@@ -80,9 +80,12 @@ cmake --build "$build" --target "${harnesses[@]}" -j "${FUZZ_BUILD_JOBS:-2}"
 # Largest input worth mutating per format, bytes: big enough for every seed's structure.
 declare -A maxLen=([fuzz_scene]=8192 [fuzz_gltf]=16384 [fuzz_obj]=8192 [fuzz_image]=16384
                    [fuzz_manifest]=4096 [fuzz_groom]=4096 [fuzz_sim_state]=4096)
-# A few images decode to hundreds of MB (any size up to loadImage's limit is legal) and take
-# seconds each under ASan; weighting inputs by their speed keeps the search on the rest.
+# A few images decode to hundreds of MB (any size up to loadImage's limit of 8192 x 8192 is
+# legal, from a few KB of PNG or GIF) and take seconds each under the sanitizers: weight inputs
+# by their speed to keep the search on the rest, and allow such a decode 20 s before calling it
+# a hang (the rest: 5 s).
 declare -A tuning=([fuzz_image]=-entropic_scale_per_exec_time=1)
+declare -A timeout=([fuzz_image]=20)
 declare -A dict=([fuzz_scene]=json.dict [fuzz_gltf]=json.dict [fuzz_manifest]=json.dict
                  [fuzz_obj]=obj.dict [fuzz_sim_state]=sim_state.dict)
 
@@ -127,7 +130,7 @@ for name in "${harnesses[@]}"; do
   mkdir -p "$kept" "$handMade" "$artifacts" "$build/logs"
   mapfile -t files < <(projectSeeds "$name")
   linkSeeds "$project" "${files[@]}"
-  options=(-max_len="${maxLen[$name]}" -timeout=5 -rss_limit_mb=2048 -print_final_stats=1
+  options=(-max_len="${maxLen[$name]}" -timeout="${timeout[$name]:-5}" -rss_limit_mb=2048 -print_final_stats=1
            -artifact_prefix="$artifacts/")
   [[ -n "${dict[$name]:-}" ]] && options+=(-dict="$here/${dict[$name]}")
   [[ -n "${tuning[$name]:-}" ]] && options+=("${tuning[$name]}")

@@ -65,15 +65,15 @@ TEST(FuzzFindings, GroomStrandWithSubnormalPointsNeverKeepsARepeatedPoint) {
   const float a = std::ldexp(1.0f, -139);
   const float b = std::ldexp(1.0f, -140);
   const float tiny = std::ldexp(1.0f, -149);  // the smallest positive float
-  const std::string bytes = tfxWith({{{0, 0, a}, {0, 0, a}, {0, 0, b}, {0, 0, 0}},
-                                     {{0, 0, 0}, {0, 0, 0}, {0, 0, tiny}, {0, 0, 0}}});
+  const std::string bytes =
+      tfxWith({{{0, 0, a}, {0, 0, a}, {0, 0, b}, {0, 0, 0}}, {{0, 0, 0}, {0, 0, 0}, {0, 0, tiny}, {0, 0, 0}}});
   auto groom = loadTfx(dir.write("subnormal.tfx", bytes));
   ASSERT_TRUE(groom.has_value()) << groom.error().message;
   expectStrandSetPromises(*groom);
   ASSERT_EQ(groom->strands.size(), 1u);
   EXPECT_EQ(groom->strands[0].size(), 4u);
   EXPECT_EQ(groom->repairs.summary(),
-            "2 strands read: 1 repaired (1 with a repeated point: 0), 1 dropped (1 with fewer than two points: 1)");
+            "2 strands read: 1 repaired (1 with a repeated point: 0), 1 dropped (1 with fewer than two distinct points: 1)");
 }
 
 // The same at ordinary magnitudes: at x = 16384 one float step is about 2 mm, the size of this
@@ -137,12 +137,18 @@ TEST(FuzzFindings, GroomRepairNearTheFloatLimitKeepsItsPointsFinite) {
 // Found by tests/fuzz/fuzz_image: stb_image 2.27 reads a PPM/PGM header's numbers into an int
 // unchecked, and a ten-digit height overflowed it (undefined behaviour). Refused, naming the
 // number; comments and leading zeros are read past as stb_image reads them.
-TEST(FuzzFindings, PnmHeaderNumberBeyondIntIsRefusedNamingIt) {
+TEST(FuzzFindings, PnmHeaderBeyondIntOrBeyondTheFileIsRefusedNamingIt) {
   ScratchDir dir;
   testing::expectError(loadImage(dir.write("tall.ppm", "P6\n2\t\n5555222552\x02\0\n\x01=\x02\x0b"s)),
                        {"tall.ppm", "PNM header", "height 5555222552", "too large"});
   testing::expectError(loadImage(dir.write("deep.pgm", "P5 # a comment\n 1 1\n#\n99999999999999999999999 x")),
                        {"deep.pgm", "maximum value 99999999999999999999"});
+  // The timeout the fuzzer found next: 4014 x 4014 pixels declared by a 95-byte file, which
+  // stb_image 2.27 decodes into whatever its allocation held. A file short of its pixels is
+  // refused, saying what the header declares.
+  testing::expectError(loadImage(dir.write("short.ppm", "P6\n\t\t\n 4014\t\n 4014\n 255\n\x01\x02\x03"s)),
+                       {"short.ppm", "truncated PNM", "4014 x 4014 pixels of 3 bytes from byte 24",
+                        "need 48336612 bytes", "the file has 27"});
   auto image = loadImage(dir.write("zeros.pgm", "P5 0000000000001 01 0000000000255\n\x80"s));
   ASSERT_TRUE(image.has_value()) << image.error().message;
   EXPECT_EQ(image->width, 1);
@@ -179,7 +185,7 @@ TEST(FuzzFindings, TruncatedTgaIsRefusedSayingWhatItDeclares) {
 // memcpy zero bytes into its not yet allocated buffer, a null pointer (undefined behaviour).
 // Empty IDAT chunks carry nothing and are dropped first: the image reads as without them, and a
 // PNG with no data at all is still refused.
-TEST(FuzzFindings, PngWithAnEmptyFirstDataChunkReadsAsWithoutIt) {
+TEST(FuzzFindings, PngEmptyDataChunksAreDroppedAndOverlongChunksRefused) {
   ScratchDir dir;
   // 1 x 1 pixel, 8-bit grey 0x80; chunks with their CRCs, as an encoder would write them.
   const std::string signature = "\x89PNG\r\n\x1a\n"s;
@@ -195,6 +201,18 @@ TEST(FuzzFindings, PngWithAnEmptyFirstDataChunkReadsAsWithoutIt) {
   EXPECT_EQ(image->rgba[0], 0x80);
   testing::expectError(loadImage(dir.write("no_data.png", signature + header + emptyData + end)),
                        {"no_data.png", "cannot decode image"});
+  // The second finding: the empty chunk last, its CRC cut off (stb_image reads it all the same).
+  testing::expectError(loadImage(dir.write("cut.png", signature + header + emptyData.substr(0, 9))),
+                       {"cut.png", "cannot decode image"});
+  // The third (out of memory): a chunk declaring 1 GiB, for which stb_image 2.27 allocated 2 GiB
+  // before finding the file ends. Refused, naming the chunk; chunks after IEND are not read.
+  const std::string huge = "\x40\x00\x00\x00IDAT\x78\x9c"s;
+  testing::expectError(
+      loadImage(dir.write("huge.png", signature + header + data + huge + end)),
+      {"huge.png", "truncated PNG", "\"IDAT\" chunk at byte 55", "declares 1073741824 bytes", "only 14 follow"});
+  image = loadImage(dir.write("trailing.png", signature + header + data + end + huge));
+  ASSERT_TRUE(image.has_value()) << image.error().message;
+  EXPECT_EQ(image->rgba[0], 0x80);
 }
 
 // --- OBJ ----------------------------------------------------------------------------------

@@ -125,7 +125,7 @@ TEST(GroomRepair, StrandsWithFewerThanTwoPointsAreDropped) {
   ASSERT_TRUE(hair.has_value()) << hair.error().message;
   ASSERT_EQ(hair->strands.size(), 2u);
   EXPECT_EQ(hair->strands[1][1], syntheticPoint(2, 1));
-  EXPECT_EQ(hair->repairs.summary(), "3 strands read: 1 dropped (1 with fewer than two points: 1)");
+  EXPECT_EQ(hair->repairs.summary(), "3 strands read: 1 dropped (1 with fewer than two distinct points: 1)");
 
   // A TressFX strand whose four vertices coincide is one point once merged.
   std::string bytes = tfxV3(3, 4, 12);
