@@ -90,11 +90,12 @@ struct HairSettings {
 ///    last word) that settles each particle against both the colliders and its tether: a push
 ///    out of the colliders with friction against the particle's motion during the step, then,
 ///    when that left the particle beyond its tether, alternating tether projections and
-///    frictionless collision pushes (up to `kSettleRounds`), and if they do not meet, the point
-///    nearest the particle on the segment from its (already settled) parent for which both hold,
-///    found by bisection. So after every step no particle is inside a collider and none is
-///    farther from its root than its rest length along the strand (both within
-///    `kSettleSlack`), whenever the root itself is outside the colliders;
+///    frictionless collision pushes (up to `kSettleRounds`), and if they do not meet, the rounds'
+///    last point pulled back onto its tether where that lies outside the colliders (if not by
+///    their whole thickness), else the point nearest the particle on the segment from its
+///    (already settled) parent for which both hold, found by bisection. So after every step no
+///    particle is inside a collider and none is farther from its root than its rest length along
+///    the strand (both within `kSettleSlack`), whenever the root itself is outside the colliders;
 /// 4. the velocity clamp (`SolverSettings::maxSpeed`), which only moves previous positions.
 ///
 /// The head's pose at each fixed step, used by colliders and shape constraints, is a rigid

@@ -81,12 +81,23 @@ void HairSystem::settleTether(const HeadPose& pose, glm::vec3& x, const glm::vec
       return;
     }
   }
+  // They did not meet: the nearest point to p within the tether, where that lies outside the
+  // colliders if not by their whole thickness, before a search that may give up length. This is
+  // the rule, not a rare crease, for particles lying over the convex scalp.
+  glm::vec3 tethered = p;
+  projectTether(tethered, root, reach);
+  if (!(distanceSquared(tethered, root) > limit) &&
+      signedDistance(colliders_, toHeadLocal(pose.axes, pose.translation, tethered)) >= 0.0f) {
+    x = tethered;
+    return;
+  }
   bisectTether(pose, x, p, root, parent, reach);
 }
 
-// The rounds did not meet (a crease between colliders): the parent satisfies both conditions (it
-// was settled first and its tether is shorter), so keep the farthest point found by bisection on
-// the segment from the parent towards p, the rounds' last point, for which both hold.
+// Neither the rounds nor p pulled back onto its tether met (a crease between colliders): the
+// parent, settled first with a shorter tether, satisfies both conditions (unless it is a root
+// inside the thickness), so keep the farthest point found by bisection on the segment from the
+// parent towards p, the rounds' last point, for which both hold.
 void HairSystem::bisectTether(const HeadPose& pose, glm::vec3& x, const glm::vec3& p, const glm::vec3& root,
                               const glm::vec3& parent, float reach) const noexcept {
   const float limit = (reach + kSettleSlack) * (reach + kSettleSlack);

@@ -17,6 +17,7 @@
 #include "common/error.hpp"
 #include "common/strand_layout.hpp"
 #include "physics/colliders.hpp"
+#include "physics/interpolation.hpp"
 #include "physics/skinning.hpp"
 #include "render/frame.hpp"
 #include "render/hair_data.hpp"
@@ -243,6 +244,12 @@ struct GroomRendering {
   /// Vertices along each dense strand, 2..kMaxDenseStrandVertices, resampled from its guide; 0:
   /// the guides' own count.
   int verticesPerStrand = 0;
+  /// How dense strands follow the guides (physics/interpolation.hpp): each one guide plus a root
+  /// offset, rooted around it, or a blend of three guides, rooted anywhere in their triangle,
+  /// which spreads the roots over the whole scalp.
+  physics::GuideBlend guideBlend = physics::GuideBlend::kSingle;
+  /// How far each dense strand's tip is pulled towards its first guide, in [0, 1].
+  float clump = physics::DenseGroomSettings{}.clump;
 };
 
 /// Hair or fur on a mesh.

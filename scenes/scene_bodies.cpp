@@ -154,7 +154,13 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   if (strands) rendering.denseStrands = detail::read<int>(*strands, fields.child("strands"));
   const Json* vertices = fields.take("vertices_per_strand");
   if (vertices) rendering.verticesPerStrand = detail::read<int>(*vertices, fields.child("vertices_per_strand"));
+  const std::string blend = fields.optional<std::string>("guide_blend", "single");
+  require(blend == "single" || blend == "barycentric", fields.child("guide_blend"),
+          "expected \"single\" or \"barycentric\", got \"" + blend + "\"");
+  rendering.guideBlend = blend == "barycentric" ? physics::GuideBlend::kBarycentric : physics::GuideBlend::kSingle;
+  rendering.clump = fields.optional<float>("clump", rendering.clump);
   fields.finish();
+  require(rendering.clump >= 0.0f && rendering.clump <= 1.0f, fields.child("clump"), "expected a clump in [0, 1]");
   require(!strands || (rendering.denseStrands >= 1 && rendering.denseStrands <= kMaxDenseStrands),
           fields.child("strands"), "expected a dense strand count in 1.." + std::to_string(kMaxDenseStrands));
   require(!vertices || (rendering.verticesPerStrand >= 2 && rendering.verticesPerStrand <= kMaxDenseStrandVertices),

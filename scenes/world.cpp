@@ -408,7 +408,7 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
     const std::size_t denseStrands = groom.rendering.denseStrands > 0
                                          ? static_cast<std::size_t>(groom.rendering.denseStrands)
                                          : std::max(kDefaultDenseStrands, guides.size());
-    std::optional<DenseStrandLayout> dense = denseGroom(guides, denseStrands, groom.rendering.verticesPerStrand);
+    std::optional<DenseStrandLayout> dense = denseGroom(guides, denseStrands, groom.rendering);
     std::vector<render::HairStrandLook> denseLooks;
     if (dense) denseLooks = denseStrandLooks(*dense, looks.guides);
     grooms_.push_back(SimulatedGroom{meshIndex, std::move(*hair), sceneGroom, std::move(dense), std::move(denseLooks),
@@ -420,10 +420,12 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
 }
 
 std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<glm::vec3>> guides,
-                                                   std::size_t strandCount, int verticesPerStrand) {
+                                                   std::size_t strandCount, const GroomRendering& rendering) {
   physics::DenseGroomSettings settings;
   settings.strandCount = strandCount;
-  settings.verticesPerStrand = static_cast<std::size_t>(verticesPerStrand);
+  settings.verticesPerStrand = static_cast<std::size_t>(rendering.verticesPerStrand);
+  settings.blend = rendering.guideBlend;
+  settings.clump = rendering.clump;
   auto layout = physics::buildDenseStrandLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
   return std::move(*layout);

@@ -231,10 +231,10 @@ private:
   glm::mat4 bodyPlacement(std::size_t mesh, double time) const;
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
-  /// `strandCount` dense strands of `verticesPerStrand` vertices (0: the guides' count) drawn for
-  /// `guides` (rest shape, equal point counts), or none.
+  /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts) as
+  /// `rendering` lays them out (vertices per strand, guide blend, clump), or none.
   static std::optional<DenseStrandLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,
-                                                     std::size_t strandCount, int verticesPerStrand);
+                                                     std::size_t strandCount, const GroomRendering& rendering);
 
   Scene scene_;
   std::vector<LoadedMesh> meshes_;

@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "physics/colliders.hpp"
+#include "physics/constraints.hpp"
 #include "physics/detail/collision_lanes.hpp"
 
 #if MANE_STRAND_LANES_AVX2
@@ -125,11 +126,20 @@ MANE_AVX2 inline __m256 outsideColliders(const ColliderSet& set, const lanes::Fi
   return butNot(clear, both(sampling, _mm256_cmp_ps(value, level, _CMP_LT_OQ)));
 }
 
-/// After repairTethersAvx2: HairSystem::bisectTether for each of the `count` particles whose
-/// slots (ascending, as floats) are in `unmet`, in that order: `halvings` bisection steps on the
-/// segment from the parent's final position towards the particle, keeping the farthest point
-/// within the tether (reach + `slack`) and at least thickness − `slack` outside every collider
-/// (pose `c.pose`).
+/// HairSystem's toHeadLocal for one point: Rᵀ(x − t), each row a left-to-right dot product.
+inline glm::vec3 localPoint(const LanePose& pose, const glm::vec3& world) noexcept {
+  const glm::vec3 d = world - pose.translation;
+  return {pose.axes[0].x * d.x + pose.axes[0].y * d.y + pose.axes[0].z * d.z,
+          pose.axes[1].x * d.x + pose.axes[1].y * d.y + pose.axes[1].z * d.z,
+          pose.axes[2].x * d.x + pose.axes[2].y * d.y + pose.axes[2].z * d.z};
+}
+
+/// After repairTethersAvx2, the rest of HairSystem::settleTether for each of the `count`
+/// particles whose slots (ascending, as floats) are in `unmet`, in that order: the particle
+/// pulled back onto its tether ball where that lies outside the colliders, else (bisectTether)
+/// `halvings` bisection steps on the segment from the parent's final position towards the
+/// particle, keeping the farthest point within the tether (reach + `slack`) and at least
+/// thickness − `slack` outside every collider (pose `c.pose`).
 ///
 /// The halvings of one particle depend on each other, so the lanes look ahead instead: from an
 /// interval [good, bad], the next d halvings can only test the 2^d − 1 points
@@ -219,6 +229,19 @@ MANE_AVX2 inline void bisectTethersAvx2(const LaneColliders& c, const StrandLane
   };
   for (std::size_t u = 0; u < count; ++u) {
     const auto n = static_cast<std::size_t>(unmet[u]);
+    {  // the particle pulled back onto its tether ball, where that lies outside the colliders
+      const std::size_t r = n % kBlockLanes;
+      const glm::vec3 root(block.x[r], block.y[r], block.z[r]);
+      const float limit = (block.reach[n] + slack) * (block.reach[n] + slack);
+      glm::vec3 tethered(block.x[n], block.y[n], block.z[n]);
+      projectTether(tethered, root, block.reach[n]);
+      const glm::vec3 fromRoot = tethered - root;
+      if (!(fromRoot.x * fromRoot.x + fromRoot.y * fromRoot.y + fromRoot.z * fromRoot.z > limit) &&
+          signedDistance(set, localPoint(c.pose, tethered)) >= 0.0f) {
+        block.x[n] = tethered.x, block.y[n] = tethered.y, block.z[n] = tethered.z;
+        continue;
+      }
+    }
     bool parentSearching = false;
     for (int g = 0; g < searching; ++g) parentSearching = parentSearching || slot[g] + kBlockLanes == n;
     if (parentSearching || searching == kMost) settle();

@@ -272,6 +272,8 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
   EXPECT_EQ(rendering.settings.shadowExtinction, defaults.shadowExtinction);
   EXPECT_EQ(rendering.denseStrands, 0);
   EXPECT_EQ(rendering.verticesPerStrand, 0);
+  EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kSingle);
+  EXPECT_FLOAT_EQ(rendering.clump, 0.3f);
   // Nothing given: a groom file's own widths, opacities and colours may fill them in.
   EXPECT_FALSE(rendering.colour.has_value());
   EXPECT_FALSE(rendering.given.width || rendering.given.tipWidthScale || rendering.given.opacity);
@@ -283,7 +285,8 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   auto scene = parseScene(groomScene(R"(, "source": "procedural",
       "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
                  "colour": [0.5, 0.25, 0], "min_pixel_width": 0.25, "shadow_extinction": 3.5,
-                 "strands": 1000000, "vertices_per_strand": 4096})"),
+                 "strands": 1000000, "vertices_per_strand": 4096, "guide_blend": "barycentric",
+                 "clump": 1})"),
                           "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering& rendering = scene->grooms[0].rendering;
@@ -295,6 +298,8 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_FLOAT_EQ(rendering.settings.shadowExtinction, 3.5f);
   EXPECT_EQ(rendering.denseStrands, 1'000'000);
   EXPECT_EQ(rendering.verticesPerStrand, 4096);
+  EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kBarycentric);
+  EXPECT_FLOAT_EQ(rendering.clump, 1.0f);
   EXPECT_EQ(rendering.colour, glm::vec3(0.5f, 0.25f, 0.0f));
   EXPECT_TRUE(rendering.given.width && rendering.given.tipWidthScale && rendering.given.opacity);
   // The closed ends of the ranges are accepted.
@@ -384,6 +389,12 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
     EXPECT_EQ(renderError(std::string(R"({"vertices_per_strand": )") + vertices + "}"),
               "dir/bad.json: grooms[0].render.vertices_per_strand: expected 2..4096 vertices per strand")
         << vertices;
+  EXPECT_EQ(renderError(R"({"guide_blend": "triangle"})"),
+            "dir/bad.json: grooms[0].render.guide_blend: expected \"single\" or \"barycentric\", got \"triangle\"");
+  for (const char* clump : {"-0.1", "1.5"})
+    EXPECT_EQ(renderError(std::string(R"({"clump": )") + clump + "}"),
+              "dir/bad.json: grooms[0].render.clump: expected a clump in [0, 1]")
+        << clump;
   EXPECT_EQ(renderError(R"({"strands": 2.5})"),
             "dir/bad.json: grooms[0].render.strands: expected an integer, got a fraction");
   const std::string typo = renderError(R"({"color": [1, 0, 0]})");
@@ -558,7 +569,9 @@ TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
   for (const std::string& name : groom.sources) EXPECT_NE(resolver.find(name), nullptr) << name;
 }
 
-TEST(Scene, NaluWritesOutTheDefaultLookAndShadows) {
+TEST(Scene, NaluWritesOutItsLookAndShadows) {
+  // The defaults but for the layout: rooted over the whole scalp between three guides and drawn
+  // only a little towards them, so that 4,095 strands read as a mass rather than as tufts.
   auto scene = loadScene(kScenes / "nalu.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering defaults;
@@ -566,6 +579,8 @@ TEST(Scene, NaluWritesOutTheDefaultLookAndShadows) {
   EXPECT_EQ(rendering.look, defaults.look);
   EXPECT_EQ(rendering.settings.width, defaults.settings.width);
   EXPECT_EQ(rendering.settings.tipWidthScale, defaults.settings.tipWidthScale);
+  EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kBarycentric);
+  EXPECT_FLOAT_EQ(rendering.clump, 0.1f);
   EXPECT_EQ(rendering.settings.opacity, defaults.settings.opacity);
   EXPECT_EQ(rendering.settings.minimumPixelWidth, defaults.settings.minimumPixelWidth);
   EXPECT_EQ(rendering.settings.shadowExtinction, defaults.settings.shadowExtinction);
