@@ -1,7 +1,8 @@
 // Colliders (physics/colliders.hpp): analytic sphere and capsule distances, projection to the
 // surface, Coulomb friction against its analytic laws, the culls and the AVX2 field lanes
-// against the scalar field, and a violent head shake in which no hair particle may end a step
-// inside a sphere, a capsule or a mesh SDF.
+// against the scalar field, a violent head shake in which no hair particle may end a step
+// inside a sphere, a capsule or a mesh SDF, and strands draped over a head that keep every
+// segment.
 
 #include <algorithm>
 #include <cmath>
@@ -383,12 +384,6 @@ TEST(Colliders, NoHairParticleEndsAStepInsideTheHeadOrBeyondItsTetherDuringAViol
       static_cast<double>(deepest), touching, static_cast<double>(worstStretch));
   EXPECT_GT(touching, 1000);  // the test exercises contact, not empty space
 }
-
-}  // namespace
-}  // namespace mane::physics
-
-namespace mane::physics {
-namespace {
 
 TEST(Colliders, StrandsDrapedOverTheHeadKeepEverySegment) {
   // Roots sit on the scalp, inside the collision thickness. When a particle's collision and
