@@ -28,6 +28,9 @@ Result<void> validateStrandLayout(const DenseStrandLayout& layout) {
       layout.vertexCount > kMaxStrandVertices)
     return fail("guides and dense strands need 2 to 4096 vertices each (layout has " +
                 std::to_string(layout.guideVertexCount) + " and " + std::to_string(layout.vertexCount) + ").");
+  if (layout.curve != StrandCurve::kLinear && layout.curve != StrandCurve::kCatmullRom)
+    return fail("the layout's curve (" + std::to_string(static_cast<std::uint32_t>(layout.curve)) +
+                ") is neither linear (0) nor Catmull-Rom (1).");
   if (layout.guideFrames.size() != layout.guideCount)
     return fail("the layout has " + std::to_string(layout.guideFrames.size()) + " guide frames for " +
                 std::to_string(layout.guideCount) + " guides.");

@@ -46,6 +46,12 @@ struct DenseStrand {
 };
 static_assert(sizeof(DenseStrand) == 64, "DenseStrand is a 64-byte std430 element");
 
+/// How a dense vertex between two guide vertices is placed along each guide.
+enum class StrandCurve : std::uint32_t {
+  kLinear = 0,      ///< on the straight segment: the guides' turns stay as sharp in the dense strands
+  kCatmullRom = 1,  ///< on the uniform Catmull-Rom spline through the guide vertices: the turns round off
+};
+
 /// Everything interpolation needs, built once from the guides' rest shape.
 struct DenseStrandLayout {
   std::uint32_t guideCount = 0;            ///< guides the layout was built for
@@ -53,12 +59,13 @@ struct DenseStrandLayout {
   std::uint32_t vertexCount = 0;           ///< Nd, vertices per dense strand, in [2, kMaxStrandVertices]
   std::vector<GuideFrameRef> guideFrames;  ///< one per guide
   std::vector<DenseStrand> strands;        ///< one per dense strand
+  StrandCurve curve = StrandCurve::kCatmullRom;  ///< how dense vertices follow each guide
 
   /// Number of dense vertices the interpolated output holds: strands × Nd.
   [[nodiscard]] std::size_t vertexTotal() const noexcept { return strands.size() * vertexCount; }
 };
 
-/// Checks a layout: not empty, vertex counts in range, one frame per guide, guide indices and
+/// Checks a layout: not empty, vertex counts in range, a known curve, one frame per guide, guide indices and
 /// frame partners in range, weights finite and summing to 1 within 1e-5, offsets finite, clump in
 /// [0, 1], vertexScale keeping every dense vertex on its guides. The message names the first bad
 /// guide or dense strand and starts in lower case, for the caller to put its own subject before.

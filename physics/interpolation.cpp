@@ -167,6 +167,8 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     return bad("neighbourCandidates", "in [2, 8]");
   if (settings.blend != GuideBlend::kSingle && settings.blend != GuideBlend::kBarycentric)
     return bad("blend", "kSingle or kBarycentric");
+  if (settings.curve != StrandCurve::kLinear && settings.curve != StrandCurve::kCatmullRom)
+    return bad("curve", "kLinear or kCatmullRom");
 
   if (restGuides.empty()) return fail("Dense groom: the guide groom is empty; at least one guide strand is needed.");
   if (restGuides.size() > std::numeric_limits<std::uint32_t>::max() - 1)
@@ -193,6 +195,7 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
   layout.guideVertexCount = static_cast<std::uint32_t>(guideVertices);
   layout.vertexCount =
       static_cast<std::uint32_t>(settings.verticesPerStrand == 0 ? guideVertices : settings.verticesPerStrand);
+  layout.curve = settings.curve;
 
   std::vector<glm::vec3> roots(guideCount);
   for (std::size_t g = 0; g < guideCount; ++g) roots[g] = restGuides[g][0];
@@ -288,22 +291,59 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
 
 namespace {
 
-// Step 2 of the header's formula for one strand with K guides. K is a template parameter only so
-// that the compiler unrolls the guide loop; the operations are those of the formula, in order.
-template <std::uint32_t K>
+// The header's vertex beyond a guide's end `end`, from the vertices `next` and (on guides of three
+// or more) `third` inwards from it.
+glm::vec3 beyondEnd(const glm::vec3& end, const glm::vec3& next, const glm::vec3* third) {
+  if (third == nullptr) return end + (end - next);
+  return 3.0f * (end - next) + *third;
+}
+
+// The point at (v, f) along one guide, by the header's formula for the curve. `last` = Ng − 1.
+template <StrandCurve Curve>
+glm::vec3 alongGuide(const glm::vec3* guide, std::uint32_t v, std::uint32_t last, float f) {
+  if constexpr (Curve == StrandCurve::kLinear) {
+    return (1.0f - f) * guide[v] + f * guide[v + 1];
+  } else {
+    const float f2 = f * f;
+    const float f3 = f2 * f;
+    const float a = 0.5f * ((2.0f * f2 - f3) - f);
+    const float b = 0.5f * ((3.0f * f3 - 5.0f * f2) + 2.0f);
+    const float c = 0.5f * ((4.0f * f2 - 3.0f * f3) + f);
+    const float d = 0.5f * (f3 - f2);
+    const glm::vec3 p0 = v > 0 ? guide[v - 1] : beyondEnd(guide[0], guide[1], last > 1 ? &guide[2] : nullptr);
+    const glm::vec3 p3 =
+        v + 1 < last ? guide[v + 2] : beyondEnd(guide[last], guide[last - 1], last > 1 ? &guide[last - 2] : nullptr);
+    return ((a * p0 + b * guide[v]) + c * guide[v + 1]) + d * p3;
+  }
+}
+
+// Step 2 of the header's formula for one strand with K guides. K and the curve are template
+// parameters only so that the compiler unrolls the guide loop and drops the other curve; the
+// operations are those of the formula, in order.
+template <std::uint32_t K, StrandCurve Curve>
 void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std::uint32_t lastSegment, const float* t,
                        std::size_t nd, const glm::vec3& offset, const glm::vec3& jitter, glm::vec3* p) {
+  const std::uint32_t last = lastSegment + 1;
   for (std::size_t i = 0; i < nd; ++i) {
     const float u = static_cast<float>(i) * strand.vertexScale;
     const std::uint32_t v = std::min(static_cast<std::uint32_t>(u), lastSegment);
     const float f = u - static_cast<float>(v);
-    const float rf = 1.0f - f;
-    const glm::vec3 l0 = rf * g[0][v] + f * g[0][v + 1];
+    const glm::vec3 l0 = alongGuide<Curve>(g[0], v, last, f);
     glm::vec3 b = strand.weights[0] * l0;
-    for (std::uint32_t k = 1; k < K; ++k) b = b + strand.weights[k] * (rf * g[k][v] + f * g[k][v + 1]);
+    for (std::uint32_t k = 1; k < K; ++k) b = b + strand.weights[k] * alongGuide<Curve>(g[k], v, last, f);
     const float h = strand.clump * t[i];
     const float q = 1.0f - h;
     p[i] = (b + h * (l0 - b)) + q * (offset + t[i] * jitter);
+  }
+}
+
+template <StrandCurve Curve>
+void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std::uint32_t lastSegment, const float* t,
+                       std::size_t nd, const glm::vec3& offset, const glm::vec3& jitter, glm::vec3* p) {
+  switch (strand.guideCount) {
+    case 1: interpolateStrand<1, Curve>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
+    case 2: interpolateStrand<2, Curve>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
+    default: interpolateStrand<3, Curve>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
   }
 }
 
@@ -337,11 +377,10 @@ void interpolateRange(std::span<const glm::vec3> guides, const DenseStrandLayout
     const glm::vec3* g[3] = {nullptr, nullptr, nullptr};
     for (std::uint32_t k = 0; k < strand.guideCount; ++k) g[k] = guides.data() + strand.guides[k] * ng;
     glm::vec3* p = out.data() + s * nd;
-    switch (strand.guideCount) {
-      case 1: interpolateStrand<1>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
-      case 2: interpolateStrand<2>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
-      default: interpolateStrand<3>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
-    }
+    if (layout.curve == StrandCurve::kLinear)
+      interpolateStrand<StrandCurve::kLinear>(strand, g, lastSegment, t, nd, offset, jitter, p);
+    else
+      interpolateStrand<StrandCurve::kCatmullRom>(strand, g, lastSegment, t, nd, offset, jitter, p);
 
     if (tangents.empty()) continue;
     glm::vec3* tangent = tangents.data() + s * nd;

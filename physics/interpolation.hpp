@@ -40,7 +40,20 @@
 // 2. For each dense vertex i in [0, Nd):
 //        u  = float(i) * vertexScale                 guide-vertex coordinate, u ≤ Ng − 1
 //        v  = min(uint(u), Ng − 2);  f = u − float(v)
-//        L_k = (1 − f) * G[g[k]][v] + f * G[g[k]][v + 1]          (k < K)
+//    L_k, the point at u along guide g[k] (k < K), by the layout's curve:
+//      linear:      L_k = (1 − f) * G[g[k]][v] + f * G[g[k]][v + 1]
+//      Catmull-Rom: the uniform spline through the guide's vertices (it passes through each
+//                   of them and reproduces evenly spaced points on a line), with
+//                   f2 = f * f,  f3 = f2 * f and the weights
+//                     a = 0.5 * ((2 * f2 − f3) − f)       b = 0.5 * ((3 * f3 − 5 * f2) + 2)
+//                     c = 0.5 * ((4 * f2 − 3 * f3) + f)   d = 0.5 * (f3 − f2)
+//                   L_k = ((a * P0 + b * P1) + c * P2) + d * P3,  P0..P3 = G[g[k]][v − 1 .. v + 2],
+//                   the guide extended past its ends by the parabola through its last three
+//                   vertices, so that the end segments bend as their neighbours do:
+//                     G[−1] := 3 * (G[0] − G[1]) + G[2],  G[Ng] := 3 * (G[Ng−1] − G[Ng−2]) + G[Ng−3],
+//                   or, on a guide of 2 vertices, the straight line: G[−1] := G[0] + (G[0] − G[1]),
+//                   G[2] := G[1] + (G[1] − G[0]).
+//                   At f = 0 and f = 1 the weights are exactly (0, 1, 0, 0) and (0, 0, 1, 0).
 //        B  = w[0] * L_0;  B = B + w[1] * L_1;  B = B + w[2] * L_2  (only terms with k < K)
 //        t  = float(i) / float(Nd − 1)               0 at the root, 1 at the tip
 //        h  = c * t;  q = 1 − h
@@ -81,6 +94,10 @@ struct DenseGroomSettings {
   std::size_t strandCount = 4095;  ///< dense strands to generate (≥ 1); Nalu: 4,095
   /// Vertices per dense strand (≥ 2), or 0 for the guides' vertex count.
   std::size_t verticesPerStrand = 0;
+  /// How dense vertices follow each guide between its vertices. A guide of a few particles
+  /// turns by tens of degrees at some of them; the spline spreads each turn over the dense
+  /// vertices around it, so more dense than guide vertices give a smooth strand.
+  StrandCurve curve = StrandCurve::kCatmullRom;
   GuideBlend blend = GuideBlend::kSingle;
   /// Single guide: root offsets lie in a disc in the guide root's tangent plane (e1, e2) whose
   /// radius is this fraction of the distance from the guide root to its nearest other guide

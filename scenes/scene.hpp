@@ -248,6 +248,9 @@ struct GroomRendering {
   /// offset, rooted around it, or a blend of three guides, rooted anywhere in their triangle,
   /// which spreads the roots over the whole scalp.
   physics::GuideBlend guideBlend = physics::GuideBlend::kSingle;
+  /// How dense strands run between their guides' vertices: a Catmull-Rom spline, which rounds
+  /// the guides' turns off, or straight segments, which keep them.
+  StrandCurve curve = StrandCurve::kCatmullRom;
   /// How far each dense strand's tip is pulled towards its first guide, in [0, 1].
   float clump = physics::DenseGroomSettings{}.clump;
 };

@@ -158,6 +158,10 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   require(blend == "single" || blend == "barycentric", fields.child("guide_blend"),
           "expected \"single\" or \"barycentric\", got \"" + blend + "\"");
   rendering.guideBlend = blend == "barycentric" ? physics::GuideBlend::kBarycentric : physics::GuideBlend::kSingle;
+  const std::string curve = fields.optional<std::string>("curve", "catmull_rom");
+  require(curve == "catmull_rom" || curve == "linear", fields.child("curve"),
+          "expected \"catmull_rom\" or \"linear\", got \"" + curve + "\"");
+  rendering.curve = curve == "linear" ? StrandCurve::kLinear : StrandCurve::kCatmullRom;
   rendering.clump = fields.optional<float>("clump", rendering.clump);
   fields.finish();
   require(rendering.clump >= 0.0f && rendering.clump <= 1.0f, fields.child("clump"), "expected a clump in [0, 1]");

@@ -425,6 +425,7 @@ std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<g
   settings.strandCount = strandCount;
   settings.verticesPerStrand = static_cast<std::size_t>(rendering.verticesPerStrand);
   settings.blend = rendering.guideBlend;
+  settings.curve = rendering.curve;
   settings.clump = rendering.clump;
   auto layout = physics::buildDenseStrandLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give

@@ -232,7 +232,7 @@ private:
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
   /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts) as
-  /// `rendering` lays them out (vertices per strand, guide blend, clump), or none.
+  /// `rendering` lays them out (vertices per strand, curve, guide blend, clump), or none.
   static std::optional<DenseStrandLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,
                                                      std::size_t strandCount, const GroomRendering& rendering);
 

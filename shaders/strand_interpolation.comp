@@ -39,6 +39,7 @@ layout(push_constant) uniform Counts {
   uint strandCount;       // dense strands
   uint guideVertexCount;  // Ng, vertices per guide (≥ 2)
   uint vertexCount;       // Nd, vertices per dense strand (≥ 2)
+  uint curve;             // 0: linear, 1: Catmull-Rom (common/strand_layout.hpp's StrandCurve)
 } counts;
 
 vec3 guidePoint(uint guide, uint vertex) {
@@ -67,22 +68,47 @@ vec3 normalize3(vec3 a) {
   return vec3(x, y, z);
 }
 
+// The formula's vertex beyond a guide's end `end`, from the vertex `next` inwards from it and,
+// on guides of three or more vertices, the one after, vertex `third` of `guide`.
+vec3 beyondEnd(vec3 end, vec3 next, uint guide, uint third) {
+  if (counts.guideVertexCount < 3u) {
+    precise vec3 line = end + (end - next);
+    return line;
+  }
+  precise vec3 parabola = 3.0 * (end - next) + guidePoint(guide, third);
+  return parabola;
+}
+
+// The point at (v, f) along one guide, by the formula's curve.
+vec3 alongGuide(uint guide, uint v, float f) {
+  const uint last = counts.guideVertexCount - 1u;
+  const vec3 p1 = guidePoint(guide, v);
+  const vec3 p2 = guidePoint(guide, v + 1u);
+  if (counts.curve == 0u) {
+    precise vec3 linear = (1.0 - f) * p1 + f * p2;
+    return linear;
+  }
+  precise float f2 = f * f;
+  precise float f3 = f2 * f;
+  precise float a = 0.5 * ((2.0 * f2 - f3) - f);
+  precise float b = 0.5 * ((3.0 * f3 - 5.0 * f2) + 2.0);
+  precise float c = 0.5 * ((4.0 * f2 - 3.0 * f3) + f);
+  precise float d = 0.5 * (f3 - f2);
+  precise vec3 p0 = v > 0u ? guidePoint(guide, v - 1u) : beyondEnd(p1, p2, guide, 2u);
+  precise vec3 p3 = v + 1u < last ? guidePoint(guide, v + 2u) : beyondEnd(p2, p1, guide, last - 2u);
+  precise vec3 spline = ((a * p0 + b * p1) + c * p2) + d * p3;
+  return spline;
+}
+
 // Step 2 of the formula for dense vertex i; `offset` = O and `jitter` = J from step 1.
 vec3 densePoint(DenseStrand strand, uint i, vec3 offset, vec3 jitter) {
   precise float u = float(i) * strand.weights.w;
   const uint v = min(uint(u), counts.guideVertexCount - 2u);
   precise float f = u - float(v);
-  precise float rf = 1.0 - f;
-  precise vec3 l0 = rf * guidePoint(strand.guides.x, v) + f * guidePoint(strand.guides.x, v + 1u);
+  precise vec3 l0 = alongGuide(strand.guides.x, v, f);
   precise vec3 b = strand.weights.x * l0;
-  if (strand.guides.w > 1u) {
-    precise vec3 l1 = rf * guidePoint(strand.guides.y, v) + f * guidePoint(strand.guides.y, v + 1u);
-    b = b + strand.weights.y * l1;
-  }
-  if (strand.guides.w > 2u) {
-    precise vec3 l2 = rf * guidePoint(strand.guides.z, v) + f * guidePoint(strand.guides.z, v + 1u);
-    b = b + strand.weights.z * l2;
-  }
+  if (strand.guides.w > 1u) b = b + strand.weights.y * alongGuide(strand.guides.y, v, f);
+  if (strand.guides.w > 2u) b = b + strand.weights.z * alongGuide(strand.guides.z, v, f);
   precise float t = float(i) / float(counts.vertexCount - 1u);
   precise float h = strand.rootOffset.w * t;
   precise float q = 1.0 - h;

@@ -17,6 +17,7 @@ struct PushConstants {
   std::uint32_t strandCount;
   std::uint32_t guideVertexCount;
   std::uint32_t vertexCount;
+  std::uint32_t curve;
 };
 
 Error strandInterpolationError(const Error& error) {
@@ -65,6 +66,7 @@ StrandInterpolationPass::StrandInterpolationPass(const Device& device, const Den
     : guideCount_(layout.guideCount),
       guideVertexCount_(layout.guideVertexCount),
       vertexCount_(layout.vertexCount),
+      curve_(layout.curve),
       strandCount_(static_cast<std::uint32_t>(layout.strands.size())),
       hostReadable_(settings.hostReadable),
       guideFrames_(layout.guideFrames.begin(), layout.guideFrames.end()) {
@@ -117,7 +119,7 @@ void StrandInterpolationPass::execute(const vk::raii::CommandBuffer& commands) c
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, {*set_}, {});
   commands.pushConstants<PushConstants>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                        PushConstants{strandCount_, guideVertexCount_, vertexCount_});
+                                        PushConstants{strandCount_, guideVertexCount_, vertexCount_, static_cast<std::uint32_t>(curve_)});
   commands.dispatch((strandCount_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
 }
 

@@ -106,6 +106,7 @@ private:
   std::uint32_t guideCount_;
   std::uint32_t guideVertexCount_;
   std::uint32_t vertexCount_;
+  StrandCurve curve_;
   std::uint32_t strandCount_;
   bool hostReadable_;
   std::vector<GuideFrameRef> guideFrames_;  ///< for updateGuides' collapsed-frame check

@@ -2,9 +2,11 @@
 // checked in double, clumping, length scale, head rotation, determinism across seeds and thread
 // counts, the Nalu and 100,000-strand sizes, and errors for bad input.
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -238,6 +240,51 @@ TEST(DenseStrands, LengthScaleShortensAlongTheGuideWithAnyVertexCount) {
     }
   }
   EXPECT_LT(worst, kRounding);
+}
+
+// A guide of 16 vertices on a circle of radius 0.1 m, 12° apart, drawn with 3 dense vertices
+// per guide segment. Straight segments keep the whole 12° turn at every guide vertex and cut
+// inside the circle: the dense vertex a third along a chord lies r·(1 − cos 6° / cos 2°) ≈
+// 0.49 mm inside. The Catmull-Rom spline spreads the turn evenly (12°/3 = 4° per dense vertex,
+// end segments included) and stays within a tenth of that of the circle.
+TEST(DenseStrands, CatmullRomSpreadsTheGuidesTurnsAlongACircle) {
+  constexpr double kRadius = 0.1;
+  constexpr double kStep = 12.0 * std::numbers::pi / 180.0;
+  std::vector<glm::vec3> arc;
+  for (int v = 0; v < 16; ++v)
+    arc.push_back(glm::vec3(glm::dvec3(kRadius * std::sin(v * kStep), kRadius * std::cos(v * kStep), 0.0)));
+  const Strands guides{arc};
+  const double inside = kRadius * (1.0 - std::cos(kStep / 2.0) / std::cos(kStep / 6.0));
+  for (const StrandCurve curve : {StrandCurve::kLinear, StrandCurve::kCatmullRom}) {
+    DenseGroomSettings settings;
+    settings.strandCount = 1;
+    settings.verticesPerStrand = 46;
+    settings.curve = curve;
+    settings.lengthVariation = 0.0f;
+    settings.clump = 0.0f;
+    settings.clumpVariation = 0.0f;
+    settings.rootSpread = 0.0f;
+    settings.tipJitter = 0.0f;
+    const std::vector<glm::vec3> dense = interpolate(guides, *buildDenseStrandLayout(guides, settings));
+    double sharpest = 0.0, gentlest = 180.0, farthest = 0.0;
+    for (std::size_t i = 1; i + 1 < dense.size(); ++i) {
+      const glm::dvec3 in = glm::normalize(glm::dvec3(dense[i] - dense[i - 1]));
+      const glm::dvec3 out = glm::normalize(glm::dvec3(dense[i + 1] - dense[i]));
+      const double turn = std::acos(std::clamp(glm::dot(in, out), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+      sharpest = std::max(sharpest, turn);
+      gentlest = std::min(gentlest, turn);
+    }
+    for (std::size_t i = 0; i < dense.size(); ++i)
+      farthest = std::max(farthest, std::abs(glm::length(glm::dvec3(dense[i])) - kRadius));
+    if (curve == StrandCurve::kLinear) {
+      EXPECT_NEAR(sharpest, 12.0, 1e-3);
+      EXPECT_NEAR(farthest, inside, 1e-6);
+    } else {
+      EXPECT_LT(sharpest, 4.5);
+      EXPECT_GT(gentlest, 3.5);
+      EXPECT_LT(farthest, inside / 10.0);
+    }
+  }
 }
 
 // The layout is built once at rest; when the head (and so every guide) moves rigidly, the dense

@@ -58,6 +58,8 @@ public:
     EXPECT_EQ(positions.size(), layout.strands.size() * layout.vertexCount);
     return {{positions.begin(), positions.end()}, {tangents.begin(), tangents.end()}};
   }
+
+  void expectGuidePlusOffset(StrandCurve curve);
 };
 
 // ---- The real groom against the CPU reference ------------------------------------------------
@@ -92,8 +94,10 @@ double boundingSize(std::span<const glm::vec3> points) {
 }
 
 void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<glm::vec3>>& rest,
-                     std::span<const glm::vec3> moved, physics::GuideBlend blend, std::size_t verticesPerStrand) {
+                     std::span<const glm::vec3> moved, physics::GuideBlend blend, std::size_t verticesPerStrand,
+                     StrandCurve curve = StrandCurve::kCatmullRom) {
   physics::DenseGroomSettings settings;
+  settings.curve = curve;
   settings.seed = 7;
   settings.strandCount = 10000;
   settings.blend = blend;
@@ -116,9 +120,10 @@ void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<gl
   const Comparison error = compare(gpu, positions, tangents);
   const double size = boundingSize(positions);
   std::printf(
-      "  %s, %zu dense strands x %u vertices: max position error %.3g m (%.3g of the %.3f m groom), "
+      "  %s, %s, %zu dense strands x %u vertices: max position error %.3g m (%.3g of the %.3f m groom), "
       "max tangent error %.3g, %zu of %zu floats differ in any bit\n",
-      blend == physics::GuideBlend::kSingle ? "single guide" : "barycentric", layout->strands.size(),
+      blend == physics::GuideBlend::kSingle ? "single guide" : "barycentric",
+      curve == StrandCurve::kLinear ? "linear" : "Catmull-Rom", layout->strands.size(),
       layout->vertexCount, error.positionError, error.positionError / size, size, error.tangentError,
       error.differingBits, positions.size() * 6);
   // Positions: per coordinate, relative to the groom's bounding-box diagonal. Tangents: per
@@ -161,6 +166,7 @@ TEST_F(StrandInterpolation, MatchesTheCpuReferenceOnTheSimulatedPonytail) {
 
   checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kSingle, 0);
   checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kBarycentric, 24);
+  checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kBarycentric, 24, StrandCurve::kLinear);
 }
 
 // ---- Synthetic layouts with closed-form answers ---------------------------------------------
@@ -177,7 +183,33 @@ std::vector<glm::vec3> curledGuide() {
   return points;
 }
 
+// The point at u along a guide, in double. Catmull-Rom in its Hermite form: the cubic between
+// vertices v and v + 1 whose end tangents are half the differences of their neighbours, the
+// guide extended at its ends by the parabola through its last three vertices.
+glm::dvec3 onGuide(const std::vector<glm::vec3>& guide, double u, StrandCurve curve) {
+  const auto last = static_cast<std::uint32_t>(guide.size() - 1);
+  const std::uint32_t v = std::min<std::uint32_t>(std::uint32_t(u), last - 1);
+  const double f = u - v;
+  const glm::dvec3 p1(guide[v]), p2(guide[v + 1]);
+  if (curve == StrandCurve::kLinear) return (1.0 - f) * p1 + f * p2;
+  const auto parabola = [&](std::uint32_t end, int inwards) {
+    const glm::dvec3 p(guide[end]), q(guide[end + inwards]), r(guide[end + 2 * inwards]);
+    return 3.0 * p - 3.0 * q + r;
+  };
+  const glm::dvec3 p0 = v > 0 ? glm::dvec3(guide[v - 1]) : parabola(0, 1);
+  const glm::dvec3 p3 = v + 1 < last ? glm::dvec3(guide[v + 2]) : parabola(last, -1);
+  const glm::dvec3 m1 = 0.5 * (p2 - p0), m2 = 0.5 * (p3 - p1);
+  const double f2 = f * f, f3 = f2 * f;
+  return (2 * f3 - 3 * f2 + 1) * p1 + (f3 - 2 * f2 + f) * m1 + (3 * f2 - 2 * f3) * p2 + (f3 - f2) * m2;
+}
+
 TEST_F(StrandInterpolation, EqualGuidesGiveTheGuidePlusTheOffsetInTheFixedAxes) {
+  for (const StrandCurve curve : {StrandCurve::kLinear, StrandCurve::kCatmullRom})
+    expectGuidePlusOffset(curve);
+}
+
+void StrandInterpolation::expectGuidePlusOffset(StrandCurve curve) {
+  SCOPED_TRACE(curve == StrandCurve::kLinear ? "linear" : "Catmull-Rom");
   // Three identical guides with no frame partners: the frame is the fixed axes (x, y, z), and
   // any weights blend the guide with itself, so vertex i of a strand is exactly
   //   G(u) + (1 − c·t)·(o + t·j),  u = i·vertexScale,  t = i/(Nd − 1)
@@ -214,7 +246,8 @@ TEST_F(StrandInterpolation, EqualGuidesGiveTheGuidePlusTheOffsetInTheFixedAxes) 
                                  .guideVertexCount = kGuideVertices,
                                  .vertexCount = kDenseVertices,
                                  .guideFrames = frames,
-                                 .strands = strands};
+                                 .strands = strands,
+                                 .curve = curve};
   const GpuResult gpu = interpolate(layout, guides);
   ASSERT_EQ(gpu.positions.size(), strands.size() * kDenseVertices);
 
@@ -224,15 +257,12 @@ TEST_F(StrandInterpolation, EqualGuidesGiveTheGuidePlusTheOffsetInTheFixedAxes) 
   for (std::size_t s = 0; s < strands.size(); ++s) {
     const DenseStrand& strand = strands[s];
     for (std::uint32_t i = 0; i < kDenseVertices; ++i) {
-      const double u = double(i) * strand.vertexScale;
-      const std::uint32_t v = std::min<std::uint32_t>(std::uint32_t(u), kGuideVertices - 2);
-      const double f = u - v;
+      const glm::dvec3 point = onGuide(guide, double(i) * strand.vertexScale, curve);
       const double t = double(i) / (kDenseVertices - 1);
       const double scale = 1.0 - strand.clump * t;
       const glm::vec4 got = gpu.positions[s * kDenseVertices + i];
       for (int c = 0; c < 3; ++c) {
-        const double onGuide = (1.0 - f) * guide[v][c] + f * guide[v + 1][c];
-        const double expected = onGuide + scale * (double(strand.rootOffset[c]) + t * strand.tipJitter[c]);
+        const double expected = point[c] + scale * (double(strand.rootOffset[c]) + t * strand.tipJitter[c]);
         EXPECT_NEAR(got[c], expected, tolerance) << "strand " << s << ", vertex " << i << ", axis " << c;
       }
     }

@@ -273,6 +273,7 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
   EXPECT_EQ(rendering.denseStrands, 0);
   EXPECT_EQ(rendering.verticesPerStrand, 0);
   EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kSingle);
+  EXPECT_EQ(rendering.curve, StrandCurve::kCatmullRom);
   EXPECT_FLOAT_EQ(rendering.clump, 0.3f);
   // Nothing given: a groom file's own widths, opacities and colours may fill them in.
   EXPECT_FALSE(rendering.colour.has_value());
@@ -286,7 +287,7 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
       "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
                  "colour": [0.5, 0.25, 0], "min_pixel_width": 0.25, "shadow_extinction": 3.5,
                  "strands": 1000000, "vertices_per_strand": 4096, "guide_blend": "barycentric",
-                 "clump": 1})"),
+                 "curve": "linear", "clump": 1})"),
                           "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering& rendering = scene->grooms[0].rendering;
@@ -299,6 +300,7 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_EQ(rendering.denseStrands, 1'000'000);
   EXPECT_EQ(rendering.verticesPerStrand, 4096);
   EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kBarycentric);
+  EXPECT_EQ(rendering.curve, StrandCurve::kLinear);
   EXPECT_FLOAT_EQ(rendering.clump, 1.0f);
   EXPECT_EQ(rendering.colour, glm::vec3(0.5f, 0.25f, 0.0f));
   EXPECT_TRUE(rendering.given.width && rendering.given.tipWidthScale && rendering.given.opacity);
@@ -391,6 +393,8 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
         << vertices;
   EXPECT_EQ(renderError(R"({"guide_blend": "triangle"})"),
             "dir/bad.json: grooms[0].render.guide_blend: expected \"single\" or \"barycentric\", got \"triangle\"");
+  EXPECT_EQ(renderError(R"({"curve": "bezier"})"),
+            "dir/bad.json: grooms[0].render.curve: expected \"catmull_rom\" or \"linear\", got \"bezier\"");
   for (const char* clump : {"-0.1", "1.5"})
     EXPECT_EQ(renderError(std::string(R"({"clump": )") + clump + "}"),
               "dir/bad.json: grooms[0].render.clump: expected a clump in [0, 1]")
