@@ -43,9 +43,10 @@ std::vector<HairShadowPass::Groom> FurSurfaces::shadowCasters() const {
   std::vector<HairShadowPass::Groom> casters;
   for (const Fur& fur : furs_)
     casters.push_back({.strands = fur.pass->shadowStrands(),
-                       .width = fur.pass->meanEdgeLength(),
+                       .width = fur.pass->meanEdgeLength(),  // object space until the first update()
                        .opacity = kFurColumnOpacity,
-                       .extinction = 1.0f});
+                       .extinction = 1.0f,
+                       .resolution = fur.pass->shadowResolution()});
   return casters;
 }
 

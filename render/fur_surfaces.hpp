@@ -4,9 +4,9 @@
 // shells test against). The surface pass leaves those instances to this while
 // FrameInput::furShells is on. Each fur receives the frame's hair shadows and casts into them:
 // the renderer registers shadowCasters() after its grooms (HairShadowPass keeps up to 4 maps).
-// Fur opacity in the map: each vertex's strand stands for a column of fur one mean edge wide
-// (object space: an instance scaled far from 1 gets too wide or narrow a shadow), and each
-// column crossed keeps exp(−κ·o) = exp(−kFurColumnOpacity) of the light. The body itself is not
+// Fur opacity in the map: each vertex's strand stands for a column of fur one mean edge wide (at
+// the instance's scale), in a map whose texel spans about one such column (so that the columns
+// fill it), and each column crossed keeps exp(−κ·o) = exp(−kFurColumnOpacity) of the light. The body itself is not
 // in the map: light reaching the far side has crossed the fur twice, not been stopped.
 
 #include <memory>
@@ -37,6 +37,8 @@ public:
   /// Whether fur `fur` was drawn by the last update(); its shadowBounds() are then current.
   [[nodiscard]] bool drawn(std::size_t fur) const { return furs_.at(fur).drawn; }
   [[nodiscard]] const BoundingSphere& shadowBounds(std::size_t fur) const { return furs_.at(fur).pass->shadowBounds(); }
+  /// The width its shadow strands stand for, metres, as of the last update() that drew it.
+  [[nodiscard]] float shadowColumnWidth(std::size_t fur) const { return furs_.at(fur).pass->shadowColumnWidth(); }
 
   /// FurPass::refreshShadows of every fur.
   void refreshShadows();

@@ -588,11 +588,17 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   if (auto posed = poseSkinnedFurs(); !posed) return std::unexpected(posed.error());
   if (auto updated = furs_.update(frame, target_.extent(), target_.aspect()); !updated)
     return std::unexpected(updated.error());
-  // Drawn furs cast shadows from where they are now (their slots follow the grooms').
+  // Drawn furs cast shadows from where they are now (their slots follow the grooms'); the others
+  // cast none.
   for (std::size_t f = 0; f < furs_.size(); ++f) {
-    if (!furs_.drawn(f)) continue;
+    if (!furs_.drawn(f)) {
+      shadows_->clearBounds(hair_.size() + f);
+      continue;
+    }
     if (auto bounded = shadows_->setBounds(hair_.size() + f, furs_.shadowBounds(f)); !bounded)
       return std::unexpected(bounded.error());
+    if (auto widened = shadows_->setStrandWidth(hair_.size() + f, furs_.shadowColumnWidth(f)); !widened)
+      return std::unexpected(widened.error());
     if (!furShadowsBound_[f]) {
       furShadowsBound_[f] = true;
       refreshShadowDescriptors();  // the fur's slot now binds its map

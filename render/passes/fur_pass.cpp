@@ -303,7 +303,8 @@ void FurPass::writeShadowStrands(const glm::mat4& model, const glm::vec3& comb) 
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
   std::vector<glm::vec4> points(2 * meshPositions_.size());
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-  const float across = 0.5f * meanEdgeLength_ * glm::length(glm::vec3(model[0]));  // half a column, world
+  shadowColumnWidth_ = meanEdgeLength_ * glm::length(glm::vec3(model[0]));
+  const float across = 0.5f * shadowColumnWidth_;  // half a column, world
   for (std::size_t v = 0; v < meshPositions_.size(); ++v) {
     // As shaders/fur_shell.vert puts the top shell (s = 1): p + h_b·(n + lean); then tilted
     // across the column (shadowStrands()).
@@ -359,6 +360,19 @@ Result<void> FurPass::setMesh(const MeshData& mesh) {
   meshNormals_.assign(mesh.normals.begin(), mesh.normals.end());
   vertexLeans_.assign(count, glm::vec3(0.0f));
   meanEdgeLength_ = edges->edges().empty() ? 0.0f : float(edgeSum / double(edges->edges().size()));
+  // Columns across the map: the square root of the surface's area in columns (on a sphere about
+  // its diameter in columns, 2√π·r against 2·r). Unlike its extent, the area barely changes as
+  // a skinned mesh bends, so the map stays the same however the body is posed.
+  double area = 0.0;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::dvec3 a(mesh.positions[mesh.indices[t]]), b(mesh.positions[mesh.indices[t + 1]]),
+        c(mesh.positions[mesh.indices[t + 2]]);
+    area += 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+  const double columnsAcross = meanEdgeLength_ > 0.0f ? std::sqrt(area) / meanEdgeLength_ : 0.0;
+  // Rounded up to a multiple of 8 texels, so that a slightly different area gives the same map.
+  const double texels = 8.0 * std::ceil(columnsAcross / 8.0);
+  shadowResolution_ = static_cast<std::uint32_t>(std::clamp(texels, 16.0, 4096.0));
   writeShadowStrands(glm::mat4(1.0f), glm::vec3(0.0f));
   indexCount_ = static_cast<std::uint32_t>(mesh.indices.size());
   edges_ = std::move(*edges);

@@ -220,8 +220,16 @@ public:
   }
   /// Bounds of shadowStrands() as of the last update().
   [[nodiscard]] const BoundingSphere& shadowBounds() const { return shadowBounds_; }
-  /// Mean edge length of the mesh, object space: the width a shadow strand stands for.
+  /// Mean edge length of the mesh, object space.
   [[nodiscard]] float meanEdgeLength() const { return meanEdgeLength_; }
+  /// The width a shadow strand stands for, metres, as of the last update(): one mean edge at
+  /// the model's scale.
+  [[nodiscard]] float shadowColumnWidth() const { return shadowColumnWidth_; }
+  /// Texels per side of a shadow map whose texel spans about one mean edge of the mesh (the
+  /// square root of its area over the mean edge, rounded up to a multiple of 8; at least 16).
+  /// The strands, one per vertex, then fill every texel the fur covers: in a finer map they
+  /// would stand apart and shadow the fur in a lattice of lines.
+  [[nodiscard]] std::uint32_t shadowResolution() const { return shadowResolution_; }
 
   /// Records the shells and fins inside a dynamic rendering scope with FurPassSettings' formats
   /// (viewport and scissor set to the view's extent). Nothing before setMesh and update.
@@ -263,6 +271,8 @@ private:
   Buffer shadowStrands_;  ///< two vec4 per vertex, host-visible
   BoundingSphere shadowBounds_{};
   float meanEdgeLength_ = 0.0f;
+  float shadowColumnWidth_ = 0.0f;
+  std::uint32_t shadowResolution_ = 16;
   std::vector<glm::vec3> meshPositions_;  ///< object space, for the shadow strands
   std::vector<glm::vec3> meshNormals_;
   std::vector<glm::vec3> vertexLeans_;

@@ -1,5 +1,6 @@
 #include "render/passes/hair_shadow_pass.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -81,7 +82,9 @@ Result<void> HairShadowPass::setGrooms(std::span<const Groom> grooms, const Hair
       auto map = OpacityShadowMapPass::create(*device_, groom.strands,
                                               {.mode = mode,
                                                .builder = builder,
-                                               .resolution = settings.resolution,
+                                               .resolution = groom.resolution > 0
+                                                                 ? std::min(groom.resolution, settings.resolution)
+                                                                 : settings.resolution,
                                                .strandRadius = 0.5f * groom.width,
                                                .strandOpacity = groom.opacity,
                                                .extinction = groom.extinction});
@@ -100,6 +103,18 @@ Result<void> HairShadowPass::setBounds(std::size_t groom, const BoundingSphere& 
       !std::isfinite(hair.centre.y) || !std::isfinite(hair.centre.z))
     return fail("hair shadows: groom " + std::to_string(groom) + "'s bounding sphere is not finite and positive");
   if (groom < maps_.size()) maps_[groom].bounds = hair;
+  return {};
+}
+
+void HairShadowPass::clearBounds(std::size_t groom) {
+  if (groom < maps_.size()) maps_[groom].bounds.reset();
+}
+
+Result<void> HairShadowPass::setStrandWidth(std::size_t groom, float width) {
+  if (!(std::isfinite(width) && width > 0.0f))
+    return fail("hair shadows: groom " + std::to_string(groom) + "'s strand width " + std::to_string(width) +
+                " m is not positive and finite");
+  if (groom < maps_.size()) return maps_[groom].map->setStrandRadius(0.5f * width);
   return {};
 }
 

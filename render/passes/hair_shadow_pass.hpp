@@ -53,6 +53,9 @@ public:
     float width = 0.0f;
     float opacity = 1.0f;
     float extinction = 1.0f;
+    /// Texels per side of its map, at most the settings' (0: the settings'): coarser for casters
+    /// whose strands are sparse, so that each texel holds one and the shadow has no gaps.
+    std::uint32_t resolution = 0;
   };
   [[nodiscard]] Result<void> setGrooms(std::span<const Groom> grooms, const HairShadowSettings& settings);
 
@@ -60,6 +63,13 @@ public:
   /// slot binds its map (rewrite the descriptors then: writeDescriptors). Between frames only.
   /// Ignored for grooms without a map. Errors: a sphere that is not finite and positive.
   [[nodiscard]] Result<void> setBounds(std::size_t groom, const BoundingSphere& hair);
+  /// Groom `groom`'s strands stand for `width` metres from the next record() on (Groom::width,
+  /// for casters whose width follows their placement). Ignored for grooms without a map. Errors:
+  /// a width that is not positive and finite.
+  [[nodiscard]] Result<void> setStrandWidth(std::size_t groom, float width);
+  /// Groom `groom` casts nothing from the next record() on, until setBounds places it again
+  /// (a fur whose instance left the frame).
+  void clearBounds(std::size_t groom);
 
   /// Points the map of every groom with bounds at `towardLight` (unit, world space) for the
   /// next execute(), and sets uniforms() for it.

@@ -358,6 +358,13 @@ OpacityShadowMapPass::OpacityShadowMapPass(const Device& device, const OpacitySh
   }
 }
 
+Result<void> OpacityShadowMapPass::setStrandRadius(float radius) {
+  if (!positiveFinite(radius))
+    return fail("Opacity shadow map: strand radius " + std::to_string(radius) + " m is not positive and finite.");
+  settings_.strandRadius = radius;
+  return {};
+}
+
 Result<void> OpacityShadowMapPass::setLight(glm::vec3 towardLight, const BoundingSphere& hair) {
   if (!finite(towardLight) || std::abs(glm::length(towardLight) - 1.0f) > kUnitTolerance)
     return fail("Opacity shadow map: the light direction (" + std::to_string(towardLight.x) + ", " +

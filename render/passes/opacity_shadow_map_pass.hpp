@@ -166,6 +166,10 @@ public:
   /// nothing, when `towardLight` is not unit length (within 1e-3) or not finite, or the sphere's
   /// radius is not positive and finite.
   [[nodiscard]] Result<void> setLight(glm::vec3 towardLight, const BoundingSphere& hair);
+  /// Sets the strands' radius (OpacityShadowSettings::strandRadius, metres) for the next
+  /// record(), for strands that stand for a width known only per frame. Fails, changing
+  /// nothing, on a radius that is not positive and finite.
+  [[nodiscard]] Result<void> setStrandRadius(float radius);
 
   /// What the build reads (the positions) and writes (the map and the first depth, which it
   /// leaves in SHADER_READ_ONLY layout for fragment and compute shaders and copies), for a frame
