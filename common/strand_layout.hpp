@@ -65,10 +65,11 @@ struct DenseStrandLayout {
   [[nodiscard]] std::size_t vertexTotal() const noexcept { return strands.size() * vertexCount; }
 };
 
-/// Checks a layout: not empty, vertex counts in range, a known curve, one frame per guide, guide indices and
-/// frame partners in range, weights finite and summing to 1 within 1e-5, offsets finite, clump in
-/// [0, 1], vertexScale keeping every dense vertex on its guides. The message names the first bad
-/// guide or dense strand and starts in lower case, for the caller to put its own subject before.
+/// Checks a layout: not empty, vertex counts in range, a known curve, one frame per guide, guide
+/// indices and frame partners in range, weights finite and summing to 1 within 1e-5, offsets
+/// finite, clump in [0, 1], vertexScale keeping every dense vertex on its guides. The message
+/// names the first bad guide or dense strand and starts in lower case, for the caller to put its
+/// own subject before.
 [[nodiscard]] Result<void> validateStrandLayout(const DenseStrandLayout& layout);
 
 /// Checks one frame's guide positions (metres, guide after guide, root first) for a layout of

@@ -6,8 +6,9 @@
 // the renderer registers shadowCasters() after its grooms (HairShadowPass keeps up to 4 maps).
 // Fur opacity in the map: each vertex's strand stands for a column of fur one mean edge wide (at
 // the instance's scale), in a map whose texel spans about one such column (so that the columns
-// fill it), and each column crossed keeps exp(−κ·o) = exp(−kFurColumnOpacity) of the light. The body itself is not
-// in the map: light reaching the far side has crossed the fur twice, not been stopped.
+// fill it), and each column crossed keeps exp(−κ·o) = exp(−kFurColumnOpacity) of the light. The
+// body itself is not in the map: light reaching the far side has crossed the fur twice, not been
+// stopped.
 
 #include <memory>
 #include <span>

@@ -424,7 +424,8 @@ BENCHES: list[Bench] = [
                          f"{'3 guides' if r.args['1'] == '1' else '1 guide'}"
                          + (f", {threads(r.args['2'])}" if "2" in r.args else "")),
               [time_column(), Column("vertices/s", "items_per_second", si_rate)],
-              about="positions and tangents of dense strands × 16 from 762 guides."),
+              about="positions and tangents of dense strands × 16 from 762 guides, along the Catmull-Rom "
+                    "curve through the guides (`render.curve`)."),
     ]),
     Bench("skinning", "mane_skinning_bench", ["--benchmark_min_time=1"], True, [
         Table("Skinning", r"", skinning_label,
@@ -445,7 +446,9 @@ BENCHES: list[Bench] = [
                  (", 3 guides" if r.args.get("1") == "1" else ", 1 guide"))
               + ("" if "Copy" in r.name else f", {threads(r.args[str(len(r.args) - 1)])}"),
               [time_column(), Column("vertices/s", "items_per_second", si_rate)],
-              about="dense strands × 16 from 762 guides × 16; the copy is a memcpy of as many vertices."),
+              about="dense strands × 16 from 762 guides × 16, along the Catmull-Rom curve through the guides "
+                    "(about twice the cost of straight segments: 732 µs against 374 µs for 4,095 strands "
+                    "from one guide on 1 thread); the copy is a memcpy of as many vertices."),
     ]),
     Bench("physics", "mane_physics_bench", ["--benchmark_min_time=0.5", "--benchmark_repetitions=3"], False, [
         Table("Physics", r"^(?!BM_Character)", physics_label,

@@ -79,15 +79,14 @@ Result<void> HairShadowPass::setGrooms(std::span<const Groom> grooms, const Hair
       const OpacityShadowBuilder builder = mode == OpacityShadowMode::kOpacityShadowMap
                                                ? OpacityShadowBuilder::kCompute
                                                : OpacityShadowBuilder::kGraphics;
-      auto map = OpacityShadowMapPass::create(*device_, groom.strands,
-                                              {.mode = mode,
-                                               .builder = builder,
-                                               .resolution = groom.resolution > 0
-                                                                 ? std::min(groom.resolution, settings.resolution)
-                                                                 : settings.resolution,
-                                               .strandRadius = 0.5f * groom.width,
-                                               .strandOpacity = groom.opacity,
-                                               .extinction = groom.extinction});
+      auto map = OpacityShadowMapPass::create(
+          *device_, groom.strands,
+          {.mode = mode,
+           .builder = builder,
+           .resolution = groom.resolution > 0 ? std::min(groom.resolution, settings.resolution) : settings.resolution,
+           .strandRadius = 0.5f * groom.width,
+           .strandOpacity = groom.opacity,
+           .extinction = groom.extinction});
       if (!map) return fail("groom " + std::to_string(g) + ": " + map.error().message);
       maps.push_back({std::move(*map), std::nullopt});
     }

@@ -118,8 +118,9 @@ void StrandInterpolationPass::declare(FrameGraph::Builder& pass) const {
 void StrandInterpolationPass::execute(const vk::raii::CommandBuffer& commands) const {
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipeline_.layout, 0, {*set_}, {});
-  commands.pushConstants<PushConstants>(*pipeline_.layout, vk::ShaderStageFlagBits::eCompute, 0,
-                                        PushConstants{strandCount_, guideVertexCount_, vertexCount_, static_cast<std::uint32_t>(curve_)});
+  commands.pushConstants<PushConstants>(
+      *pipeline_.layout, vk::ShaderStageFlagBits::eCompute, 0,
+      PushConstants{strandCount_, guideVertexCount_, vertexCount_, static_cast<std::uint32_t>(curve_)});
   commands.dispatch((strandCount_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
 }
 

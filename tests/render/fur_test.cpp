@@ -416,6 +416,10 @@ TEST_F(FurPassTest, FurShadowsItsFarSideThroughTheOpacityMap) {
                                                        .extinction = 1.0f,
                                                        .resolution = (*pass)->shadowResolution()}}};
   ASSERT_TRUE((*shadows)->setGrooms(casters, {}).has_value());
+  const auto noWidth = (*shadows)->setStrandWidth(0, 0.0f);
+  ASSERT_FALSE(noWidth.has_value());
+  EXPECT_NE(noWidth.error().message.find("strand width 0.000000 m is not positive"), std::string::npos)
+      << noWidth.error().message;
   ASSERT_TRUE((*shadows)->setBounds(0, (*pass)->shadowBounds()).has_value());
   device().submitAndWait(
       [&](const vk::raii::CommandBuffer& commands) { (*shadows)->record(commands, view.light.direction); });

@@ -241,7 +241,6 @@ TEST_F(SkinnedMeshRender, BadSkinningRequestsAreErrors) {
             std::string::npos);
 }
 
-
 // Fur grown on a skinned mesh follows it: the shells and fins draw the deformed vertices, and the
 // fins' silhouette test and the fur's shadow strands take the deformed pose (FurPass::setPose).
 // Reference: the same fur on a static mesh whose bind pose is the CPU-deformed tube. Their fur

@@ -123,9 +123,9 @@ void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<gl
       "  %s, %s, %zu dense strands x %u vertices: max position error %.3g m (%.3g of the %.3f m groom), "
       "max tangent error %.3g, %zu of %zu floats differ in any bit\n",
       blend == physics::GuideBlend::kSingle ? "single guide" : "barycentric",
-      curve == StrandCurve::kLinear ? "linear" : "Catmull-Rom", layout->strands.size(),
-      layout->vertexCount, error.positionError, error.positionError / size, size, error.tangentError,
-      error.differingBits, positions.size() * 6);
+      curve == StrandCurve::kLinear ? "linear" : "Catmull-Rom", layout->strands.size(), layout->vertexCount,
+      error.positionError, error.positionError / size, size, error.tangentError, error.differingBits,
+      positions.size() * 6);
   // Positions: per coordinate, relative to the groom's bounding-box diagonal. Tangents: per
   // coordinate of a unit vector, so relative to its length 1.
   EXPECT_LE(error.positionError, kRelativeTolerance * size);
@@ -204,8 +204,7 @@ glm::dvec3 onGuide(const std::vector<glm::vec3>& guide, double u, StrandCurve cu
 }
 
 TEST_F(StrandInterpolation, EqualGuidesGiveTheGuidePlusTheOffsetInTheFixedAxes) {
-  for (const StrandCurve curve : {StrandCurve::kLinear, StrandCurve::kCatmullRom})
-    expectGuidePlusOffset(curve);
+  for (const StrandCurve curve : {StrandCurve::kLinear, StrandCurve::kCatmullRom}) expectGuidePlusOffset(curve);
 }
 
 void StrandInterpolation::expectGuidePlusOffset(StrandCurve curve) {

@@ -76,13 +76,15 @@ std::vector<KinkShares> naluKinks(int verticesPerStrand) {
     EXPECT_TRUE(physics::interpolateDenseStrands(guides.positions, layout, dense, {}, 2).has_value());
     const std::vector<float> guideTurns = sharpestTurns(guides.positions, layout.guideVertexCount);
     const std::vector<float> drawnTurns = sharpestTurns(dense, layout.vertexCount);
-    result.push_back({shareAbove(guideTurns, kLargestSmoothTurnDegrees), shareAbove(drawnTurns, kLargestSmoothTurnDegrees),
+    result.push_back({shareAbove(guideTurns, kLargestSmoothTurnDegrees),
+                      shareAbove(drawnTurns, kLargestSmoothTurnDegrees),
                       *std::max_element(drawnTurns.begin(), drawnTurns.end())});
-    std::printf("%u vertices per strand, %s: %.1f %% of the guides and %.1f %% of the drawn strands turn by more "
-                "than %.0f degrees somewhere; the sharpest drawn turn is %.1f degrees\n",
-                layout.vertexCount, frames == 0 ? "settled" : "after 3 s", 100.0 * result.back().guides,
-                100.0 * result.back().drawn, static_cast<double>(kLargestSmoothTurnDegrees),
-                static_cast<double>(result.back().sharpest));
+    std::printf(
+        "%u vertices per strand, %s: %.1f %% of the guides and %.1f %% of the drawn strands turn by more "
+        "than %.0f degrees somewhere; the sharpest drawn turn is %.1f degrees\n",
+        layout.vertexCount, frames == 0 ? "settled" : "after 3 s", 100.0 * result.back().guides,
+        100.0 * result.back().drawn, static_cast<double>(kLargestSmoothTurnDegrees),
+        static_cast<double>(result.back().sharpest));
   }
   return result;
 }
