@@ -298,22 +298,36 @@ glm::vec3 beyondEnd(const glm::vec3& end, const glm::vec3& next, const glm::vec3
   return 3.0f * (end - next) + *third;
 }
 
-// The point at (v, f) along one guide, by the header's formula for the curve. `last` = Ng − 1.
+// The header's weights of the four guide vertices around a dense vertex at fraction f of its
+// segment: (1 − f, f) on the straight segment, (a, b, c, d) on the curve. They depend on f only,
+// so a dense vertex computes them once for all its guides.
+struct CurveWeights {
+  float a = 0.0f, b = 0.0f, c = 0.0f, d = 0.0f;
+};
+
 template <StrandCurve Curve>
-glm::vec3 alongGuide(const glm::vec3* guide, std::uint32_t v, std::uint32_t last, float f) {
+CurveWeights curveWeights(float f) {
   if constexpr (Curve == StrandCurve::kLinear) {
-    return (1.0f - f) * guide[v] + f * guide[v + 1];
+    return {0.0f, 1.0f - f, f, 0.0f};
   } else {
     const float f2 = f * f;
     const float f3 = f2 * f;
-    const float a = 0.5f * ((2.0f * f2 - f3) - f);
-    const float b = 0.5f * ((3.0f * f3 - 5.0f * f2) + 2.0f);
-    const float c = 0.5f * ((4.0f * f2 - 3.0f * f3) + f);
-    const float d = 0.5f * (f3 - f2);
+    return {0.5f * ((2.0f * f2 - f3) - f), 0.5f * ((3.0f * f3 - 5.0f * f2) + 2.0f),
+            0.5f * ((4.0f * f2 - 3.0f * f3) + f), 0.5f * (f3 - f2)};
+  }
+}
+
+// The point at segment v along one guide with the weights `w`, by the header's formula for the
+// curve. `last` = Ng − 1.
+template <StrandCurve Curve>
+glm::vec3 alongGuide(const glm::vec3* guide, std::uint32_t v, std::uint32_t last, const CurveWeights& w) {
+  if constexpr (Curve == StrandCurve::kLinear) {
+    return w.b * guide[v] + w.c * guide[v + 1];
+  } else {
     const glm::vec3 p0 = v > 0 ? guide[v - 1] : beyondEnd(guide[0], guide[1], last > 1 ? &guide[2] : nullptr);
     const glm::vec3 p3 =
         v + 1 < last ? guide[v + 2] : beyondEnd(guide[last], guide[last - 1], last > 1 ? &guide[last - 2] : nullptr);
-    return ((a * p0 + b * guide[v]) + c * guide[v + 1]) + d * p3;
+    return ((w.a * p0 + w.b * guide[v]) + w.c * guide[v + 1]) + w.d * p3;
   }
 }
 
@@ -327,10 +341,10 @@ void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std
   for (std::size_t i = 0; i < nd; ++i) {
     const float u = static_cast<float>(i) * strand.vertexScale;
     const std::uint32_t v = std::min(static_cast<std::uint32_t>(u), lastSegment);
-    const float f = u - static_cast<float>(v);
-    const glm::vec3 l0 = alongGuide<Curve>(g[0], v, last, f);
+    const CurveWeights w = curveWeights<Curve>(u - static_cast<float>(v));
+    const glm::vec3 l0 = alongGuide<Curve>(g[0], v, last, w);
     glm::vec3 b = strand.weights[0] * l0;
-    for (std::uint32_t k = 1; k < K; ++k) b = b + strand.weights[k] * alongGuide<Curve>(g[k], v, last, f);
+    for (std::uint32_t k = 1; k < K; ++k) b = b + strand.weights[k] * alongGuide<Curve>(g[k], v, last, w);
     const float h = strand.clump * t[i];
     const float q = 1.0f - h;
     p[i] = (b + h * (l0 - b)) + q * (offset + t[i] * jitter);

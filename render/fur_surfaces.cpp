@@ -43,7 +43,7 @@ std::vector<HairShadowPass::Groom> FurSurfaces::shadowCasters() const {
   std::vector<HairShadowPass::Groom> casters;
   for (const Fur& fur : furs_)
     casters.push_back({.strands = fur.pass->shadowStrands(),
-                       .width = fur.pass->meanEdgeLength(),  // object space until the first update()
+                       .width = fur.pass->shadowColumnWidth(),
                        .opacity = kFurColumnOpacity,
                        .extinction = 1.0f,
                        .resolution = fur.pass->shadowResolution()});

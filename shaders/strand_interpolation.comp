@@ -79,14 +79,13 @@ vec3 beyondEnd(vec3 end, vec3 next, uint guide, uint third) {
   return parabola;
 }
 
-// The point at (v, f) along one guide, by the formula's curve.
-vec3 alongGuide(uint guide, uint v, float f) {
-  const uint last = counts.guideVertexCount - 1u;
-  const vec3 p1 = guidePoint(guide, v);
-  const vec3 p2 = guidePoint(guide, v + 1u);
+// The formula's weights of the four guide vertices around a dense vertex at fraction f of its
+// segment: (1 − f, f) on the straight segment, (a, b, c, d) on the curve. They depend on f only,
+// so a dense vertex computes them once for all its guides.
+vec4 curveWeights(float f) {
   if (counts.curve == 0u) {
-    precise vec3 linear = (1.0 - f) * p1 + f * p2;
-    return linear;
+    precise float rf = 1.0 - f;
+    return vec4(0.0, rf, f, 0.0);
   }
   precise float f2 = f * f;
   precise float f3 = f2 * f;
@@ -94,9 +93,21 @@ vec3 alongGuide(uint guide, uint v, float f) {
   precise float b = 0.5 * ((3.0 * f3 - 5.0 * f2) + 2.0);
   precise float c = 0.5 * ((4.0 * f2 - 3.0 * f3) + f);
   precise float d = 0.5 * (f3 - f2);
+  return vec4(a, b, c, d);
+}
+
+// The point at segment v along one guide with the weights `w`, by the formula's curve.
+vec3 alongGuide(uint guide, uint v, vec4 w) {
+  const uint last = counts.guideVertexCount - 1u;
+  const vec3 p1 = guidePoint(guide, v);
+  const vec3 p2 = guidePoint(guide, v + 1u);
+  if (counts.curve == 0u) {
+    precise vec3 linear = w.y * p1 + w.z * p2;
+    return linear;
+  }
   precise vec3 p0 = v > 0u ? guidePoint(guide, v - 1u) : beyondEnd(p1, p2, guide, 2u);
   precise vec3 p3 = v + 1u < last ? guidePoint(guide, v + 2u) : beyondEnd(p2, p1, guide, last - 2u);
-  precise vec3 spline = ((a * p0 + b * p1) + c * p2) + d * p3;
+  precise vec3 spline = ((w.x * p0 + w.y * p1) + w.z * p2) + w.w * p3;
   return spline;
 }
 
@@ -105,10 +116,11 @@ vec3 densePoint(DenseStrand strand, uint i, vec3 offset, vec3 jitter) {
   precise float u = float(i) * strand.weights.w;
   const uint v = min(uint(u), counts.guideVertexCount - 2u);
   precise float f = u - float(v);
-  precise vec3 l0 = alongGuide(strand.guides.x, v, f);
+  const vec4 w = curveWeights(f);
+  precise vec3 l0 = alongGuide(strand.guides.x, v, w);
   precise vec3 b = strand.weights.x * l0;
-  if (strand.guides.w > 1u) b = b + strand.weights.y * alongGuide(strand.guides.y, v, f);
-  if (strand.guides.w > 2u) b = b + strand.weights.z * alongGuide(strand.guides.z, v, f);
+  if (strand.guides.w > 1u) b = b + strand.weights.y * alongGuide(strand.guides.y, v, w);
+  if (strand.guides.w > 2u) b = b + strand.weights.z * alongGuide(strand.guides.z, v, w);
   precise float t = float(i) / float(counts.vertexCount - 1u);
   precise float h = strand.rootOffset.w * t;
   precise float q = 1.0 - h;

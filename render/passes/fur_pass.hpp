@@ -223,7 +223,7 @@ public:
   /// Mean edge length of the mesh, object space.
   [[nodiscard]] float meanEdgeLength() const { return meanEdgeLength_; }
   /// The width a shadow strand stands for, metres, as of the last update(): one mean edge at
-  /// the model's scale.
+  /// the model's scale (after setMesh alone, at scale 1).
   [[nodiscard]] float shadowColumnWidth() const { return shadowColumnWidth_; }
   /// Texels per side of a shadow map whose texel spans about one mean edge of the mesh (the
   /// square root of its area over the mean edge, rounded up to a multiple of 8; at least 16).
