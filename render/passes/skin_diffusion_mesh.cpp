@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "render/descriptors.hpp"
+#include "render/passes/skin_uv_seams.hpp"
+
 namespace mane::render {
 namespace {
 
@@ -61,23 +64,38 @@ std::optional<double> meanUvScale(const MeshData& mesh) {
 
 }  // namespace
 
-Result<SkinDiffusionMesh> SkinDiffusionMesh::create(const Device& device, const MeshData& mesh) {
+Result<SkinDiffusionMesh> SkinDiffusionMesh::create(const Device& device, const MeshData& mesh, float seamReach) {
+  if (!(seamReach >= 0.0f && seamReach <= 0.25f))
+    return fail("skin diffusion mesh: the seam reach is " + std::to_string(seamReach) +
+                " uv units, expected 0 to 0.25 (a quarter of the map)");
   if (auto valid = validate(mesh); !valid) return std::unexpected(valid.error());
   const std::optional<double> scale = meanUvScale(mesh);
   if (!scale) return fail("skin diffusion mesh: no triangle has an area both in space and in uv space");
   std::vector<SkinDiffusionVertex> vertices(mesh.positions.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = {mesh.positions[i], mesh.normals[i], mesh.uvs[i]};
+  const std::vector<SkinDrawVertex> draw = textureSpaceDrawList(mesh.positions, mesh.uvs, mesh.indices, seamReach);
   SkinDiffusionMesh result;
   try {
-    result.vertices_ = Buffer::withData(device, std::as_bytes(std::span(vertices)),
-                                        vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
-    result.indices_ = Buffer::withData(device, std::as_bytes(mesh.indices), vk::BufferUsageFlagBits::eIndexBuffer);
+    result.vertices_ =
+        Buffer::withData(device, std::as_bytes(std::span(vertices)), vk::BufferUsageFlagBits::eStorageBuffer);
+    result.drawList_ = Buffer::withData(device, std::as_bytes(std::span(draw)), vk::BufferUsageFlagBits::eVertexBuffer);
+    auto descriptors = std::make_unique<Descriptors>();
+    descriptors->layout = makeVerticesLayout(device);
+    descriptors->pool = makeDescriptorPool(device, 1, {{vk::DescriptorType::eStorageBuffer, 1}});
+    descriptors->set = allocateSet(device, descriptors->pool, descriptors->layout);
+    writeStorageBuffer(device, descriptors->set, 0, result.vertices_);
+    result.descriptors_ = std::move(descriptors);
   } catch (const std::exception& error) {
     return fail(std::string("skin diffusion mesh: uploading failed: ") + error.what());
   }
-  result.indexCount_ = static_cast<std::uint32_t>(mesh.indices.size());
+  result.drawCount_ = static_cast<std::uint32_t>(draw.size());
+  result.ownCount_ = static_cast<std::uint32_t>(mesh.indices.size());
   result.uvScale_ = *scale;
   return result;
+}
+
+vk::raii::DescriptorSetLayout SkinDiffusionMesh::makeVerticesLayout(const Device& device) {
+  return makeSetLayout(device, {{vk::DescriptorType::eStorageBuffer, vk::ShaderStageFlagBits::eVertex}});
 }
 
 SkinnedVertexTarget SkinDiffusionMesh::vertexTarget() const {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/descriptors.hpp"
+#include "render/passes/skin_uv_seams.hpp"
 
 namespace mane::render {
 namespace {
@@ -61,7 +62,11 @@ Result<void> checkDevice(const Device& device, std::uint32_t size) {
                                                                 Feature::eSampledImageFilterLinear | transfers);
       !ok)
     return ok;
-  return check(SkinDiffusionPass::kStretchFormat, Feature::eColorAttachment | Feature::eSampledImage | transfers);
+  if (auto ok =
+          check(SkinDiffusionPass::kStretchFormat, Feature::eColorAttachment | Feature::eSampledImage | transfers);
+      !ok)
+    return ok;
+  return check(SkinDiffusionPass::kSeamDepthFormat, Feature::eDepthStencilAttachment);
 }
 
 void writeImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
@@ -130,6 +135,10 @@ void SkinDiffusionPass::createResources() {
   const vk::ImageUsageFlags transfers = Usage::eTransferSrc | Usage::eTransferDst;
   irradiance_ = image(kIrradianceFormat, Usage::eColorAttachment | Usage::eStorage | transfers);
   stretch_ = image(kStretchFormat, Usage::eColorAttachment | Usage::eSampled | transfers);
+  seamDepth_ = Image(device, ImageSettings{.extent = extent,
+                                           .format = kSeamDepthFormat,
+                                           .usage = Usage::eDepthStencilAttachment,
+                                           .aspect = vk::ImageAspectFlagBits::eDepth});
   across_ = image(kIrradianceFormat, Usage::eStorage);
   blurred_ = image(kIrradianceFormat, Usage::eStorage);
   accumulated_ = image(kIrradianceFormat, Usage::eStorage | Usage::eSampled | transfers);
@@ -162,21 +171,28 @@ void SkinDiffusionPass::createResources() {
   const std::pair storage{vk::DescriptorType::eStorageImage, vk::ShaderStageFlags(ShaderStage::eCompute)};
   blurLayout_ = makeSetLayout(device, {storage, sampled, storage, storage, storage});
 
+  meshVerticesLayout_ = SkinDiffusionMesh::makeVerticesLayout(device);
   irradiancePipeline_ = makeGraphicsPipeline(
-      device, GraphicsPipelineSettings{
-                  .vertexShader = "skin_irradiance.vert",
-                  .fragmentShader = "skin_irradiance.frag",
-                  .vertexBindings = {{.binding = 0,
-                                      .stride = sizeof(SkinDiffusionVertex),
-                                      .inputRate = vk::VertexInputRate::eVertex}},
-                  .vertexAttributes = {{0, 0, vk::Format::eR32G32B32Sfloat, offsetof(SkinDiffusionVertex, position)},
-                                       {1, 0, vk::Format::eR32G32B32Sfloat, offsetof(SkinDiffusionVertex, normal)},
-                                       {2, 0, vk::Format::eR32G32Sfloat, offsetof(SkinDiffusionVertex, uv)}},
-                  // UV layouts mirror islands freely: both windings are the surface.
-                  .cullMode = vk::CullModeFlagBits::eNone,
-                  .colorFormats = {kIrradianceFormat, kStretchFormat},
-                  .setLayouts = {*irradianceLayout_},
-                  .constants = shadows_->shaderConstants()});
+      device,
+      GraphicsPipelineSettings{.vertexShader = "skin_irradiance.vert",
+                               .fragmentShader = "skin_irradiance.frag",
+                               .vertexBindings = {{.binding = 0,
+                                                   .stride = sizeof(SkinDrawVertex),
+                                                   .inputRate = vk::VertexInputRate::eVertex}},
+                               .vertexAttributes = {{0, 0, vk::Format::eR32Uint, offsetof(SkinDrawVertex, source)},
+                                                    {1, 0, vk::Format::eR32Sfloat, offsetof(SkinDrawVertex, depth)},
+                                                    {2, 0, vk::Format::eR32G32Sfloat, offsetof(SkinDrawVertex, uv)}},
+                               // UV layouts mirror islands freely: both windings are the surface.
+                               .cullMode = vk::CullModeFlagBits::eNone,
+                               .colorFormats = {kIrradianceFormat, kStretchFormat},
+                               // The mesh's own triangles (depth 0) over any skirt; the nearest seam's skirt
+                               // over the others; among equals the later, as without a depth test.
+                               .depthFormat = kSeamDepthFormat,
+                               .depthTest = true,
+                               .depthWrite = true,
+                               .depthCompare = vk::CompareOp::eLessOrEqual,
+                               .setLayouts = {*irradianceLayout_, *meshVerticesLayout_},
+                               .constants = shadows_->shaderConstants()});
   // The blur pipelines the stages use: specialised for their tap count and what they add up.
   for (std::size_t i = 0; i < stages_.size(); ++i)
     for (const Accumulate accumulate : {Accumulate::kNone, accumulation(i)}) {
@@ -314,17 +330,27 @@ void SkinDiffusionPass::recordIrradiance(const vk::raii::CommandBuffer& commands
                                        .clearValue = {.color = {.float32 = std::array{0.0f, 0.0f, 0.0f, 0.0f}}}};
   };
   const std::array attachments{attachment(irradiance_), attachment(stretch_)};
+  transition(commands, seamDepth_, Layout::eUndefined, Layout::eDepthAttachmentOptimal,
+             Stage::eEarlyFragmentTests | Stage::eLateFragmentTests, Access::eNone,
+             Stage::eEarlyFragmentTests | Stage::eLateFragmentTests,
+             Access::eDepthStencilAttachmentRead | Access::eDepthStencilAttachmentWrite);
+  const vk::RenderingAttachmentInfo depth{.imageView = *seamDepth_.view(),
+                                          .imageLayout = Layout::eDepthAttachmentOptimal,
+                                          .loadOp = vk::AttachmentLoadOp::eClear,
+                                          .storeOp = vk::AttachmentStoreOp::eDontCare,
+                                          .clearValue = {.depthStencil = {.depth = 1.0f}}};
   const vk::Extent2D extent{settings_.size, settings_.size};
   commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = extent},
                                             .layerCount = 1,
                                             .colorAttachmentCount = attachments.size(),
-                                            .pColorAttachments = attachments.data()});
+                                            .pColorAttachments = attachments.data(),
+                                            .pDepthAttachment = &depth});
   setViewportAndScissor(commands, extent);
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *irradiancePipeline_.pipeline);
-  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *irradiancePipeline_.layout, 0, {*irradianceSet_}, {});
-  commands.bindVertexBuffers(0, {*mesh.vertices().buffer()}, {vk::DeviceSize{0}});
-  commands.bindIndexBuffer(*mesh.indices().buffer(), 0, vk::IndexType::eUint32);
-  commands.drawIndexed(mesh.indexCount(), 1, 0, 0, 0);
+  commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *irradiancePipeline_.layout, 0,
+                              {*irradianceSet_, *mesh.verticesSet()}, {});
+  commands.bindVertexBuffers(0, {*mesh.drawList().buffer()}, {vk::DeviceSize{0}});
+  commands.draw(mesh.drawCount(), 1, 0, 0);
   commands.endRendering();
   transition(commands, irradiance_, Layout::eColorAttachmentOptimal, Layout::eGeneral, Stage::eColorAttachmentOutput,
              Access::eColorAttachmentWrite, Stage::eComputeShader, Access::eShaderStorageRead);

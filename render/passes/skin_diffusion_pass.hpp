@@ -18,14 +18,15 @@
 //     that leaves the skin there before it is coloured by the albedo; a final pass samples it at
 //     the fragment's uv and multiplies by the albedo ("post-scatter" texturing, [dEL07] §14.5.2).
 //
-// Seams. Light does not cross a UV seam: each island diffuses on its own. The blurs treat the
-// coverage c as a weight (normalised convolution): they blur E·c and c alike, and the result is
-// Σ_i w_i·blur_i(E·c) / Σ_i w_i·blur_i(c) per RGB. So the black around an island is never
-// averaged in and its border keeps its brightness (the light the surface across the seam would
-// have sent over is stood in for by the island's own), and texels just off the island, within
-// the kernels' reach, hold the island's nearby values: the dilation that the final pass's
-// bilinear lookups at the border need. Texels farther off stay 0, with a = 0. Texels off the
-// mesh have no stretch; they blur with the mesh's mean stretch (SkinDiffusionMesh::uvScale).
+// Seams. Each island of the uv layout is drawn with a skirt: the surface across its seams,
+// unfolded past its border and drawn behind the islands (render/passes/skin_uv_seams.hpp), so the
+// irradiance map holds, around each island, the light of the skin that lies there. The blurs
+// then carry light across the seams as across any other line of the surface. The blurs also
+// treat the coverage c as a weight (normalised convolution): they blur E·c and c alike, and the
+// result is Σ_i w_i·blur_i(E·c) / Σ_i w_i·blur_i(c) per RGB, so where the map holds nothing (no
+// skirt reaches: a border of the mesh, a chart squashed in uv, the map's edge) the black is never
+// averaged in and the island's border keeps its brightness. Texels off the mesh have no stretch;
+// they blur with the mesh's mean stretch (SkinDiffusionMesh::uvScale).
 //
 // Cost: the blurs dominate and grow with the map's area (skin_diffusion_test prints their GPU time;
 // docs/performance.md has the figures). Memory: six size² images (the irradiance, the
@@ -84,6 +85,8 @@ public:
   static constexpr std::size_t kMaxLights = 4;  ///< kSkinIrradianceMaxLights in the shaders
   static constexpr vk::Format kIrradianceFormat = vk::Format::eR16G16B16A16Sfloat;
   static constexpr vk::Format kStretchFormat = vk::Format::eR16G16Sfloat;
+  /// Which of the mesh's triangles and seam skirts owns a texel (skin_uv_seams.hpp).
+  static constexpr vk::Format kSeamDepthFormat = vk::Format::eD16Unorm;
 
   /// Makes the maps (cleared to 0) and pipelines. `shadows` (which must outlive the pass)
   /// attenuates the first light, with its maps as they are now (create the pass after
@@ -164,6 +167,7 @@ private:
 
   Image irradiance_;   ///< rgb E·c, a c; GENERAL between frames (the blurs load it)
   Image stretch_;      ///< mm per texel along u, v
+  Image seamDepth_;    ///< the irradiance draw's depth: 0 on the mesh, the distance to a seam on its skirts
   Image across_;       ///< a Gaussian's blur along u
   Image blurred_;      ///< the last Gaussian completed: the next one's input
   Image accumulated_;  ///< Σ w·blur(E·c); after the resolve, the diffused irradiance
@@ -177,6 +181,7 @@ private:
   vk::raii::Sampler normalSampler_{nullptr};
 
   vk::raii::DescriptorSetLayout irradianceLayout_{nullptr};
+  vk::raii::DescriptorSetLayout meshVerticesLayout_{nullptr};  ///< set 1, SkinDiffusionMesh::verticesSet()
   vk::raii::DescriptorSetLayout blurLayout_{nullptr};
   Pipeline irradiancePipeline_;
   /// [dense taps][Accumulate]: the variants the stages use (the others stay null).
