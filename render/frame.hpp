@@ -107,6 +107,9 @@ struct TranslucencyParameters {
 /// albedo texture is the photo the shells are made from; it must be present.
 struct FurParameters {
   std::uint32_t layers = 15;  ///< N shells, 1 … 64 (Ukaji et al. use 15 on meshes)
+  /// Fewer shells where the fur is short on screen: about one per this many pixels of the fur's
+  /// height where it is nearest the eye, at most `layers`; 0 always draws `layers`.
+  float pixelsPerLayer = 1.0f;
   float thickness = 0.004f;   ///< h_b, metres: the fur's height above the skin
   bool fins = true;           ///< Lengyel's fins on silhouette edges
   float layAngle = 0.6f;      ///< radians between a fibre and the fur direction (Kajiya-Kay)

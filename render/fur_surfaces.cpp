@@ -33,7 +33,9 @@ Result<FurSurfaces> FurSurfaces::create(const Device& device, const StaticScene&
                                      .tint = material.baseColor,
                                      .comb = fur.comb,
                                      .layDirection = fur.layDirection,
-                                     .layRepeatsPerMetre = fur.layRepeatsPerMetre},
+                                     .layRepeatsPerMetre = fur.layRepeatsPerMetre,
+                                     .doubleSided = material.doubleSided,
+                                     .pixelsPerLayer = fur.pixelsPerLayer},
                             .pass = std::move(*pass)});
   }
   return result;

@@ -67,6 +67,9 @@ void parseFur(const Json& json, const std::string& path, Material& material) {
   require(layers >= 1 && layers <= static_cast<int>(render::kMaxFurLayers), fields.child("layers"),
           "expected 1.." + std::to_string(render::kMaxFurLayers) + " shells");
   fur.layers = static_cast<std::uint32_t>(layers);
+  fur.pixelsPerLayer = fields.optional<float>("pixels_per_layer", fur.pixelsPerLayer);
+  require(fur.pixelsPerLayer >= 0.0f && fur.pixelsPerLayer <= 100.0f, fields.child("pixels_per_layer"),
+          "expected pixels of fur height per shell in [0, 100] (0: always every shell)");
   fur.thickness = fields.optional<float>("thickness", fur.thickness);
   require(fur.thickness > 0.0f && fur.thickness <= 0.1f, fields.child("thickness"),
           "expected a fur height in (0, 0.1] metres");

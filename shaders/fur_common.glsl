@@ -88,14 +88,19 @@ vec2 kajiyaKay(vec3 t, vec3 l, vec3 e) {
   return vec2(sinTl, pow(max(sinTl * sinTe - tl * te, 0.0), fur.shells.z));
 }
 
-// Radiance of fur of colour `albedo` growing along `d` from a surface of normal `n`. Real hairs
-// lean away from that direction: the fibre is d tilted by the lay angle, averaged over four
-// azimuths (a fibre straight along n would be black under a light along n, which the photo,
-// taken lit from above, contradicts). The diffuse term is divided by its value for light along
-// n, so the photo's own colour comes back under the light it was taken in; the fur's body shades
-// it as it turns away from the light (half-Lambert wrap: fur scatters light past the terminator).
-vec3 shadeFur(vec3 photoColour, vec3 n, vec3 d, vec3 world) {
-  vec3 albedo = photoColour * fur.tint.rgb;
+// The light fur growing along `d` from a surface of normal `n` sends back, apart from its
+// colour: radiance = photo colour × diffuse + specular. Real hairs lean away from that direction:
+// the fibre is d tilted by the lay angle, averaged over four azimuths (a fibre straight along n
+// would be black under a light along n, which the photo, taken lit from above, contradicts). The
+// diffuse term is divided by its value for light along n, so the photo's own colour comes back
+// under the light it was taken in; the fur's body shades it as it turns away from the light
+// (half-Lambert wrap: fur scatters light past the terminator).
+struct FurLight {
+  vec3 diffuse;   // multiplies the photo's colour
+  vec3 specular;  // added
+};
+
+FurLight furLight(vec3 n, vec3 d, vec3 world) {
   vec3 l = fur.lightDirection.xyz;
   vec3 e = towardEye(world);
   vec3 b1 = normalize(abs(d.x) < 0.9 ? cross(d, vec3(1, 0, 0)) : cross(d, vec3(0, 1, 0)));
@@ -109,5 +114,12 @@ vec3 shadeFur(vec3 photoColour, vec3 n, vec3 d, vec3 world) {
   float diffuseUnderTopLight = max(fur.lay.y, 1e-3);  // sin(t, n) of every tilted fibre
   float body = clamp(0.5 * dot(n, l) + 0.5, 0.0, 1.0);
   vec3 light = fur.lightRadiance.rgb * body * hairShadowTransmittance(fur.shadows, world);
-  return albedo * (fur.ambient.rgb + light * (sum.x / diffuseUnderTopLight)) + light * fur.shells.w * sum.y;
+  return FurLight(fur.tint.rgb * (fur.ambient.rgb + light * (sum.x / diffuseUnderTopLight)),
+                  light * fur.shells.w * sum.y);
+}
+
+// Radiance of fur of colour `photoColour` (furLight, per fragment).
+vec3 shadeFur(vec3 photoColour, vec3 n, vec3 d, vec3 world) {
+  FurLight lit = furLight(n, d, world);
+  return photoColour * lit.diffuse + lit.specular;
 }

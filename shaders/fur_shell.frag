@@ -9,11 +9,10 @@
 // so depth can be tested before it runs.
 layout(constant_id = 3) const uint kSkinLayer = 0u;
 
-layout(location = 0) in vec3 inWorld;
-layout(location = 1) in vec3 inNormal;
+layout(location = 0) in vec3 inDiffuse;  // FurLight, from the vertices
+layout(location = 1) in vec3 inSpecular;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) flat in uint inLayer;
-layout(location = 4) in vec3 inDirection;
 layout(location = 0) out vec4 outColor;
 
 void main() {
@@ -27,5 +26,5 @@ void main() {
   bool aboveLower = intensity >= threshold(inLayer);
   bool belowUpper = kCoverage == 1u || inLayer == 1u || intensity < threshold(inLayer - 1u);
   if (kSkinLayer == 0u && !skin && !(aboveLower && belowUpper)) discard;
-  outColor = vec4(shadeFur(albedo, normalize(inNormal), normalize(inDirection), inWorld), 1.0);
+  outColor = vec4(albedo * inDiffuse + inSpecular, 1.0);
 }

@@ -2,18 +2,18 @@
 #extension GL_GOOGLE_include_directive : require
 // One shell per instance (render/passes/fur_pass.hpp): the mesh pushed out along its normal to
 // the height of its layer. Instance 0 is layer N (the skin), drawn first so that its depth hides
-// what lies behind the body; instance N − 1 is layer 1, the top.
+// what lies behind the body; instance N − 1 is layer 1, the top. The fur is lit here, per
+// vertex: a shell's fragments, N of them over each pixel of the body, only read the photo.
 #include "fur_common.glsl"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 
-layout(location = 0) out vec3 outWorld;
-layout(location = 1) out vec3 outNormal;
+layout(location = 0) out vec3 outDiffuse;   // FurLight
+layout(location = 1) out vec3 outSpecular;
 layout(location = 2) out vec2 outUv;
 layout(location = 3) flat out uint outLayer;
-layout(location = 4) out vec3 outDirection;
 
 // Per vertex, world space, units of h_b (FurPass::setLeans).
 layout(set = 0, binding = 4) readonly buffer VertexLeans {
@@ -28,10 +28,10 @@ void main() {
   vec3 normal = normalize(mat3(fur.normalMatrix) * inNormal);
   vec3 lean = furLean(normal, vertexLeans[gl_VertexIndex].xyz);
   vec3 world = (fur.model * vec4(inPosition, 1.0)).xyz + furOffset(normal, lean, s);
-  outWorld = world;
-  outNormal = normal;
+  FurLight lit = furLight(normal, furDirection(normal, lean, s), world);
+  outDiffuse = lit.diffuse;
+  outSpecular = lit.specular;
   outUv = photoCoordinates(inUv, inPosition, inNormal);
   outLayer = layer;
-  outDirection = furDirection(normal, lean, s);
   gl_Position = fur.viewProjection * vec4(world, 1.0);
 }

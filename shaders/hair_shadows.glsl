@@ -34,18 +34,28 @@ float hairShadowExtinction(sampler2DArray opacity, sampler2D firstDepth, Opacity
 }
 
 // Product of the grooms' transmittances: exp(−Σ κ_g·opacity_g). Separate bindings rather than
-// an array, so no descriptor-indexing feature is needed; slots beyond shadows.count (grooms
-// whose guides have not arrived yet) are skipped at run time.
+// an array, so no descriptor-indexing feature is needed. Slots beyond shadows.count (grooms whose
+// guides have not arrived yet) are looked up and then dropped by a select, not skipped by a
+// branch: lavapipe compiles a shader again at every bind for a branch that only uniform values
+// decide (docs/lavapipe.md), and the fur's vertex shader calls this.
 float hairShadowTransmittance(HairShadowUniforms shadows, vec3 world) {
   uint count = shadows.count.x;
   float extinction = 0.0;
-  if (kHairShadowMaps > 0u && count > 0u)
-    extinction += hairShadowExtinction(hairShadowOpacity0, hairShadowFirstDepth0, shadows.maps[0], world);
-  if (kHairShadowMaps > 1u && count > 1u)
-    extinction += hairShadowExtinction(hairShadowOpacity1, hairShadowFirstDepth1, shadows.maps[1], world);
-  if (kHairShadowMaps > 2u && count > 2u)
-    extinction += hairShadowExtinction(hairShadowOpacity2, hairShadowFirstDepth2, shadows.maps[2], world);
-  if (kHairShadowMaps > 3u && count > 3u)
-    extinction += hairShadowExtinction(hairShadowOpacity3, hairShadowFirstDepth3, shadows.maps[3], world);
+  if (kHairShadowMaps > 0u) {
+    float e = hairShadowExtinction(hairShadowOpacity0, hairShadowFirstDepth0, shadows.maps[0], world);
+    extinction += count > 0u ? e : 0.0;
+  }
+  if (kHairShadowMaps > 1u) {
+    float e = hairShadowExtinction(hairShadowOpacity1, hairShadowFirstDepth1, shadows.maps[1], world);
+    extinction += count > 1u ? e : 0.0;
+  }
+  if (kHairShadowMaps > 2u) {
+    float e = hairShadowExtinction(hairShadowOpacity2, hairShadowFirstDepth2, shadows.maps[2], world);
+    extinction += count > 2u ? e : 0.0;
+  }
+  if (kHairShadowMaps > 3u) {
+    float e = hairShadowExtinction(hairShadowOpacity3, hairShadowFirstDepth3, shadows.maps[3], world);
+    extinction += count > 3u ? e : 0.0;
+  }
   return exp(-extinction);
 }

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "render/descriptors.hpp"
+#include "render/passes/mesh_welding.hpp"
 
 namespace mane::render {
 namespace {
@@ -83,6 +84,7 @@ Pipeline makeShellPipeline(const Device& device, const FurPassSettings& settings
               {{.location = 0, .binding = 0, .format = Format::eR32G32B32Sfloat, .offset = 0},
                {.location = 1, .binding = 0, .format = Format::eR32G32B32Sfloat, .offset = offsetof(FurVertex, normal)},
                {.location = 2, .binding = 0, .format = Format::eR32G32Sfloat, .offset = offsetof(FurVertex, uv)}},
+          .dynamicCulling = true,
           .colorFormats = {settings.colorFormat},
           .depthFormat = settings.depthFormat,
           .depthTest = true,
@@ -115,28 +117,6 @@ glm::vec3 furShadowTangent(const glm::vec3& normal) {
 // ---------------------------------------------------------------------------------------------
 // Silhouette edges
 
-namespace {
-
-// Vertices split at uv seams share a position: edges are matched by position so that a seam is
-// not taken for a boundary.
-std::vector<std::uint32_t> weldByPosition(std::span<const glm::vec3> positions) {
-  struct Hash {
-    std::size_t operator()(const glm::vec3& p) const {
-      const glm::vec3 positiveZeros = p + glm::vec3(0.0f);  // −0 + 0 = +0: equal values, equal bits
-      std::array<std::uint32_t, 3> bits{};
-      std::memcpy(bits.data(), &positiveZeros, sizeof(positiveZeros));
-      return (std::size_t(bits[0]) * 73856093u) ^ (std::size_t(bits[1]) * 19349663u) ^
-             (std::size_t(bits[2]) * 83492791u);
-    }
-  };
-  std::unordered_map<glm::vec3, std::uint32_t, Hash> first;
-  std::vector<std::uint32_t> canonical(positions.size());
-  for (std::uint32_t i = 0; i < positions.size(); ++i) canonical[i] = first.try_emplace(positions[i], i).first->second;
-  return canonical;
-}
-
-}  // namespace
-
 Result<MeshEdges> MeshEdges::build(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices) {
   if (indices.size() % 3 != 0)
     return fail("fur mesh edges: " + std::to_string(indices.size()) + " indices, not a multiple of 3");
@@ -150,6 +130,8 @@ Result<MeshEdges> MeshEdges::build(std::span<const glm::vec3> positions, std::sp
     if (indices[t] >= positions.size())
       return fail("fur mesh edges: triangle " + std::to_string(t / 3) + " names vertex " + std::to_string(indices[t]) +
                   " of " + std::to_string(positions.size()));
+  // Vertices split at uv seams share a position: edges are matched by position so that a seam
+  // is not taken for a boundary.
   const std::vector<std::uint32_t> canonical = weldByPosition(positions);
   std::unordered_map<std::uint64_t, Faces> faces;
   std::vector<std::uint64_t> order;  // first appearance: a deterministic edge order
@@ -255,19 +237,21 @@ FurPass::FurPass(const Device& device, const FurPassSettings& settings, const Te
   photo_ = Image::texture(device, photo.width, photo.height,
                           photo.rgba.first(std::size_t(photo.width) * photo.height * 4), vk::Format::eR8G8B8A8Srgb);
   sampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
+  // The shells are lit per vertex, the fins per fragment: both read the hair shadows.
+  const std::pair shadowMap{Type::eCombinedImageSampler, vk::ShaderStageFlags(Stage::eVertex | Stage::eFragment)};
   setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment},
                                       {Type::eCombinedImageSampler, Stage::eFragment},
                                       {Type::eStorageBuffer, Stage::eVertex},
                                       {Type::eStorageBuffer, Stage::eVertex},
                                       {Type::eStorageBuffer, Stage::eVertex},
-                                      {Type::eCombinedImageSampler, Stage::eFragment},  // hair shadows: opacity × 4
-                                      {Type::eCombinedImageSampler, Stage::eFragment},
-                                      {Type::eCombinedImageSampler, Stage::eFragment},
-                                      {Type::eCombinedImageSampler, Stage::eFragment},
-                                      {Type::eCombinedImageSampler, Stage::eFragment},  // first depth × 4
-                                      {Type::eCombinedImageSampler, Stage::eFragment},
-                                      {Type::eCombinedImageSampler, Stage::eFragment},
-                                      {Type::eCombinedImageSampler, Stage::eFragment}});
+                                      shadowMap,  // hair shadows: opacity × 4
+                                      shadowMap,
+                                      shadowMap,
+                                      shadowMap,
+                                      shadowMap,  // first depth × 4
+                                      shadowMap,
+                                      shadowMap,
+                                      shadowMap});
   static_assert(HairShadowPass::kBindings == 8);
   buildPipelines();
   pool_ = makeDescriptorPool(device, 1,
@@ -320,6 +304,9 @@ void FurPass::writeShadowStrands(const glm::mat4& model, const glm::vec3& comb) 
   }
   std::memcpy(shadowStrands_.mapped().data(), points.data(), points.size() * sizeof(glm::vec4));
   shadowBounds_ = {.centre = 0.5f * (lo + hi), .radius = 0.5f * glm::length(hi - lo) * 1.001f + 1e-6f};
+  furRadius_ = 0.0f;
+  for (const glm::vec4& point : points)
+    furRadius_ = std::max(furRadius_, glm::distance(glm::vec3(point), shadowBounds_.centre));
 }
 
 Result<void> FurPass::setMesh(const MeshData& mesh) {
@@ -441,8 +428,6 @@ Result<void> FurPass::update(const FurView& view) {
   uniforms.lightDirection = glm::vec4(glm::normalize(view.light.direction), 0.0f);
   uniforms.lightRadiance = glm::vec4(view.light.color * view.light.intensity, 0.0f);
   uniforms.ambient = glm::vec4(view.ambient, 0.0f);
-  uniforms.shells =
-      glm::vec4(model_.thickness(), float(model_.layers()), view.look.specularExponent, view.look.specularStrength);
   uniforms.lay = glm::vec4(std::cos(view.look.layAngle), std::sin(view.look.layAngle),
                            glm::length(glm::vec3(view.model[0])), 0.0f);
   const bool field = glm::length(view.look.layDirection) > 0.0f;
@@ -450,11 +435,23 @@ Result<void> FurPass::update(const FurView& view) {
       field ? glm::vec4(glm::normalize(view.look.layDirection), view.look.layRepeatsPerMetre) : glm::vec4(0.0f);
   uniforms.tint = glm::vec4(view.look.tint, 1.0f);
   uniforms.comb = glm::vec4(view.look.comb, 0.0f);
-  const std::vector<float> thresholds = model_.thresholds();
+  if (vertexCount_ > 0) writeShadowStrands(view.model, view.look.comb);
+  // About one shell per `pixelsPerLayer` of the fur's height on screen: where it is a few pixels
+  // tall, shells closer together than a pixel add cost and no parallax.
+  drawnLayers_ = model_.layers();
+  if (view.look.pixelsPerLayer > 0.0f && vertexCount_ > 0) {
+    const float wanted = std::ceil(furHeightInPixels(view) / view.look.pixelsPerLayer);
+    drawnLayers_ = std::uint32_t(std::clamp(wanted, 1.0f, float(model_.layers())));
+  }
+  // The drawn shells split the same photo over their own count: Ukaji et al.'s thresholds for N'.
+  const auto drawn = FurShellModel::create(model_.range(), drawnLayers_, model_.thickness());
+  if (!drawn) return fail("fur view: " + drawn.error().message);
+  uniforms.shells =
+      glm::vec4(model_.thickness(), float(drawnLayers_), view.look.specularExponent, view.look.specularStrength);
+  const std::vector<float> thresholds = drawn->thresholds();
   std::copy(thresholds.begin(), thresholds.end(), uniforms.thresholds.begin());
   // The shadows' part is setShadowUniforms'.
   std::memcpy(uniforms_.mapped().data(), &uniforms, offsetof(FurUniforms, shadows));
-  if (vertexCount_ > 0) writeShadowStrands(view.model, view.look.comb);
 
   finCount_ = 0;
   if (settings_.fins && indexCount_ > 0) {
@@ -465,9 +462,30 @@ Result<void> FurPass::update(const FurView& view) {
     finCount_ = static_cast<std::uint32_t>(fins_.size());
   }
   extent_ = view.extent;
-  drawnLayers_ = model_.layers();
+  cullMode_ = view.look.doubleSided ? vk::CullModeFlagBits::eNone : vk::CullModeFlagBits::eBack;
+  // A mirroring model matrix turns the mesh's counter-clockwise faces clockwise.
+  frontFace_ =
+      glm::determinant(glm::mat3(view.model)) < 0.0f ? vk::FrontFace::eClockwise : vk::FrontFace::eCounterClockwise;
   updated_ = true;
   return {};
+}
+
+float FurPass::furHeightInPixels(const FurView& view) const {
+  // The point of the fur's bounding sphere nearest the eye, and a step of h_b across the view
+  // there, both projected.
+  const glm::vec3 centre = shadowBounds_.centre;
+  const glm::vec3 towardEye = view.eye.w > 0.0f ? glm::vec3(view.eye) - centre : glm::vec3(view.eye);
+  const float distance = glm::length(towardEye);
+  if (!(distance > furRadius_)) return std::numeric_limits<float>::infinity();  // the eye is inside
+  const glm::vec3 toward = towardEye / distance;
+  const glm::vec3 nearest = centre + furRadius_ * toward;
+  const glm::vec3 across = furShadowTangent(toward);
+  const glm::vec4 a = view.viewProjection * glm::vec4(nearest, 1.0f);
+  const glm::vec4 b = view.viewProjection * glm::vec4(nearest + model_.thickness() * across, 1.0f);
+  if (!(a.w > 0.0f && b.w > 0.0f)) return std::numeric_limits<float>::infinity();
+  const glm::vec2 pixels =
+      (glm::vec2(b) / b.w - glm::vec2(a) / a.w) * 0.5f * glm::vec2(float(view.extent.width), float(view.extent.height));
+  return glm::length(pixels);
 }
 
 void FurPass::draw(const vk::raii::CommandBuffer& commands) const {
@@ -477,6 +495,8 @@ void FurPass::draw(const vk::raii::CommandBuffer& commands) const {
   // before shading; then the shells, instances 1 … N − 1, which alpha-test.
   const vk::PipelineLayout layout = *skinPipeline_.layout;
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *skinPipeline_.pipeline);
+  commands.setCullMode(cullMode_);
+  commands.setFrontFace(frontFace_);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, {*set_}, {});
   commands.bindVertexBuffers(0, {*vertices_.buffer()}, {vk::DeviceSize{0}});
   commands.bindIndexBuffer(*indices_.buffer(), 0, vk::IndexType::eUint32);

@@ -18,7 +18,10 @@
 // p + h_b·(s·n + s²·λ). A shell keeps the pixels its FurCoverage says and
 // discards the rest; kept fragments are opaque and write depth, so the layers composite
 // correctly in any order, with no sorting and no blending. Layer N (the skin) keeps every pixel:
-// it is the body the fur grows on. Back faces are not culled (meshes come with either winding).
+// it is the body the fur grows on. Back faces are culled only when the look says the mesh is
+// single-sided (FurLook::doubleSided): meshes come with either winding. The fur is lit per vertex
+// (its light varies over a shell as slowly as the normals do), so a shell's fragments, N of them
+// over every pixel of the body, only read the photo.
 //
 // Fins. Lengyel et al. draw fins on the edges near the silhouette, where shells seen edge-on
 // leave gaps. Here a fin stands on every edge whose two faces turn opposite ways to the eye,
@@ -103,6 +106,12 @@ struct FurLook {
   /// The fur-direction field, model space; zero: the photo by the mesh's uvs ("Lay" above).
   glm::vec3 layDirection{0.0f};
   float layRepeatsPerMetre = 30.0f;  ///< with a layDirection: photo repeats per metre
+  /// False: the skin and the shells cull the faces turned away from the eye (counter-clockwise
+  /// faces are the front ones, as glTF's), for a closed mesh, whose far side they would otherwise
+  /// draw in full under the near one; the fins still stand on its silhouette.
+  bool doubleSided = true;
+  /// Fewer shells where the fur is short on screen (FurParameters::pixelsPerLayer); 0: all.
+  float pixelsPerLayer = 1.0f;
 };
 
 /// One furred object as seen this frame.
@@ -236,6 +245,9 @@ public:
   void draw(const vk::raii::CommandBuffer& commands) const;
 
   [[nodiscard]] const FurShellModel& model() const { return model_; }
+  /// Shells the next draw draws, the skin included (set by update): model().layers(), or fewer
+  /// where the fur is short on screen (FurLook::pixelsPerLayer).
+  [[nodiscard]] std::uint32_t drawnLayers() const { return drawnLayers_; }
   /// Fins drawn by the next draw (set by update).
   [[nodiscard]] std::uint32_t finCount() const { return finCount_; }
   /// The vertex pairs of those fins.
@@ -247,6 +259,9 @@ private:
   void buildPipelines();
   /// Writes shadowStrands_ and shadowBounds_ for this model matrix and comb.
   void writeShadowStrands(const glm::mat4& model, const glm::vec3& comb);
+  /// The fur's height in pixels where it comes nearest the eye: on the sphere of furRadius_
+  /// around shadowBounds().centre, as of the last writeShadowStrands.
+  [[nodiscard]] float furHeightInPixels(const FurView& view) const;
 
   const Device* device_;
   std::unique_ptr<HairShadowPass> ownShadows_;  ///< empty maps, when the caller gives none
@@ -281,7 +296,10 @@ private:
   MeshEdges edges_;
   std::vector<glm::uvec2> fins_;
   std::uint32_t finCount_ = 0;
-  std::uint32_t drawnLayers_ = 0;  ///< N as of the last update
+  std::uint32_t drawnLayers_ = 0;  ///< the shells' N as of the last update (drawnLayers)
+  float furRadius_ = 0.0f;         ///< the farthest shadow strand point from shadowBounds_.centre
+  vk::CullModeFlags cullMode_ = vk::CullModeFlagBits::eNone;  ///< the skin's and shells', as of the last update
+  vk::FrontFace frontFace_ = vk::FrontFace::eCounterClockwise;
   bool updated_ = false;
 };
 

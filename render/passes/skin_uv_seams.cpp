@@ -1,33 +1,21 @@
 #include "render/passes/skin_uv_seams.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <optional>
 #include <tuple>
+
+#include "render/passes/mesh_welding.hpp"
 
 namespace mane::render {
 namespace {
 
 constexpr std::uint32_t kNone = ~0u;
 
-// Each vertex's weld id: vertices at the same position share one.
-std::vector<std::uint32_t> weldByPosition(std::span<const glm::vec3> positions) {
-  std::vector<std::uint32_t> order(positions.size());
-  std::iota(order.begin(), order.end(), 0u);
-  const auto key = [&](std::uint32_t v) { return std::tuple(positions[v].x, positions[v].y, positions[v].z); };
-  std::ranges::stable_sort(order, [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
-  std::vector<std::uint32_t> weld(positions.size());
-  std::uint32_t id = 0;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    if (i > 0 && key(order[i]) != key(order[i - 1])) ++id;
-    weld[order[i]] = id;
-  }
-  return weld;
-}
-
 // Triangle t's edge k runs from corner k to corner k + 1.
 struct EdgeUse {
-  std::uint32_t low, high;  // weld ids, low < high
+  std::uint32_t low, high;  // welded vertices (weldByPosition), low < high
   std::uint32_t triangle, edge;
 };
 

@@ -22,8 +22,8 @@
 // triangles are at depth 0 and always win, and a skirt's depth grows with its distance from its
 // seam edge, so each empty texel takes the nearest seam's skirt.
 //
-// Vertices are welded by exact position: files split vertices at seams but keep their
-// positions bit for bit. Edges shared by more than two triangles and mesh borders have no
+// Vertices are welded by exact position (mesh_welding.hpp): files split vertices at seams but
+// keep their positions bit for bit. Edges shared by more than two triangles and mesh borders have no
 // other side and get no skirt.
 
 #include <array>

@@ -37,11 +37,13 @@ TEST(SceneFur, TakesTheRenderersDefaultsAndEveryField) {
   EXPECT_EQ(plain.fur.thickness, defaults.thickness);
   EXPECT_EQ(plain.furUvScale, 1.0f);
   const Material full = materialOf(R"(, "kind": "fur", "albedo_texture": "fur/grass_CC0.png",
-      "fur": {"layers": 32, "thickness": 0.01, "uv_scale": 20, "fins": false, "lay_degrees": 45,
+      "fur": {"layers": 32, "pixels_per_layer": 2.5, "thickness": 0.01, "uv_scale": 20, "fins": false, "lay_degrees": 45,
               "specular_exponent": 80, "specular_strength": 0.2, "comb": [0, -0.5, 0],
               "dynamics": {"guides": 500, "shape_stiffness": 0.7, "damping": 0.1, "iterations": 6},
               "lay_direction": [1, 0, 0]})");
   EXPECT_EQ(full.fur.layers, 32u);
+  EXPECT_EQ(plain.fur.pixelsPerLayer, defaults.pixelsPerLayer);
+  EXPECT_FLOAT_EQ(full.fur.pixelsPerLayer, 2.5f);
   EXPECT_FLOAT_EQ(full.fur.thickness, 0.01f);
   EXPECT_FLOAT_EQ(full.furUvScale, 20.0f);
   EXPECT_FALSE(full.fur.fins);
@@ -69,6 +71,8 @@ TEST(SceneFur, ErrorsNameTheFieldPath) {
   EXPECT_EQ(errorOf(R"(, "kind": "felt")"), at + ".kind: expected \"lambert\", \"skin\" or \"fur\", got \"felt\"");
   EXPECT_EQ(errorOf(fur + R"({"layers": 0})"), at + ".fur.layers: expected 1..64 shells");
   EXPECT_EQ(errorOf(fur + R"({"layers": 65})"), at + ".fur.layers: expected 1..64 shells");
+  EXPECT_EQ(errorOf(fur + R"({"pixels_per_layer": -1})"),
+            at + ".fur.pixels_per_layer: expected pixels of fur height per shell in [0, 100] (0: always every shell)");
   EXPECT_EQ(errorOf(fur + R"({"thickness": 0})"), at + ".fur.thickness: expected a fur height in (0, 0.1] metres");
   EXPECT_EQ(errorOf(fur + R"({"uv_scale": -1})"),
             at + ".fur.uv_scale: expected photo repeats per uv unit in (0, 10000]");
