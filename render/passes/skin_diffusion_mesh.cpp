@@ -89,7 +89,6 @@ Result<SkinDiffusionMesh> SkinDiffusionMesh::create(const Device& device, const 
     return fail(std::string("skin diffusion mesh: uploading failed: ") + error.what());
   }
   result.drawCount_ = static_cast<std::uint32_t>(draw.size());
-  result.ownCount_ = static_cast<std::uint32_t>(mesh.indices.size());
   result.uvScale_ = *scale;
   return result;
 }

@@ -47,8 +47,6 @@ public:
   /// SkinDrawVertex, a triangle list: drawCount() vertices.
   const Buffer& drawList() const { return drawList_; }
   std::uint32_t drawCount() const { return drawCount_; }
-  /// The mesh's own triangles: the first ownCount() vertices of the draw list.
-  std::uint32_t ownCount() const { return ownCount_; }
   /// Set 1 of the irradiance pipeline: vertices() as a storage buffer read by the vertex shader.
   const vk::raii::DescriptorSet& verticesSet() const { return descriptors_->set; }
   /// The layout of verticesSet(); a pipeline layout made with another identical one is compatible.
@@ -63,7 +61,6 @@ private:
   Buffer vertices_;
   Buffer drawList_;
   std::uint32_t drawCount_ = 0;
-  std::uint32_t ownCount_ = 0;
   double uvScale_ = 1.0;
   // Held apart, so that a move replaces them whole: the old set is freed before its pool goes.
   struct Descriptors {

@@ -29,9 +29,9 @@
 // they blur with the mesh's mean stretch (SkinDiffusionMesh::uvScale).
 //
 // Cost: the blurs dominate and grow with the map's area (skin_diffusion_test prints their GPU time;
-// docs/performance.md has the figures). Memory: six size² images (the irradiance, the
-// stretch at half the bytes, four for the blurs): 44 MiB at 1024², 176 MiB at 2048². One pass
-// holds one mesh's maps: one pass object per skin mesh.
+// docs/performance.md has the figures). Memory: seven size² images (the irradiance, the
+// stretch at half the bytes, the draw's 16-bit depth, four for the blurs): 46 MiB at 1024²,
+// 184 MiB at 2048². One pass holds one mesh's maps: one pass object per skin mesh.
 //
 // Shadows: the hair shadows (render/passes/hair_shadow_pass.hpp) attenuate the first light in the
 // irradiance, so the blurs soften their edges by the profile's widths, red most: texture-space
