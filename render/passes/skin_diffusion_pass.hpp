@@ -24,8 +24,8 @@
 // then carry light across the seams as across any other line of the surface. The blurs also
 // treat the coverage c as a weight (normalised convolution): they blur E·c and c alike, and the
 // result is Σ_i w_i·blur_i(E·c) / Σ_i w_i·blur_i(c) per RGB, so where the map holds nothing (no
-// skirt reaches: a border of the mesh, a chart squashed in uv, the map's edge) the black is never
-// averaged in and the island's border keeps its brightness. Texels off the mesh have no stretch;
+// skirt reaches: a border of the mesh, the map's edge) the black is never averaged in and the
+// island's border keeps its brightness. Texels off the mesh have no stretch;
 // they blur with the mesh's mean stretch (SkinDiffusionMesh::uvScale).
 //
 // Cost: the blurs dominate and grow with the map's area (skin_diffusion_test prints their GPU time;

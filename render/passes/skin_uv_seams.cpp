@@ -143,6 +143,28 @@ std::optional<Unfolding> unfoldAcross(const UvSeamEdge& seam, int nearSide, std:
   return std::nullopt;
 }
 
+// The reflection across the line through a0 and a1: x → a0 + u²·conj(x − a0), u the line's unit
+// direction (complex); none for a degenerate edge.
+std::optional<Unfolding> mirrorAcross(glm::dvec2 a0, glm::dvec2 a1) {
+  const double length = glm::length(a1 - a0);
+  if (!(length > 0.0)) return std::nullopt;
+  const glm::dvec2 u = (a1 - a0) / length;
+  return Unfolding{.from = a0, .origin = a0, .z = glm::dvec2(u.x * u.x - u.y * u.y, 2.0 * u.x * u.y), .mirrored = true};
+}
+
+// Whether a triangle at these uvs may cover a texel of the map: not wholly past one of its edges.
+bool insideMap(const std::array<SkinDrawVertex, 3>& corners) {
+  for (int axis = 0; axis < 2; ++axis) {
+    bool below = true, above = true;
+    for (const SkinDrawVertex& corner : corners) {
+      below = below && corner.uv[axis] < 0.0f;
+      above = above && corner.uv[axis] > 1.0f;
+    }
+    if (below || above) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::vector<UvSeamEdge> findUvSeams(std::span<const glm::vec3> positions, std::span<const glm::vec2> uvs,
@@ -179,16 +201,25 @@ std::vector<SkinDrawVertex> textureSpaceDrawList(std::span<const glm::vec3> posi
   for (const UvSeamEdge& seam : topology.seams)
     for (int nearSide = 0; nearSide < 2; ++nearSide, ++walk) {
       const double nearDensity = density[seam.triangles[nearSide]], farDensity = density[seam.triangles[1 - nearSide]];
-      if (nearDensity <= squashed || farDensity <= squashed) continue;
-      const std::optional<Unfolding> unfold = unfoldAcross(seam, nearSide, uvs, indices);
-      if (!unfold) continue;
-      // The reach as a distance over the surface, in the near side's uv: the far chart, as
-      // unfolded, has |z|·farDensity uv units per unit of surface.
-      const double nearReach = reach * glm::length(unfold->z) * farDensity / medianDensity;
+      if (nearDensity <= squashed) continue;
       const glm::dvec2 a0(uvs[seam.ends[nearSide][0]]), a1(uvs[seam.ends[nearSide][1]]);
-      // The far side's chart, breadth first from the seam's far triangle, while it stays within
-      // reach of the edge.
-      queue.assign(1, seam.triangles[1 - nearSide]);
+      std::optional<Unfolding> unfold =
+          farDensity > squashed ? unfoldAcross(seam, nearSide, uvs, indices) : std::nullopt;
+      std::uint32_t start = seam.triangles[1 - nearSide];
+      double startDensity = farDensity;
+      if (!unfold) {
+        // No skin across to show (squashed in uv): the near side's own, mirrored across the edge,
+        // so that the gutter holds its continuation rather than what some other seam's skirt
+        // would bring.
+        unfold = mirrorAcross(a0, a1);
+        start = seam.triangles[nearSide];
+        startDensity = nearDensity;
+      }
+      // The reach as a distance over the surface, in the near side's uv: the chart, as
+      // unfolded, has |z|·startDensity uv units per unit of surface.
+      const double nearReach = reach * glm::length(unfold->z) * startDensity / medianDensity;
+      // The chart, breadth first from the seam's triangle, while it stays within reach of the edge.
+      queue.assign(1, start);
       visitedBy[queue[0]] = walk;
       for (std::size_t q = 0; q < queue.size(); ++q) {
         const std::uint32_t t = queue[q];
@@ -202,7 +233,7 @@ std::vector<SkinDrawVertex> textureSpaceDrawList(std::span<const glm::vec3> posi
           skirt.nearest = std::min(skirt.nearest, float(depth));
         }
         if (q > 0 && skirt.nearest >= 1.0f) continue;  // wholly out of reach: neither drawn nor followed
-        skirts.push_back(skirt);
+        if (insideMap(skirt.corners)) skirts.push_back(skirt);  // past the map's edge: followed only
         for (const std::uint32_t next : topology.chartNeighbours[t])
           if (next != kNone && visitedBy[next] != walk) {
             visitedBy[next] = walk;

@@ -16,7 +16,9 @@
 // the skirt continues the near island's parametrisation up to the charts' difference in stretch.
 // Triangles squashed in uv (below a hundredth of the mesh's median uv density: charts collapsed
 // to a point or a line, as files do for surfaces no texture covers) are neither drawn nor
-// crossed, and no skirt starts from or into them.
+// crossed. Across a seam to such a chart there is no skin to show, and the gutter would take
+// whatever a nearby seam's skirt brings: the near side's own skin, mirrored across the edge,
+// stands in for it.
 //
 // Where skirts overlap each other or another island, a depth value decides: the mesh's own
 // triangles are at depth 0 and always win, and a skirt's depth grows with its distance from its

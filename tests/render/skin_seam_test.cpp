@@ -103,6 +103,10 @@ TEST_F(SkinSeamHead, TheHeadsDiffusedIrradianceAgreesAcrossItsUvSeams) {
   const MeshData mesh = meshData();
   const std::vector<UvSeamEdge> seams = findUvSeams(mesh.positions, mesh.uvs, mesh.indices);
   ASSERT_EQ(seams.size(), 375u);
+  const std::size_t drawn =
+      textureSpaceDrawList(mesh.positions, mesh.uvs, mesh.indices, SkinDiffusionMesh::kDefaultSeamReach).size() / 3;
+  std::printf("[ seams   ] %zu skirt triangles beside the mesh's %zu\n", drawn - mesh.indices.size() / 3,
+              mesh.indices.size() / 3);
   // nalu.json's scale and key light (from the upper right front), and an ambient tenth of it.
   const glm::mat4 model = glm::mat4(glm::mat3(0.025f));
   const DirectionalLight key{

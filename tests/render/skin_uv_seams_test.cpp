@@ -102,12 +102,44 @@ TEST(UvSeams, ATubesSkirtsContinueItsLayoutAcrossTheCut) {
   }
 }
 
+// A flat 8 × 4 sheet of unit squares in the xz plane, cut at x = 4 into two charts, each laid
+// out in uv by its own map of the position (x, z).
+struct TwoChartSheet {
+  static constexpr int kWidth = 8, kDepth = 4, kCut = 4;
+  TestMesh mesh;
+  std::vector<int> side;  // per vertex: 0 the left chart, 1 the right one
+};
+
+template <typename LeftMap, typename RightMap>
+TwoChartSheet twoChartSheet(const LeftMap& leftMap, const RightMap& rightMap) {
+  TwoChartSheet sheet;
+  TestMesh& mesh = sheet.mesh;
+  for (int chart = 0; chart < 2; ++chart) {
+    const int first = chart == 0 ? 0 : TwoChartSheet::kCut,
+              last = chart == 0 ? TwoChartSheet::kCut : TwoChartSheet::kWidth;
+    const std::uint32_t base = std::uint32_t(mesh.positions.size());
+    for (int z = 0; z <= TwoChartSheet::kDepth; ++z)
+      for (int x = first; x <= last; ++x) {
+        mesh.positions.push_back({float(x), 0.0f, float(z)});
+        const glm::dvec2 p(x, z);
+        mesh.uvs.push_back(glm::vec2(chart == 0 ? leftMap(p) : rightMap(p)));
+        sheet.side.push_back(chart);
+      }
+    const int stride = last - first + 1;
+    const auto at = [&](int x, int z) { return base + std::uint32_t(z * stride + (x - first)); };
+    for (int z = 0; z < TwoChartSheet::kDepth; ++z)
+      for (int x = first; x < last; ++x)
+        mesh.indices.insert(mesh.indices.end(),
+                            {at(x, z), at(x, z + 1), at(x + 1, z + 1), at(x, z), at(x + 1, z + 1), at(x + 1, z)});
+  }
+  return sheet;
+}
+
 TEST(UvSeams, AMirroredTurnedChartUnfoldsOntoItsNeighboursLayout) {
-  // A flat 8 × 4 sheet of unit squares in the xz plane, cut at x = 4. The left chart's uv is
-  // the position scaled by 1/16; the right chart's is turned by 70°, scaled by 1/40, mirrored
-  // and moved. Unfolded across the cut, the right chart must land where the left chart's map
-  // (x, z) / 16 puts it, and the left chart where the right chart's map puts it.
-  const int width = 8, depth = 4, cut = 4;
+  // The left chart's uv is the position scaled by 1/16; the right chart's is turned by 70°,
+  // scaled by 1/40, mirrored and moved. Unfolded across the cut, the right chart must land where
+  // the left chart's map (x, z) / 16 puts it, and the left chart where the right chart's map
+  // puts it.
   const double turn = 70.0 * std::numbers::pi / 180.0;
   const auto leftMap = [](glm::dvec2 p) { return p / 16.0; };
   const auto rightMap = [&](glm::dvec2 p) {
@@ -116,28 +148,10 @@ TEST(UvSeams, AMirroredTurnedChartUnfoldsOntoItsNeighboursLayout) {
                                              std::sin(turn) * mirrored.x + std::cos(turn) * mirrored.y) /
                                       40.0;
   };
-  TestMesh mesh;
-  std::vector<int> side;  // per vertex: 0 left chart, 1 right chart
-  const auto vertex = [&](int x, int z, int chart) {
-    mesh.positions.push_back({float(x), 0.0f, float(z)});
-    const glm::dvec2 p(x, z);
-    mesh.uvs.push_back(glm::vec2(chart == 0 ? leftMap(p) : rightMap(p)));
-    side.push_back(chart);
-    return std::uint32_t(mesh.positions.size() - 1);
-  };
-  for (int chart = 0; chart < 2; ++chart) {
-    const int first = chart == 0 ? 0 : cut, last = chart == 0 ? cut : width;
-    const std::uint32_t base = std::uint32_t(mesh.positions.size());
-    for (int z = 0; z <= depth; ++z)
-      for (int x = first; x <= last; ++x) vertex(x, z, chart);
-    const int stride = last - first + 1;
-    const auto at = [&](int x, int z) { return base + std::uint32_t(z * stride + (x - first)); };
-    for (int z = 0; z < depth; ++z)
-      for (int x = first; x < last; ++x)
-        mesh.indices.insert(mesh.indices.end(),
-                            {at(x, z), at(x, z + 1), at(x + 1, z + 1), at(x, z), at(x + 1, z + 1), at(x + 1, z)});
-  }
-  ASSERT_EQ(findUvSeams(mesh.positions, mesh.uvs, mesh.indices).size(), std::size_t(depth));
+  const TwoChartSheet sheet = twoChartSheet(leftMap, rightMap);
+  const TestMesh& mesh = sheet.mesh;
+  const std::vector<int>& side = sheet.side;
+  ASSERT_EQ(findUvSeams(mesh.positions, mesh.uvs, mesh.indices).size(), std::size_t(TwoChartSheet::kDepth));
 
   const std::vector<SkinDrawVertex> skirt = skirts(mesh, 1.0f);
   ASSERT_FALSE(skirt.empty());
@@ -152,6 +166,24 @@ TEST(UvSeams, AMirroredTurnedChartUnfoldsOntoItsNeighboursLayout) {
   }
   EXPECT_GT(onLeft, 0);
   EXPECT_GT(onRight, 0);
+}
+
+TEST(UvSeams, ANeighbourSquashedInUvGivesAMirroredSkirt) {
+  // The right chart maps to one point (a surface no texture covers): it has nothing to show, so
+  // the left chart's skirt is its own skin mirrored across the cut, u → 2·cut/16 − u, and the
+  // right chart draws no skirt.
+  const auto leftMap = [](glm::dvec2 p) { return p / 16.0; };
+  const auto rightMap = [](glm::dvec2) { return glm::dvec2(0.9, 0.9); };
+  const TwoChartSheet sheet = twoChartSheet(leftMap, rightMap);
+  const std::vector<SkinDrawVertex> skirt = skirts(sheet.mesh, 0.1f);
+  ASSERT_FALSE(skirt.empty());
+  const double cut = TwoChartSheet::kCut / 16.0;
+  for (const SkinDrawVertex& drawn : skirt) {
+    ASSERT_EQ(sheet.side[drawn.source], 0) << "vertex " << drawn.source;
+    const glm::vec2 own = sheet.mesh.uvs[drawn.source];
+    EXPECT_NEAR(drawn.uv.x, 2.0 * cut - own.x, 1e-6) << "vertex " << drawn.source;
+    EXPECT_NEAR(drawn.uv.y, own.y, 1e-6) << "vertex " << drawn.source;
+  }
 }
 
 TEST(UvSeams, AMeshWithoutSeamsOrWithoutReachDrawsOnlyItself) {
