@@ -304,9 +304,7 @@ void FurPass::writeShadowStrands(const glm::mat4& model, const glm::vec3& comb) 
   }
   std::memcpy(shadowStrands_.mapped().data(), points.data(), points.size() * sizeof(glm::vec4));
   shadowBounds_ = {.centre = 0.5f * (lo + hi), .radius = 0.5f * glm::length(hi - lo) * 1.001f + 1e-6f};
-  furRadius_ = 0.0f;
-  for (const glm::vec4& point : points)
-    furRadius_ = std::max(furRadius_, glm::distance(glm::vec3(point), shadowBounds_.centre));
+  if (auto tight = boundingSphere(std::span<const glm::vec4>(points))) furBounds_ = *tight;
 }
 
 Result<void> FurPass::setMesh(const MeshData& mesh) {
@@ -473,12 +471,12 @@ Result<void> FurPass::update(const FurView& view) {
 float FurPass::furHeightInPixels(const FurView& view) const {
   // The point of the fur's bounding sphere nearest the eye, and a step of h_b across the view
   // there, both projected.
-  const glm::vec3 centre = shadowBounds_.centre;
+  const glm::vec3 centre = furBounds_.centre;
   const glm::vec3 towardEye = view.eye.w > 0.0f ? glm::vec3(view.eye) - centre : glm::vec3(view.eye);
   const float distance = glm::length(towardEye);
-  if (!(distance > furRadius_)) return std::numeric_limits<float>::infinity();  // the eye is inside
+  if (!(distance > furBounds_.radius)) return std::numeric_limits<float>::infinity();  // the eye is inside
   const glm::vec3 toward = towardEye / distance;
-  const glm::vec3 nearest = centre + furRadius_ * toward;
+  const glm::vec3 nearest = centre + furBounds_.radius * toward;
   const glm::vec3 across = furShadowTangent(toward);
   const glm::vec4 a = view.viewProjection * glm::vec4(nearest, 1.0f);
   const glm::vec4 b = view.viewProjection * glm::vec4(nearest + model_.thickness() * across, 1.0f);

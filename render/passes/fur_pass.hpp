@@ -259,8 +259,8 @@ private:
   void buildPipelines();
   /// Writes shadowStrands_ and shadowBounds_ for this model matrix and comb.
   void writeShadowStrands(const glm::mat4& model, const glm::vec3& comb);
-  /// The fur's height in pixels where it comes nearest the eye: on the sphere of furRadius_
-  /// around shadowBounds().centre, as of the last writeShadowStrands.
+  /// The fur's height in pixels where it comes nearest the eye: on furBounds_, as of the last
+  /// writeShadowStrands.
   [[nodiscard]] float furHeightInPixels(const FurView& view) const;
 
   const Device* device_;
@@ -297,7 +297,9 @@ private:
   std::vector<glm::uvec2> fins_;
   std::uint32_t finCount_ = 0;
   std::uint32_t drawnLayers_ = 0;  ///< the shells' N as of the last update (drawnLayers)
-  float furRadius_ = 0.0f;         ///< the farthest shadow strand point from shadowBounds_.centre
+  /// The tight sphere around the shadow strands (shadowBounds_ is the looser one the shadow
+  /// map's texel size was chosen for).
+  BoundingSphere furBounds_{};
   vk::CullModeFlags cullMode_ = vk::CullModeFlagBits::eNone;  ///< the skin's and shells', as of the last update
   vk::FrontFace frontFace_ = vk::FrontFace::eCounterClockwise;
   bool updated_ = false;

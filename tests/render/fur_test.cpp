@@ -228,6 +228,17 @@ TEST_F(FurPassTest, ASingleSidedFurOnAClosedMeshDrawsTheSamePicture) {
   EXPECT_EQ(differingInside, 0u);
   EXPECT_LE(differing, covered / 200) << "of " << covered << " fur pixels, all within the ring " << bare << " … "
                                       << outer + 1.5 << " px";
+  // And the culling is done: the same sphere wound inside out (its faces turned inwards) loses
+  // its near side, and the fur seen is the far side's, from within: most of the disc changes.
+  SphereMesh inverted = sphere;
+  for (std::size_t t = 0; t < inverted.indices.size(); t += 3)
+    std::swap(inverted.indices[t + 1], inverted.indices[t + 2]);
+  ASSERT_TRUE(pass->setMesh(inverted.data()).has_value());
+  const Pixels insideOut = render(*pass, sphereView({.doubleSided = false}));
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < both.size(); ++i)
+    changed += both[i].a > 0.5f && glm::length(glm::vec3(both[i]) - glm::vec3(insideOut[i])) > 1e-3f;
+  EXPECT_GT(changed, covered / 2) << "of " << covered << " fur pixels";
 }
 
 // Shells per pixel of fur height on screen (FurLook::pixelsPerLayer), against the projection of
