@@ -112,6 +112,9 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
     return fail("ClothSettings.solver: " + valid.error().message);
   if (!(settings.bendingStiffness >= 0.0f && settings.bendingStiffness <= 1.0f))
     return fail("ClothSettings.bendingStiffness must be in [0, 1], got " + std::to_string(settings.bendingStiffness));
+  if (!(settings.selfCollisionThickness >= 0.0f && settings.selfCollisionThickness <= 1.0f))
+    return fail("ClothSettings.selfCollisionThickness must be in [0, 1] metres, got " +
+                std::to_string(settings.selfCollisionThickness));
   if (!finite(bodyTransform)) return fail("ClothSettings.bodyTransform: cloth body transform has a NaN or infinite entry");
   if (auto valid = validateTaskRunner(settings.tasks, "ClothSettings.tasks"); !valid)
     return std::unexpected(valid.error());
@@ -123,6 +126,12 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
   for (std::size_t v = 0; v < positions.size(); ++v)
     if (!finite(positions[v]))
       return fail("ClothSettings.positions: cloth vertex " + std::to_string(v) + " is NaN or infinite");
+  if (!settings.pattern.empty() && settings.pattern.size() != positions.size())
+    return fail("ClothSettings.pattern: " + std::to_string(settings.pattern.size()) + " points for " +
+                std::to_string(positions.size()) + " vertices");
+  for (std::size_t v = 0; v < settings.pattern.size(); ++v)
+    if (!finite(settings.pattern[v]))
+      return fail("ClothSettings.pattern: point " + std::to_string(v) + " is NaN or infinite");
 
   // Edge (low, high) → the vertices opposite it in the triangles that share it.
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edges;
@@ -163,7 +172,9 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
 
   auto addConstraint = [&](std::uint32_t a, std::uint32_t b, float stiffness) {
     if (isPinned[a] && isPinned[b]) return;  // nothing can move
-    const float rest = glm::distance(cloth.particles_.positions[a], cloth.particles_.positions[b]);
+    const std::span<const glm::vec3> restShape =
+        settings.pattern.empty() ? std::span<const glm::vec3>(cloth.particles_.positions) : settings.pattern;
+    const float rest = glm::distance(restShape[a], restShape[b]);
     if (rest > 0.0f) cloth.constraints_.push_back({{a, b, rest}, stiffness});
   };
   for (const auto& [edge, opposite] : edges) addConstraint(edge.first, edge.second, 1.0f);
@@ -175,6 +186,8 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
                       settings.bendingStiffness);
 
   if (settings.solver.tethers && !cloth.pinned_.empty()) cloth.tethers_ = attachToPins(cloth);
+  if (settings.selfCollisionThickness > 0.0f)
+    cloth.selfCollision_.emplace(triangles, positions.size(), settings.selfCollisionThickness);
 
   // Sort by colour (stable: within a colour the build order stays, though it cannot matter).
   const auto colours = colourConstraints(cloth.constraints_, positions.size());
@@ -329,6 +342,7 @@ Result<void> Cloth::advanceWith(double frameDt, const TaskRunner& tasks) {
           projectTether(particles_.positions[tethers_[i].particle], particles_.positions[tethers_[i].anchor],
                         tethers_[i].maxDistance);
       });
+    if (selfCollision_) selfCollision_->resolve(particles_);
     if (!colliders_.empty())
       runPhase([&](std::uint32_t w) {
         const auto [first, end] = slice(particles_.size(), w);

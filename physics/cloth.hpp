@@ -8,9 +8,12 @@
 //   dihedral as well as the iteration count allows);
 // - pinned vertices with infinite mass that follow the body transform, or per-pin targets (a
 //   host's skinned vertices);
+// - optionally, each free vertex kept off the cloth's other triangles and each edge in a fold off
+//   the edges near it (cloth_self_collision.hpp);
 // - long-range attachments (Kim, Chentanez & Müller 2012): every free vertex may stray from its
-//   nearest pin no farther than the shortest path along the mesh's edges at rest, so the cloth
-//   cannot stretch visibly however few the iterations (on with `solver.tethers`).
+//   nearest pin no farther than the shortest path along the mesh's edges at rest, so hanging
+//   cloth cannot stretch visibly however few the iterations (on with `solver.tethers`). Over a
+//   body the cloth's path is longer than that straight line, and they go slack.
 //
 // Parallel and deterministic: constraints are greedily graph-coloured so that no two in a
 // colour share a particle; colours are relaxed one after another, the constraints of a colour
@@ -18,6 +21,7 @@
 // is bit-identical for every thread count (docs/design.md#determinism).
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -25,6 +29,7 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "physics/cloth_self_collision.hpp"
 #include "physics/colliders.hpp"
 #include "physics/constraints.hpp"
 #include "physics/particles.hpp"
@@ -37,10 +42,18 @@ namespace mane::physics {
 struct ClothSettings {
   SolverSettings solver;          ///< step, gravity, damping, iterations, tethers (to the pins)
   float bendingStiffness = 0.5f;  ///< fraction of the bending error corrected per sweep, [0, 1]
+  /// Metres ≥ 0 that each free vertex keeps from the cloth's other triangles, on the side it came
+  /// from, once per step (cloth_self_collision.hpp); 0: the cloth may pass through itself.
+  float selfCollisionThickness = 0.0f;
   /// The mesh in body-local space, metres: finite vertex positions, at least one triangle.
   std::vector<glm::vec3> positions;
   /// Three vertex indices per triangle; each triangle's corners distinct and not collinear.
   std::vector<std::uint32_t> triangles;
+  /// The cloth's rest shape, one point per vertex (any frame, metres: only distances between
+  /// vertices are read): the constraints' rest lengths. Empty: the mesh as placed by
+  /// `bodyTransform`, so the cloth rests in the shape it starts in. A sewing pattern laid flat
+  /// gives cloth that starts curved and still hangs in folds rather than keeping its curve.
+  std::vector<glm::vec3> pattern;
   /// Vertices that follow the body (or `Cloth::setPinTargets`); repeats count once.
   std::vector<std::uint32_t> pinnedVertices;
   /// Body-local → world transform at rest (finite).
@@ -63,7 +76,8 @@ public:
   /// Builds cloth from `settings`' triangle mesh, pins, body transform, colliders and task
   /// runner. Fails with a message that starts with the settings field at fault and names the
   /// triangle or vertex: an index out of range, a degenerate triangle (repeated vertex or zero
-  /// area), a non-finite position, an empty mesh, or invalid solver settings, bending stiffness,
+  /// area), a non-finite position, an empty mesh, a pattern whose size is not the mesh's or with
+  /// a non-finite point, or invalid solver settings, bending stiffness, self-collision thickness,
   /// body transform, colliders or task runner.
   [[nodiscard]] static Result<Cloth> create(const ClothSettings& settings);
 
@@ -95,8 +109,9 @@ public:
   [[nodiscard]] std::span<const std::uint32_t> pinnedVertices() const noexcept { return pinned_; }
 
   /// What the cloth collides with, in body-local space (it moves with the body transform).
-  /// Step order: Verlet, collisions with friction, the coloured constraint sweeps, then a
-  /// frictionless collision pass so that no particle ends a step inside a collider.
+  /// Step order: Verlet, collisions with friction, the coloured constraint sweeps, tethers, self
+  /// collision, then a frictionless collision pass so that no particle ends a step inside a
+  /// collider.
   [[nodiscard]] Result<void> setColliders(ColliderSet colliders);
 
   /// Advances by `frameDt` seconds in whole fixed steps (the remainder carries over), each
@@ -143,6 +158,7 @@ private:
   std::vector<std::uint32_t> colourStarts_;
   std::vector<DistanceConstraint> edges_;
   std::vector<Tether> tethers_;  // sorted by particle
+  std::optional<ClothSelfCollision> selfCollision_;
   std::vector<std::uint32_t> pinned_;
   std::vector<glm::vec3> pinnedLocal_;
   std::vector<glm::vec3> pinTargets_;  // per pin, world: empty while pins follow the body

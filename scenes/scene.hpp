@@ -287,13 +287,27 @@ struct Groom {
   [[nodiscard]] bool isProcedural() const { return sources.size() == 1 && sources[0] == "procedural"; }
 };
 
+/// The cut of a "procedural:cape": a sector of a cone's side (a circle cape's pattern, which lies
+/// flat when laid out), its top edge an arc around the neck at y = 0 centred on the back (−z),
+/// flaring down to its hem. What the hem's extra width does once the cape hangs is folds.
+struct CapeShape {
+  float collarRadius = 0.06f;  ///< metres: radius of the arc the top edge is sewn along, > 0
+  float hemRadius = 0.25f;     ///< metres: radius of the bottom edge, in [collar, collar + length]
+  float length = 0.25f;        ///< metres: from collar to hem along the cloth, > 0
+  float wrapDegrees = 240.0f;  ///< how far the collar goes around the neck, (0, 360]
+  int columns = 64;            ///< vertices along the collar, 2..512
+  int rows = 40;               ///< vertices from collar to hem, 2..512
+};
+
 /// Cloth (a fin, a scarf, a cape): a triangle mesh whose edges become constraints, moving with
 /// a mesh (the body). Its `transform` places the cloth relative to the body's pivot in metres,
 /// following the body's motion but not its scale; on a character part, relative to the
 /// character's placement (its axes, metres) at time 0.
 struct Cloth {
   std::string name;
-  std::string source;        ///< mesh asset, file path, or "procedural:grid" (1 m × 1 m, top edge at y = 0)
+  /// Mesh asset, file path, "procedural:grid" (1 m × 1 m, top edge at y = 0) or "procedural:cape"
+  /// (`cape`).
+  std::string source;
   std::string attachedMesh;  ///< name of a `MeshInstance`; pins follow it
   std::string material;      ///< name of a `Material` (empty: the default material)
   Transform transform;
@@ -305,8 +319,10 @@ struct Cloth {
   int iterations = 8;                     ///< constraint sweeps per step, ≥ 1
   float damping = 0.02f;                  ///< velocity fraction lost per step, in [0, 1)
   float bendingStiffness = 0.5f;          ///< in [0, 1]
+  float selfCollision = 0.0f;             ///< metres each vertex keeps off the cloth's other triangles; 0: off
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
   Colliders colliders;                    ///< in the attached mesh's body frame (not the cloth's transform)
+  CapeShape cape;                         ///< the cut of a "procedural:cape"
 };
 
 /// A clip of a character's file played on the scene's clock.

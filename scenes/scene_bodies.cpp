@@ -284,14 +284,43 @@ Groom parseGroom(const Json& json, const std::string& path) {
   return groom;
 }
 
+CapeShape parseCapeShape(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  CapeShape cape;
+  cape.collarRadius = fields.optional<float>("collar_radius", cape.collarRadius);
+  cape.hemRadius = fields.optional<float>("hem_radius", cape.hemRadius);
+  cape.length = fields.optional<float>("length", cape.length);
+  cape.wrapDegrees = fields.optional<float>("wrap_degrees", cape.wrapDegrees);
+  cape.columns = fields.optional<int>("columns", cape.columns);
+  cape.rows = fields.optional<int>("rows", cape.rows);
+  fields.finish();
+  require(cape.collarRadius > 0.0f && cape.collarRadius <= 10.0f, fields.child("collar_radius"),
+          "expected a radius in (0, 10] metres");
+  require(cape.length > 0.0f && cape.length <= 10.0f, fields.child("length"), "expected a length in (0, 10] metres");
+  // A cone's side can flare no wider than a flat ring: its slant is the length.
+  require(cape.hemRadius >= cape.collarRadius && cape.hemRadius <= cape.collarRadius + cape.length,
+          fields.child("hem_radius"), "expected a radius from collar_radius to collar_radius + length");
+  require(cape.wrapDegrees > 0.0f && cape.wrapDegrees <= 360.0f, fields.child("wrap_degrees"),
+          "expected an angle in (0, 360] degrees");
+  require(cape.columns >= 2 && cape.columns <= 512, fields.child("columns"), "expected 2..512 vertices");
+  require(cape.rows >= 2 && cape.rows <= 512, fields.child("rows"), "expected 2..512 vertices");
+  return cape;
+}
+
 Cloth parseCloth(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Cloth cloth;
   cloth.name = fields.required<std::string>("name");
   require(!cloth.name.empty(), fields.child("name"), "expected a non-empty name");
   cloth.source = fields.required<std::string>("source");
-  require(!cloth.source.empty() && (!cloth.source.starts_with(kProceduralPrefix) || cloth.source == "procedural:grid"),
-          fields.child("source"), "expected a mesh asset, a file path or \"procedural:grid\"");
+  const bool isCape = cloth.source == "procedural:cape";
+  require(!cloth.source.empty() &&
+              (!cloth.source.starts_with(kProceduralPrefix) || cloth.source == "procedural:grid" || isCape),
+          fields.child("source"), "expected a mesh asset, a file path, \"procedural:grid\" or \"procedural:cape\"");
+  if (const Json* cape = fields.take("cape")) {
+    require(isCape, fields.child("cape"), "applies to \"procedural:cape\" cloths only");
+    cloth.cape = parseCapeShape(*cape, fields.child("cape"));
+  }
   cloth.attachedMesh = fields.required<std::string>("attached_mesh");
   cloth.material = fields.optional<std::string>("material", "");
   if (const Json* transform = fields.take("transform")) {
@@ -303,6 +332,7 @@ Cloth parseCloth(const Json& json, const std::string& path) {
     cloth.iterations = simFields.optional<int>("iterations", cloth.iterations);
     cloth.damping = simFields.optional<float>("damping", cloth.damping);
     cloth.bendingStiffness = simFields.optional<float>("bending", cloth.bendingStiffness);
+    cloth.selfCollision = simFields.optional<float>("self_collision", cloth.selfCollision);
     cloth.gravity = simFields.optional<glm::vec3>("gravity", cloth.gravity);
     simFields.finish();
     require(cloth.iterations >= 1 && cloth.iterations <= 1000, simFields.child("iterations"),
@@ -310,6 +340,8 @@ Cloth parseCloth(const Json& json, const std::string& path) {
     require(cloth.damping >= 0.0f && cloth.damping < 1.0f, simFields.child("damping"), "expected a damping in [0, 1)");
     require(cloth.bendingStiffness >= 0.0f && cloth.bendingStiffness <= 1.0f, simFields.child("bending"),
             "expected a bending stiffness in [0, 1]");
+    require(cloth.selfCollision >= 0.0f && cloth.selfCollision <= 0.1f, simFields.child("self_collision"),
+            "expected a thickness in [0, 0.1] metres (0: off)");
   }
   if (const Json* colliders = fields.take("colliders")) {
     cloth.colliders = parseColliders(*colliders, fields.child("colliders"));

@@ -1,7 +1,9 @@
 #include "scenes/scene_cloth.hpp"
 
 #include <algorithm>
+#include <cmath>
 
+#include <glm/trigonometric.hpp>
 #include <glm/vector_relational.hpp>
 
 #include "scenes/obj_loader.hpp"
@@ -29,11 +31,71 @@ Mesh makeClothGrid() {
   return grid;
 }
 
+/// `cape`'s cone-side sector, rows from the collar down, columns from the left front edge
+/// around the back; triangles wind counter-clockwise seen from outside, their diagonals
+/// alternating so that the cloth folds alike both ways.
+Mesh makeCape(const CapeShape& cape) {
+  Mesh mesh;
+  mesh.name = "procedural:cape";
+  const double flare = static_cast<double>(cape.hemRadius) - static_cast<double>(cape.collarRadius);
+  const double drop = std::sqrt(std::max(0.0, double(cape.length) * double(cape.length) - flare * flare));
+  const double wrap = glm::radians(static_cast<double>(cape.wrapDegrees));
+  for (int row = 0; row < cape.rows; ++row) {
+    const double down = double(row) / double(cape.rows - 1);
+    const double radius = double(cape.collarRadius) + flare * down;
+    for (int column = 0; column < cape.columns; ++column) {
+      const double across = double(column) / double(cape.columns - 1);
+      const double angle = wrap * (across - 0.5);
+      mesh.positions.emplace_back(radius * std::sin(angle), -drop * down, -radius * std::cos(angle));
+      mesh.uvs.emplace_back(across, down);
+    }
+  }
+  for (int row = 0; row + 1 < cape.rows; ++row)
+    for (int column = 0; column + 1 < cape.columns; ++column) {
+      const auto a = static_cast<std::uint32_t>(row * cape.columns + column), b = a + 1;
+      const auto c = a + static_cast<std::uint32_t>(cape.columns), d = c + 1;
+      if ((row + column) % 2 == 0)
+        mesh.indices.insert(mesh.indices.end(), {a, b, c, b, d, c});
+      else
+        mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+    }
+  computeSmoothNormals(mesh);
+  return mesh;
+}
+
+/// `makeCape`'s vertices where the cape's pattern puts them: the cone's side unrolled into a
+/// sector of a flat ring (a rectangle when the cape does not flare), so that the cloth rests flat
+/// as the cut cloth does. The cone's half-angle α has sin α = flare / length; unrolled, the collar
+/// lies at R₀ = collar / sin α from the apex and an angle θ around the axis becomes θ · sin α.
+std::vector<glm::vec3> capePattern(const CapeShape& cape) {
+  const double flare = static_cast<double>(cape.hemRadius) - static_cast<double>(cape.collarRadius);
+  const double sinHalfAngle = flare / double(cape.length);
+  const double apexToCollar = sinHalfAngle > 0.0 ? double(cape.collarRadius) / sinHalfAngle : 0.0;
+  const double wrap = glm::radians(static_cast<double>(cape.wrapDegrees));
+  std::vector<glm::vec3> pattern;
+  for (int row = 0; row < cape.rows; ++row) {
+    const double down = double(cape.length) * double(row) / double(cape.rows - 1);
+    for (int column = 0; column < cape.columns; ++column) {
+      const double angle = wrap * (double(column) / double(cape.columns - 1) - 0.5);
+      if (sinHalfAngle == 0.0) {
+        pattern.emplace_back(double(cape.collarRadius) * angle, -down, 0.0);
+        continue;
+      }
+      // Measured from the collar's middle rather than the apex, which lies far off for a cape
+      // that hardly flares.
+      const double fromApex = apexToCollar + down, unrolled = angle * sinHalfAngle;
+      pattern.emplace_back(fromApex * std::sin(unrolled), apexToCollar - fromApex * std::cos(unrolled), 0.0);
+    }
+  }
+  return pattern;
+}
+
 }  // namespace
 
 Result<Mesh> loadClothMesh(const Cloth& cloth, const AssetResolver& resolver,
                            const std::filesystem::path& sceneDirectory) {
   if (cloth.source == "procedural:grid") return makeClothGrid();
+  if (cloth.source == "procedural:cape") return makeCape(cloth.cape);
   auto found = resolver.lookupForScene(cloth.source, sceneDirectory);
   if (!found) return fail("cloth '" + cloth.name + "': " + found.error().message);
   if (!found->path) return fail("cloth '" + cloth.name + "': " + found->missingReason);
@@ -74,12 +136,17 @@ Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const Simul
   for (std::size_t v = 0; v < local.size(); ++v) local[v] = glm::vec3(placement * glm::vec4(rest.positions[v], 1.0f));
 
   physics::ClothSettings settings;
+  if (cloth.source == "procedural:cape") {
+    settings.pattern = capePattern(cloth.cape);
+    for (glm::vec3& point : settings.pattern) point *= cloth.transform.scale;
+  }
   settings.solver.fixedStep = simulation.stepSeconds;
   settings.solver.maxSubstepsPerFrame = simulation.maxStepsPerFrame;
   settings.solver.constraintIterations = cloth.iterations;
   settings.solver.damping = cloth.damping;
   settings.solver.gravity = cloth.gravity;
   settings.bendingStiffness = cloth.bendingStiffness;
+  settings.selfCollisionThickness = cloth.selfCollision;
   auto physical = physics::Cloth::create(local, rest.indices, pinned, settings, body);
   if (!physical) return fail("cloth '" + cloth.name + "': " + physical.error().message);
   if (!colliders.empty())

@@ -1,6 +1,6 @@
 // The colliders of scene files (scenes/README.md, "Colliders") in the running World: the
-// fields sit where the renderer draws their mesh, and simulated hair and cloth stay outside
-// them. Every check measures against geometry evaluated here, independently of the World's
+// fields sit where the renderer draws their mesh, and simulated hair stays outside them (the
+// cape: cape_drape_test.cpp). Every check measures against geometry evaluated here, independently of the World's
 // fields: analytic spheres and capsules, a field of our own on another grid, and brute-force
 // distances to the mesh's triangles.
 
@@ -103,14 +103,6 @@ double bruteForceSignedDistance(const BodyMesh& mesh, const glm::vec3& point) {
     if (glm::dot(e2, q) / det > 0) ++crossings;
   }
   return crossings % 2 == 1 ? -nearest : nearest;
-}
-
-/// Signed distance from `p` to the capsule (segment ab, radius r), metres.
-float capsuleDistance(const physics::CapsuleCollider& capsule, const glm::vec3& p) {
-  const glm::vec3 ab = capsule.b - capsule.a;
-  const float lengthSquared = glm::dot(ab, ab);
-  const float s = lengthSquared > 0.0f ? std::clamp(glm::dot(p - capsule.a, ab) / lengthSquared, 0.0f, 1.0f) : 0.0f;
-  return glm::distance(p, capsule.a + s * ab) - capsule.radius;
 }
 
 /// The hair's non-root particles in the body frame of `mesh` at the world's current time.
@@ -441,47 +433,6 @@ TEST(WorldColliders, PonytailSitsOnItsHeadAndStaysOutside) {
   EXPECT_GT(worst, -1e-4f) << "a particle is " << -worst * 1e3f << " mm inside the head (or deeper than its root)";
   RecordProperty("strands_rooted_inside", std::to_string(rootedInside));
   RecordProperty("worst_mm", std::to_string(worst * 1e3f));
-}
-
-// --- Cloth stays outside -----------------------------------------------------------------
-
-// cape.json: the cape hangs behind the shaking bust, and its colliders stand for the body below
-// the bust (two capsules) and the bust itself (its field). Over 1.5 s of the shake, after every
-// frame, every cloth vertex must be outside each capsule, measured here from the scene's own
-// numbers, by the scene's thickness less 0.1 mm (the settle pass's slack and float rounding in
-// the body-frame transform). That the cape reaches the capsules at all is checked too (else the
-// test would prove nothing), and without colliders the same cape swings into them.
-TEST(WorldColliders, CapeStaysOutsideTheBody) {
-  auto scene = loadScene(kScenes / "cape.json");
-  ASSERT_TRUE(scene.has_value()) << scene.error().message;
-  const Scene copy = *scene;
-  const MeshInstance& head = *copy.findMesh("head");
-  const Colliders& colliders = copy.cloths[0].colliders;
-  ASSERT_EQ(colliders.capsules.size(), 2u);
-  ASSERT_TRUE(colliders.sdf.has_value());
-
-  const auto nearestCapsule = [&](Scene cape) {
-    auto world = createWorld(std::move(cape), testing::sharedResolver());
-    float nearest = std::numeric_limits<float>::infinity();
-    if (!world) return nearest;
-    for (int frame = 0; frame < 45; ++frame) {
-      EXPECT_TRUE(world->advance(1.0 / 30.0, 1).has_value());
-      const glm::mat4 toBody = worldToBody(copy, head, world->time());
-      for (const glm::vec3& p : world->cloths()[0].cloth().particles().positions)
-        for (const physics::CapsuleCollider& capsule : colliders.capsules)
-          nearest = std::min(nearest, capsuleDistance(capsule, transformPoint(toBody, p)));
-    }
-    return nearest;
-  };
-  const float nearest = nearestCapsule(copy);
-  EXPECT_GT(nearest, colliders.thickness - 1e-4f)
-      << "a vertex came " << nearest * 1e3f << " mm from a capsule's surface";
-  EXPECT_LT(nearest, colliders.thickness + 0.002f) << "the cape never reached the body";
-  RecordProperty("nearest_to_capsule_mm", std::to_string(nearest * 1e3f));
-
-  Scene bare = copy;
-  bare.cloths[0].colliders = {};
-  EXPECT_LT(nearestCapsule(std::move(bare)), -0.01f) << "without colliders the cape should swing into the body";
 }
 
 // --- Subdivided bodies ------------------------------------------------------------------------
