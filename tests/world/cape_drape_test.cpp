@@ -148,9 +148,8 @@ int hemFolds(std::span<const glm::vec3> hem, const glm::vec3& axis, float promin
 // Every frame for ten seconds of the shake (30 frames a second), in the bust's body frame: every
 // cape vertex outside the bust's field and outside both capsules (from the scene's own numbers)
 // by the scene's collision thickness less 0.1 mm (float rounding of the body-frame transforms);
-// that it touches them at all (else this would prove nothing); every tenth frame, no edge of the
-// cape through one of its triangles (without self collision there are some within two seconds);
-// and at the end, the hem in folds.
+// that it touches them at all (else this would prove nothing); every fifth frame, no edge of the
+// cape through one of its triangles; and at the end, the hem in folds.
 TEST(CapeDrape, StaysOutsideTheBodyAndItselfOverTenSecondsOfTheShake) {
   auto scene = loadScene(kCape);
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
@@ -178,7 +177,7 @@ TEST(CapeDrape, StaysOutsideTheBodyAndItselfOverTenSecondsOfTheShake) {
       for (const physics::CapsuleCollider& capsule : colliders.capsules)
         nearestCapsule = std::min(nearestCapsule, capsuleDistance(capsule, body));
     }
-    if (frame % 10 == 0) {
+    if (frame % 5 == 0) {
       crossings += selfCrossings(positions, cape.surface().indices, 0.01f);
       ++checks;
     }
@@ -189,20 +188,6 @@ TEST(CapeDrape, StaysOutsideTheBodyAndItselfOverTenSecondsOfTheShake) {
   EXPECT_LT(nearestField, thickness + 0.001f) << "the cape never lay on the bust";
   EXPECT_LT(nearestCapsule, thickness + 0.001f) << "the cape never reached the body below the bust";
   EXPECT_EQ(crossings, 0u) << "edge-triangle crossings summed over " << checks << " frames";
-
-  // The same cape without self collision does cross itself within two seconds of the shake.
-  Scene loose = copy;
-  loose.cloths[0].selfCollision = 0.0f;
-  auto looseWorld = World::create(std::move(loose), testing::sharedResolver(), {.loadTextures = false});
-  ASSERT_TRUE(looseWorld) << looseWorld.error().message;
-  std::size_t looseCrossings = 0;
-  for (int frame = 1; frame <= 60; ++frame) {
-    ASSERT_TRUE(looseWorld->advance(1.0 / 30.0, 2).has_value());
-    if (frame % 10 == 0)
-      looseCrossings += selfCrossings(looseWorld->cloths()[0].cloth().particles().positions,
-                                      looseWorld->cloths()[0].surface().indices, 0.01f);
-  }
-  EXPECT_GT(looseCrossings, 0u) << "the shake should fold the cape through itself when nothing stops it";
 
   const CapeShape& shape = copy.cloths[0].cape;
   const auto positions = cape.cloth().particles().positions;
@@ -216,7 +201,6 @@ TEST(CapeDrape, StaysOutsideTheBodyAndItselfOverTenSecondsOfTheShake) {
   RecordProperty("nearest_to_bust_mm", std::to_string(nearestField * 1e3f));
   RecordProperty("nearest_to_capsule_mm", std::to_string(nearestCapsule * 1e3f));
   RecordProperty("self_crossings", std::to_string(crossings));
-  RecordProperty("self_crossings_without_self_collision_2s", std::to_string(looseCrossings));
   RecordProperty("hem_folds", std::to_string(folds));
 }
 

@@ -181,14 +181,16 @@ TEST(World, CapePinsFollowTheHeadAndTheSurfaceIsDynamic) {
     const glm::vec3 expected(body * placement * glm::vec4(rest->positions[pin], 1.0f));
     EXPECT_LT(glm::distance(positions[pin], expected), 1e-5f) << "pin " << pin;
   }
-  // The cape as a whole keeps its cut: half its edges within 2 % of their rest length. Where it
-  // hangs over the shoulder tips, the weight below stretches a few of them far more (the tethers
-  // go slack over a body); that is reported, not bounded.
+  // The cape keeps its cut: half its edges within 2 % of their rest length, and none stretched by
+  // a third, though where it hangs over the shoulder tips the weight below stretches a few (the
+  // tethers go slack over a body; at the scene's 1/480 s steps they reach about a quarter, at
+  // 1/120 s two to three times their length).
   std::vector<float> stretch;
   for (const physics::DistanceConstraint& edge : world->cloths()[0].cloth().edges())
     stretch.push_back(std::abs(glm::distance(positions[edge.a], positions[edge.b]) / edge.restLength - 1.0f));
   std::nth_element(stretch.begin(), stretch.begin() + stretch.size() / 2, stretch.end());
   EXPECT_LT(stretch[stretch.size() / 2], 0.02f);
+  EXPECT_LT(*std::max_element(stretch.begin(), stretch.end()), 1.0f / 3.0f);
   RecordProperty("median_stretch", std::to_string(stretch[stretch.size() / 2]));
   RecordProperty("max_stretch", std::to_string(*std::max_element(stretch.begin(), stretch.end())));
   const auto dynamic = world->dynamicMeshes();
