@@ -170,10 +170,10 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
   for (std::size_t v = 0; v < positions.size(); ++v)
     cloth.particles_.add(transformPoint(bodyTransform, positions[v]), isPinned[v] ? 0.0f : 1.0f);
 
+  const std::span<const glm::vec3> restShape =
+      settings.pattern.empty() ? std::span<const glm::vec3>(cloth.particles_.positions) : settings.pattern;
   auto addConstraint = [&](std::uint32_t a, std::uint32_t b, float stiffness) {
     if (isPinned[a] && isPinned[b]) return;  // nothing can move
-    const std::span<const glm::vec3> restShape =
-        settings.pattern.empty() ? std::span<const glm::vec3>(cloth.particles_.positions) : settings.pattern;
     const float rest = glm::distance(restShape[a], restShape[b]);
     if (rest > 0.0f) cloth.constraints_.push_back({{a, b, rest}, stiffness});
   };

@@ -19,26 +19,6 @@ constexpr int kMaxCellsPerAxis = 4;
 
 using Cell = std::array<std::int32_t, 3>;
 
-// The cells a box [low, high] overlaps, from `from` to `to` on each axis; none for a box that is
-// not finite, lies beyond a million cells from the origin or spans more than kMaxCellsPerAxis.
-struct CellRange {
-  Cell from{}, to{};
-  bool empty = true;
-};
-
-CellRange cellsOf(const glm::vec3& low, const glm::vec3& high, float inverseCell) {
-  CellRange range;
-  constexpr float kFarthest = 1e6f;
-  for (int axis = 0; axis < 3; ++axis) {
-    const float first = std::floor(low[axis] * inverseCell), last = std::floor(high[axis] * inverseCell);
-    if (!(first >= -kFarthest && last <= kFarthest && last - first < float(kMaxCellsPerAxis))) return range;
-    range.from[axis] = static_cast<std::int32_t>(first);
-    range.to[axis] = static_cast<std::int32_t>(last);
-  }
-  range.empty = false;
-  return range;
-}
-
 // Teschner et al. 2003's hash of a cell, with their three primes.
 std::uint32_t bucketOf(const Cell& cell, std::size_t buckets) {
   const std::uint32_t h = (static_cast<std::uint32_t>(cell[0]) * 73856093u) ^
@@ -52,6 +32,22 @@ bool finite(const glm::vec3& v) {
 }
 
 }  // namespace
+
+// The cells a box [low, high] overlaps, from `from` to `to` on each axis; none for a box that is
+// not finite, lies beyond a million cells from the origin or spans more than kMaxCellsPerAxis.
+ClothSelfCollision::CellRange ClothSelfCollision::cellsOf(const glm::vec3& low, const glm::vec3& high,
+                                                          float inverseCell) {
+  CellRange range;
+  constexpr float kFarthest = 1e6f;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float first = std::floor(low[axis] * inverseCell), last = std::floor(high[axis] * inverseCell);
+    if (!(first >= -kFarthest && last <= kFarthest && last - first < float(kMaxCellsPerAxis))) return range;
+    range.from[axis] = static_cast<std::int32_t>(first);
+    range.to[axis] = static_cast<std::int32_t>(last);
+  }
+  range.empty = false;
+  return range;
+}
 
 ClothSelfCollision::ClothSelfCollision(std::span<const std::uint32_t> triangles, std::size_t vertexCount,
                                        float thickness)
@@ -121,7 +117,8 @@ void ClothSelfCollision::hashTriangles(const Particles& particles) {
   cellSize_ = finiteCount > 0 ? static_cast<float>(extentSum / double(finiteCount)) : 1.0f;
   const float inverseCell = 1.0f / cellSize_;
 
-  std::vector<CellRange> ranges(triangleCount);
+  std::vector<CellRange>& ranges = ranges_;
+  ranges.resize(triangleCount);
   // Twice as many buckets as entries keeps the chains of unrelated cells short.
   std::size_t entries = 0;
   for (std::uint32_t t = 0; t < triangleCount; ++t) {
@@ -186,19 +183,19 @@ void ClothSelfCollision::gatherTriangles(const glm::vec3& low, const glm::vec3& 
   std::sort(candidates_.begin(), candidates_.end());
 }
 
-std::size_t ClothSelfCollision::resolve(Particles& particles) {
+void ClothSelfCollision::resolve(Particles& particles) {
   hashTriangles(particles);
-  return resolveVertices(particles) + resolveEdges(particles);
+  resolveVertices(particles);
+  resolveEdges(particles);
 }
 
-std::size_t ClothSelfCollision::resolveVertices(Particles& particles) {
+void ClothSelfCollision::resolveVertices(Particles& particles) {
   auto& positions = particles.positions;
   const auto& previous = particles.previousPositions;
   const auto& weights = particles.inverseMasses;
   // How far past a triangle a vertex may be found and still be taken to have gone through it in
   // this step, rather than to have come round its edge: about one cell, a triangle's size.
   const float reach = cellSize_;
-  std::size_t contacts = 0;
   layered_.assign(positions.size(), 0);
   for (std::uint32_t v = 0; v < positions.size(); ++v) {
     if (weights[v] == 0.0f || !finite(positions[v])) continue;
@@ -238,10 +235,8 @@ std::size_t ClothSelfCollision::resolveVertices(Particles& particles) {
       positions[i0] -= weights[i0] * b0 * push;
       positions[i1] -= weights[i1] * b1 * push;
       positions[i2] -= weights[i2] * b2 * push;
-      ++contacts;
     }
   }
-  return contacts;
 }
 
 // Two edges can cross with every corner far from the other's triangles (a long edge through a
@@ -249,11 +244,10 @@ std::size_t ClothSelfCollision::resolveVertices(Particles& particles) {
 // the line between their closest points, on the side that line pointed to at the step's start.
 // Only where cloth lies over cloth can that happen: edges with a corner that the vertex pass found
 // over another layer (within a cell of a triangle that it is not part of, above its inside).
-std::size_t ClothSelfCollision::resolveEdges(Particles& particles) {
+void ClothSelfCollision::resolveEdges(Particles& particles) {
   auto& positions = particles.positions;
   const auto& previous = particles.previousPositions;
   const auto& weights = particles.inverseMasses;
-  std::size_t contacts = 0;
   const auto inFold = [&](std::uint32_t edge) { return layered_[edges_[edge].first] || layered_[edges_[edge].second]; };
   for (std::uint32_t e = 0; e < edges_.size(); ++e) {
     const auto [a, b] = edges_[e];
@@ -297,10 +291,8 @@ std::size_t ClothSelfCollision::resolveEdges(Particles& particles) {
         positions[b] += weights[b] * s * push;
         positions[c] -= weights[c] * (1 - u) * push;
         positions[d] -= weights[d] * u * push;
-        ++contacts;
       }
   }
-  return contacts;
 }
 
 }  // namespace mane::physics

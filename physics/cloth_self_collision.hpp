@@ -7,6 +7,7 @@
 // (Teschner et al. 2003). It runs on one thread in vertex order, so its result does not depend on
 // the thread count.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -26,17 +27,26 @@ public:
 
   /// One Gauss–Seidel pass over the free vertices: each vertex found closer than `thickness` to a
   /// triangle, or through it, since the previous positions is moved back out together with the
-  /// triangle's corners, by their inverse masses. Returns how many contacts it corrected.
-  std::size_t resolve(Particles& particles);
+  /// triangle's corners, by their inverse masses.
+  void resolve(Particles& particles);
 
   [[nodiscard]] float thickness() const noexcept { return thickness_; }
 
 private:
+  using Cell = std::array<std::int32_t, 3>;
+  /// The cells a box overlaps, `from` to `to` on each axis; `empty` when the box is not finite,
+  /// lies too far from the origin or spans too many cells.
+  struct CellRange {
+    Cell from{}, to{};
+    bool empty = true;
+  };
+  static CellRange cellsOf(const glm::vec3& low, const glm::vec3& high, float inverseCell);
+
   void hashTriangles(const Particles& particles);
   /// Into candidates_, each once: the triangles whose swept boxes meet the box [low, high].
   void gatherTriangles(const glm::vec3& low, const glm::vec3& high);
-  std::size_t resolveVertices(Particles& particles);
-  std::size_t resolveEdges(Particles& particles);
+  void resolveVertices(Particles& particles);
+  void resolveEdges(Particles& particles);
   [[nodiscard]] bool touches(std::uint32_t vertex, std::uint32_t triangle) const;
   /// True when `other` is `vertex` or one of its edge neighbours.
   [[nodiscard]] bool neighbours(std::uint32_t vertex, std::uint32_t other) const;
@@ -51,7 +61,8 @@ private:
   // The spatial hash of the current step: cell size, and per bucket the triangles whose boxes
   // overlap a cell that hashes there (rows of bucketStarts_).
   float cellSize_ = 1.0f;
-  std::vector<std::pair<glm::vec3, glm::vec3>> boxes_;  // per triangle: swept in the step, grown by the thickness
+  std::vector<std::pair<glm::vec3, glm::vec3>> boxes_;
+  std::vector<CellRange> ranges_;  // per triangle: the cells its box overlaps
   std::vector<std::uint32_t> bucketStarts_;
   std::vector<std::uint32_t> bucketEntries_;
   std::vector<std::uint32_t> candidates_;

@@ -23,6 +23,7 @@
 #include "scenes/world.hpp"
 #include "subdiv/limit.hpp"
 #include "tests/scenes/test_support.hpp"
+#include "tests/world/body_frame.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -31,16 +32,8 @@ const std::filesystem::path kScenes = std::filesystem::path(MANE_SOURCE_DIR) / "
 
 using testing::resolverWithoutAssets;
 
-/// World → body frame of `mesh` at `time`, from the placement the renderer draws the mesh with
-/// (`animatedMatrix`) and the README's definition: that placement without the mesh's scale.
-glm::mat4 worldToBody(const Scene& scene, const MeshInstance& mesh, double time) {
-  const glm::mat4 model = animatedMatrix(scene, mesh, static_cast<float>(time));
-  return glm::inverse(model * glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / mesh.transform.scale)));
-}
-
-glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) {
-  return glm::vec3(m * glm::vec4(p, 1.0f));
-}
+using testing::transformPoint;
+using testing::worldToBody;
 
 /// A mesh of the scene in its body frame: model positions × scale (README), its triangles.
 struct BodyMesh {
