@@ -21,9 +21,11 @@ struct HairGroomSettings {
   float tipWidthScale = 1.0f;
   /// Alpha of a strand at least minimumPixelWidth wide on screen, in [0, 1].
   float opacity = 1.0f;
-  /// Narrowest ribbon drawn, pixels (≥ 0.25); narrower strands are widened to it and their alpha
-  /// scaled by true / drawn width. 1 pixel: every strand crosses a pixel centre (or, at 4×
-  /// MSAA, one sample of each x offset) per row it spans.
+  /// Pixels (≥ 0.25). With MSAA, the narrowest ribbon drawn: narrower strands are widened to it
+  /// and their alpha scaled by true / drawn width; at 1 pixel every strand crosses one sample of
+  /// each x offset per row it spans. With one sample per pixel strands keep their width (each
+  /// pixel takes its covered share). Either way, a groom no wider than this on screen may be
+  /// drawn as lines (render/passes/hair_pass.hpp, "Lines").
   float minimumPixelWidth = 1.0f;
   /// κ of the hair shadows: light through hair of opacity o keeps exp(−κ·o) (> 0; see
   /// render/passes/opacity_shadow_map_pass.hpp, where each strand crossing adds `opacity`).

@@ -5,6 +5,10 @@
 // The index buffer joins them into two triangles per segment, so each ribbon vertex is shaded
 // once, not six times. Lines, where the pass chose them, are drawn by hair_line.vert.
 #include "hair_uniforms.glsl"
+#include "hair_coverage.glsl"
+
+// One sample per pixel: hair.frag computes each pixel's coverage (hair_coverage.glsl).
+layout(constant_id = 0) const bool kAnalyticCoverage = false;
 
 layout(set = 0, binding = 1, std430) readonly buffer Positions {
   vec4 positions[];  // xyz metres, w = t along the strand
@@ -21,7 +25,14 @@ layout(set = 0, binding = 16) uniform samplerBuffer hairStrandLooks;
 #include "hair_strand_look.glsl"
 
 layout(location = 0) out vec3 outRadiance;
-layout(location = 1) out float outCoverage;  // true width / drawn width × the strand's opacity factor, ≤ 1
+// With MSAA: true width / drawn width × the strand's opacity factor, ≤ 1. With analytic
+// coverage: the opacity factor alone.
+layout(location = 1) out float outCoverage;
+// Analytic coverage only: the signed distance from the centre line, the strand's half width (both
+// pixels) and its unit normal on screen, in absolute values.
+layout(location = 2) noperspective out float outAcross;
+layout(location = 3) out float outHalfWidth;
+layout(location = 4) out vec2 outNormal;
 
 void main() {
   uint vertex = uint(gl_VertexIndex) >> 1u;
@@ -30,8 +41,11 @@ void main() {
   vec4 point = positions[vertex];
   vec4 shape = hairStrandShape(vertex / hair.counts.y);
   HairRibbon ribbon = hairRibbon(point, tangents[vertex].xyz, shape);
-  float drawnHalfWidth = max(ribbon.halfWidth, ribbon.minimumHalfWidth);
-  outCoverage = ribbon.halfWidth / drawnHalfWidth * shape.z;
+  float drawnHalfWidth = hairDrawnHalfWidth(ribbon, kAnalyticCoverage);
+  outCoverage = kAnalyticCoverage ? shape.z : ribbon.halfWidth / drawnHalfWidth * shape.z;
+  outAcross = sideSign * drawnHalfWidth * ribbon.pixelsPerMetre;
+  outHalfWidth = ribbon.halfWidth * ribbon.pixelsPerMetre;
+  outNormal = abs(ribbon.screenSide);
 
   vec3 world = point.xyz + ribbon.side * (sideSign * drawnHalfWidth);
   outRadiance = radiance[vertex].rgb;

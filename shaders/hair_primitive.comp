@@ -6,7 +6,7 @@
 //   the part of them lines of the minimum width would not cover, counts the vertices wider than
 //   that; marks its segments visible or hidden, and counts its vertices hidden, those whose
 //   segments both are. It also writes each vertex as hair_line.vert draws it: its clip
-//   position and coverage.
+//   position and its coverage or, with analytic coverage, its width and direction on screen.
 // kStep 1, one workgroup: enables the line draw when lines may be drawn and lose at most
 //   kLineCoverageLoss of the width, the ribbon draw otherwise, and zeroes the sums for the next
 //   frame; adds up the visible segments in drawing order (each strand's first index) and sets
@@ -15,8 +15,12 @@
 //   visible segments. Integer sums in a fixed order throughout: the frame does not depend on the
 //   order the invocations run in.
 #include "hair_uniforms.glsl"
+#include "hair_coverage.glsl"
 
 layout(constant_id = 0) const uint kStep = 0u;
+// One sample per pixel: the ribbons are drawn a pixel's reach wider, and the lines carry what
+// hair_line.frag needs to find each pixel's coverage (hair_coverage.glsl).
+layout(constant_id = 1) const bool kAnalyticCoverage = false;
 
 // The share of the strands' summed width that lines may leave uncovered (HairPass's file comment).
 const float kLineCoverageLoss = 0.01;
@@ -94,8 +98,8 @@ layout(set = 0, binding = 4, std430) readonly buffer DrawOrder {
 layout(set = 0, binding = 12, std430) writeonly buffer LineClips {
   vec4 lineClips[];
 };
-layout(set = 0, binding = 13, std430) writeonly buffer LineCoverage {
-  float lineCoverage[];
+layout(set = 0, binding = 13, std430) writeonly buffer LineWidths {
+  vec4 lineWidths[];  // hair_line.vert's inWidth
 };
 
 shared uvec2 partialSums[64];
@@ -111,10 +115,11 @@ uint segmentWords() {
 
 layout(local_size_x = 64) in;
 
-// Pixels added around a segment's box: half the widest line (1 pixel) and a pixel for the
-// rasterizer's rounding. Depths are compared with a margin for the float rounding of the
-// interpolated depth.
-const float kBoxMargin = 1.5;
+// Pixels added around a segment's box: half the line width and a pixel for the rasterizer's
+// rounding. Depths are compared with a margin for the float rounding of the interpolated depth.
+float boxMargin() {
+  return 0.5 * hair.viewport.z + 1.0;
+}
 const float kDepthMargin = 1e-6;
 // A box over more tiles than this is taken as visible rather than searched.
 const int kMostTiles = 64;
@@ -125,10 +130,11 @@ struct ScreenPoint {
   float nearest;   // smallest depth z/w of the three
   bool inFront;    // all three in front of the eye (w > 0)
   vec4 centre;     // clip position of the centre, as hair.vert computes a ribbon edge
+  vec2 centrePixel;
 };
 
 ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {
-  float drawn = max(ribbon.halfWidth, ribbon.minimumHalfWidth);
+  float drawn = hairDrawnHalfWidth(ribbon, kAnalyticCoverage);
   ScreenPoint point;
   point.low = vec2(1e30);
   point.high = vec2(-1e30);
@@ -136,9 +142,12 @@ ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {
   point.inFront = true;
   for (int side = -1; side <= 1; ++side) {
     vec4 clip = hair.viewProjection * vec4(centre + ribbon.side * (float(side) * drawn), 1.0);
-    if (side == 0) point.centre = clip;
     point.inFront = point.inFront && clip.w > 0.0;
     vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * hair.viewport.xy;
+    if (side == 0) {
+      point.centre = clip;
+      point.centrePixel = pixel;
+    }
     point.low = min(point.low, pixel);
     point.high = max(point.high, pixel);
     point.nearest = min(point.nearest, clip.z / clip.w);
@@ -153,8 +162,8 @@ ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {
 // extrapolated: by less than the segment's whole depth range for a segment a pixel or longer.
 bool segmentHidden(ScreenPoint a, ScreenPoint b) {
   if (!a.inFront || !b.inFront) return false;
-  vec2 low = max(min(a.low, b.low) - kBoxMargin, vec2(0.0));
-  vec2 high = min(max(a.high, b.high) + kBoxMargin, hair.viewport.xy - 1.0);
+  vec2 low = max(min(a.low, b.low) - boxMargin(), vec2(0.0));
+  vec2 high = min(max(a.high, b.high) + boxMargin(), hair.viewport.xy - 1.0);
   if (any(greaterThan(low, high))) return true;  // off the screen: no fragments at all
   float nearest = min(a.nearest, b.nearest) - abs(a.nearest - b.nearest) - kDepthMargin;
   ivec2 first = ivec2(low) / int(hair.occlusion.z);
@@ -280,6 +289,7 @@ void main() {
   uint first = strand * hair.counts.y, end = first + hair.counts.y;
   uint words = segmentWords();
   ScreenPoint previous;
+  float previousHalfPixels = 0.0;
   bool previousSegmentHidden = true;  // the root has no segment before it
   vec4 shape = hairStrandShape(strand);
   uint vertex = first;
@@ -291,7 +301,20 @@ void main() {
     // Written whichever draw is chosen: a branch on the uniforms alone would make lavapipe compile
     // this shader again every frame (tests/support/jit_compile_counter.hpp).
     lineClips[vertex] = point.centre;
-    lineCoverage[vertex] = ribbon.halfWidth / max(ribbon.halfWidth, ribbon.minimumHalfWidth) * shape.z;
+    if (kAnalyticCoverage) {
+      // A line's normal is that of the vertex starting it (hair_line.vert), written once the
+      // segment's end is known; the tip takes its segment's.
+      float halfPixels = ribbon.halfWidth * ribbon.pixelsPerMetre;
+      if (vertex > first) {
+        vec2 along = point.centrePixel - previous.centrePixel;
+        vec2 direction = dot(along, along) > 1e-12 ? normalize(along) : vec2(ribbon.screenSide.y, -ribbon.screenSide.x);
+        lineWidths[vertex - 1u] = vec4(previousHalfPixels, direction, shape.z);
+        if (vertex + 1u == end) lineWidths[vertex] = vec4(halfPixels, direction, shape.z);
+      }
+      previousHalfPixels = halfPixels;
+    } else {
+      lineWidths[vertex] = vec4(ribbon.halfWidth / max(ribbon.halfWidth, ribbon.minimumHalfWidth) * shape.z, 0.0, 0.0, 0.0);
+    }
     if (vertex > first) {
       uint segment = vertex - 1u - first;
       bool segmentIsHidden = segmentHidden(previous, point);

@@ -4,7 +4,7 @@ layout(set = 0, binding = 0, std140) uniform HairUniforms {
   mat4 viewProjection;  // world (metres) → clip
   vec4 eye;             // w = 1: eye position (metres); w = 0: unit direction towards the eye
   vec4 groom;           // x: root width (m), y: tip width scale, z: opacity, w: min width (px)
-  vec4 viewport;        // xy: extent in pixels
+  vec4 viewport;        // xy: extent in pixels, z: the line draw's width (pixels)
   uvec4 counts;         // x: strands, y: vertices per strand, z: 1 when lines may stand in for ribbons,
                         // w: the line draw's first index
   uvec4 occlusion;      // x, y: tiles across and down of the opaque depth's maxima; z: tile size (pixels)
@@ -16,14 +16,17 @@ vec3 hairToEye(vec3 position) {
 }
 
 // A strand vertex's ribbon (render/passes/hair_pass.hpp): the unit vector it is widened along,
-// perpendicular to the strand and to the view; the strand's half width there; and half the
-// minimum drawn width there (both metres). The ribbon is drawn max(halfWidth, minimumHalfWidth)
+// perpendicular to the strand and to the view, and that vector on screen (unit, pixels); the
+// strand's half width there and half the minimum drawn width there (both metres); and the pixels
+// per metre along `side` there. With MSAA the ribbon is drawn max(halfWidth, minimumHalfWidth)
 // to each side. `shape` is the strand's hairStrandShape (hair_strand_look.glsl): its factors of
 // the groom's root width and tip width scale.
 struct HairRibbon {
   vec3 side;
+  vec2 screenSide;
   float halfWidth;
   float minimumHalfWidth;
+  float pixelsPerMetre;
 };
 
 HairRibbon hairRibbon(vec4 point, vec3 tangent, vec4 shape) {
@@ -42,8 +45,10 @@ HairRibbon hairRibbon(vec4 point, vec3 tangent, vec4 shape) {
   vec4 edge = hair.viewProjection * vec4(point.xyz + ribbon.side * rootHalfWidth, 1.0);
   vec2 offsetPixels = (edge.xy / edge.w - centre.xy / centre.w) * 0.5 * hair.viewport.xy;
   float pixelsPerMetre = length(offsetPixels) / rootHalfWidth;
+  ribbon.pixelsPerMetre = max(pixelsPerMetre, 1e-6);
+  ribbon.screenSide = pixelsPerMetre > 0.0 ? offsetPixels / length(offsetPixels) : vec2(1.0, 0.0);
 
   ribbon.halfWidth = rootHalfWidth * mix(1.0, hair.groom.y * shape.y, point.w);
-  ribbon.minimumHalfWidth = 0.5 * hair.groom.w / max(pixelsPerMetre, 1e-6);
+  ribbon.minimumHalfWidth = 0.5 * hair.groom.w / ribbon.pixelsPerMetre;
   return ribbon;
 }

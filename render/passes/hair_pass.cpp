@@ -102,7 +102,8 @@ Result<std::unique_ptr<HairPass>> HairPass::create(const Device& device, const H
   }
 }
 
-HairPass::HairPass(const Device& device, const HairPassSettings& settings) : device_(&device) {
+HairPass::HairPass(const Device& device, const HairPassSettings& settings)
+    : device_(&device), analyticCoverage_(settings.samples == vk::SampleCountFlagBits::e1) {
   using Stage = vk::ShaderStageFlagBits;
   using Type = vk::DescriptorType;
   setLayout_ = makeSetLayout(device, {{Type::eUniformBuffer, Stage::eVertex | Stage::eFragment | Stage::eCompute},
@@ -119,24 +120,24 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                                       {Type::eStorageBuffer, Stage::eCompute},  // 10: the draws' indices
                                       {Type::eStorageBuffer, Stage::eCompute},  // 11: the vertices to shade
                                       {Type::eStorageBuffer, Stage::eCompute},  // 12: the lines' clip positions
-                                      {Type::eStorageBuffer, Stage::eCompute},  // 13: and coverage
+                                      {Type::eStorageBuffer, Stage::eCompute},  // 13: and widths
                                       {Type::eUniformTexelBuffer, Stage::eCompute},  // 14: positions
                                       {Type::eUniformTexelBuffer, Stage::eCompute},  // 15: tangents
                                       // 16: the strands' looks
                                       {Type::eUniformTexelBuffer, Stage::eVertex | Stage::eCompute}});
   const bool depth = settings.depthFormat != vk::Format::eUndefined;
-  // The lines' vertex attributes (hair_line.vert): clip position, coverage, radiance.
+  // The lines' vertex attributes (hair_line.vert): clip position, width, radiance.
   std::vector<vk::VertexInputBindingDescription> lineBindings{{0, sizeof(glm::vec4), vk::VertexInputRate::eVertex},
-                                                              {1, sizeof(float), vk::VertexInputRate::eVertex},
+                                                              {1, sizeof(glm::vec4), vk::VertexInputRate::eVertex},
                                                               {2, sizeof(glm::vec4), vk::VertexInputRate::eVertex}};
   std::vector<vk::VertexInputAttributeDescription> lineAttributes{{0, 0, vk::Format::eR32G32B32A32Sfloat, 0},
-                                                                  {1, 1, vk::Format::eR32Sfloat, 0},
+                                                                  {1, 1, vk::Format::eR32G32B32A32Sfloat, 0},
                                                                   {2, 2, vk::Format::eR32G32B32A32Sfloat, 0}};
   const auto drawPipeline = [&](bool lines) {
     return makeGraphicsPipeline(
         device, GraphicsPipelineSettings{
                     .vertexShader = lines ? "hair_line.vert" : "hair.vert",
-                    .fragmentShader = "hair.frag",
+                    .fragmentShader = lines ? "hair_line.frag" : "hair.frag",
                     .vertexBindings = lines ? lineBindings : std::vector<vk::VertexInputBindingDescription>{},
                     .vertexAttributes = lines ? lineAttributes : std::vector<vk::VertexInputAttributeDescription>{},
                     .topology = lines ? vk::PrimitiveTopology::eLineList : vk::PrimitiveTopology::eTriangleList,
@@ -148,13 +149,15 @@ HairPass::HairPass(const Device& device, const HairPassSettings& settings) : dev
                     .depthTest = depth,
                     .depthWrite = false,
                     .samples = settings.samples,
-                    .setLayouts = {*setLayout_}});
+                    .setLayouts = {*setLayout_},
+                    .constants = {analyticCoverage_ ? 1u : 0u}});
   };
   ribbonPipeline_ = drawPipeline(false);
   linePipeline_ = drawPipeline(true);
-  countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u});
-  choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u});
-  indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u});
+  const std::uint32_t analytic = analyticCoverage_ ? 1u : 0u;
+  countPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {0u, analytic});
+  choosePipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {1u, analytic});
+  indexPipeline_ = makeComputePipeline(device, "hair_primitive.comp", setLayout_, 0, {2u, analytic});
   pool_ = makeDescriptorPool(device, 1,
                              {{Type::eUniformBuffer, 1}, {Type::eStorageBuffer, 13}, {Type::eUniformTexelBuffer, 3}});
   set_ = allocateSet(device, pool_, setLayout_);
@@ -238,9 +241,9 @@ Result<void> HairPass::setStrands(const HairStrands& strands) {
       vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eVertexBuffer;
   const vk::DeviceSize lineVertices = std::max<vk::DeviceSize>(vertices, 1);
   lineClips_ = Buffer(*device_, lineVertices * sizeof(glm::vec4), lineUsage, vk::MemoryPropertyFlagBits::eDeviceLocal);
-  lineCoverage_ = Buffer(*device_, lineVertices * sizeof(float), lineUsage, vk::MemoryPropertyFlagBits::eDeviceLocal);
+  lineWidths_ = Buffer(*device_, lineVertices * sizeof(glm::vec4), lineUsage, vk::MemoryPropertyFlagBits::eDeviceLocal);
   writeStorageBuffer(*device_, set_, 12, lineClips_);
-  writeStorageBuffer(*device_, set_, 13, lineCoverage_);
+  writeStorageBuffer(*device_, set_, 13, lineWidths_);
   positions_ = strands.positions;
   tangents_ = strands.tangents;
   radiance_ = strands.radiance;
@@ -307,13 +310,13 @@ Result<void> HairPass::update(const HairView& view, const HairGroomSettings& gro
   uniforms.viewProjection = view.viewProjection;
   uniforms.eye = hairEye(view.viewProjection);
   uniforms.groom = glm::vec4(groom.width, groom.tipWidthScale, groom.opacity, groom.minimumPixelWidth);
-  uniforms.viewport = glm::vec4(float(view.extent.width), float(view.extent.height), 0.0f, 0.0f);
-  uniforms.counts =
-      glm::uvec4(strandCount_, verticesPerStrand_, linesDrawable(groom.minimumPixelWidth) ? 1u : 0u, indexCount_);
+  const float lineWidth = drawnLineWidth(groom.minimumPixelWidth);
+  uniforms.viewport = glm::vec4(float(view.extent.width), float(view.extent.height), lineWidth, 0.0f);
+  uniforms.counts = glm::uvec4(strandCount_, verticesPerStrand_, linesDrawable(lineWidth) ? 1u : 0u, indexCount_);
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
   writeOcclusionUniforms();
   extent_ = view.extent;
-  lineWidth_ = groom.minimumPixelWidth;
+  lineWidth_ = lineWidth;
   return {};
 }
 
@@ -321,6 +324,15 @@ Result<void> HairPass::update(const FrameInput& frame, vk::Extent2D extent, cons
   if (extent.width == 0 || extent.height == 0) return fail("hair view: the extent is empty");
   const float aspect = float(extent.width) / float(extent.height);
   return update(HairView{frame.camera.projection(aspect) * frame.camera.view(), extent}, groom);
+}
+
+float HairPass::drawnLineWidth(float minimumPixelWidth) const {
+  if (!analyticCoverage_) return minimumPixelWidth;
+  // A pixel's reach past the strand's edge is at most half its diagonal (hair_coverage.glsl), on
+  // each side; rounded up to a width the device draws.
+  const float width = minimumPixelWidth + std::sqrt(2.0f);
+  const float granularity = device_->limits().lineWidthGranularity;
+  return granularity > 0.0f ? std::ceil(width / granularity) * granularity : width;
 }
 
 bool HairPass::linesDrawable(float width) const {
@@ -341,7 +353,7 @@ void HairPass::declare(FrameGraph::Builder& pass) const {
   pass.write(draws_, ResourceUse::storageReadWrite(compute));
   for (const Buffer* buffer : {&visibleCounts_, &visibleBits_, &firstSegments_, &shadeList_})
     pass.write(*buffer, ResourceUse::storageReadWrite(compute));
-  for (const Buffer* buffer : {&indices_, &lineClips_, &lineCoverage_})
+  for (const Buffer* buffer : {&indices_, &lineClips_, &lineWidths_})
     pass.write(*buffer, ResourceUse::storageWrite(compute));
 }
 
@@ -377,7 +389,7 @@ void HairPass::record(const vk::raii::CommandBuffer& commands) const {
                           {{shadeList_, shading},
                            {indices_, ResourceUse::indexInput()},
                            {lineClips_, ResourceUse::vertexInput()},
-                           {lineCoverage_, ResourceUse::vertexInput()},
+                           {lineWidths_, ResourceUse::vertexInput()},
                            {draws_, kChoiceReadable}});
 }
 
@@ -391,7 +403,7 @@ void HairPass::declareDraw(FrameGraph::Builder& pass) const {
   pass.read(draws_, ResourceUse::indirectCommands());
   pass.read(indices_, ResourceUse::indexInput());
   pass.read(lineClips_, ResourceUse::vertexInput());
-  pass.read(lineCoverage_, ResourceUse::vertexInput());
+  pass.read(lineWidths_, ResourceUse::vertexInput());
 }
 
 void HairPass::leaveChoiceReadable(FrameGraph& graph) const {
@@ -422,7 +434,7 @@ void HairPass::draw(const vk::raii::CommandBuffer& commands) const {
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *linePipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *linePipeline_.layout, 0, {*set_}, {});
   commands.setLineWidth(lineWidth_);
-  commands.bindVertexBuffers(0, {*lineClips_.buffer(), *lineCoverage_.buffer(), radiance_}, {0, 0, 0});
+  commands.bindVertexBuffers(0, {*lineClips_.buffer(), *lineWidths_.buffer(), radiance_}, {0, 0, 0});
   commands.drawIndexedIndirect(*draws_.buffer(), kLineDrawOffset, 1, sizeof(vk::DrawIndexedIndirectCommand));
 }
 

@@ -19,24 +19,31 @@
 // has no cracks at the joints. The width is metres (HairGroomSettings::width, tapered linearly to
 // tipWidthScale at t = 1).
 //
-// Anti-aliasing: MSAA plus coverage-scaled alpha, not alpha-to-coverage.
-//  - A ribbon narrower than minimumPixelWidth on screen (measured by projecting the half-width
-//    offset) is widened to that width, and its alpha is scaled by true width / drawn width. A
-//    0.3-pixel strand thus contributes 0.3 pixels of coverage per pixel of length: it neither
-//    vanishes between pixel centres nor turns into a full pixel.
-//  - The edges of ribbons wider than a pixel are anti-aliased by the render target's MSAA (4×:
-//    quarter-pixel steps); at 1× they are aliased (pixel-centre sampling) but keep the right
-//    area on average.
+// Anti-aliasing: with one sample per pixel, analytic coverage; with MSAA, coverage-scaled alpha.
+// Neither uses alpha-to-coverage.
+//  - One sample (HairPassSettings::samples e1): each fragment computes the share of its pixel the
+//    strand covers (shaders/hair_coverage.glsl): the pixel square projected across the strand's
+//    screen-space band, integrated over the band's width. The ribbon is drawn a pixel's reach
+//    (half the pixel's projected extent, at most half its diagonal) wider on each side, so that
+//    every pixel it touches has a fragment. A 0.3-pixel strand leaves the share of each pixel it
+//    crosses that it covers, its sum along a row its exact area, and its edges are smooth at
+//    any slope: what 4× MSAA approximates with four samples, at one.
+//  - MSAA (4×): a ribbon narrower than minimumPixelWidth on screen (measured by projecting the
+//    half-width offset) is widened to that width, and its alpha is scaled by true width / drawn
+//    width, so it neither vanishes between samples nor turns into a full pixel; the edges of
+//    wider ribbons are anti-aliased by the samples, in quarter-pixel steps.
 //  Why not alpha-to-coverage: at 1× it degenerates to on/off per pixel (a 0.3-pixel strand is a
 //  full pixel or nothing); at 4× it quantises alpha to quarters, and the alpha → sample-mask
 //  mapping is implementation-defined (lavapipe keeps sample i when α > i/4, a ceiling that
-//  biases thin strands up to +¼ pixel of coverage). Coverage-scaled alpha is exact in area at
-//  both sample counts.
+//  biases thin strands up to +¼ pixel of coverage).
 //
-// Lines. Where a ribbon is drawn at the minimum width, a line of that width along the strand
+// Lines. Where every strand is at most the minimum width on screen, a line along each strand
 // covers the same pixels with half the primitives (one per segment, not two triangles), which
-// lavapipe's single-threaded geometry stage draws much faster. A vertex wider on screen than the
-// minimum is drawn by a line at the minimum width, with coverage 1: it loses the difference. The
+// lavapipe's single-threaded geometry stage draws much faster. With MSAA the line is the minimum
+// width; with analytic coverage, the minimum width and a pixel's diagonal (drawnLineWidth), and
+// its fragments measure their distance from it along its normal, which the vertex starting the
+// line carries (flat). A vertex wider on screen than the minimum is drawn by a line as if it
+// were the minimum width: it loses the difference. The
 // choice is made on the GPU every frame by `record` (shaders/hair_primitive.comp), from the widths
 // the vertex shader computes, summed over the vertices: lines when they leave at most 1 % of the
 // summed width uncovered, ribbons otherwise. A groom at or under the minimum width everywhere
@@ -234,6 +241,9 @@ public:
 
 private:
   HairPass(const Device& device, const HairPassSettings& settings);
+  /// The width of the lines standing in for strands at most `minimumPixelWidth` wide: that
+  /// width, or with analytic coverage, wide enough to reach every pixel such a strand touches.
+  float drawnLineWidth(float minimumPixelWidth) const;
   /// Whether lines `width` pixels wide have the area of a ribbon of that width on this device.
   bool linesDrawable(float width) const;
   void writeOcclusionUniforms();
@@ -241,7 +251,8 @@ private:
 
   const Device* device_;
   vk::Extent2D extent_{};
-  float lineWidth_ = 1.0f;  ///< the groom's minimumPixelWidth
+  bool analyticCoverage_;   ///< one sample per pixel: the shaders find each pixel's coverage
+  float lineWidth_ = 1.0f;  ///< drawnLineWidth of the groom's minimumPixelWidth
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   Pipeline ribbonPipeline_;
   Pipeline linePipeline_;
@@ -260,7 +271,7 @@ private:
   Buffer firstSegments_;       ///< per strand in drawing order: the visible segments and shaded vertices before it
   Buffer noOcclusion_;         ///< one tile at the far plane
   Buffer lineClips_;           ///< vec4 per vertex: the line draw's clip positions, written by `record`
-  Buffer lineCoverage_;        ///< float per vertex: and its coverage
+  Buffer lineWidths_;          ///< vec4 per vertex: and its width (hair_line.vert)
   vk::Buffer positions_;       ///< the strands' positions (setStrands)
   vk::Buffer tangents_;        ///< and tangents
   vk::Buffer radiance_;        ///< the strands' radiance, the line draw's third vertex attribute
