@@ -72,7 +72,9 @@ enum Variant : int {
   kStrands100k,
   kNoFurShells,
   kDemoContent,
-  kDemoContentEveryStrand
+  kDemoContentEveryStrand,
+  kStrands50kFar,            // from 4× the camera's distance: the level of detail draws about half of them
+  kStrands50kFarEveryStrand  // the same without the level of detail
 };
 
 double median(std::vector<double> values) {
@@ -192,9 +194,12 @@ void BM_NaluFrame(benchmark::State& state) {
   if (!scene) return state.SkipWithError(scene.error().message.c_str());
   if (variant == kDemoContent || variant == kDemoContentEveryStrand)
     std::erase_if(scene->meshes, [](const scenes::MeshInstance& mesh) { return mesh.name == "bunny"; });
+  const bool far = variant == kStrands50kFar || variant == kStrands50kFarEveryStrand;
+  if (far) scene->camera.position = scene->camera.target + (scene->camera.position - scene->camera.target) * 4.0f;
   for (scenes::Groom& groom : scene->grooms) {
-    if (variant == kStrands50k) groom.rendering.denseStrands = 50'000;
+    if (variant == kStrands50k || far) groom.rendering.denseStrands = 50'000;
     if (variant == kStrands100k) groom.rendering.denseStrands = 100'000;
+    if (variant == kStrands50kFarEveryStrand) groom.rendering.settings.lodPixelWidth = 0.0f;
   }
   measureFrames(state, std::move(*scene),
                 {.msaaSamples = variant == kMsaa4 ? 4u : 1u,
@@ -210,7 +215,7 @@ void BM_NaluFrame(benchmark::State& state) {
 
 BENCHMARK(BM_NaluFrame)
     ->ArgName("variant")
-    ->DenseRange(kShipped, kDemoContentEveryStrand)
+    ->DenseRange(kShipped, kStrands50kFarEveryStrand)
     ->Iterations(9)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -27,6 +27,12 @@ struct HairGroomSettings {
   /// pixel takes its covered share). Either way, a groom no wider than this on screen may be
   /// drawn as lines (render/passes/hair_pass.hpp, "Lines").
   float minimumPixelWidth = 1.0f;
+  /// Strand level of detail, pixels (≥ 0; 0: every strand drawn): where the strands are
+  /// narrower than this on screen at the groom's centre, only that share of them is drawn, each
+  /// wider so that the groom keeps its coverage (render/strand_lod.hpp). At half a pixel the
+  /// ponytail's 50,000 strands look as they do whole, for half the frame; at a pixel their sheen
+  /// turns stringy.
+  float lodPixelWidth = 0.5f;
   /// κ of the hair shadows: light through hair of opacity o keeps exp(−κ·o) (> 0; see
   /// render/passes/opacity_shadow_map_pass.hpp, where each strand crossing adds `opacity`).
   float shadowExtinction = 1.0f;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "render/frame_validation.hpp"
+#include "render/strand_lod.hpp"
 #include "render/strand_looks.hpp"
 
 namespace mane::render {
@@ -267,6 +268,7 @@ Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> 
   auto sphere = boundingSphere(guidePositions);
   if (!sphere) return fail("groom " + std::to_string(groom) + ": " + sphere.error().message);
   sphere->radius += hair.strayFromGuides * 1.001f;
+  hair.centre = sphere->centre;
   if (auto bounded = shadows_->setBounds(groom, *sphere); !bounded) return bounded;
   // Guide middles, the keys the strands are sorted by when drawn (render/hair_order.hpp).
   const std::size_t perGuide = guidePositions.size() / hair.strands->guideCount();
@@ -320,7 +322,11 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
       plan.shaded[g] =
           groom.hasGuides &&
           groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()).has_value();
-      plan.drawn[g] = plan.shaded[g] && groom.ribbons->update(frame, target_.extent(), groom.settings) &&
+      const float strandPixels =
+          groom.settings.width *
+          pixelsPerMetreAt(viewProjection, glm::vec2(target_.extent().width, target_.extent().height), groom.centre);
+      const float keptShare = keptStrandShare(strandPixels, groom.settings.lodPixelWidth);
+      plan.drawn[g] = plan.shaded[g] && groom.ribbons->update(frame, target_.extent(), groom.settings, keptShare) &&
                       groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye));
     }
   }

@@ -168,6 +168,7 @@ private:
     std::unique_ptr<StrandDrawOrder> order;
     Buffer looks;                         // the strands' own looks, where the groom has them
     std::vector<glm::vec3> guideMiddles;  // of the last updateHair: the sort keys
+    glm::vec3 centre{0.0f};               // of the guides' bounding sphere: where the level of detail is measured
     HairGroomSettings settings;
     float strayFromGuides = 0.0f;  // metres: bound on a dense vertex's distance from its guides
     bool hasGuides = false;        // updateHair called at least once

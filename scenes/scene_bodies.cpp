@@ -1,5 +1,7 @@
 #include "scenes/detail/scene_bodies.hpp"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "scenes/detail/json_fields.hpp"
@@ -149,6 +151,7 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   rendering.given.opacity = given("opacity", settings.opacity);
   if (const Json* colour = fields.take("colour")) rendering.colour = detail::read<glm::vec3>(*colour, fields.child("colour"));
   settings.minimumPixelWidth = fields.optional<float>("min_pixel_width", settings.minimumPixelWidth);
+  settings.lodPixelWidth = fields.optional<float>("lod_pixel_width", settings.lodPixelWidth);
   settings.shadowExtinction = fields.optional<float>("shadow_extinction", settings.shadowExtinction);
   const Json* strands = fields.take("strands");
   if (strands) rendering.denseStrands = detail::read<int>(*strands, fields.child("strands"));
@@ -182,6 +185,8 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
             "expected an RGB colour with components in [0, 1]");
   require(settings.minimumPixelWidth >= 0.25f, fields.child("min_pixel_width"),
           "expected a minimum width >= 0.25 pixels");
+  require(std::isfinite(settings.lodPixelWidth) && settings.lodPixelWidth >= 0.0f, fields.child("lod_pixel_width"),
+          "expected a level-of-detail width >= 0 pixels (0: every strand drawn)");
   require(settings.shadowExtinction > 0.0f, fields.child("shadow_extinction"), "expected a shadow extinction > 0");
   return rendering;
 }

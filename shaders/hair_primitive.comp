@@ -292,6 +292,8 @@ void main() {
   float previousHalfPixels = 0.0;
   bool previousSegmentHidden = true;  // the root has no segment before it
   vec4 shape = hairStrandShape(strand);
+  // A strand the level of detail leaves out is hidden whole, and adds nothing to the widths.
+  bool kept = hairStrandKept(strand);
   uint vertex = first;
   do {  // a strand has at least two vertices; tested at the end, as segmentHidden's loops
     vec4 position = texelFetch(positionTexels, int(vertex));
@@ -317,7 +319,7 @@ void main() {
     }
     if (vertex > first) {
       uint segment = vertex - 1u - first;
-      bool segmentIsHidden = segmentHidden(previous, point);
+      bool segmentIsHidden = !kept || segmentHidden(previous, point);
       hiddenCount += previousSegmentHidden && segmentIsHidden ? 1u : 0u;
       previousSegmentHidden = segmentIsHidden;
       visible += segmentIsHidden ? 0u : 1u;
@@ -328,7 +330,7 @@ void main() {
       }
     }
     previous = point;
-    float lineWidths = min(ribbon.halfWidth / ribbon.minimumHalfWidth, kLargestWidth);
+    float lineWidths = kept ? min(ribbon.halfWidth / ribbon.minimumHalfWidth, kLargestWidth) : 0.0;
     add64(width, uint(round(lineWidths * kWidthUnits)));
     if (lineWidths > 1.0) {
       ++wide;

@@ -8,7 +8,14 @@ layout(set = 0, binding = 0, std140) uniform HairUniforms {
   uvec4 counts;         // x: strands, y: vertices per strand, z: 1 when lines may stand in for ribbons,
                         // w: the line draw's first index
   uvec4 occlusion;      // x, y: tiles across and down of the opaque depth's maxima; z: tile size (pixels)
+  vec4 levelOfDetail;   // x: the share f of the strands drawn, y: 1 / f (render/strand_lod.hpp)
 } hair;
+
+// Whether dense strand `strand` is drawn at this level of detail: its rank, the bit reversal of
+// its index over 2³², below the share kept (render/strand_lod.hpp).
+bool hairStrandKept(uint strand) {
+  return hair.levelOfDetail.x >= 1.0 || float(bitfieldReverse(strand)) * exp2(-32.0) < hair.levelOfDetail.x;
+}
 
 // Unit vector from `position` (world, metres) towards the eye.
 vec3 hairToEye(vec3 position) {
@@ -49,6 +56,7 @@ HairRibbon hairRibbon(vec4 point, vec3 tangent, vec4 shape) {
   ribbon.screenSide = pixelsPerMetre > 0.0 ? offsetPixels / length(offsetPixels) : vec2(1.0, 0.0);
 
   ribbon.halfWidth = rootHalfWidth * mix(1.0, hair.groom.y * shape.y, point.w);
+  ribbon.halfWidth *= hair.levelOfDetail.y;  // 1 / f as wide where a share f is drawn (render/strand_lod.hpp)
   ribbon.minimumHalfWidth = 0.5 * hair.groom.w / ribbon.pixelsPerMetre;
   return ribbon;
 }

@@ -207,6 +207,8 @@ FRAME_VARIANTS = [
     "as shipped, the bunny without fur shells and fins",
     "**original demo content**: head, hair, fins (no bunny)",
     "same, every hair segment shaded and drawn",
+    "50,000 strands × 30, the camera 4× as far (about half of them drawn)",
+    "same, every strand drawn (no level of detail)",
 ]
 
 # The frame's passes in the order the Renderer records them; unknown ones follow alphabetically.

@@ -11,6 +11,7 @@
 #include "render/descriptors.hpp"
 #include "render/passes/hair_lighting_pass.hpp"
 #include "render/strand_looks.hpp"
+#include "render/strand_lod.hpp"
 
 namespace mane::render {
 namespace {
@@ -27,8 +28,9 @@ struct HairUniforms {
   glm::vec4 viewport;
   glm::uvec4 counts;
   glm::uvec4 occlusion;
+  glm::vec4 levelOfDetail;
 };
-static_assert(sizeof(HairUniforms) == 64 + 5 * 16);
+static_assert(sizeof(HairUniforms) == 64 + 6 * 16);
 
 bool finite(const glm::mat4& m) {
   for (int c = 0; c < 4; ++c)
@@ -47,6 +49,9 @@ Result<void> validate(const HairGroomSettings& groom) {
   if (!(std::isfinite(groom.minimumPixelWidth) && groom.minimumPixelWidth >= 0.25f))
     return fail("hair groom: minimumPixelWidth must be a finite number of pixels ≥ 0.25, got " +
                 std::to_string(groom.minimumPixelWidth));
+  if (!(std::isfinite(groom.lodPixelWidth) && groom.lodPixelWidth >= 0.0f))
+    return fail("hair groom: lodPixelWidth must be a finite number of pixels ≥ 0, got " +
+                std::to_string(groom.lodPixelWidth));
   return {};
 }
 
@@ -299,8 +304,10 @@ Result<void> HairPass::setDrawOrder(std::span<const std::uint32_t> order) {
   return {};
 }
 
-Result<void> HairPass::update(const HairView& view, const HairGroomSettings& groom) {
+Result<void> HairPass::update(const HairView& view, const HairGroomSettings& groom, float keptShare) {
   if (auto valid = validate(groom); !valid) return valid;
+  if (!(keptShare >= kLeastKeptStrands && keptShare <= 1.0f))
+    return fail("hair view: the share of strands kept must be in [1/16, 1], got " + std::to_string(keptShare));
   if (view.extent.width == 0 || view.extent.height == 0) return fail("hair view: the extent is empty");
   const float determinant = glm::determinant(view.viewProjection);
   if (!finite(view.viewProjection) || !std::isfinite(determinant) || determinant == 0.0f)
@@ -313,17 +320,20 @@ Result<void> HairPass::update(const HairView& view, const HairGroomSettings& gro
   const float lineWidth = drawnLineWidth(groom.minimumPixelWidth);
   uniforms.viewport = glm::vec4(float(view.extent.width), float(view.extent.height), lineWidth, 0.0f);
   uniforms.counts = glm::uvec4(strandCount_, verticesPerStrand_, linesDrawable(lineWidth) ? 1u : 0u, indexCount_);
+  uniforms.levelOfDetail = glm::vec4(keptShare, 1.0f / keptShare, 0.0f, 0.0f);
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
   writeOcclusionUniforms();
   extent_ = view.extent;
   lineWidth_ = lineWidth;
+  keptShare_ = keptShare;
   return {};
 }
 
-Result<void> HairPass::update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom) {
+Result<void> HairPass::update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom,
+                              float keptShare) {
   if (extent.width == 0 || extent.height == 0) return fail("hair view: the extent is empty");
   const float aspect = float(extent.width) / float(extent.height);
-  return update(HairView{frame.camera.projection(aspect) * frame.camera.view(), extent}, groom);
+  return update(HairView{frame.camera.projection(aspect) * frame.camera.view(), extent}, groom, keptShare);
 }
 
 float HairPass::drawnLineWidth(float minimumPixelWidth) const {
@@ -420,7 +430,8 @@ HairPrimitiveChoice HairPass::lastChoice() const {
   return {.primitive = draws.lines.instanceCount != 0 ? HairPrimitive::kLines : HairPrimitive::kRibbons,
           .wideVertices = chosen.wideVertices,
           .uncoveredByLines = width > 0.0 ? sum(chosen.lostLow, chosen.lostHigh) / width : 0.0,
-          .hiddenVertices = chosen.hiddenVertices};
+          .hiddenVertices = chosen.hiddenVertices,
+          .keptShare = keptShare_};
 }
 
 void HairPass::draw(const vk::raii::CommandBuffer& commands) const {

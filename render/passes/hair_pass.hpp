@@ -96,6 +96,11 @@
 // Colour: the radiance of the segment's two end vertices, interpolated linearly along it (it is
 // constant across the width: see hair_lighting_pass.hpp), times the coverage alpha.
 //
+// Level of detail (render/strand_lod.hpp): `update` takes the share f of the strands to draw,
+// which the Renderer finds from the groom's strand width on screen at its centre. The first
+// step leaves out every strand whose rank is not below f as hidden (neither shaded nor drawn),
+// and hairRibbon (shaders/hair_uniforms.glsl) draws the rest 1 / f times as wide.
+//
 // Per-strand looks (setStrandLooks, render/strand_looks.hpp): each strand's root width and tip
 // width scale are the groom's times the strand's factors, and its coverage alpha is scaled by
 // its opacity factor (opacity is the fraction of the ribbon the fibre covers). Without looks
@@ -139,8 +144,10 @@ struct HairPrimitiveChoice {
   /// minimum width leave uncovered: Σ max(w − min, 0) / Σ w. Lines are drawn when it is ≤ 1 %.
   double uncoveredByLines = 0.0;
   /// Dense vertices both of whose segments are hidden (file comment, "Hidden strands"): behind the
-  /// opaque scene (setOcclusion) or off the screen.
+  /// opaque scene (setOcclusion), off the screen, or on a strand the level of detail leaves out.
   std::uint32_t hiddenVertices = 0;
+  /// The share of the strands the level of detail drew (`update`'s keptShare).
+  float keptShare = 1.0f;
 };
 
 /// The farthest depth of the opaque scene per square tile of the frame (HairOcclusionPass), which
@@ -189,14 +196,16 @@ public:
   /// changed): a wrong length, an index out of range or repeated.
   [[nodiscard]] Result<void> setDrawOrder(std::span<const std::uint32_t> order);
 
-  /// Writes the frame's view and the groom's settings. Call between frames, never while a draw
-  /// recorded earlier is still running (one uniform buffer). Errors (nothing written): a
-  /// non-invertible or non-finite view, an empty extent, or groom settings out of their
-  /// documented ranges.
-  [[nodiscard]] Result<void> update(const HairView& view, const HairGroomSettings& groom);
+  /// Writes the frame's view, the groom's settings and the share of its strands to draw
+  /// (keptStrandShare, render/strand_lod.hpp; see "Level of detail"). Call between frames,
+  /// never while a draw recorded earlier is still running (one uniform buffer). Errors (nothing
+  /// written): a non-invertible or non-finite view, an empty extent, groom settings out of their
+  /// documented ranges, or a share outside [kLeastKeptStrands, 1].
+  [[nodiscard]] Result<void> update(const HairView& view, const HairGroomSettings& groom, float keptShare = 1.0f);
 
   /// `update` with the frame's perspective camera (Camera::projection at the extent's aspect).
-  [[nodiscard]] Result<void> update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom);
+  [[nodiscard]] Result<void> update(const FrameInput& frame, vk::Extent2D extent, const HairGroomSettings& groom,
+                                    float keptShare = 1.0f);
 
   /// The opaque scene's depth to hide strands behind (see the file comment): `tileMaxDepth` holds
   /// tiles.x × tiles.y floats, row-major, and must outlive the frames recorded with it. Until
@@ -253,6 +262,7 @@ private:
   vk::Extent2D extent_{};
   bool analyticCoverage_;   ///< one sample per pixel: the shaders find each pixel's coverage
   float lineWidth_ = 1.0f;  ///< drawnLineWidth of the groom's minimumPixelWidth
+  float keptShare_ = 1.0f;  ///< of the last update
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   Pipeline ribbonPipeline_;
   Pipeline linePipeline_;

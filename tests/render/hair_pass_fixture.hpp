@@ -109,7 +109,7 @@ public:
     }
     const auto lit = (*lighting)->update(view.viewProjection, lights, ambient, (*shadows)->uniforms());
     EXPECT_TRUE(lit.has_value()) << lit.error().message;
-    const auto updated = (*pass)->update(view, groom);
+    const auto updated = (*pass)->update(view, groom, keptShare);
     EXPECT_TRUE(updated.has_value()) << updated.error().message;
 
     const vk::Extent2D extent = view.extent;
@@ -145,6 +145,8 @@ public:
   /// Opaque depth per tile for `render` to hide strands behind (HairPass::setOcclusion); none
   /// when empty.
   std::optional<std::pair<std::vector<float>, HairOcclusionTiles>> occlusion;
+  /// The share of the strands `render` draws (HairPass::update, "Level of detail").
+  float keptShare = 1.0f;
 
 private:
   std::vector<std::unique_ptr<MarschnerLut>> luts_;

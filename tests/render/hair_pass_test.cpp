@@ -327,6 +327,69 @@ TEST_F(HairPassTest, OneSamplePerPixelTakesEachPixelsShareOfTheStrand) {
     }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Level of detail
+
+// 512 strands a quarter pixel wide across the whole view, at random places and slopes within
+// 20° of vertical (about four to a pixel's width, so that they overlap as a groom's do and cover
+// about half of each pixel), drawn whole and at a quarter of its strands
+// (render/strand_lod.hpp): the coverage, Σ alpha, over the view must stay within 5 % of the
+// whole groom's, and over each band 32 pixels wide within 15 % (a quarter of a band's 128
+// strands, at random places, is itself uneven by about that much). Without the width
+// compensation a quarter of the strands would cover about a quarter.
+TEST_F(HairPassTest, AQuarterOfTheStrandsWidenedCoverWhatTheWholeGroomCovers) {
+  constexpr vk::Extent2D kExtent{128, 128};
+  constexpr int kPatchStrands = 512;
+  constexpr float kLength = 200.0f;  // past the view's top and bottom: no ends in view
+  StrandData data;
+  std::uint32_t state = 12345u;
+  const auto uniform = [&state] {  // a fixed linear congruential sequence in [0, 1)
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  for (int i = 0; i < kPatchStrands; ++i) {
+    const glm::vec2 centre(128.0f * uniform() - 64.0f, 0.0f);
+    const float angle = glm::radians(40.0f * uniform() - 20.0f);
+    const glm::vec2 along(std::sin(angle), std::cos(angle));
+    addStraightStrand(data, glm::vec3((centre - 0.5f * kLength * along) * kMetresPerPixel, 0.0f),
+                      glm::vec3((centre + 0.5f * kLength * along) * kMetresPerPixel, 0.0f), 9);
+  }
+  const HairGroomSettings groom{.width = 0.25f * kMetresPerPixel, .opacity = 0.8f, .minimumPixelWidth = 1.0f};
+  const std::array lights{DirectionalLight{.direction = {0, 0, 1}}};
+  const HairView view{orthographicView(kExtent, kMetresPerPixel), kExtent};
+  const MarschnerLut& table = lut(blondeHairParams());
+  for (const vk::SampleCountFlagBits samples : {vk::SampleCountFlagBits::e1, vk::SampleCountFlagBits::e4}) {
+    keptShare = 1.0f;
+    const Pixels whole = render(table, data, samples, view, lights, glm::vec3(0.1f), groom);
+    EXPECT_EQ(lastChoice.keptShare, 1.0f);
+    const std::uint32_t hiddenInWhole = lastChoice.hiddenVertices;
+    keptShare = 0.25f;
+    const Pixels quarter = render(table, data, samples, view, lights, glm::vec3(0.1f), groom);
+    EXPECT_EQ(lastChoice.keptShare, 0.25f);
+    // Three strands of every four left out (the ranks of 512 strands), with the vertices off the view.
+    EXPECT_GE(lastChoice.hiddenVertices, kPatchStrands / 4 * 3 * data.verticesPerStrand);
+    EXPECT_LE(lastChoice.hiddenVertices, kPatchStrands / 4 * 3 * data.verticesPerStrand + hiddenInWhole);
+    const double wholeSum = measureCoverage(whole).sum, quarterSum = measureCoverage(quarter).sum;
+    EXPECT_NEAR(quarterSum, wholeSum, 0.05 * wholeSum) << int(samples) << "x: the view's coverage";
+    double worstBand = 0.0;
+    for (std::uint32_t band = 0; band < kExtent.width; band += 32) {
+      double a = 0.0, b = 0.0;
+      for (std::uint32_t y = 0; y < kExtent.height; ++y)
+        for (std::uint32_t x = band; x < band + 32; ++x) {
+          a += whole[y * kExtent.width + x].a;
+          b += quarter[y * kExtent.width + x].a;
+        }
+      worstBand = std::max(worstBand, std::abs(b - a) / a);
+    }
+    EXPECT_LE(worstBand, 0.15) << int(samples) << "x: a band's coverage";
+    std::printf(
+        "%dx: a quarter of the strands covers %.1f px² against the whole groom's %.1f (%+.2f %%); worst "
+        "band %.2f %%\n",
+        int(samples), quarterSum, wholeSum, 100.0 * (quarterSum - wholeSum) / wholeSum, 100.0 * worstBand);
+  }
+  keptShare = 1.0f;
+}
+
 TEST_F(HairPassTest, WideLinesCoverTheAreaOfSlopedStrands) {
   if (!device().wideLines()) GTEST_SKIP() << "the device has no wide lines: ribbons are drawn instead";
   for (const float degrees : {0.0f, 45.0f}) expectSlopedCoverage(*this, vk::SampleCountFlagBits::e1, degrees, 2.0f);
@@ -634,6 +697,9 @@ TEST_F(HairPassTest, RejectsBadStrandsAndGroomSettings) {
   EXPECT_FALSE((*pass)->update(view, {.width = std::nanf("")}).has_value());
   EXPECT_FALSE((*pass)->update(view, {.opacity = 1.5f}).has_value());
   EXPECT_FALSE((*pass)->update(view, {.minimumPixelWidth = 0.0f}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {.lodPixelWidth = -1.0f}).has_value());
+  EXPECT_FALSE((*pass)->update(view, {}, 0.01f).has_value()) << "fewer strands than the least share";
+  EXPECT_FALSE((*pass)->update(view, {}, 1.5f).has_value());
   EXPECT_FALSE((*pass)->update(HairView{glm::mat4(0.0f), kShadingExtent}, {}).has_value());
   EXPECT_FALSE((*pass)->update(HairView{view.viewProjection, {0, 0}}, {}).has_value());
   EXPECT_TRUE((*pass)->update(view, {}).has_value());

@@ -285,7 +285,7 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
 TEST(Scene, GroomRenderBlockSetsEveryField) {
   auto scene = parseScene(groomScene(R"(, "source": "procedural",
       "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
-                 "colour": [0.5, 0.25, 0], "min_pixel_width": 0.25, "shadow_extinction": 3.5,
+                 "colour": [0.5, 0.25, 0], "min_pixel_width": 0.25, "shadow_extinction": 3.5, "lod_pixel_width": 2,
                  "strands": 1000000, "vertices_per_strand": 4096, "guide_blend": "barycentric",
                  "curve": "linear", "clump": 1})"),
                           "x.json");
@@ -297,6 +297,7 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_FLOAT_EQ(rendering.settings.opacity, 0.5f);
   EXPECT_FLOAT_EQ(rendering.settings.minimumPixelWidth, 0.25f);
   EXPECT_FLOAT_EQ(rendering.settings.shadowExtinction, 3.5f);
+  EXPECT_FLOAT_EQ(rendering.settings.lodPixelWidth, 2.0f);
   EXPECT_EQ(rendering.denseStrands, 1'000'000);
   EXPECT_EQ(rendering.verticesPerStrand, 4096);
   EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kBarycentric);
@@ -376,6 +377,9 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
         << colour;
   EXPECT_EQ(renderError(R"({"min_pixel_width": 0.2})"),
             "dir/bad.json: grooms[0].render.min_pixel_width: expected a minimum width >= 0.25 pixels");
+  EXPECT_EQ(renderError(R"({"lod_pixel_width": -0.5})"),
+            "dir/bad.json: grooms[0].render.lod_pixel_width: expected a level-of-detail width >= 0 pixels (0: every "
+            "strand drawn)");
   for (const char* kappa : {"0", "-1"})
     EXPECT_EQ(renderError(std::string(R"({"shadow_extinction": )") + kappa + "}"),
               "dir/bad.json: grooms[0].render.shadow_extinction: expected a shadow extinction > 0")

@@ -20,12 +20,14 @@
 namespace mane::scenes::testing {
 
 /// nalu's world 20 frames into its animation (the head turned, the hair over it moving), without
-/// the settling; nothing when it does not load (the failure is recorded).
-inline std::optional<World> naluIntoItsAnimation() {
+/// the settling, its scene first changed by `edit`; nothing when it does not load (the failure is
+/// recorded).
+inline std::optional<World> naluIntoItsAnimation(const std::function<void(Scene&)>& edit = {}) {
   auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
   EXPECT_TRUE(scene.has_value()) << scene.error().message;
   if (!scene) return std::nullopt;
   scene->simulation.settleSeconds = 0.0f;
+  if (edit) edit(*scene);
   auto world = World::create(std::move(*scene), sharedResolver());
   EXPECT_TRUE(world.has_value()) << world.error().message;
   if (!world) return std::nullopt;
@@ -35,6 +37,21 @@ inline std::optional<World> naluIntoItsAnimation() {
     if (!advanced) return std::nullopt;
   }
   return std::move(*world);
+}
+
+/// nalu.json's head alone, changed by `edit`: no bunny, fins or post-processing, and no hair
+/// shadows, so that its hair changes only the pixels it covers; nothing when it does not load
+/// (the failure is recorded).
+inline std::optional<Scene> naluHeadAlone(const std::function<void(Scene&)>& edit = {}) {
+  auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
+  EXPECT_TRUE(scene.has_value()) << scene.error().message;
+  if (!scene) return std::nullopt;
+  std::erase_if(scene->meshes, [](const MeshInstance& mesh) { return mesh.name != "head"; });
+  scene->cloths.clear();
+  scene->post = {};
+  scene->hairShadows.mode = render::HairShadowMode::kOff;
+  if (edit) edit(*scene);
+  return std::move(*scene);
 }
 
 /// The frame of `world` a renderer made with `settings` draws, as RGBA8 (empty on failure, which

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -24,6 +23,7 @@
 #include "scenes/world.hpp"
 #include "tests/scenes/test_support.hpp"
 #include "tests/support/vulkan_fixture.hpp"
+#include "tests/world/nalu_frames.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -43,19 +43,6 @@ struct View {
   /// furthest from it.
   double leastCoverage;
 };
-
-/// nalu.json's head alone, with its groom or without.
-std::optional<Scene> naluHeadAlone(bool withHair) {
-  auto scene = loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "nalu.json");
-  EXPECT_TRUE(scene.has_value()) << scene.error().message;
-  if (!scene) return std::nullopt;
-  std::erase_if(scene->meshes, [](const MeshInstance& mesh) { return mesh.name != "head"; });
-  scene->cloths.clear();
-  scene->post = {};
-  scene->hairShadows.mode = render::HairShadowMode::kOff;
-  if (!withHair) scene->grooms.clear();
-  return std::move(*scene);
-}
 
 /// Per pixel (row-major, rows top to bottom): whether the head's nearest triangle there lies in
 /// `region`. Pixel centres are sampled, as the rasteriser does.
@@ -135,7 +122,8 @@ protected:
 };
 
 TEST_F(ScalpCoverage, NalusHairHidesItsScalpFromEverySide) {
-  std::optional<Scene> withHair = naluHeadAlone(true), bare = naluHeadAlone(false);
+  std::optional<Scene> withHair = testing::naluHeadAlone();
+  std::optional<Scene> bare = testing::naluHeadAlone([](Scene& scene) { scene.grooms.clear(); });
   ASSERT_TRUE(withHair && bare);
   const ScalpRegion region = withHair->grooms.at(0).scalp;
   const glm::vec3 target = withHair->camera.target;
