@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Lines standing in for the ribbons (render/passes/hair_pass.hpp, "Lines"): gl_VertexIndex =
 // s × Nd + i is vertex i of strand s. hair_primitive.comp has already placed the vertex and found
-// its coverage, for every vertex, so this shader only passes them on: on lavapipe, vertex shading
+// its coverage or width, for every vertex, so this shader only passes them on: on lavapipe, vertex shading
 // runs on one thread, where reading the strands a second time is expensive
 // (docs/lavapipe.md#vertex-shading-is-single-threaded).
 #include "hair_uniforms.glsl"

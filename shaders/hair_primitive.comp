@@ -130,7 +130,7 @@ struct ScreenPoint {
   float nearest;   // smallest depth z/w of the three
   bool inFront;    // all three in front of the eye (w > 0)
   vec4 centre;     // clip position of the centre, as hair.vert computes a ribbon edge
-  vec2 centrePixel;
+  vec2 centrePixel;  // and its pixel
 };
 
 ScreenPoint screenPoint(vec3 centre, HairRibbon ribbon) {

@@ -63,8 +63,8 @@
 // and drawn (the skin's, from its G-buffer pass, where the skin is deferred; else that of the
 // surfaces and furs, as it splits the main pass around the hair), and reduces it to the
 // farthest depth per 8 × 8 pixel tile (HairOcclusionPass). `record` then tests every segment: it is
-// hidden when its pixel box on screen (its ends and the ribbon's edges, 1.5 pixels more each way
-// for the line width and rounding) lies off the screen, or only over tiles whose farthest opaque
+// hidden when its pixel box on screen (its ends and the ribbon's edges, half the line width and
+// a pixel for rounding more each way) lies off the screen, or only over tiles whose farthest opaque
 // depth is nearer than the segment's nearest depth, less its whole depth range (samples of a
 // multisampled line may lie past its ends). Those segments get no indices: the draws' index
 // buffer is written every frame from the visible segments alone, strand by strand in drawing
