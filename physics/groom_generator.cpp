@@ -67,6 +67,9 @@ Result<void> validateGroomSettings(const GroomSettings& settings) {
     return bad("curlAnglePerSegment", "within [-pi/2, pi/2] radians");
   if (!(std::isfinite(settings.comb.x) && std::isfinite(settings.comb.y) && std::isfinite(settings.comb.z)))
     return bad("comb", "finite");
+  if (!(std::isfinite(settings.partingComb) && std::isfinite(settings.partingX) &&
+        std::isfinite(settings.partingBackZ)))
+    return bad("partingComb, partingX and partingBackZ", "finite");
   return {};
 }
 
@@ -77,8 +80,9 @@ std::vector<glm::vec3> growStrand(SplitMix64& rng, const GroomSettings& settings
                                   const glm::vec3& scalpNormal, float cosStep, float sinStep) {
   // n + c_t: its component along n is 1, so the strand always leaves the scalp outwards. Without
   // a comb the normal as given, bit for bit.
-  const glm::vec3 along = settings.comb - dot(settings.comb, scalpNormal) * scalpNormal;
-  const glm::vec3 normal = settings.comb == glm::vec3(0.0f) ? scalpNormal : normalized(scalpNormal + along);
+  const glm::vec3 comb = combAt(settings, root);
+  const glm::vec3 along = comb - dot(comb, scalpNormal) * scalpNormal;
+  const glm::vec3 normal = comb == glm::vec3(0.0f) ? scalpNormal : normalized(scalpNormal + along);
   const float length = settings.strandLength * (1.0f + settings.lengthJitter * rng.nextFloat(-1.0f, 1.0f));
   const float spacing = length / static_cast<float>(settings.particlesPerStrand - 1);
 
@@ -124,6 +128,13 @@ std::pair<float, float> helixStep(const GroomSettings& settings) {
 
 }  // namespace
 
+glm::vec3 combAt(const GroomSettings& settings, const glm::vec3& root) noexcept {
+  if (settings.partingComb == 0.0f) return settings.comb;
+  const float strength = std::clamp((root.z - settings.partingBackZ) / kPartingFade, 0.0f, 1.0f);
+  const float side = root.x < settings.partingX ? -1.0f : 1.0f;
+  return settings.comb + glm::vec3(side * strength * settings.partingComb, 0.0f, 0.0f);
+}
+
 Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings) {
   if (auto valid = validateGroomSettings(settings); !valid) return std::unexpected(valid.error());
   const auto [cosStep, sinStep] = helixStep(settings);
@@ -139,15 +150,24 @@ Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& s
 Result<std::vector<std::vector<glm::vec3>>> generateGroomOnMesh(const GroomSettings& settings,
                                                                 std::span<const glm::vec3> positions,
                                                                 std::span<const std::uint32_t> indices,
-                                                                std::span<const std::uint32_t> scalpTriangles) {
+                                                                std::span<const std::uint32_t> scalpTriangles,
+                                                                std::span<const float> density) {
   if (auto valid = validateGroomSettings(settings); !valid) return std::unexpected(valid.error());
   if (scalpTriangles.empty()) return fail("Groom on mesh: the scalp region has no triangles.");
-  // Cumulative areas (in double, so thousands of tiny triangles add up exactly enough) for
-  // sampling a triangle with probability proportional to its area.
+  if (!density.empty() && density.size() != scalpTriangles.size())
+    return fail("Groom on mesh: " + std::to_string(density.size()) + " densities for " +
+                std::to_string(scalpTriangles.size()) + " scalp triangles.");
+  for (std::size_t slot = 0; slot < density.size(); ++slot)
+    if (!(density[slot] >= 0.0f && std::isfinite(density[slot])))
+      return fail("Groom on mesh: scalp triangle " + std::to_string(scalpTriangles[slot]) +
+                  "'s density is not a finite number >= 0.");
+  // Cumulative areas times densities (in double, so thousands of tiny triangles add up exactly
+  // enough) for sampling a triangle with probability proportional to them.
   std::vector<double> cumulative;
   cumulative.reserve(scalpTriangles.size());
   double total = 0.0;
-  for (std::uint32_t t : scalpTriangles) {
+  for (std::size_t slot = 0; slot < scalpTriangles.size(); ++slot) {
+    const std::uint32_t t = scalpTriangles[slot];
     if (std::size_t(t) * 3 + 2 >= indices.size())
       return fail("Groom on mesh: scalp triangle " + std::to_string(t) + " is not a triangle of the mesh (it has " +
                   std::to_string(indices.size() / 3) + ").");
@@ -158,7 +178,8 @@ Result<std::vector<std::vector<glm::vec3>>> generateGroomOnMesh(const GroomSetti
     const glm::vec3& a = positions[indices[std::size_t(t) * 3]];
     const glm::vec3 n =
         cross(positions[indices[std::size_t(t) * 3 + 1]] - a, positions[indices[std::size_t(t) * 3 + 2]] - a);
-    total += 0.5 * std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
+    total += 0.5 * std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z) *
+             (density.empty() ? 1.0 : double(density[slot]));
     cumulative.push_back(total);
   }
   if (!(total > 0.0) || !std::isfinite(total)) return fail("Groom on mesh: the scalp region has no area.");

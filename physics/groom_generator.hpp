@@ -62,7 +62,20 @@ struct GroomSettings {
   /// is the part of `comb` along the scalp (c − (c·n)n). Its length sets how far the strands lean
   /// over: 1 tilts them 45° from the normal where the comb lies along the scalp. Zero: no combing.
   glm::vec3 comb{0.0f};
+  /// A parting, head-local: roots in front of (z above) `partingBackZ` are combed away from the
+  /// plane x = `partingX` as well, `partingComb` added to `comb` along +x on its +x side and
+  /// along −x on the other, fading in over the kPartingFade metres in front of `partingBackZ` so
+  /// that the crown behind the parting keeps the plain comb. Zero: no parting.
+  float partingComb = 0.0f;
+  float partingX = 0.0f;
+  float partingBackZ = 0.0f;
 };
+
+/// How far in front of GroomSettings::partingBackZ the parting's comb reaches its full strength, m.
+inline constexpr float kPartingFade = 0.02f;
+
+/// The comb a root at `root` (head-local) grows with: GroomSettings::comb, plus the parting's.
+[[nodiscard]] glm::vec3 combAt(const GroomSettings& settings, const glm::vec3& root) noexcept;
 
 /// Generates guide strands (head-local points, root first, on the scalp) for `settings`.
 /// Each strand grows along the scalp normal at its root, combed (GroomSettings::comb); curls wind
@@ -70,14 +83,16 @@ struct GroomSettings {
 [[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroom(const GroomSettings& settings);
 
 /// Generates guide strands rooted on a region of a triangle mesh (the scalp): roots spread by
-/// area over `scalpTriangles` (indices of triangles in `indices`, 3 per triangle), each growing
+/// area over `scalpTriangles` (indices of triangles in `indices`, 3 per triangle), weighted by
+/// `density` (a relative root density ≥ 0 per scalp triangle; empty: uniform), each growing
 /// along its triangle's normal (counter-clockwise winding faces out). Positions and lengths in
 /// metres, in the mesh's space. Uses every setting except the sphere's (scalpCentre,
 /// scalpRadius, capMinNormalY). Fails, naming it, on an index out of range, an empty region or
-/// one without area, and on settings out of range.
+/// one without area, densities that are not one per triangle or not finite and ≥ 0, and on
+/// settings out of range.
 [[nodiscard]] Result<std::vector<std::vector<glm::vec3>>> generateGroomOnMesh(
     const GroomSettings& settings, std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices,
-    std::span<const std::uint32_t> scalpTriangles);
+    std::span<const std::uint32_t> scalpTriangles, std::span<const float> density = {});
 
 /// Grows one guide strand from each of `roots` (head-local points, metres) along its unit
 /// `normals` entry: the length, jitter, curl and seed settings as for the other generators;

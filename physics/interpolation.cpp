@@ -165,6 +165,8 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     return bad("tipJitter", "a non-negative number of metres");
   if (settings.neighbourCandidates < 2 || settings.neighbourCandidates > kMaxNeighbours)
     return bad("neighbourCandidates", "in [2, 8]");
+  if (!(settings.minBlendCosine >= -1.0f && settings.minBlendCosine <= 1.0f))
+    return bad("minBlendCosine", "in [-1, 1]");
   if (settings.blend != GuideBlend::kSingle && settings.blend != GuideBlend::kBarycentric)
     return bad("blend", "kSingle or kBarycentric");
   if (settings.curve != StrandCurve::kLinear && settings.curve != StrandCurve::kCatmullRom)
@@ -230,6 +232,25 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     }
   }
 
+  // The barycentric partners of each guide: its nearest neighbourCandidates roots whose guides
+  // run the way it does.
+  Neighbours blendPartners;
+  blendPartners.index.resize(guideCount);
+  blendPartners.count.assign(guideCount, 0);
+  if (settings.blend == GuideBlend::kBarycentric) {
+    std::vector<glm::vec3> directions(guideCount);
+    for (std::size_t g = 0; g < guideCount; ++g) directions[g] = normalize(restGuides[g].back() - restGuides[g][0]);
+    for (std::size_t g = 0; g < guideCount; ++g) {
+      const auto candidates =
+          std::min<std::uint32_t>(neighbours.count[g], static_cast<std::uint32_t>(settings.neighbourCandidates));
+      for (std::uint32_t k = 0; k < candidates; ++k) {
+        const std::uint32_t other = neighbours.index[g][k];
+        if (dot(directions[g], directions[other]) >= settings.minBlendCosine)
+          blendPartners.index[g][blendPartners.count[g]++] = other;
+      }
+    }
+  }
+
   const std::size_t denseVertices = layout.vertexCount;
   const float guideSpan = static_cast<float>(guideVertices - 1);
   const float denseSpan = static_cast<float>(denseVertices - 1);
@@ -252,14 +273,14 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
 
     bool barycentric = false;
     if (settings.blend == GuideBlend::kBarycentric) {
-      const auto candidates =
-          std::min<std::uint32_t>(neighbours.count[home], static_cast<std::uint32_t>(settings.neighbourCandidates));
+      const std::array<std::uint32_t, kMaxNeighbours>& partners = blendPartners.index[home];
+      const std::uint32_t candidates = blendPartners.count[home];
       for (int attempt = 0; candidates >= 2 && attempt < kTriangleAttempts && !barycentric; ++attempt) {
         const std::uint32_t i = randomIndex(rng, candidates);
         std::uint32_t j = randomIndex(rng, candidates - 1);
         if (j >= i) ++j;
-        const std::uint32_t a = neighbours.index[home][i];
-        const std::uint32_t b = neighbours.index[home][j];
+        const std::uint32_t a = partners[i];
+        const std::uint32_t b = partners[j];
         if (sineAt(roots[home], roots[a], roots[b]) < kMinTriangleSine) continue;
         // A uniform point of the triangle (fold the unit square's upper half back). The
         // coordinates are multiples of 2⁻²⁴, so 1 − u − v is exact and the weights sum to 1.

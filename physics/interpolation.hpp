@@ -113,6 +113,10 @@ struct DenseGroomSettings {
   /// Barycentric: the triangle's two other corners are picked among this many nearest guide
   /// roots of the strand's home guide; in [2, 8].
   std::size_t neighbourCandidates = 4;
+  /// Barycentric: only candidates whose rest guide runs (root to tip) within the angle of this
+  /// cosine of the home guide's are blended, so that no strand is the average of guides that part
+  /// (either side of a parting, or the crown's whorl); in [−1, 1], −1 blends any.
+  float minBlendCosine = 0.5f;
 };
 
 /// Builds a dense groom layout from guide strands at rest (points root first, metres, in any

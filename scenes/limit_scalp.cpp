@@ -112,6 +112,9 @@ Result<std::vector<LimitRoot>> sampleScalpOnLimitSurface(const subdiv::LimitSurf
       const subdiv::LimitSample s = surface.evaluate(cell.face, uv.x, uv.y);
       const double jacobian = glm::length(glm::cross(glm::dvec3(s.du), glm::dvec3(s.dv)));
       if (keep * cell.jacobianBound >= jacobian || !inRegion(region, lowest, s.position, s.normal)) continue;
+      // A denser hairline: kept in proportion to the density there.
+      if (region.hairlineDensity > 1.0f && uniform(rng) * region.hairlineDensity >= region.densityAt(s.normal))
+        continue;
       roots.push_back({cell.face, uv, s.position, s.normal});
       placed = true;
     }

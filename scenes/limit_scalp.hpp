@@ -32,7 +32,8 @@ struct LimitRoot {
 /// face is cut into g × g cells (g from 1 to 8, about 65,000 cells in all); a cell is picked with
 /// probability proportional to a bound of its area, a point in it uniformly in (u, v), and the
 /// point is kept with probability |∂u × ∂v| / that bound and when it lies in the region
-/// (rejection sampling). Cells none of whose corners are in the region are never picked, so a
+/// (rejection sampling), and with a denser hairline also with probability
+/// `ScalpRegion::densityAt` / `hairlineDensity`. Cells none of whose corners are in the region are never picked, so a
 /// region's rim may lose slivers narrower than a cell. Reproducible: the same surface, region,
 /// count and `seed` give the same roots, bit for bit. Errors: no point of the surface in the
 /// region, or a region too thin to hit.

@@ -2,6 +2,7 @@
 // The scene description: what a JSON scene file (scenes/*.json, format in scenes/README.md)
 // holds once validated. Plain data; assets are referenced by manifest name, not loaded.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <utility>
@@ -17,6 +18,7 @@
 #include "common/error.hpp"
 #include "common/strand_layout.hpp"
 #include "physics/colliders.hpp"
+#include "physics/groom_drape.hpp"
 #include "physics/interpolation.hpp"
 #include "physics/skinning.hpp"
 #include "render/frame.hpp"
@@ -262,6 +264,26 @@ struct ScalpRegion {
   float topFraction = 0.25f;
   float minUp = 0.2f;
   float maxForward = 1.0f;  ///< 1: no limit; lower keeps the hair off a forward-facing forehead
+  /// Roots grow this many times as densely at the front edge (normal z = maxForward) as
+  /// elsewhere, falling to the common density across the hairline behind it; in [1, 16].
+  float hairlineDensity = 1.0f;
+
+  /// How far behind the front edge the hairline reaches, in the unit normal's z.
+  static constexpr float kHairlineWidth = 0.2f;
+
+  /// The relative root density where the unit normal is `normal`: hairlineDensity at the front
+  /// edge, falling linearly to 1 kHairlineWidth behind it.
+  [[nodiscard]] float densityAt(const glm::vec3& normal) const noexcept {
+    const float behind = std::clamp((maxForward - normal.z) / kHairlineWidth, 0.0f, 1.0f);
+    return hairlineDensity + (1.0f - hairlineDensity) * behind;
+  }
+};
+
+/// A procedural groom's parting (physics::GroomSettings' parting fields), body frame, metres.
+struct GroomParting {
+  float comb = 0.0f;   ///< how hard the roots in front of `backZ` are combed away from it; 0: none
+  float x = 0.0f;      ///< the parting is the plane x = this
+  float backZ = 0.0f;  ///< it runs from the front of the scalp back to z = this
 };
 
 struct Groom {
@@ -274,6 +296,10 @@ struct Groom {
   float strandLengthMetres = 0.0f;  ///< procedural only: length (0: generator default)
   ScalpRegion scalp;                ///< procedural only
   glm::vec3 comb{0.0f};             ///< procedural only: physics::GroomSettings::comb, body frame
+  GroomParting parting;             ///< procedural only
+  /// Procedural only: guides laid over the groom's colliders (the body-frame shapes; not the
+  /// joints') at rest, with these settings (physics/groom_drape.hpp); none: grown straight.
+  std::optional<physics::DrapeSettings> drape;
   /// Files only: negate the points' z on load. TressFX's Maya exporter can write z inverted (for
   /// left-handed renderers); the TressFX ponytail's strands sit on its head only with this.
   bool invertZ = false;

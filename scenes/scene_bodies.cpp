@@ -191,12 +191,41 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   return rendering;
 }
 
+physics::DrapeSettings parseDrape(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  physics::DrapeSettings drape;
+  drape.droop = fields.optional<float>("droop", drape.droop);
+  drape.layer = fields.optional<float>("layer", drape.layer);
+  drape.combedLength = fields.optional<float>("combed_length", drape.combedLength);
+  fields.finish();
+  require(drape.droop >= 0.0f && drape.droop <= 1000.0f, fields.child("droop"),
+          "expected a droop in [0, 1000] per metre");
+  require(drape.layer >= 0.0f && drape.layer <= 0.1f, fields.child("layer"), "expected a layer in [0, 0.1] metres");
+  require(drape.combedLength >= 0.0f && drape.combedLength <= 10.0f, fields.child("combed_length"),
+          "expected a length in [0, 10] metres");
+  return drape;
+}
+
+GroomParting parseParting(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  GroomParting parting;
+  parting.comb = fields.required<float>("comb");
+  parting.x = fields.optional<float>("x", parting.x);
+  parting.backZ = fields.optional<float>("back_z", parting.backZ);
+  fields.finish();
+  require(parting.comb >= 0.0f && parting.comb <= 10.0f, fields.child("comb"), "expected a comb in [0, 10]");
+  require(std::abs(parting.x) <= 10.0f, fields.child("x"), "expected a position within 10 metres of the body");
+  require(std::abs(parting.backZ) <= 10.0f, fields.child("back_z"), "expected a position within 10 metres of the body");
+  return parting;
+}
+
 ScalpRegion parseScalp(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   ScalpRegion scalp;
   scalp.topFraction = fields.optional<float>("top_fraction", scalp.topFraction);
   scalp.minUp = fields.optional<float>("min_up", scalp.minUp);
   scalp.maxForward = fields.optional<float>("max_forward", scalp.maxForward);
+  scalp.hairlineDensity = fields.optional<float>("hairline_density", scalp.hairlineDensity);
   fields.finish();
   require(scalp.topFraction > 0.0f && scalp.topFraction <= 1.0f, fields.child("top_fraction"),
           "expected a fraction of the mesh's height in (0, 1]");
@@ -204,6 +233,8 @@ ScalpRegion parseScalp(const Json& json, const std::string& path) {
           "expected a normal component in [-1, 1]");
   require(scalp.maxForward >= -1.0f && scalp.maxForward <= 1.0f, fields.child("max_forward"),
           "expected a normal component in [-1, 1]");
+  require(scalp.hairlineDensity >= 1.0f && scalp.hairlineDensity <= 16.0f, fields.child("hairline_density"),
+          "expected a density in [1, 16] times the scalp's");
   return scalp;
 }
 
@@ -275,6 +306,14 @@ Groom parseGroom(const Json& json, const std::string& path) {
   if (const Json* comb = fields.take("comb")) {
     require(groom.isProcedural(), fields.child("comb"), "applies to \"procedural\" grooms only");
     groom.comb = detail::read<glm::vec3>(*comb, fields.child("comb"));
+  }
+  if (const Json* parting = fields.take("parting")) {
+    require(groom.isProcedural(), fields.child("parting"), "applies to \"procedural\" grooms only");
+    groom.parting = parseParting(*parting, fields.child("parting"));
+  }
+  if (const Json* drape = fields.take("drape")) {
+    require(groom.isProcedural(), fields.child("drape"), "applies to \"procedural\" grooms only");
+    groom.drape = parseDrape(*drape, fields.child("drape"));
   }
   if (const Json* sim = fields.take("simulation")) {
     groom.simulation = parseHairSimulation(*sim, fields.child("simulation"));

@@ -312,6 +312,9 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
       if (groom.strandCount > 0) settings.strandCount = static_cast<std::size_t>(groom.strandCount);
       if (groom.strandLengthMetres > 0.0f) settings.strandLength = groom.strandLengthMetres;
       settings.comb = groom.comb;
+      settings.partingComb = groom.parting.comb;
+      settings.partingX = groom.parting.x;
+      settings.partingBackZ = groom.parting.backZ;
       if (subdivided_[meshIndex]) {
         // Drawn as its limit surface: the roots sit on that surface itself, which every
         // re-tessellation approximates, rather than on the triangles of the load-time view.
@@ -331,9 +334,30 @@ Result<void> World::loadGrooms(const AssetResolver& resolver, SceneColliders& co
         if (scalp.empty())
           return fail("groom " + groom.name + ": mesh " + meshIt->name +
                       " has no scalp (no triangle in the groom's scalp region)");
-        auto generated = physics::generateGroomOnMesh(settings, metres, mesh.indices, scalp);
+        std::vector<float> density;
+        if (groom.scalp.hairlineDensity > 1.0f)
+          for (const std::uint32_t t : scalp) {
+            const glm::vec3 a = mesh.positions[mesh.indices[3 * t]];
+            density.push_back(groom.scalp.densityAt(glm::normalize(
+                glm::cross(mesh.positions[mesh.indices[3 * t + 1]] - a, mesh.positions[mesh.indices[3 * t + 2]] - a))));
+          }
+        auto generated = physics::generateGroomOnMesh(settings, metres, mesh.indices, scalp, density);
         if (!generated) return fail("groom " + groom.name + ": " + generated.error().message);
         guides = std::move(*generated);
+      }
+      if (groom.drape) {
+        physics::ColliderSet shapes;
+        if (!groom.colliders.empty()) {
+          auto set = colliders.build(groom.colliders, meshIndex);
+          if (!set) return fail("groom " + groom.name + ": colliders: " + set.error().message);
+          shapes = std::move(*set);
+        }
+        // Gravity as the guides' frame (the body's, where it stands at time 0) sees it.
+        physics::DrapeSettings drape = *groom.drape;
+        if (groom.simulation.gravity != glm::vec3(0.0f))
+          drape.down = glm::mat3(glm::inverse(bodyPlacement(meshIndex, 0.0))) * groom.simulation.gravity;
+        if (auto laid = physics::drapeGuides(guides, shapes, drape); !laid)
+          return fail("groom " + groom.name + ": drape: " + laid.error().message);
       }
       appendSceneLooks(guides.size(), groom.rendering, looks);
     } else {

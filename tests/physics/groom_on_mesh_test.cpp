@@ -5,6 +5,7 @@
 // receive 3:1 of 8,000 roots, within 4 binomial standard deviations); a straight strand grows
 // along its triangle's outward normal; the same seed gives the same bytes.
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -46,6 +47,26 @@ TEST(GroomOnMesh, RootsSpreadByAreaOverTheRegionOnly) {
   EXPECT_EQ(onA + onB, 8000);
   // Expected 6,000 : 2,000; σ = √(n·p·(1 − p)) = √(8000·0.75·0.25) ≈ 38.7.
   EXPECT_NEAR(onA, 6000, 4 * 38.7);
+}
+
+// Densities 1 : 3 on triangles of areas 3 : 1 give both the same share of the roots.
+TEST(GroomOnMesh, RootsSpreadByAreaTimesDensity) {
+  GroomSettings settings;
+  settings.strandCount = 8000;
+  settings.particlesPerStrand = 3;
+  const std::vector<float> density{1.0f, 3.0f};
+  auto strands = generateGroomOnMesh(settings, kPositions, kIndices, kScalp, density);
+  ASSERT_TRUE(strands.has_value()) << strands.error().message;
+  const auto onA = std::count_if(strands->begin(), strands->end(),
+                                 [](const std::vector<glm::vec3>& strand) { return strand.front().x <= 3.0f + 1e-5f; });
+  // Expected 4,000 : 4,000; σ = √(8000·0.5·0.5) ≈ 44.7.
+  EXPECT_NEAR(double(onA), 4000.0, 4 * 44.7);
+  const std::vector<float> wrongCount{1.0f};
+  EXPECT_NE(generateGroomOnMesh(settings, kPositions, kIndices, kScalp, wrongCount).error().message.find("1 densities"),
+            std::string::npos);
+  const std::vector<float> negative{1.0f, -1.0f};
+  EXPECT_NE(generateGroomOnMesh(settings, kPositions, kIndices, kScalp, negative).error().message.find("density"),
+            std::string::npos);
 }
 
 TEST(GroomOnMesh, StraightStrandsGrowAlongTheFaceNormal) {

@@ -313,13 +313,16 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
 }
 
 TEST(Scene, ProceduralGroomsTakeAScalpRegion) {
-  auto scene = parseScene(
-      groomScene(R"(, "source": "procedural", "scalp": {"top_fraction": 0.3, "min_up": 0.1, "max_forward": 0.35})"),
-      "x.json");
+  auto scene = parseScene(groomScene(R"(, "source": "procedural",
+                    "scalp": {"top_fraction": 0.3, "min_up": 0.1, "max_forward": 0.35, "hairline_density": 6})"),
+                          "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   EXPECT_FLOAT_EQ(scene->grooms[0].scalp.topFraction, 0.3f);
   EXPECT_FLOAT_EQ(scene->grooms[0].scalp.minUp, 0.1f);
   EXPECT_FLOAT_EQ(scene->grooms[0].scalp.maxForward, 0.35f);
+  EXPECT_FLOAT_EQ(scene->grooms[0].scalp.hairlineDensity, 6.0f);
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "scalp": {"hairline_density": 0.5})")),
+            "dir/bad.json: grooms[0].scalp.hairline_density: expected a density in [1, 16] times the scalp's");
   EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "scalp": {"top_fraction": 0})")),
             "dir/bad.json: grooms[0].scalp.top_fraction: expected a fraction of the mesh's height in (0, 1]");
   EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "scalp": {"max_forward": 2})")),
@@ -339,6 +342,36 @@ TEST(Scene, ProceduralGroomsMayBeCombed) {
             "dir/bad.json: grooms[0].comb: applies to \"procedural\" grooms only");
   EXPECT_NE(errorOf(groomScene(R"(, "source": "procedural", "comb": [0, -1])")).find("grooms[0].comb"),
             std::string::npos);
+}
+
+TEST(Scene, ProceduralGroomsMayHaveAPartingAndBeLaidOverTheirBody) {
+  auto scene = parseScene(groomScene(R"(, "source": "procedural")"), "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->grooms[0].parting.comb, 0.0f);
+  EXPECT_FALSE(scene->grooms[0].drape.has_value());
+  scene = parseScene(groomScene(R"(, "source": "procedural", "parting": {"comb": 2, "x": 0.01, "back_z": -0.02},
+                                "drape": {"droop": 80, "layer": 0.002, "combed_length": 0.03})"),
+                     "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  EXPECT_EQ(scene->grooms[0].parting.comb, 2.0f);
+  EXPECT_EQ(scene->grooms[0].parting.x, 0.01f);
+  EXPECT_EQ(scene->grooms[0].parting.backZ, -0.02f);
+  ASSERT_TRUE(scene->grooms[0].drape.has_value());
+  EXPECT_EQ(scene->grooms[0].drape->droop, 80.0f);
+  EXPECT_EQ(scene->grooms[0].drape->layer, 0.002f);
+  EXPECT_EQ(scene->grooms[0].drape->combedLength, 0.03f);
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "a.tfx", "parting": {"comb": 1})")),
+            "dir/bad.json: grooms[0].parting: applies to \"procedural\" grooms only");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "a.tfx", "drape": {})")),
+            "dir/bad.json: grooms[0].drape: applies to \"procedural\" grooms only");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "parting": {"comb": -1})")),
+            "dir/bad.json: grooms[0].parting.comb: expected a comb in [0, 10]");
+  EXPECT_NE(errorOf(groomScene(R"(, "source": "procedural", "parting": {"x": 0})")).find("grooms[0].parting"),
+            std::string::npos);
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "drape": {"droop": 1001})")),
+            "dir/bad.json: grooms[0].drape.droop: expected a droop in [0, 1000] per metre");
+  EXPECT_EQ(errorOf(groomScene(R"(, "source": "procedural", "drape": {"layer": -0.1})")),
+            "dir/bad.json: grooms[0].drape.layer: expected a layer in [0, 0.1] metres");
 }
 
 TEST(Scene, GroomShapeStiffnessReachesTheSolverSettingsRange) {

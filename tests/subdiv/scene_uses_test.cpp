@@ -249,6 +249,29 @@ TEST(ScalpOnTheLimitSurface, RootsAreSpreadUniformlyByArea) {
   EXPECT_EQ((*again)[1234].position, (*roots)[1234].position);
 }
 
+// A denser hairline: on the back half of a ball (normal z <= 0) with roots four times as dense
+// at its edge, falling linearly to the common density 0.2 behind it (in the normal's z), the
+// band z in [-0.2, 0] holds 2.5 x 0.2 / (2.5 x 0.2 + 0.8) = 5/13 of the roots, where it holds 0.2
+// of the area (Archimedes: a sphere's area between parallel planes is in proportion to their
+// distance). 4,000 roots: within 4 binomial standard deviations plus 0.01 for the cage's
+// flattening.
+TEST(ScalpOnTheLimitSurface, AHairlineGrowsItsRootsAsDenselyAsAsked) {
+  const SphereScene scene("", 32, 16);
+  const subdiv::LimitSurface limit = scene.limit();
+  const auto bandShare = [&](float density) {
+    const ScalpRegion region{.topFraction = 1.0f, .minUp = -1.0f, .maxForward = 0.0f, .hairlineDensity = density};
+    auto roots = sampleScalpOnLimitSurface(limit, region, 4000, 11);
+    EXPECT_TRUE(roots.has_value()) << roots.error().message;
+    if (!roots) return 0.0;
+    const auto inBand =
+        std::count_if(roots->begin(), roots->end(), [](const LimitRoot& root) { return root.normal.z >= -0.2f; });
+    return double(inBand) / double(roots->size());
+  };
+  const auto tolerance = [](double p) { return 4.0 * std::sqrt(p * (1.0 - p) / 4000.0) + 0.01; };
+  EXPECT_NEAR(bandShare(1.0f), 0.2, tolerance(0.2));
+  EXPECT_NEAR(bandShare(4.0f), 5.0 / 13.0, tolerance(5.0 / 13.0));
+}
+
 TEST(ScalpOnTheLimitSurface, ARegionNothingReachesIsAnError) {
   const SphereScene scene("");
   const subdiv::LimitSurface limit = scene.limit();

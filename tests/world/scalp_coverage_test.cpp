@@ -39,8 +39,8 @@ struct View {
   glm::vec3 up;
   /// The share of the scalp's pixels the hair must change: what nalu's groom reaches today, a
   /// little rounded down. The goal is 0.97 from every side, which the side and the back reach;
-  /// the crown, from which the strands part in every direction, keeps the view from above
-  /// furthest from it.
+  /// from the front the strip behind the hairline, which only the hair rooted in it covers, and
+  /// from above the parting keep the others below it.
   double leastCoverage;
 };
 
@@ -134,10 +134,10 @@ TEST_F(ScalpCoverage, NalusHairHidesItsScalpFromEverySide) {
   auto bald = World::create(std::move(*bare), testing::sharedResolver());
   ASSERT_TRUE(bald.has_value()) << bald.error().message;
 
-  const std::array<View, 4> views{{{"front", {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, 0.94},
+  const std::array<View, 4> views{{{"front", {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, 0.91},
                                    {"side", {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.97},
                                    {"back", {0.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, 0.97},
-                                   {"top", {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 0.85}}};
+                                   {"top", {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 0.92}}};
   for (const View& view : views) {
     render::FrameInput frame = hairy->frameInput();
     frame.camera.position = target + view.direction * distance;
