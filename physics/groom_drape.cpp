@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 
 namespace mane::physics {
@@ -13,7 +12,7 @@ namespace {
 // slides off it rather than lies on it: slopes up to about 73° from the horizontal hold hair.
 constexpr float kSteepestRest = 0.3f;
 
-// Steps the strand is walked in per (shortest) segment.
+// Steps the strand is walked in per (mean) segment.
 constexpr int kStepsPerSegment = 8;
 // Passes of the moving average that smooths the walked path.
 constexpr int kSmoothingPasses = 4;
@@ -26,7 +25,7 @@ float length(const glm::vec3& v) {
   return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
 }
 
-// The colliders' distance gradient at `p` by central differences half a millimetre apart, unit
+// The colliders' distance gradient at `p` by central differences a millimetre wide, unit
 // length (or zero where the field is flat there).
 glm::vec3 outward(const ColliderSet& colliders, const glm::vec3& p) {
   constexpr float h = 5e-4f;
@@ -71,10 +70,11 @@ glm::vec3 pointAtDistance(const glm::vec3& centre, const glm::vec3& a, const glm
   const glm::vec3 f = a - centre;
   const float qa = dot(d, d), qb = 2.0f * dot(f, d), qc = dot(f, f) - distance * distance;
   const float discriminant = std::max(qb * qb - 4.0f * qa * qc, 0.0f);
-  const float t = std::clamp((-qb + std::sqrt(discriminant)) / (2.0f * qa), 0.0f, 1.0f);
+  const float t = qa > 0.0f ? std::clamp((-qb + std::sqrt(discriminant)) / (2.0f * qa), 0.0f, 1.0f) : 1.0f;
   const glm::vec3 x = a + t * d;
   // Rounding aside, exactly `distance` from the centre: the chord is the rest length.
-  return centre + (x - centre) * (distance / length(x - centre));
+  const float reached = length(x - centre);
+  return reached > 0.0f ? centre + (x - centre) * (distance / reached) : x;
 }
 
 // Smooths a walked path (root kept) by kSmoothingPasses passes of a moving average over
@@ -114,31 +114,34 @@ Result<void> drapeGuides(std::vector<std::vector<glm::vec3>>& guides, const Coll
   if (!(settings.combedLength >= 0.0f && std::isfinite(settings.combedLength)))
     return fail("Drape settings: combedLength must be a non-negative number of metres.");
   for (std::size_t g = 0; g < guides.size(); ++g)
-    if (guides[g].size() >= 2 && !(length(guides[g][1] - guides[g][0]) > 0.0f))
-      return fail("Drape: guide " + std::to_string(g) + "'s first segment has no length.");
+    for (std::size_t i = 1; i < guides[g].size(); ++i) {
+      const float segment = length(guides[g][i] - guides[g][i - 1]);
+      if (!(segment > 0.0f && std::isfinite(segment)))
+        return fail("Drape: guide " + std::to_string(g) + "'s segment " + std::to_string(i) +
+                    " has no length or is not finite.");
+    }
 
   const glm::vec3 down = settings.down / downLength;
   const float clearance = settings.layer + colliders.thickness;
   for (std::vector<glm::vec3>& guide : guides) {
     if (guide.size() < 2) continue;
     std::vector<float> segments(guide.size());
-    float shortest = std::numeric_limits<float>::max();
+    float total = 0.0f;
     for (std::size_t i = 1; i < guide.size(); ++i) {
       segments[i] = length(guide[i] - guide[i - 1]);
-      shortest = std::min(shortest, segments[i]);
+      total += segments[i];
     }
-    // The strand is walked in steps a fraction of its shortest segment, so that the colliders'
+    // The strand is walked in steps a fraction of its mean segment, so that the colliders'
     // curvature and the droop turn it gradually; the path is smoothed over about a segment, so
     // that no turn is sharper than the strand's segments can bend, and its particles are placed
-    // on it, each its rest segment length (as a chord) from the one before.
-    const float step = shortest / float(kStepsPerSegment);
-    float total = 0.0f;
-    for (std::size_t i = 1; i < guide.size(); ++i) total += segments[i];
+    // on it, each its rest segment length (as a chord) from the one before. The path runs half
+    // as long again as the strand: its chords are shorter than its arc.
+    const std::size_t steps = 3 * std::size_t(kStepsPerSegment) * (guide.size() - 1) / 2 + 1;
+    const float step = total / float(kStepsPerSegment * (guide.size() - 1));
     std::vector<glm::vec3> path{guide[0]};
     glm::vec3 direction = (guide[1] - guide[0]) / segments[1];
-    // The path is walked somewhat past the strand's length: its chords are shorter than its arc.
-    for (float walked = 0.0f; walked < 1.5f * total + step; walked += step) {
-      const bool combed = walked < settings.combedLength;
+    for (std::size_t taken = 0; taken < steps; ++taken) {
+      const bool combed = float(taken) * step < settings.combedLength;
       const glm::vec3 at = path.back();
       glm::vec3 next = at + step * direction;
       if (!colliders.empty())
@@ -159,7 +162,11 @@ Result<void> drapeGuides(std::vector<std::vector<glm::vec3>>& guides, const Coll
         guide[i] = pointAtDistance(guide[i - 1], path[k - 1], path[k], segments[i]);
         ++i;
       }
-    for (; i < guide.size(); ++i) guide[i] = guide[i - 1] + segments[i] * direction;
+    // A path that winds back keeps its chords short: the strand's rest goes straight on from it.
+    for (; i < guide.size(); ++i) {
+      const glm::vec3 next = guide[i - 1] + segments[i] * direction;
+      guide[i] = colliders.empty() ? next : place(colliders, guide[i - 1], next, segments[i], clearance, false);
+    }
   }
   return {};
 }

@@ -19,14 +19,15 @@ namespace mane::physics {
 
 /// How guides are laid over their body.
 struct DrapeSettings {
-  /// Gravity's direction in the guides' frame (need not be unit length; not zero).
+  /// Gravity's direction in the guides' frame (need not be unit length; not zero). The scene
+  /// gives its groom's gravity, or −y where that is zero.
   glm::vec3 down{0.0f, -1.0f, 0.0f};
   /// How quickly a strand off its body turns towards `down`, per metre of its length: walked in
   /// steps of h metres, each next step's direction is the last one's plus droop·h times the unit
   /// `down`, renormalised. In [0, 1000]; 0 keeps the grown direction.
   float droop = 20.0f;
-  /// Every particle but the root is kept this far outside the colliders (to within the sag of
-  /// an eighth of a segment), metres ≥ 0; the colliders' thickness is added.
+  /// Every particle but the root is kept about this far outside the colliders (a step's sag and
+  /// the smoothing aside), metres ≥ 0; the colliders' thickness is added.
   float layer = 0.001f;
   /// Along its first this many metres (≥ 0) a strand lies on the colliders, as a comb lays it:
   /// its particles are held at the layer, pulled in as well as pushed out, and do not droop.
@@ -34,7 +35,7 @@ struct DrapeSettings {
 };
 
 /// Lays each guide (points root first, in the colliders' frame, metres) over `colliders`. The
-/// strand is walked from its root in short steps (an eighth of its shortest segment), at first
+/// strand is walked from its root in short steps (an eighth of its mean segment), at first
 /// along the direction it grew (its first segment), each step's end moved along the colliders'
 /// distance gradient to `layer` plus their thickness: onto that layer along the first
 /// `combedLength` of the strand and wherever it rests on them (they lie under it, on a slope
@@ -42,7 +43,7 @@ struct DrapeSettings {
 /// towards `down` by `droop`. The path is then smoothed over about a segment (a moving average,
 /// pushed back out of the colliders). The root stays and each next particle is placed on it its
 /// rest segment length from the last (as a chord), so segment lengths are kept. Fails, changing
-/// nothing, on settings out of range or a guide whose first segment has no length.
+/// nothing, on settings out of range or a guide with a segment of no length or not finite.
 [[nodiscard]] Result<void> drapeGuides(std::vector<std::vector<glm::vec3>>& guides, const ColliderSet& colliders,
                                        const DrapeSettings& settings);
 

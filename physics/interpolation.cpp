@@ -232,20 +232,24 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     }
   }
 
-  // The barycentric partners of each guide: its nearest neighbourCandidates roots whose guides
-  // run the way it does.
+  // The barycentric partners of each guide: those of its nearest neighbourCandidates roots whose
+  // guides leave the scalp the way it does (their first segments), so that guides combed apart,
+  // which may fall side by side further down, are not blended.
   Neighbours blendPartners;
   blendPartners.index.resize(guideCount);
   blendPartners.count.assign(guideCount, 0);
   if (settings.blend == GuideBlend::kBarycentric) {
     std::vector<glm::vec3> directions(guideCount);
-    for (std::size_t g = 0; g < guideCount; ++g) directions[g] = normalize(restGuides[g].back() - restGuides[g][0]);
+    for (std::size_t g = 0; g < guideCount; ++g) {
+      const glm::vec3 first = restGuides[g][1] - restGuides[g][0];
+      directions[g] = dot(first, first) > 0.0f ? normalize(first) : glm::vec3(0.0f);
+    }
     for (std::size_t g = 0; g < guideCount; ++g) {
       const auto candidates =
           std::min<std::uint32_t>(neighbours.count[g], static_cast<std::uint32_t>(settings.neighbourCandidates));
       for (std::uint32_t k = 0; k < candidates; ++k) {
         const std::uint32_t other = neighbours.index[g][k];
-        if (dot(directions[g], directions[other]) >= settings.minBlendCosine)
+        if (settings.minBlendCosine <= -1.0f || dot(directions[g], directions[other]) >= settings.minBlendCosine)
           blendPartners.index[g][blendPartners.count[g]++] = other;
       }
     }

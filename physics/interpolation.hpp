@@ -113,10 +113,11 @@ struct DenseGroomSettings {
   /// Barycentric: the triangle's two other corners are picked among this many nearest guide
   /// roots of the strand's home guide; in [2, 8].
   std::size_t neighbourCandidates = 4;
-  /// Barycentric: only candidates whose rest guide runs (root to tip) within the angle of this
-  /// cosine of the home guide's are blended, so that no strand is the average of guides that part
-  /// (either side of a parting, or the crown's whorl); in [−1, 1], −1 blends any.
-  float minBlendCosine = 0.5f;
+  /// Barycentric: only candidates whose rest guide leaves its root (its first segment) within
+  /// the angle of this cosine of the home guide's are blended (by default less than 90° apart),
+  /// so that no strand is the average of guides combed apart (either side of a parting, or a
+  /// crown's whorl); in [−1, 1], −1 blends any.
+  float minBlendCosine = 0.0f;
 };
 
 /// Builds a dense groom layout from guide strands at rest (points root first, metres, in any

@@ -120,7 +120,7 @@ Result<std::vector<LimitRoot>> sampleScalpOnLimitSurface(const subdiv::LimitSurf
     }
     if (!placed)
       return fail("scalp on the limit surface: the scalp region is too thin: " + std::to_string(kMaxTriesPerRoot) +
-                  " points in a row fell outside it");
+                  " points in a row fell outside it (or were thinned out by the hairline's density)");
   }
   return roots;
 }

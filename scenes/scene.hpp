@@ -281,7 +281,7 @@ struct ScalpRegion {
 
 /// A procedural groom's parting (physics::GroomSettings' parting fields), body frame, metres.
 struct GroomParting {
-  float comb = 0.0f;   ///< how hard the roots in front of `backZ` are combed away from it; 0: none
+  float comb = 0.0f;   ///< how hard the roots in front of `backZ` are combed away from the plane; 0: none
   float x = 0.0f;      ///< the parting is the plane x = this
   float backZ = 0.0f;  ///< it runs from the front of the scalp back to z = this
 };

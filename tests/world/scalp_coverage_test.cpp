@@ -37,8 +37,8 @@ struct View {
   const char* name;
   glm::vec3 direction;  ///< from the head towards the camera
   glm::vec3 up;
-  /// The share of the scalp's pixels the hair must change: what nalu's groom reaches today, a
-  /// little rounded down. The goal is 0.97 from every side, which the side and the back reach;
+  /// The share of the scalp's pixels the hair must change: what nalu's groom reaches
+  /// (docs/look.md), a little rounded down. The goal is 0.97 from every side, which the side and the back reach;
   /// from the front the strip behind the hairline, which only the hair rooted in it covers, and
   /// from above the parting keep the others below it.
   double leastCoverage;

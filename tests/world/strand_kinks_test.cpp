@@ -89,7 +89,7 @@ std::vector<KinkShares> naluKinks(int verticesPerStrand) {
   return result;
 }
 
-// What nalu's groom, laid over the head, reaches today, a little rounded up: 3.7 % as shipped,
+// What nalu's groom, laid over the head, reaches (docs/look.md), a little rounded up: 3.7 % as shipped,
 // none at all with three dense vertices per guide segment (the sharpest turn then 26°), against
 // 61 % for straight segments.
 TEST(StrandKinks, NalusDrawnStrandsBendSmoothlyOnceSettled) {
