@@ -19,6 +19,11 @@
 //   BM_NaluFrame/variant:7  the original Nalu demo's content: the scene without the creature
 //   BM_NaluFrame/variant:8  the same, every hair segment drawn and shaded, hidden or not
 //                           (RendererSettings::hideOccludedHair off)
+//   BM_NaluFrame/variant:9  50,000 strands from 4× as far, through the level of detail
+//   BM_NaluFrame/variant:10 the same, every strand drawn
+//   BM_NaluFrame/variant:11 as shipped, under an environment (the Venice sunset panorama as
+//                           timbury.json turns it): its irradiance on the surfaces, its
+//                           background; its cost is this row over row 0
 //
 // The same frame of scenes/robot.json: a glTF character skinned on the GPU (walking), its crest
 // of hair and its cape simulated against it. The frozen rows empty the character's clips and
@@ -73,8 +78,9 @@ enum Variant : int {
   kNoFurShells,
   kDemoContent,
   kDemoContentEveryStrand,
-  kStrands50kFar,            // from 4× the camera's distance: the level of detail draws about half of them
-  kStrands50kFarEveryStrand  // the same without the level of detail
+  kStrands50kFar,             // from 4× the camera's distance: the level of detail draws about half of them
+  kStrands50kFarEveryStrand,  // the same without the level of detail
+  kEnvironment                // lit by a panorama, which is also the background
 };
 
 double median(std::vector<double> values) {
@@ -201,6 +207,8 @@ void BM_NaluFrame(benchmark::State& state) {
     if (variant == kStrands100k) groom.rendering.denseStrands = 100'000;
     if (variant == kStrands50kFarEveryStrand) groom.rendering.settings.lodPixelWidth = 0.0f;
   }
+  if (variant == kEnvironment)
+    scene->environment = scenes::Environment{.file = "env/venice_sunset_1k.hdr", .rotationDegrees = -70.0f};
   measureFrames(state, std::move(*scene),
                 {.msaaSamples = variant == kMsaa4 ? 4u : 1u,
                  .hideOccludedHair = variant != kDemoContentEveryStrand,
@@ -215,7 +223,7 @@ void BM_NaluFrame(benchmark::State& state) {
 
 BENCHMARK(BM_NaluFrame)
     ->ArgName("variant")
-    ->DenseRange(kShipped, kStrands50kFarEveryStrand)
+    ->DenseRange(kShipped, kEnvironment)
     ->Iterations(9)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

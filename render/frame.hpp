@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/environment/environment_map.hpp"
 #include "render/hair_data.hpp"
 #include "render/pass_name.hpp"
 #include "render/skinned_mesh_data.hpp"
@@ -151,7 +152,14 @@ struct FurSurfaceData {
 };
 
 /// Everything that stays the same from frame to frame; uploaded once.
+/// Light from every direction (render/passes/environment_pass.hpp): drawn behind the scene, it
+/// lights the surfaces through its irradiance.
+struct EnvironmentData {
+  CubeMap radiance;  ///< linear RGB, in the units of the lights' radiance
+};
+
 struct StaticScene {
+  std::optional<EnvironmentData> environment;  ///< none: the flat background and ambient of FrameInput
   std::vector<MeshData> meshes;
   std::vector<MaterialData> materials;
   std::vector<HairGroomData> grooms;  ///< drawn after the surfaces; guides via Renderer::updateHair

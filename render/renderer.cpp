@@ -99,9 +99,18 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
   const std::vector<HairShadowPass::Groom> furCasters = furs_.shadowCasters();
   shadowed.insert(shadowed.end(), furCasters.begin(), furCasters.end());
   if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
+  environment_.reset();
+  if (scene.environment) {
+    auto environment = EnvironmentPass::create(
+        *device_, *scene.environment,
+        {.color = RenderTarget::kHdrFormat, .depth = RenderTarget::kDepthFormat, .samples = target_.samples()});
+    if (!environment) return std::unexpected(environment.error());
+    environment_ = std::move(*environment);
+  }
   // After the maps exist: the surfaces' pipelines are specialised for them.
   try {
     scene_.setScene(scene);
+    scene_.setEnvironmentIrradiance(environment_ ? std::optional(environment_->irradianceOverPi()) : std::nullopt);
     translucency_.setScene(scene);
     surfaces_.buildPipelines();
     deferredSkin_.buildPipelines();
@@ -249,6 +258,13 @@ void Renderer::addSkinning() {
   }
 }
 
+glm::vec3 Renderer::ambientRadiance(const FrameInput& frame) const {
+  if (!environment_) return frame.ambient;
+  // Irradiance over π averaged over every normal is the band-0 term alone: c₀ × Y₀₀.
+  constexpr float kY00 = 0.282094792f;
+  return frame.ambient + environment_->irradianceOverPi()[0] * kY00;
+}
+
 void Renderer::refreshShadowDescriptors() {
   scene_.refreshShadows();
   for (TextureSpaceSkin& skin : textureSpaceSkins_) skin.pass->refreshShadows();
@@ -321,7 +337,8 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
       const HairGroom& groom = hair_[g];
       plan.shaded[g] =
           groom.hasGuides &&
-          groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()).has_value();
+          groom.lighting->update(viewProjection, frame.lights, ambientRadiance(frame), shadows_->uniforms())
+              .has_value();
       const float strandPixels =
           groom.settings.width *
           pixelsPerMetreAt(viewProjection, glm::vec2(target_.extent().width, target_.extent().height), groom.centre);
@@ -341,7 +358,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
           PassName::kSkinDiffusion, [&](Builder& pass) { skin.pass->declare(pass); },
           [this, &frame, &skin, instance](const Commands& c) {
             skin.pass->record(c, *diffusionMeshes_[instance->mesh],
-                              {.model = instance->model, .lights = frame.lights, .ambient = frame.ambient});
+                              {.model = instance->model, .lights = frame.lights, .ambient = ambientRadiance(frame)});
           });
       diffused = true;
     }
@@ -390,6 +407,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         const FramePlan& plan = plan_;
         target_.beginScenePart(c, plan.scene, plan.background, plan.skinDeferred);
         if (plan.skinDeferred) deferredSkin_.drawLighting(c, frame);
+        if (environment_) environment_->draw(c, frame.camera, target_.extent());
         discs_.draw(c, frame.camera, frame.lights, target_.extent());
         surfaces_.draw(c, frame, plan.skinDeferred);
         furs_.draw(c);
@@ -592,7 +610,7 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   if (auto prepared = translucency_.prepareThickness(frame, scene_); !prepared)
     return std::unexpected(prepared.error());
   if (auto posed = poseSkinnedFurs(); !posed) return std::unexpected(posed.error());
-  if (auto updated = furs_.update(frame, target_.extent(), target_.aspect()); !updated)
+  if (auto updated = furs_.update(frame, ambientRadiance(frame), target_.extent(), target_.aspect()); !updated)
     return std::unexpected(updated.error());
   // Drawn furs cast shadows from where they are now (their slots follow the grooms'); the others
   // cast none.

@@ -24,6 +24,7 @@
 #include "render/passes/hair_occlusion_pass.hpp"
 #include "render/passes/hair_pass.hpp"
 #include "render/passes/deferred_skin_pass.hpp"
+#include "render/passes/environment_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_disc_pass.hpp"
 #include "render/passes/skin_diffusion_pass.hpp"
@@ -148,6 +149,9 @@ private:
 
   /// Points every pass that receives hair shadows at the current maps.
   void refreshShadowDescriptors();
+  /// The ambient radiance of what has no normal to look up the environment's irradiance with (the
+  /// hair, the fur, texture-space skin): the frame's own plus the environment's average radiance.
+  glm::vec3 ambientRadiance(const FrameInput& frame) const;
 
   const Device* device_;
   RenderTarget target_;
@@ -160,6 +164,7 @@ private:
   SurfacePass surfaces_;
   DeferredSkinPass deferredSkin_;
   LightDiscPass discs_;
+  std::unique_ptr<EnvironmentPass> environment_;  // where the scene has one
   // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {
     std::unique_ptr<StrandInterpolationPass> strands;

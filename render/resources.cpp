@@ -61,7 +61,9 @@ Buffer Buffer::withData(const Device& device, std::span<const std::byte> bytes, 
 
 Image::Image(const Device& device, const ImageSettings& settings)
     : settings_(settings),
-      image_(device.device(), vk::ImageCreateInfo{.imageType = vk::ImageType::e2D,
+      image_(device.device(), vk::ImageCreateInfo{.flags = settings.cube ? vk::ImageCreateFlagBits::eCubeCompatible
+                                                                         : vk::ImageCreateFlags{},
+                                                  .imageType = vk::ImageType::e2D,
                                                   .format = settings.format,
                                                   .extent = {settings.extent.width, settings.extent.height, 1},
                                                   .mipLevels = settings.mipLevels,
@@ -75,7 +77,9 @@ Image::Image(const Device& device, const ImageSettings& settings)
   view_ = vk::raii::ImageView(
       device.device(),
       vk::ImageViewCreateInfo{.image = *image_,
-                              .viewType = settings.layers > 1 ? vk::ImageViewType::e2DArray : vk::ImageViewType::e2D,
+                              .viewType = settings.cube         ? vk::ImageViewType::eCube
+                                          : settings.layers > 1 ? vk::ImageViewType::e2DArray
+                                                                : vk::ImageViewType::e2D,
                               .format = settings.format,
                               .subresourceRange = {settings.aspect, 0, settings.mipLevels, 0, settings.layers}});
 }

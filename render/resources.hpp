@@ -59,6 +59,7 @@ struct ImageSettings {
   std::uint32_t mipLevels = 1;
   vk::ImageAspectFlags aspect = vk::ImageAspectFlagBits::eColor;
   std::uint32_t layers = 1;  ///< more than 1: an array image, viewed as a 2D array
+  bool cube = false;         ///< six layers viewed as a cube map (+X, −X, +Y, −Y, +Z, −Z)
 };
 
 class Image {

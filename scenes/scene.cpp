@@ -111,6 +111,33 @@ Light parseLight(const Json& json, const std::string& path) {
   return light;
 }
 
+Environment parseEnvironment(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Environment environment;
+  environment.file = fields.optional<std::string>("file", environment.file);
+  if (const Json* sky = fields.take("sky")) {
+    require(environment.file.empty(), fields.child("sky"), "expected a file or a sky, not both");
+    ObjectFields skyFields(*sky, fields.child("sky"));
+    environment.turbidity = skyFields.optional<float>("turbidity", environment.turbidity);
+    environment.groundAlbedo = skyFields.optional<float>("ground_albedo", environment.groundAlbedo);
+    skyFields.finish();
+    require(environment.turbidity >= 1.7f && environment.turbidity <= 10.0f, skyFields.child("turbidity"),
+            "expected a turbidity in [1.7, 10] (2: clear, 6: hazy)");
+    require(environment.groundAlbedo >= 0.0f && environment.groundAlbedo <= 1.0f, skyFields.child("ground_albedo"),
+            "expected an albedo in [0, 1]");
+  }
+  environment.rotationDegrees = fields.optional<float>("rotation_degrees", environment.rotationDegrees);
+  environment.intensity = fields.optional<float>("intensity", environment.intensity);
+  environment.cubeSize = fields.optional<int>("cube_size", environment.cubeSize);
+  fields.finish();
+  require(std::isfinite(environment.rotationDegrees), fields.child("rotation_degrees"), "expected a finite angle");
+  require(environment.intensity >= 0.0f && environment.intensity <= 1000.0f, fields.child("intensity"),
+          "expected an intensity in [0, 1000]");
+  require(environment.cubeSize == 0 || (environment.cubeSize >= 8 && environment.cubeSize <= 2048),
+          fields.child("cube_size"), "expected 8 to 2048 texels (or 0: the default)");
+  return environment;
+}
+
 MeshSimplification parseSimplification(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   MeshSimplification simplify;
@@ -295,6 +322,8 @@ Scene parseRoot(const Json& json) {
   if (!camera) throw FieldError{"camera", "required field is missing"};
   scene.camera = parseCamera(*camera, "camera");
   scene.lights = parseList<Light>(fields, "lights", parseLight);
+  if (const Json* environment = fields.take("environment"))
+    scene.environment = parseEnvironment(*environment, "environment");
   scene.materials = parseList<Material>(fields, "materials", parseMaterial);
   scene.meshes = parseList<MeshInstance>(fields, "meshes", parseMesh);
   scene.grooms = parseList<Groom>(fields, "grooms", parseGroom);

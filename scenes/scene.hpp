@@ -56,6 +56,22 @@ struct Light {
   float discRadiance = 20.0f;  ///< the disc's radiance as a multiple of `colour`, 0..1000
 };
 
+/// Light from every direction, drawn behind the scene and lighting it
+/// (render/passes/environment_pass.hpp): a Radiance panorama or, without one, the procedural sky
+/// (render/environment/sky_model.hpp), whose sun is the first light.
+struct Environment {
+  /// Asset name or path of an equirectangular `.hdr` panorama; empty: the sky.
+  std::string file;
+  float turbidity = 3.0f;     ///< the sky's haze, [1.7, 10]
+  float groundAlbedo = 0.3f;  ///< the ground below the sky's horizon, [0, 1]
+  /// Turns the panorama about +Y, counter-clockwise seen from above, degrees.
+  float rotationDegrees = 0.0f;
+  /// Scales the panorama's radiance; the sky's zenith luminance in the lights' units. [0, 1000]
+  float intensity = 1.0f;
+  /// Texels on a side of each cube face, 8..2048; 0: 256 for a panorama, 64 for the sky.
+  int cubeSize = 0;
+};
+
 /// lambert: diffuse; skin: render::SurfaceShading::kSkin; fur: shells and fins grown from the
 /// albedo texture, a photo of fur (render::SurfaceShading::kFur), on the meshes drawn with it.
 enum class MaterialKind { lambert, skin, fur };
@@ -447,6 +463,7 @@ struct Scene {
   OutputSettings output;
   Camera camera;
   std::vector<Light> lights;
+  std::optional<Environment> environment;  ///< none: a flat background and ambient light
   std::vector<Material> materials;
   std::vector<MeshInstance> meshes;
   std::vector<Groom> grooms;

@@ -16,6 +16,7 @@
 #include "scenes/limit_scalp.hpp"
 #include "scenes/mesh_curvature.hpp"
 #include "scenes/scene_colliders.hpp"
+#include "scenes/scene_environment.hpp"
 #include "scenes/subdivided_mesh.hpp"
 
 namespace mane::scenes {
@@ -78,6 +79,9 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   world.prepareFurMeshes();
   if (settings.loadTextures) {
     if (auto loaded = world.loadMaterials(resolver); !loaded) return std::unexpected(loaded.error());
+    auto environment = loadSceneEnvironment(world.scene_, resolver, world.notes_);
+    if (!environment) return std::unexpected(environment.error());
+    world.environment_ = std::move(*environment);
   } else {
     world.materials_.resize(world.scene_.materials.size());
   }
@@ -576,6 +580,7 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
 
 render::StaticScene World::staticScene() const {
   render::StaticScene result;
+  result.environment = environment_;
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     const Mesh& mesh = meshes_[m].mesh;
     result.meshes.push_back(render::MeshData{.positions = mesh.positions,

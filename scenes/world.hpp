@@ -33,7 +33,8 @@ namespace mane::scenes {
 class SceneColliders;
 
 struct WorldSettings {
-  /// Decode the materials' textures (the renderer needs them; `mane sim` does not).
+  /// Decode the materials' textures and the environment (the renderer needs them; `mane sim`
+  /// does not).
   bool loadTextures = true;
   /// Treat every groom as `Groom::strict`: a flawed strand in a groom file is an error, not a note.
   bool strictGrooms = false;
@@ -264,6 +265,7 @@ private:
   /// (posed and tessellated again by refineForCamera), else null.
   std::vector<std::unique_ptr<SkinnedCage>> skinnedCages_;
   std::vector<std::string> notes_;
+  std::optional<render::EnvironmentData> environment_;  ///< the scene's, loaded with the textures
   double time_ = 0.0;
 };
 

@@ -14,7 +14,24 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 ambient;               // rgb linear
   vec4 lightDirection[kMaxLights];  // xyz towards the light
   vec4 lightRadiance[kMaxLights];   // rgb colour × intensity
-  ivec4 lightCount;           // x
+  ivec4 lightCount;           // x: lights; y: 1 where an environment lights the scene
   HairShadowUniforms hairShadows;  // cast by light 0
   LightDepth lightDepth;           // of light 0
+  // The environment's irradiance over π as nine spherical harmonics (rgb), in the order of
+  // render/environment/spherical_harmonics.hpp.
+  vec4 environmentIrradiance[9];
 } frame;
+
+// What a white Lambertian surface facing `normal` (unit) shows of the environment: 0 without one.
+vec3 environmentLight(vec3 normal) {
+  if (frame.lightCount.y == 0) return vec3(0.0);
+  vec3 n = normal;
+  // The real harmonics' normalisations, as on the CPU.
+  return frame.environmentIrradiance[0].rgb * 0.282094792 +
+         (frame.environmentIrradiance[1].rgb * n.y + frame.environmentIrradiance[2].rgb * n.z +
+          frame.environmentIrradiance[3].rgb * n.x) * 0.488602512 +
+         (frame.environmentIrradiance[4].rgb * (n.x * n.y) + frame.environmentIrradiance[5].rgb * (n.y * n.z) +
+          frame.environmentIrradiance[7].rgb * (n.x * n.z)) * 1.092548431 +
+         frame.environmentIrradiance[6].rgb * (0.315391565 * (3.0 * n.z * n.z - 1.0)) +
+         frame.environmentIrradiance[8].rgb * (0.546274215 * (n.x * n.x - n.y * n.y));
+}

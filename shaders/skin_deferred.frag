@@ -23,7 +23,7 @@ void main() {
   vec3 detail = texelFetch(gDetail, pixel, 0).xyz;
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   float hairShadow = hairShadowTransmittance(frame.hairShadows, position.xyz);
-  vec3 diffuse = frame.ambient.rgb, specular;
+  vec3 diffuse = skinAmbient(geometric.xyz, detail), specular;
   skinLights(position.xyz, geometric.xyz, detail, geometric.w, position.w, hairShadow, diffuse, specular);
   outColor = vec4(albedo * diffuse + specular, 1.0);
 }

@@ -20,6 +20,16 @@ layout(set = 1, binding = 4, std140) uniform Material {
 // render/passes/skin_diffusion_pass.hpp) rather than from the pre-integrated table.
 layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 
+// The frame's ambient light and the environment's on skin (per RGB, to multiply by the albedo):
+// each channel looks up the environment's irradiance with its own blurred normal, as the lights'
+// pre-integrated diffuse does, so red light wraps further round the skin's curves than blue.
+vec3 skinAmbient(vec3 geometric, vec3 detail) {
+  if (frame.lightCount.y == 0) return frame.ambient.rgb;
+  return frame.ambient.rgb + vec3(environmentLight(normalize(mix(detail, geometric, draw.blur.r))).r,
+                                  environmentLight(normalize(mix(detail, geometric, draw.blur.g))).g,
+                                  environmentLight(normalize(mix(detail, geometric, draw.blur.b))).b);
+}
+
 // Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
 // `specular` to their specular radiance, at `position` (metres) with the geometric and the detail
 // (normal-mapped) normals, ρs scaled by the specular map, and curvature 1/r in 1/mm. The first

@@ -47,7 +47,7 @@ vec3 translucency(vec3 geometric) {
 void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float hairShadow, out vec3 diffuse,
                out vec3 specular) {
   float rhoS = draw.skin.y * specularMap;
-  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : frame.ambient.rgb) +
+  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : skinAmbient(geometric, detail)) +
             translucency(geometric);
   skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, hairShadow, diffuse, specular);
 }
@@ -71,7 +71,7 @@ void main() {
     outColor = vec4(albedo * diffuse + specular, 1.0);
     return;
   }
-  vec3 irradiance = frame.ambient.rgb + translucency(geometric);
+  vec3 irradiance = frame.ambient.rgb + environmentLight(normal) + translucency(geometric);
   for (int i = 0; i < frame.lightCount.x; ++i)
     irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
                   (i == 0 ? hairShadow : 1.0);

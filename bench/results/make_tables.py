@@ -209,6 +209,7 @@ FRAME_VARIANTS = [
     "same, every hair segment shaded and drawn",
     "50,000 strands × 30, the camera 4× as far (about half of them drawn)",
     "same, every strand drawn (no level of detail)",
+    "as shipped, under the Venice panorama (environment light and background)",
 ]
 
 # The frame's passes in the order the Renderer records them; unknown ones follow alphabetically.

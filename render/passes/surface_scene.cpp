@@ -29,6 +29,7 @@ struct FrameUniforms {
   glm::ivec4 lightCount;
   HairShadowUniforms hairShadows;
   LightDepthUniforms lightDepth;
+  glm::vec4 environmentIrradiance[9];  // rgb: E/π's spherical harmonics; all 0 without an environment
 };
 
 // Where the hair shadow descriptors start in the frame set (shaders/surface.frag), and the light
@@ -251,7 +252,10 @@ void SurfaceScene::update(const FrameInput& frame, float aspect) {
     uniforms.lightDirection[i] = glm::vec4(glm::normalize(frame.lights[i].direction), 0.0f);
     uniforms.lightRadiance[i] = glm::vec4(frame.lights[i].color * frame.lights[i].intensity, 0.0f);
   }
-  uniforms.lightCount = glm::ivec4(static_cast<int>(lights), 0, 0, 0);
+  uniforms.lightCount = glm::ivec4(static_cast<int>(lights), environmentIrradiance_ ? 1 : 0, 0, 0);
+  if (environmentIrradiance_)
+    for (std::size_t i = 0; i < 9; ++i)
+      uniforms.environmentIrradiance[i] = glm::vec4((*environmentIrradiance_)[i], 0.0f);
   uniforms.hairShadows = shadows_->uniforms();
   uniforms.lightDepth = lightDepth_->uniforms();
   std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));

@@ -9,9 +9,11 @@
 // curvature.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_depth_pass.hpp"
@@ -84,6 +86,12 @@ public:
   /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
   void refreshShadows();
 
+  /// The environment's irradiance over π (EnvironmentPass::irradianceOverPi) that update() hands
+  /// the shaders from then on; none: no environment light.
+  void setEnvironmentIrradiance(const std::optional<SphericalHarmonics9>& irradianceOverPi) {
+    environmentIrradiance_ = irradianceOverPi;
+  }
+
   /// Writes the frame's camera, lights, the hair shadows' and the light depth map's current
   /// uniforms; call before recording the passes that draw surfaces, after HairShadowPass::prepare
   /// and the light depth map's prepare.
@@ -105,6 +113,7 @@ public:
   void drawMesh(const vk::raii::CommandBuffer& commands, vk::PipelineLayout layout, const MeshInstance& instance) const;
 
 private:
+  std::optional<SphericalHarmonics9> environmentIrradiance_;
   struct GpuMesh {
     Buffer vertices;
     Buffer indices;

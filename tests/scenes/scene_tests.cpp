@@ -583,6 +583,46 @@ TEST(Scene, ALightsDiscReachesTheFrameInRadians) {
             "dir/bad.json: lights[0].disc_radiance: expected a radiance in [0, 1000] (a multiple of the colour)");
 }
 
+// An environment: a panorama file or the procedural sky, never both, with its range checks.
+TEST(Scene, AnEnvironmentIsAPanoramaOrTheSky) {
+  const std::string head = R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]}, )";
+  auto none = parseScene(head + R"("lights": []})", "x.json");
+  ASSERT_TRUE(none.has_value()) << none.error().message;
+  EXPECT_FALSE(none->environment.has_value());
+  auto panorama =
+      parseScene(head + R"("environment": {"file": "env/venice_sunset_1k.hdr", "rotation_degrees": 90, "intensity": 2,
+                                 "cube_size": 128}})",
+                 "x.json");
+  ASSERT_TRUE(panorama.has_value()) << panorama.error().message;
+  EXPECT_EQ(panorama->environment->file, "env/venice_sunset_1k.hdr");
+  EXPECT_EQ(panorama->environment->rotationDegrees, 90.0f);
+  EXPECT_EQ(panorama->environment->intensity, 2.0f);
+  EXPECT_EQ(panorama->environment->cubeSize, 128);
+  auto sky = parseScene(head + R"("environment": {"sky": {"turbidity": 5, "ground_albedo": 0.2}}})", "x.json");
+  ASSERT_TRUE(sky.has_value()) << sky.error().message;
+  EXPECT_TRUE(sky->environment->file.empty());
+  EXPECT_EQ(sky->environment->turbidity, 5.0f);
+  EXPECT_EQ(sky->environment->groundAlbedo, 0.2f);
+  auto plain = parseScene(head + R"("environment": {}})", "x.json");
+  ASSERT_TRUE(plain.has_value()) << plain.error().message;
+  EXPECT_TRUE(plain->environment->file.empty()) << "no file: the sky";
+
+  const auto environmentError = [&](const std::string& block) {
+    return errorOf(head + R"("environment": )" + block + "}");
+  };
+  EXPECT_EQ(environmentError(R"({"file": "a.hdr", "sky": {}})"),
+            "dir/bad.json: environment.sky: expected a file or a sky, not both");
+  EXPECT_EQ(environmentError(R"({"sky": {"turbidity": 12}})"),
+            "dir/bad.json: environment.sky.turbidity: expected a turbidity in [1.7, 10] (2: clear, 6: hazy)");
+  EXPECT_EQ(environmentError(R"({"sky": {"ground_albedo": 2}})"),
+            "dir/bad.json: environment.sky.ground_albedo: expected an albedo in [0, 1]");
+  EXPECT_EQ(environmentError(R"({"intensity": -1})"),
+            "dir/bad.json: environment.intensity: expected an intensity in [0, 1000]");
+  EXPECT_EQ(environmentError(R"({"cube_size": 4})"),
+            "dir/bad.json: environment.cube_size: expected 8 to 2048 texels (or 0: the default)");
+  EXPECT_NE(environmentError(R"({"sky": {"sun": 1}})").find("environment.sky.sun: unknown field"), std::string::npos);
+}
+
 TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
   auto scene = loadScene(kScenes / "ponytail.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;

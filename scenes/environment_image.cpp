@@ -1,0 +1,127 @@
+#include "scenes/environment_image.hpp"
+
+#include <charconv>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "stb_image.h"
+
+namespace mane::scenes {
+namespace {
+
+constexpr int kMaxSide = 16384;
+constexpr long long kMaxPixels = 8192LL * 8192;
+
+/// What is wrong with the pixels of a Radiance file that stb_image 2.27 would not say: a
+/// run-length count of zero, which it reads for ever (as it reads the zeros past a file's end), and
+/// scanlines cut short, whose missing pixels it leaves unset. Nothing for a sound file, or for a
+/// header it refuses itself. Scanlines are walked as it walks them: run-length encoded (a 2, 2,
+/// width header, then each channel's runs and dumps) where the image is 8 to 32767 pixels wide and
+/// the first scanline says so, flat RGBE otherwise.
+std::optional<std::string> rgbeProblem(std::string_view bytes) {
+  // The header ends at an empty line; the resolution line follows it.
+  const std::size_t blank = bytes.find("\n\n");
+  if (blank == std::string_view::npos) return std::nullopt;
+  const std::size_t lineStart = blank + 2;
+  const std::size_t lineEnd = bytes.find('\n', lineStart);
+  if (lineEnd == std::string_view::npos) return std::nullopt;
+  const std::string_view line = bytes.substr(lineStart, lineEnd - lineStart);
+  if (!line.starts_with("-Y ")) return std::nullopt;
+  long long height = 0, width = 0;
+  const char* cursor = line.data() + 3;
+  const char* end = line.data() + line.size();
+  auto parsed = std::from_chars(cursor, end, height);
+  if (parsed.ec != std::errc() || std::string_view(parsed.ptr, std::size_t(end - parsed.ptr)).substr(0, 4) != " +X ")
+    return std::nullopt;
+  if (std::from_chars(parsed.ptr + 4, end, width).ec != std::errc() || width <= 0 || height <= 0) return std::nullopt;
+  std::size_t at = lineEnd + 1;
+  const auto remaining = [&] { return bytes.size() - at; };
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(bytes[i]); };
+  const bool runLength = width >= 8 && width < 32768 && remaining() >= 4 && byte(at) == 2 && byte(at + 1) == 2 &&
+                         (byte(at + 2) & 0x80) == 0;
+  if (!runLength) {
+    const long long needed = width * height * 4;
+    if (static_cast<long long>(remaining()) < needed)
+      return "the file is cut short: " + std::to_string(remaining()) + " bytes of pixels, " + std::to_string(needed) +
+             " needed";
+    return std::nullopt;
+  }
+  for (long long row = 0; row < height; ++row) {
+    const std::string where = "scanline " + std::to_string(row);
+    if (remaining() < 4) return "the file is cut short at " + where;
+    if (byte(at) != 2 || byte(at + 1) != 2 || (byte(at + 2) & 0x80) != 0)
+      return where + " is not run-length encoded like the first";
+    at += 4;  // stb_image checks the width these bytes give
+    for (int channel = 0; channel < 4; ++channel) {
+      long long left = width;
+      while (left > 0) {
+        if (remaining() < 1) return "the file is cut short at " + where;
+        int count = byte(at++);
+        const bool run = count > 128;
+        if (run) count -= 128;
+        if (count == 0) return where + " holds a run-length count of zero";
+        if (count > left) return std::nullopt;  // stb_image says "bad RLE data"
+        const std::size_t payload = run ? 1 : static_cast<std::size_t>(count);
+        if (remaining() < payload) return "the file is cut short at " + where;
+        at += payload;
+        left -= count;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Result<render::EquirectImage> loadEnvironmentImage(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return fail(name + ": file not found");
+  std::vector<unsigned char> bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return fail(name + ": cannot open the file");
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    return fail(name + ": cannot decode the panorama: the file is over 2 GiB");
+  const int size = static_cast<int>(bytes.size());
+  if (stbi_is_hdr_from_memory(bytes.data(), size) == 0)
+    return fail(name + ": not a Radiance HDR file (it must begin with \"#?RADIANCE\" or \"#?RGBE\")");
+  int width = 0, height = 0, channels = 0;
+  // The header alone first: a large declared size would otherwise be allocated before the
+  // scanlines are found missing.
+  if (stbi_info_from_memory(bytes.data(), size, &width, &height, &channels) != 0 &&
+      (width > kMaxSide || height > kMaxSide || static_cast<long long>(width) * height > kMaxPixels))
+    return fail(name + ": panorama too large: " + std::to_string(width) + " x " + std::to_string(height) +
+                " pixels (at most " + std::to_string(kMaxSide) + " on a side and " + std::to_string(kMaxPixels) +
+                " in all)");
+  if (auto problem = rgbeProblem(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size())))
+    return fail(name + ": cannot decode the panorama: " + *problem);
+  std::unique_ptr<float, void (*)(void*)> pixels(
+      stbi_loadf_from_memory(bytes.data(), size, &width, &height, &channels, 3), &stbi_image_free);
+  if (!pixels) {
+    const char* reason = stbi_failure_reason();
+    return fail(name + ": cannot decode the panorama: " + (reason ? reason : "unknown error"));
+  }
+  if (width <= 0 || height <= 0)
+    return fail(name + ": the panorama has no pixels (" + std::to_string(width) + " x " + std::to_string(height) + ")");
+  if (std::abs(width - 2 * height) > 1)
+    return fail(name + ": the panorama is " + std::to_string(width) + " x " + std::to_string(height) +
+                " pixels; an equirectangular one is twice as wide as it is high");
+  render::EquirectImage image{.width = width, .height = height};
+  const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  image.texels.resize(count);
+  const float* in = pixels.get();
+  for (std::size_t i = 0; i < count; ++i, in += 3) image.texels[i] = {in[0], in[1], in[2]};
+  return image;
+}
+
+}  // namespace mane::scenes

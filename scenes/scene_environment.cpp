@@ -1,0 +1,47 @@
+#include "scenes/scene_environment.hpp"
+
+#include <glm/trigonometric.hpp>
+
+#include "render/environment/sky_model.hpp"
+#include "scenes/environment_image.hpp"
+
+namespace mane::scenes {
+namespace {
+
+constexpr int kPanoramaCubeSize = 256;  // a 1k panorama's texels are as wide as this cube's
+constexpr int kSkyCubeSize = 64;        // the sky is smooth; its sun is the light's disc
+
+render::CubeMap skyOf(const Scene& scene, const Environment& environment) {
+  render::SkySettings sky{.turbidity = environment.turbidity,
+                          .zenithLuminance = environment.intensity,
+                          .groundAlbedo = environment.groundAlbedo};
+  if (!scene.lights.empty()) {
+    sky.towardSun = -scene.lights[0].direction;
+    sky.sunLight = scene.lights[0].colour * scene.lights[0].intensity;
+  }
+  return render::skyCubeMap(sky, environment.cubeSize > 0 ? environment.cubeSize : kSkyCubeSize);
+}
+
+}  // namespace
+
+Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene& scene, const AssetResolver& resolver,
+                                                                    std::vector<std::string>& notes) {
+  if (!scene.environment) return std::nullopt;
+  const Environment& environment = *scene.environment;
+  if (!environment.file.empty()) {
+    auto lookup = resolver.lookupForScene(environment.file, scene.file.parent_path());
+    if (!lookup) return std::unexpected(lookup.error());
+    if (lookup->path) {
+      auto panorama = loadEnvironmentImage(*lookup->path);
+      if (!panorama) return fail("environment: " + panorama.error().message);
+      return render::EnvironmentData{.radiance = render::cubeFromEquirect(
+                                         *panorama, environment.cubeSize > 0 ? environment.cubeSize : kPanoramaCubeSize,
+                                         glm::radians(environment.rotationDegrees), environment.intensity)};
+    }
+    notes.push_back("environment: " + environment.file + " missing (" + lookup->missingReason +
+                    "): lit by the procedural sky instead");
+  }
+  return render::EnvironmentData{.radiance = skyOf(scene, environment)};
+}
+
+}  // namespace mane::scenes

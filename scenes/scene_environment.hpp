@@ -1,0 +1,22 @@
+#pragma once
+// A scene's environment made ready for the renderer: the panorama read and turned into a cube map,
+// or the procedural sky built with the first light as its sun.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/error.hpp"
+#include "render/frame.hpp"
+#include "scenes/assets.hpp"
+#include "scenes/scene.hpp"
+
+namespace mane::scenes {
+
+/// The cube map of `scene.environment` (nothing when it has none). A panorama that is missing is
+/// replaced by the sky, with a line in `notes`; one that cannot be read is an error naming it.
+[[nodiscard]] Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene& scene,
+                                                                                  const AssetResolver& resolver,
+                                                                                  std::vector<std::string>& notes);
+
+}  // namespace mane::scenes

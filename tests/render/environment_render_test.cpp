@@ -1,0 +1,143 @@
+// The environment on the GPU, end to end (upload → background and surfaces → sRGB read-back):
+// the background shows the radiance along each pixel's ray, computed here from the camera alone;
+// a Lambertian sphere under a constant environment shows albedo × L (the white furnace); under a
+// sky linear in y it shows albedo × (a + ⅔·b·n_y), the cosine-convolved sky in closed form.
+
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <gtest/gtest.h>
+
+#include "render/renderer.hpp"
+#include "scenes/procedural.hpp"
+#include "tests/support/vulkan_fixture.hpp"
+
+namespace mane::render {
+namespace {
+
+constexpr vk::Extent2D kExtent{96, 64};
+const Camera kCamera{.position = {0.0f, 0.0f, 3.0f}, .target = {0.0f, 0.0f, 0.0f}, .verticalFovRadians = 0.9f};
+
+double srgbEncode(double linear) {
+  linear = std::clamp(linear, 0.0, 1.0);
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+CubeMap cubeOf(int size, auto radiance) {
+  CubeMap cube{.size = size};
+  for (int face = 0; face < 6; ++face)
+    for (int row = 0; row < size; ++row)
+      for (int column = 0; column < size; ++column)
+        cube.faces[face].push_back(
+            radiance(cubeDirection(face, {(float(column) + 0.5f) / float(size), (float(row) + 0.5f) / float(size)})));
+  return cube;
+}
+
+// The ray through the centre of pixel (x, y).
+glm::vec3 pixelRay(int x, int y) {
+  const float aspect = float(kExtent.width) / float(kExtent.height);
+  const glm::mat4 toDirection = glm::inverse(kCamera.projection(aspect) * glm::mat4(glm::mat3(kCamera.view())));
+  const glm::vec2 ndc((float(x) + 0.5f) / float(kExtent.width) * 2.0f - 1.0f,
+                      (float(y) + 0.5f) / float(kExtent.height) * 2.0f - 1.0f);
+  const glm::vec4 far = toDirection * glm::vec4(ndc, 1.0f, 1.0f);
+  return glm::normalize(glm::vec3(far) / far.w);
+}
+
+// Where the ray of pixel (x, y) meets the unit sphere at the origin, if it does well inside its
+// outline (the mesh's facets stray from the sphere near it).
+std::optional<glm::vec3> sphereNormal(int x, int y) {
+  const glm::vec3 d = pixelRay(x, y), o = kCamera.position;
+  const float b = glm::dot(o, d), c = glm::dot(o, o) - 1.0f;
+  const float discriminant = b * b - c;
+  if (discriminant < 0.1f) return std::nullopt;
+  return glm::normalize(o + (-b - std::sqrt(discriminant)) * d);
+}
+
+class EnvironmentRender : public testing::VulkanTest {
+public:
+  std::vector<std::uint8_t> render(CubeMap environment, glm::vec3 albedo) {
+    const scenes::Mesh sphere = scenes::makeSphere(96, 192, 1.0f);
+    auto renderer = Renderer::create(device(), {.extent = kExtent});
+    EXPECT_TRUE(renderer.has_value());
+    StaticScene scene{
+        .environment = EnvironmentData{.radiance = std::move(environment)},
+        .meshes = {MeshData{
+            .positions = sphere.positions, .normals = sphere.normals, .uvs = sphere.uvs, .indices = sphere.indices}},
+        .materials = {MaterialData{.baseColor = albedo}}};
+    auto set = (*renderer)->setScene(scene);
+    EXPECT_TRUE(set.has_value()) << set.error().message;
+    FrameInput frame{.camera = kCamera, .instances = {{.mesh = 0, .material = 0}}, .ambient = glm::vec3(0.0f)};
+    auto timings = (*renderer)->render(frame);
+    EXPECT_TRUE(timings.has_value()) << timings.error().message;
+    auto rgba = (*renderer)->readOutput();
+    EXPECT_TRUE(rgba.has_value());
+    return rgba ? *rgba : std::vector<std::uint8_t>{};
+  }
+
+  static glm::dvec3 pixel(const std::vector<std::uint8_t>& rgba, int x, int y) {
+    const std::size_t i = (std::size_t(y) * kExtent.width + std::size_t(x)) * 4;
+    return glm::dvec3(rgba[i], rgba[i + 1], rgba[i + 2]) / 255.0;
+  }
+};
+
+TEST_F(EnvironmentRender, TheBackgroundShowsTheRadianceAlongEachPixelsRay) {
+  const auto radiance = [](glm::vec3 d) { return glm::vec3(0.5f) + 0.4f * d; };
+  const std::vector<std::uint8_t> rgba = render(cubeOf(64, radiance), glm::vec3(0.5f));
+  ASSERT_FALSE(rgba.empty());
+  int checked = 0;
+  for (int y = 0; y < int(kExtent.height); y += 3)
+    for (int x = 0; x < int(kExtent.width); x += 3) {
+      const glm::vec3 d = pixelRay(x, y);
+      if (glm::length(glm::cross(d, kCamera.position)) < 1.1f)
+        continue;  // the ray passes through the sphere or near it
+      const glm::dvec3 got = pixel(rgba, x, y);
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(got[c], srgbEncode(radiance(d)[c]), 2.5 / 255.0) << "pixel " << x << ", " << y << " channel " << c;
+      ++checked;
+    }
+  EXPECT_GT(checked, 300);
+}
+
+TEST_F(EnvironmentRender, ALambertianSphereUnderAConstantEnvironmentShowsAlbedoTimesRadiance) {
+  const glm::vec3 radiance(0.5f, 0.7f, 0.9f), albedo(0.8f, 0.6f, 0.4f);
+  const std::vector<std::uint8_t> rgba = render(cubeOf(16, [&](glm::vec3) { return radiance; }), albedo);
+  ASSERT_FALSE(rgba.empty());
+  int checked = 0;
+  for (int y = 0; y < int(kExtent.height); ++y)
+    for (int x = 0; x < int(kExtent.width); ++x) {
+      if (!sphereNormal(x, y)) continue;
+      const glm::dvec3 got = pixel(rgba, x, y);
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(got[c], srgbEncode(albedo[c] * radiance[c]), 1.5 / 255.0) << "pixel " << x << ", " << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 500);
+}
+
+TEST_F(EnvironmentRender, ALambertianSphereUnderALinearSkyShowsItsCosineConvolution) {
+  // L = a + b·y: E/π = a + ⅔·b·n_y, exactly within nine harmonics.
+  const float a = 0.45f, b = 0.4f;
+  const glm::vec3 albedo(0.9f);
+  const std::vector<std::uint8_t> rgba =
+      render(cubeOf(32, [&](glm::vec3 d) { return glm::vec3(a + b * d.y); }), albedo);
+  ASSERT_FALSE(rgba.empty());
+  int checked = 0;
+  double lowest = 1.0, highest = 0.0;
+  for (int y = 0; y < int(kExtent.height); ++y)
+    for (int x = 0; x < int(kExtent.width); ++x) {
+      const std::optional<glm::vec3> n = sphereNormal(x, y);
+      if (!n) continue;
+      const double expected = srgbEncode(0.9 * (a + 2.0 / 3.0 * b * n->y));
+      ASSERT_NEAR(pixel(rgba, x, y).x, expected, 2.0 / 255.0) << "pixel " << x << ", " << y << " n_y " << n->y;
+      lowest = std::min(lowest, expected);
+      highest = std::max(highest, expected);
+      ++checked;
+    }
+  EXPECT_GT(checked, 500);
+  EXPECT_GT(highest - lowest, 0.2);  // the check spans the sky's gradient
+}
+
+}  // namespace
+}  // namespace mane::render

@@ -1,0 +1,116 @@
+// Radiance panoramas: the shared assets, a hand-written file whose RGBE values fix the decoded
+// radiance, and the errors of files that are not panoramas.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "scenes/environment_image.hpp"
+#include "test_support.hpp"
+
+namespace mane::scenes {
+namespace {
+
+// A flat (not run-length encoded) RGBE file: scanlines narrower than 8 pixels are always flat.
+std::string rgbeFile(int width, int height, unsigned char r, unsigned char g, unsigned char b, unsigned char e) {
+  std::string bytes =
+      "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
+  for (int i = 0; i < width * height; ++i) bytes += {char(r), char(g), char(b), char(e)};
+  return bytes;
+}
+
+// A run-length encoded file, 8 pixels wide: each scanline's four channels as one run each.
+std::string runLengthFile(int height, const std::string& channelRuns) {
+  std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X 8\n";
+  for (int row = 0; row < height; ++row) bytes += std::string("\x02\x02\x00\x08", 4) + channelRuns;
+  return bytes;
+}
+const std::string kEightOfEach("\x88\x80\x88\x40\x88\x20\x88\x81", 8);  // runs of 8: 128, 64, 32, 129
+
+TEST(EnvironmentImage, LoadsTheSharedPanoramasAsFiniteRadiance) {
+  for (const char* name : {"env/venice_sunset_1k.hdr", "env/royal_esplanade_1k.hdr"}) {
+    SCOPED_TRACE(name);
+    MANE_RESOLVE_OR_SKIP(file, name);
+    auto image = loadEnvironmentImage(file);
+    ASSERT_TRUE(image.has_value()) << image.error().message;
+    EXPECT_EQ(image->width, 1024);  // the assets README: 1k panoramas, 2:1
+    EXPECT_EQ(image->height, 512);
+    float brightest = 0.0f;
+    double sum = 0.0;
+    for (const glm::vec3& texel : image->texels) {
+      ASSERT_TRUE(std::isfinite(texel.x) && std::isfinite(texel.y) && std::isfinite(texel.z));
+      ASSERT_GE(std::min({texel.x, texel.y, texel.z}), 0.0f);
+      brightest = std::max(brightest, texel.y);
+      sum += texel.y;
+    }
+    // High dynamic range: the brightest texel (a sun or a lamp) far above the average.
+    EXPECT_GT(brightest, 20.0 * sum / double(image->texels.size()));
+  }
+}
+
+TEST(EnvironmentImage, DecodesRgbeAsMantissaTimesTwoToTheExponent) {
+  // (128, 64, 32) with exponent 129: 128/256 × 2^(129 − 128) = 1, then 0.5 and 0.25 (Ward's RGBE;
+  // stb_image leaves out his half-step, within 0.4 %).
+  testing::ScratchDir dir;
+  auto image = loadEnvironmentImage(dir.write("flat.hdr", rgbeFile(4, 2, 128, 64, 32, 129)));
+  ASSERT_TRUE(image.has_value()) << image.error().message;
+  ASSERT_EQ(image->texels.size(), 8u);
+  for (const glm::vec3& texel : image->texels) {
+    EXPECT_NEAR(texel.x, 1.0f, 0.004f);
+    EXPECT_NEAR(texel.y, 0.5f, 0.002f);
+    EXPECT_NEAR(texel.z, 0.25f, 0.001f);
+  }
+}
+
+TEST(EnvironmentImage, DecodesRunLengthScanlines) {
+  testing::ScratchDir dir;
+  auto image = loadEnvironmentImage(dir.write("runs.hdr", runLengthFile(4, kEightOfEach)));
+  ASSERT_TRUE(image.has_value()) << image.error().message;
+  ASSERT_EQ(image->texels.size(), 32u);
+  for (const glm::vec3& texel : image->texels) EXPECT_NEAR(texel.y, 0.5f, 0.002f);
+}
+
+// stb_image 2.27 reads a run-length count of zero for ever, and the zeros past a file's end as
+// such counts: both hung the loader until it checked them.
+TEST(EnvironmentImage, AZeroRunLengthOrAFileCutShortIsAnErrorNotAHang) {
+  testing::ScratchDir dir;
+  std::string zero = kEightOfEach;
+  zero[2] = 0;
+  auto image = loadEnvironmentImage(dir.write("zero.hdr", runLengthFile(4, zero)));
+  ASSERT_FALSE(image.has_value());
+  EXPECT_NE(
+      image.error().message.find("zero.hdr: cannot decode the panorama: scanline 0 holds a run-length count of zero"),
+      std::string::npos)
+      << image.error().message;
+  const std::string whole = runLengthFile(4, kEightOfEach);
+  image = loadEnvironmentImage(dir.write("short.hdr", whole.substr(0, whole.size() - 3)));
+  ASSERT_FALSE(image.has_value());
+  EXPECT_NE(image.error().message.find("short.hdr: cannot decode the panorama: the file is cut short at scanline 3"),
+            std::string::npos)
+      << image.error().message;
+  const std::string flat = rgbeFile(4, 2, 128, 64, 32, 129);
+  image = loadEnvironmentImage(dir.write("flat_short.hdr", flat.substr(0, flat.size() - 1)));
+  ASSERT_FALSE(image.has_value());
+  EXPECT_NE(image.error().message.find("cut short: 31 bytes of pixels, 32 needed"), std::string::npos)
+      << image.error().message;
+}
+
+TEST(EnvironmentImage, FilesThatAreNotPanoramasGiveClearErrors) {
+  testing::ScratchDir dir;
+  const auto message = [&](const std::string& name, const std::string& bytes) {
+    auto image = loadEnvironmentImage(dir.write(name, bytes));
+    return image ? std::string("loaded") : image.error().message;
+  };
+  EXPECT_NE(message("photo.hdr", "\x89PNG\r\n").find("photo.hdr: not a Radiance HDR file"), std::string::npos);
+  EXPECT_NE(message("square.hdr", rgbeFile(4, 4, 1, 1, 1, 128)).find("twice as wide as it is high"), std::string::npos);
+  EXPECT_NE(message("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 50000 +X 100000\n").find("too large"),
+            std::string::npos);
+  EXPECT_NE(
+      message("format.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 2 +X 4\n").find("format.hdr: cannot decode"),
+      std::string::npos);
+  EXPECT_NE(loadEnvironmentImage(dir.path() / "missing.hdr").error().message.find("not found"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mane::scenes
