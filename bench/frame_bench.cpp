@@ -208,7 +208,7 @@ void BM_NaluFrame(benchmark::State& state) {
     if (variant == kStrands50kFarEveryStrand) groom.rendering.settings.lodPixelWidth = 0.0f;
   }
   if (variant == kEnvironment)
-    scene->environment = scenes::Environment{.file = "env/venice_sunset_1k.hdr", .rotationDegrees = -70.0f};
+    scene->environment = scenes::Environment{.file = "env/venice_sunset_1k.hdr", .rotationDegrees = -40.0f};
   measureFrames(state, std::move(*scene),
                 {.msaaSamples = variant == kMsaa4 ? 4u : 1u,
                  .hideOccludedHair = variant != kDemoContentEveryStrand,

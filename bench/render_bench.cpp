@@ -15,14 +15,24 @@
 //   without translucency (the baseline), with the depth-map method and with the voxel table
 //   (N = 32, built before the timed frames).
 //
+//   BM_EnvironmentPreparation/stage:0..2: what a scene's environment costs when it is set (once
+//   per environment): the 1k Venice panorama resampled into a 256-texel cube (CPU), that cube's
+//   irradiance projected on nine harmonics (CPU), and the cube uploaded with its mips and its
+//   specular chain baked (GPU, 8 levels from 128 texels).
+//
 //   build/release/bench/mane_render_bench --benchmark_min_time=2
 
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
+#include "render/environment/specular_chain.hpp"
+#include "render/environment/spherical_harmonics.hpp"
 #include "render/renderer.hpp"
+#include "scenes/assets.hpp"
+#include "scenes/environment_image.hpp"
 #include "scenes/world.hpp"
 
 namespace {
@@ -118,5 +128,33 @@ void BM_TranslucentCube(benchmark::State& state) {
   renderFrames(state, statics, world.frameInput(), 1);
 }
 BENCHMARK(BM_TranslucentCube)->ArgName("method")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// state.range(0): 0 the panorama → cube, 1 the harmonics, 2 the upload and the specular chain.
+void BM_EnvironmentPreparation(benchmark::State& state) {
+  static const render::EquirectImage panorama = [] {
+    const auto failed = [](const std::string& message) {
+      std::fprintf(stderr, "render bench: %s\n", message.c_str());
+      std::exit(1);
+    };
+    auto resolver = scenes::AssetResolver::createDefault();
+    if (!resolver) failed(resolver.error().message);
+    auto file = resolver->resolve("env/venice_sunset_1k.hdr");
+    if (!file) failed(file.error().message);
+    auto loaded = scenes::loadEnvironmentImage(*file);
+    if (!loaded) failed(loaded.error().message);
+    return loaded->image;
+  }();
+  static const render::CubeMap cube = render::cubeFromEquirect(panorama, 256);
+  const vk::raii::Sampler sampler = render::makeLinearSampler(device(), vk::SamplerAddressMode::eClampToEdge, 1.0f);
+  for (auto _ : state) {
+    if (state.range(0) == 0) benchmark::DoNotOptimize(render::cubeFromEquirect(panorama, 256));
+    if (state.range(0) == 1) benchmark::DoNotOptimize(render::projectRadiance(cube));
+    if (state.range(0) == 2) {
+      const render::Image source = render::uploadCubeWithMips(device(), cube);
+      benchmark::DoNotOptimize(render::SpecularChain::bake(device(), source, sampler, 128).has_value());
+    }
+  }
+}
+BENCHMARK(BM_EnvironmentPreparation)->ArgName("stage")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

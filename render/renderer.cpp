@@ -99,6 +99,7 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
   const std::vector<HairShadowPass::Groom> furCasters = furs_.shadowCasters();
   shadowed.insert(shadowed.end(), furCasters.begin(), furCasters.end());
   if (auto set = shadows_->setGrooms(shadowed, scene.hairShadows); !set) return set;
+  scene_.setEnvironment(nullptr);  // before the pass it may point at goes
   environment_.reset();
   if (scene.environment) {
     auto environment = EnvironmentPass::create(
@@ -110,7 +111,7 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
   // After the maps exist: the surfaces' pipelines are specialised for them.
   try {
     scene_.setScene(scene);
-    scene_.setEnvironmentIrradiance(environment_ ? std::optional(environment_->irradianceOverPi()) : std::nullopt);
+    scene_.setEnvironment(environment_.get());
     translucency_.setScene(scene);
     surfaces_.buildPipelines();
     deferredSkin_.buildPipelines();
@@ -154,6 +155,7 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     }
     if (hideOccludedHair_) (*ribbons)->setOcclusion(occlusion_.tileMaxDepth(), occlusion_.tiles());
     (*lighting)->setShadeList((*ribbons)->shadeList());
+    (*lighting)->setEnvironment(environment_ ? std::optional(environment_->irradianceOverPi()) : std::nullopt);
     drawn.lighting = std::move(*lighting);
     drawn.ribbons = std::move(*ribbons);
   }
@@ -337,8 +339,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
       const HairGroom& groom = hair_[g];
       plan.shaded[g] =
           groom.hasGuides &&
-          groom.lighting->update(viewProjection, frame.lights, ambientRadiance(frame), shadows_->uniforms())
-              .has_value();
+          groom.lighting->update(viewProjection, frame.lights, frame.ambient, shadows_->uniforms()).has_value();
       const float strandPixels =
           groom.settings.width *
           pixelsPerMetreAt(viewProjection, glm::vec2(target_.extent().width, target_.extent().height), groom.centre);

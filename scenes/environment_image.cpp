@@ -1,6 +1,7 @@
 #include "scenes/environment_image.hpp"
 
-#include <charconv>
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -11,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/common.hpp>
+
 #include "stb_image.h"
 
 namespace mane::scenes {
@@ -19,6 +22,40 @@ namespace {
 constexpr int kMaxSide = 16384;
 constexpr long long kMaxPixels = 8192LL * 8192;
 
+/// The next header line from `at` as stb_image 2.27 reads it (stbi__hdr_gettoken): up to a
+/// newline, at most 1023 bytes (the rest of a longer line skipped), the file's last byte left out
+/// where no newline ends it, and cut at a NUL as a C string is. Moves `at` past the newline.
+std::string headerLine(std::string_view bytes, std::size_t& at) {
+  constexpr std::size_t kLongest = 1023;
+  const auto end = [&] { return at >= bytes.size(); };
+  const auto next = [&] { return end() ? '\0' : bytes[at++]; };
+  std::string line;
+  for (char c = next(); !end() && c != '\n'; c = next()) {
+    line.push_back(c);
+    if (line.size() == kLongest) {
+      while (!end() && next() != '\n') {
+      }
+      break;
+    }
+  }
+  return line.substr(0, line.find('\0'));
+}
+
+/// A number as strtol reads it: white space, a sign, decimal digits; none without a digit.
+/// Magnitudes stop growing at 1e15, far past any size a panorama may have.
+std::optional<long long> readNumber(std::string_view text, std::size_t& at) {
+  constexpr long long kHuge = 1'000'000'000'000'000LL;
+  while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+  bool negative = false;
+  if (at < text.size() && (text[at] == '+' || text[at] == '-')) negative = text[at++] == '-';
+  const std::size_t first = at;
+  long long value = 0;
+  for (; at < text.size() && std::isdigit(static_cast<unsigned char>(text[at])); ++at)
+    value = std::min(value * 10 + (text[at] - '0'), kHuge);
+  if (at == first) return std::nullopt;
+  return negative ? -value : value;
+}
+
 /// What is wrong with the pixels of a Radiance file that stb_image 2.27 would not say: a
 /// run-length count of zero, which it reads for ever (as it reads the zeros past a file's end), and
 /// scanlines cut short, whose missing pixels it leaves unset. Nothing for a sound file, or for a
@@ -26,22 +63,29 @@ constexpr long long kMaxPixels = 8192LL * 8192;
 /// width header, then each channel's runs and dumps) where the image is 8 to 32767 pixels wide and
 /// the first scanline says so, flat RGBE otherwise.
 std::optional<std::string> rgbeProblem(std::string_view bytes) {
-  // The header ends at an empty line; the resolution line follows it.
-  const std::size_t blank = bytes.find("\n\n");
-  if (blank == std::string_view::npos) return std::nullopt;
-  const std::size_t lineStart = blank + 2;
-  const std::size_t lineEnd = bytes.find('\n', lineStart);
-  if (lineEnd == std::string_view::npos) return std::nullopt;
-  const std::string_view line = bytes.substr(lineStart, lineEnd - lineStart);
+  // The header, read as stb_image reads it: the magic line, lines up to an empty one (one of them
+  // the format), then the resolution.
+  std::size_t at = 0;
+  const std::string magic = headerLine(bytes, at);
+  if (magic != "#?RADIANCE" && magic != "#?RGBE") return std::nullopt;
+  bool rgbe = false;
+  for (std::string line = headerLine(bytes, at); !line.empty(); line = headerLine(bytes, at))
+    rgbe = rgbe || line == "FORMAT=32-bit_rle_rgbe";
+  if (!rgbe) return std::nullopt;
+  const std::string line = headerLine(bytes, at);
   if (!line.starts_with("-Y ")) return std::nullopt;
-  long long height = 0, width = 0;
-  const char* cursor = line.data() + 3;
-  const char* end = line.data() + line.size();
-  auto parsed = std::from_chars(cursor, end, height);
-  if (parsed.ec != std::errc() || std::string_view(parsed.ptr, std::size_t(end - parsed.ptr)).substr(0, 4) != " +X ")
-    return std::nullopt;
-  if (std::from_chars(parsed.ptr + 4, end, width).ec != std::errc() || width <= 0 || height <= 0) return std::nullopt;
-  std::size_t at = lineEnd + 1;
+  std::size_t cursor = 3;
+  const std::optional<long long> rows = readNumber(line, cursor);
+  while (cursor < line.size() && line[cursor] == ' ') ++cursor;
+  if (!rows || line.substr(cursor, 3) != "+X ") return std::nullopt;
+  cursor += 3;
+  const std::optional<long long> columns = readNumber(line, cursor);
+  if (!columns || *columns <= 0 || *rows <= 0) return std::nullopt;
+  const long long width = *columns, height = *rows;
+  // stb_image reads these numbers into an int; the size check that follows would see them wrapped.
+  if (width > kMaxSide || height > kMaxSide || width * height > kMaxPixels)
+    return "the panorama is too large: " + std::to_string(width) + " x " + std::to_string(height) +
+           " pixels (at most " + std::to_string(kMaxSide) + " on a side and " + std::to_string(kMaxPixels) + " in all)";
   const auto remaining = [&] { return bytes.size() - at; };
   const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(bytes[i]); };
   const bool runLength = width >= 8 && width < 32768 && remaining() >= 4 && byte(at) == 2 && byte(at + 1) == 2 &&
@@ -80,7 +124,7 @@ std::optional<std::string> rgbeProblem(std::string_view bytes) {
 
 }  // namespace
 
-Result<render::EquirectImage> loadEnvironmentImage(const std::filesystem::path& file) {
+Result<Panorama> loadEnvironmentImage(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return fail(name + ": file not found");
@@ -95,16 +139,16 @@ Result<render::EquirectImage> loadEnvironmentImage(const std::filesystem::path& 
   const int size = static_cast<int>(bytes.size());
   if (stbi_is_hdr_from_memory(bytes.data(), size) == 0)
     return fail(name + ": not a Radiance HDR file (it must begin with \"#?RADIANCE\" or \"#?RGBE\")");
+  if (auto problem = rgbeProblem(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size())))
+    return fail(name + ": cannot decode the panorama: " + *problem);
   int width = 0, height = 0, channels = 0;
-  // The header alone first: a large declared size would otherwise be allocated before the
-  // scanlines are found missing.
+  // The header as stb_image reads it, too: a large declared size would otherwise be allocated
+  // before the scanlines are found missing.
   if (stbi_info_from_memory(bytes.data(), size, &width, &height, &channels) != 0 &&
       (width > kMaxSide || height > kMaxSide || static_cast<long long>(width) * height > kMaxPixels))
     return fail(name + ": panorama too large: " + std::to_string(width) + " x " + std::to_string(height) +
                 " pixels (at most " + std::to_string(kMaxSide) + " on a side and " + std::to_string(kMaxPixels) +
                 " in all)");
-  if (auto problem = rgbeProblem(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size())))
-    return fail(name + ": cannot decode the panorama: " + *problem);
   std::unique_ptr<float, void (*)(void*)> pixels(
       stbi_loadf_from_memory(bytes.data(), size, &width, &height, &channels, 3), &stbi_image_free);
   if (!pixels) {
@@ -116,12 +160,17 @@ Result<render::EquirectImage> loadEnvironmentImage(const std::filesystem::path& 
   if (std::abs(width - 2 * height) > 1)
     return fail(name + ": the panorama is " + std::to_string(width) + " x " + std::to_string(height) +
                 " pixels; an equirectangular one is twice as wide as it is high");
-  render::EquirectImage image{.width = width, .height = height};
+  Panorama panorama{.image = {.width = width, .height = height}};
   const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-  image.texels.resize(count);
+  panorama.image.texels.resize(count);
   const float* in = pixels.get();
-  for (std::size_t i = 0; i < count; ++i, in += 3) image.texels[i] = {in[0], in[1], in[2]};
-  return image;
+  for (std::size_t i = 0; i < count; ++i, in += 3) {
+    const glm::vec3 texel(in[0], in[1], in[2]);
+    const glm::vec3 clamped = glm::min(texel, glm::vec3(kMaxPanoramaRadiance));
+    if (clamped != texel) ++panorama.clampedTexels;
+    panorama.image.texels[i] = clamped;
+  }
+  return panorama;
 }
 
 }  // namespace mane::scenes

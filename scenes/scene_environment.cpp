@@ -34,9 +34,13 @@ Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene&
     if (lookup->path) {
       auto panorama = loadEnvironmentImage(*lookup->path);
       if (!panorama) return fail("environment: " + panorama.error().message);
-      return render::EnvironmentData{.radiance = render::cubeFromEquirect(
-                                         *panorama, environment.cubeSize > 0 ? environment.cubeSize : kPanoramaCubeSize,
-                                         glm::radians(environment.rotationDegrees), environment.intensity)};
+      if (panorama->clampedTexels > 0)
+        notes.push_back("environment: " + environment.file + ": " + std::to_string(panorama->clampedTexels) +
+                        " texels brighter than " + std::to_string(kMaxPanoramaRadiance) + " clamped to it");
+      const int size = environment.cubeSize > 0 ? environment.cubeSize : kPanoramaCubeSize;
+      return render::EnvironmentData{.radiance = render::cubeFromEquirect(panorama->image, size,
+                                                                          glm::radians(environment.rotationDegrees),
+                                                                          environment.intensity)};
     }
     notes.push_back("environment: " + environment.file + " missing (" + lookup->missingReason +
                     "): lit by the procedural sky instead");

@@ -22,6 +22,11 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   vec4 environmentIrradiance[9];
 } frame;
 
+// The environment's radiance pre-filtered for GGX roughness level/7 at each mip level
+// (render/environment/specular_chain.hpp); black without an environment.
+layout(set = 0, binding = 10) uniform samplerCube environmentSpecular;
+const float kEnvironmentSpecularLevels = 8.0;
+
 // What a white Lambertian surface facing `normal` (unit) shows of the environment: 0 without one.
 vec3 environmentLight(vec3 normal) {
   if (frame.lightCount.y == 0) return vec3(0.0);

@@ -25,9 +25,30 @@ const int kLightRadianceTexel = 2 + kHairLightingMaxLights;  // + light i: rgb p
 const int kCountsTexel = 2 + 2 * kHairLightingMaxLights;     // x: lights, y: vertices per strand
 const int kShadowsTexel = kCountsTexel + 1;                  // HairShadowUniforms: 6 per map, then the count
 const int kShadowCountTexel = kShadowsTexel + 6 * 4;
+const int kEnvironmentTexel = kShadowCountTexel + 1;  // 9: E/π's harmonics × the white-furnace albedo
 
 vec4 lightingVector(int texel) {
   return uintBitsToFloat(texelFetch(lightingTexels, texel));
+}
+
+// The environment's irradiance over π averaged over the normals perpendicular to `tangent` (a
+// fibre's side), from its nine harmonics (the order of render/environment/spherical_harmonics.hpp).
+// Opposite normals cancel band 1, and the average of band 2 over the circle is the mean of any two
+// normals at right angles: the constant term plus that half-sum, exactly.
+vec3 environmentAround(vec3 tangent) {
+  vec3 helper = abs(tangent.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 a = normalize(cross(tangent, helper));
+  vec3 b = cross(tangent, a);
+  vec3 band2 = vec3(0.0);
+  for (int k = 0; k < 2; ++k) {
+    vec3 n = k == 0 ? a : b;
+    band2 += (lightingVector(kEnvironmentTexel + 4).rgb * (n.x * n.y) +
+              lightingVector(kEnvironmentTexel + 5).rgb * (n.y * n.z) +
+              lightingVector(kEnvironmentTexel + 7).rgb * (n.x * n.z)) * 1.092548431 +
+             lightingVector(kEnvironmentTexel + 6).rgb * (0.315391565 * (3.0 * n.z * n.z - 1.0)) +
+             lightingVector(kEnvironmentTexel + 8).rgb * (0.546274215 * (n.x * n.x - n.y * n.y));
+  }
+  return lightingVector(kEnvironmentTexel).rgb * 0.282094792 + 0.5 * band2;
 }
 
 // The maps that exist (kHairShadowMaps, a specialisation constant): hairShadowTransmittance looks
@@ -84,7 +105,9 @@ void main() {
   float shadow = hairShadowTransmittance(readShadows(), position);
   // The ambient term stands for light scattered many times inside the hair: all of it has
   // crossed fibres, so the strand's colour multiplies it whole.
-  vec3 result = lightingVector(kAmbientTexel).rgb * bodyColour;
+  vec3 ambient = lightingVector(kAmbientTexel).rgb;
+  if (counts.z != 0u) ambient += environmentAround(tangent);
+  vec3 result = ambient * bodyColour;
   // Each light's vectors fetched where they are used: indexing an array of them by the loop's
   // counter made lavapipe load them lane by lane. And the test at the end of the loop: lavapipe
   // (Mesa 22.3) runs the body once more, every lane masked off, lookups and all, before a test at

@@ -14,6 +14,7 @@ layout(set = 1, binding = 4, std140) uniform Material {
   vec4 blur;         // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
   vec4 extinction;   // rgb: σ, 1/m (translucency of materials other than skin)
   vec4 profile[6];   // skin: d'Eon's Gaussians, rgb weight, a variance (mm²)
+  vec4 specularAlbedo[2];  // skin: the specular's albedo with ρs = 1 at N·V = 0, 1/7, …, 1
 } draw;
 
 // Skin's diffuse light from texture-space diffusion (ambient and lights already in it, blurred;
@@ -28,6 +29,20 @@ vec3 skinAmbient(vec3 geometric, vec3 detail) {
   return frame.ambient.rgb + vec3(environmentLight(normalize(mix(detail, geometric, draw.blur.r))).r,
                                   environmentLight(normalize(mix(detail, geometric, draw.blur.g))).g,
                                   environmentLight(normalize(mix(detail, geometric, draw.blur.b))).b);
+}
+
+// Skin's specular reflection of the environment (a split sum): the radiance pre-filtered for its
+// roughness in the mirror direction, times the BRDF's albedo at N·V; 0 without an environment.
+vec3 skinEnvironmentSpecular(vec3 detail, vec3 toEye, float rhoS) {
+  if (frame.lightCount.y == 0) return vec3(0.0);
+  float cosView = clamp(dot(detail, toEye), 0.0, 1.0);
+  float at = cosView * 7.0;
+  int below = min(int(at), 6);
+  float albedo = mix(draw.specularAlbedo[below / 4][below % 4], draw.specularAlbedo[(below + 1) / 4][(below + 1) % 4],
+                     at - float(below));
+  // GGX of α = m stands in for Beckmann's m; the chain's level ℓ holds roughness ℓ/7, α = roughness².
+  float level = sqrt(draw.skin.x) * (kEnvironmentSpecularLevels - 1.0);
+  return rhoS * albedo * textureLod(environmentSpecular, reflect(-toEye, detail), level).rgb;
 }
 
 // Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
@@ -62,4 +77,5 @@ void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float cu
     specular = on ? shone : specular;
     ++i;
   } while (i < frame.lightCount.x);
+  specular += skinEnvironmentSpecular(detail, toEye, rhoS);
 }

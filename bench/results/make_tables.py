@@ -197,6 +197,12 @@ def ratio_to(header: str, baseline: Callable[[Run], Optional[str]], key: str = "
     return Column(header, key, number, baseline)
 
 
+ENVIRONMENT_STAGES = {
+    "0": "the panorama resampled into a 256-texel cube map (CPU, 2 × 2 samples a texel)",
+    "1": "the cube's irradiance projected on nine spherical harmonics (CPU)",
+    "2": "the cube uploaded with its mips, its specular chain baked (GPU: 8 levels from 128 texels)",
+}
+
 FRAME_VARIANTS = [
     "as shipped: pre-integrated skin, fins, furred bunny",
     "same, 4× MSAA (`mane render`'s default)",
@@ -392,6 +398,10 @@ BENCHES: list[Bench] = [
               [ms(), ratio_to("ratio to no translucency", lambda r: "BM_TranslucentCube/method:0")],
               about="`scenes/translucent_cube.json` at 1280×720; the voxel table at N = 32, built before "
                     "the timed frames."),
+        Table("Environment preparation", r"^BM_EnvironmentPreparation/",
+              lambda r: ENVIRONMENT_STAGES.get(r.args.get("stage"), r.name), [ms()],
+              about="What setting a scene's environment costs, once per environment: "
+                    "`env/venice_sunset_1k.hdr` (1024 × 512) as `scenes/timbury.json` uses it."),
     ]),
     Bench("post", "mane_post_bench", ["--benchmark_min_time=1"], True, [
         Table("HDR post", r"", post_label,

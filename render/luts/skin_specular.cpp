@@ -31,6 +31,23 @@ double kelemenSzirmayKalos(glm::dvec3 normal, glm::dvec3 toLight, glm::dvec3 toE
          schlickFresnel(glm::dot(halfway, toEye), f0) / h2;
 }
 
+double kelemenSzirmayKalosAlbedo(double nDotV, double roughness, double f0) {
+  constexpr int kThetaSteps = 512, kPhiSteps = 256;
+  const double cosV = std::clamp(nDotV, 1e-4, 1.0);
+  const glm::dvec3 normal(0.0, 0.0, 1.0), toEye(std::sqrt(1.0 - cosV * cosV), 0.0, cosV);
+  const double dTheta = 0.5 * std::numbers::pi / kThetaSteps, dPhi = 2.0 * std::numbers::pi / kPhiSteps;
+  double sum = 0.0;
+  for (int i = 0; i < kThetaSteps; ++i) {
+    const double theta = (i + 0.5) * dTheta;
+    for (int j = 0; j < kPhiSteps; ++j) {
+      const double phi = (j + 0.5) * dPhi;
+      const glm::dvec3 toLight(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      sum += kelemenSzirmayKalos(normal, toLight, toEye, roughness, 1.0, f0) * std::cos(theta) * std::sin(theta);
+    }
+  }
+  return sum * dTheta * dPhi;
+}
+
 double encodeBeckmann(double d) {
   return 0.5 * std::pow(std::max(d, 0.0), 0.1);
 }

@@ -41,6 +41,12 @@ double schlickFresnel(double cosTheta, double f0 = kSkinSpecularF0);
 double kelemenSzirmayKalos(glm::dvec3 normal, glm::dvec3 toLight, glm::dvec3 toEye, double roughness, double rhoS,
                            double f0 = kSkinSpecularF0);
 
+/// The share of light from every direction that [KS01] reflects towards an eye at cos θ = `nDotV`
+/// (0..1) with ρs = 1: ∫ f·max(N·L, 0) dL over the hemisphere, by the midpoint rule on a 512 × 256
+/// grid in (θ, φ). Under an environment of pre-filtered radiance L̃ in the reflected direction,
+/// skin's specular radiance is ρs × this × L̃ (Karis's split sum).
+double kelemenSzirmayKalosAlbedo(double nDotV, double roughness, double f0 = kSkinSpecularF0);
+
 /// The alpha channel of the pre-integrated skin table stores the Beckmann term as 0.5·D^0.1
 /// ([dEL07] Example 14-1), decoded with pow(2x, 10). Why, in a half-float table:
 ///  - range: the tenth root maps D from tails of 1e-30 up to 1024 (α ≥ 0.018 at N·H = 1) into

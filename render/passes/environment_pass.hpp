@@ -4,11 +4,13 @@
 // deferred skin), and its diffuse light as nine spherical harmonics of E/π
 // (render/environment/spherical_harmonics.hpp) for the surfaces' shaders, in the units of the
 // frame's ambient term: a white Lambertian surface under a constant environment of radiance L
-// shows L.
+// shows L; and its glossy reflections as a chain pre-filtered for eight roughnesses
+// (render/environment/specular_chain.hpp).
 
 #include <memory>
 
 #include "common/error.hpp"
+#include "render/environment/specular_chain.hpp"
 #include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
 #include "render/pipelines.hpp"
@@ -35,13 +37,16 @@ public:
 
   /// The irradiance over π: Σ coefficient × Y(normal) is what a white Lambertian surface shows.
   [[nodiscard]] const SphericalHarmonics9& irradianceOverPi() const { return irradianceOverPi_; }
-  [[nodiscard]] const Image& cube() const { return cube_; }
+  /// The radiance pre-filtered for glossy reflection, a roughness per mip level.
+  [[nodiscard]] const SpecularChain& specular() const { return specular_; }
+  [[nodiscard]] const vk::raii::Sampler& sampler() const { return sampler_; }
 
 private:
   EnvironmentPass() = default;
 
-  Image cube_;
+  Image cube_;  // with its mip chain, which the specular chain samples
   vk::raii::Sampler sampler_{nullptr};
+  SpecularChain specular_;
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};

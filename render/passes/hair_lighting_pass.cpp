@@ -20,10 +20,12 @@ struct LightingUniforms {
   glm::vec4 ambient;
   glm::vec4 lightDirection[HairLightingPass::kMaxLights];
   glm::vec4 lightRadiance[HairLightingPass::kMaxLights];
-  glm::uvec4 counts;
+  glm::uvec4 counts;  // x: lights, y: vertices per strand, z: 1 where the environment lights the hair
   HairShadowUniforms shadows;
+  glm::vec4 environment[9];  // rgb: E/π's harmonics × the white-furnace albedo
 };
-static_assert(sizeof(LightingUniforms) == 3 * 16 + 2 * 16 * HairLightingPass::kMaxLights + sizeof(HairShadowUniforms));
+static_assert(sizeof(LightingUniforms) ==
+              3 * 16 + 2 * 16 * HairLightingPass::kMaxLights + sizeof(HairShadowUniforms) + 9 * 16);
 
 }  // namespace
 
@@ -173,8 +175,10 @@ Result<void> HairLightingPass::update(const glm::mat4& viewProjection, std::span
   }
   uniforms.eye = hairEye(viewProjection);
   uniforms.ambient = glm::vec4(ambient * ambientAlbedo_, 0.0f);
-  uniforms.counts = glm::uvec4(static_cast<std::uint32_t>(count), verticesPerStrand_, 0u, 0u);
+  uniforms.counts = glm::uvec4(static_cast<std::uint32_t>(count), verticesPerStrand_, environment_ ? 1u : 0u, 0u);
   uniforms.shadows = shadows;
+  if (environment_)
+    for (std::size_t i = 0; i < 9; ++i) uniforms.environment[i] = glm::vec4((*environment_)[i] * ambientAlbedo_, 0.0f);
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
   return {};
 }

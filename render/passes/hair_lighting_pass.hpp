@@ -22,10 +22,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 
 #include <glm/glm.hpp>
 
+#include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
 #include "render/frame_graph.hpp"
 #include "render/luts/marschner_lut.hpp"
@@ -56,10 +58,16 @@ public:
   HairLightingPass& operator=(const HairLightingPass&) = delete;
 
   /// The frame's eye (from `viewProjection`, see hairEye), lights (the first kMaxLights),
-  /// ambient radiance and shadow uniforms. Between frames only (one uniform buffer). Errors:
-  /// a light direction that is not finite and non-zero.
+  /// ambient radiance and shadow uniforms, and the environment (setEnvironment). Between frames only (one uniform
+  /// buffer). Errors: a light direction that is not finite and non-zero.
   [[nodiscard]] Result<void> update(const glm::mat4& viewProjection, std::span<const DirectionalLight> lights,
                                     glm::vec3 ambient, const HairShadowUniforms& shadows);
+
+  /// The environment's irradiance over π (EnvironmentPass::irradianceOverPi) that lights the hair
+  /// from the next update() on, or none. Each vertex takes its average over the normals
+  /// perpendicular to its tangent (a cylinder's side), times the groom's white-furnace albedo, on
+  /// top of the ambient radiance.
+  void setEnvironment(const std::optional<SphericalHarmonics9>& irradianceOverPi) { environment_ = irradianceOverPi; }
 
   /// Re-reads the shadow maps' descriptors (after HairShadowPass' slots changed). Between frames.
   void refreshShadows();
@@ -104,6 +112,7 @@ private:
   const Buffer* positions_;
   const Buffer* tangents_;
   glm::vec3 ambientAlbedo_{0.0f};
+  std::optional<SphericalHarmonics9> environment_;
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
   Buffer uniforms_;

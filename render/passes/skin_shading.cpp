@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "render/luts/skin_specular.hpp"
+
 namespace mane::render {
 namespace {
 
@@ -43,6 +45,8 @@ SkinMaterialConstants SkinShading::constants(const SkinParameters& skin, const P
       .blur = glm::vec4(glm::vec3(profile.broadShare(kPoreVariance)), 0.0f)};
   for (std::size_t i = 0; i < kSkinGaussianCount; ++i)
     constants.profile[i] = glm::vec4(glm::vec3(profile.gaussians[i].weight), float(profile.gaussians[i].variance));
+  for (int k = 0; k < 8; ++k)
+    constants.specularAlbedo[std::size_t(k / 4)][k % 4] = float(kelemenSzirmayKalosAlbedo(k / 7.0, skin.roughness));
   return constants;
 }
 

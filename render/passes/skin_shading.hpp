@@ -9,7 +9,9 @@
 //    SkinProfile::broadShare): (0.667, 0.209, 0.007) — red light has left the pores' scale
 //    before it exits, blue has not;
 //  - specular: Kelemen/Szirmay-Kalos with the table's Beckmann term and Schlick's Fresnel
-//    (F0 = 0.028) on the detail normal, ρs scaled by the specular map's red channel.
+//    (F0 = 0.028) on the detail normal, ρs scaled by the specular map's red channel; under an
+//    environment, its pre-filtered radiance in the reflected direction (GGX of α = the Beckmann
+//    roughness, close to it at skin's roughness) times the BRDF's albedo at N·V (a split sum).
 // The tables are baked once per integration range, when a scene first needs one. Skin diffused
 // in texture space (render/passes/skin_diffusion_pass.hpp) reads its diffuse light from the diffused
 // irradiance instead (SurfaceScene::setDiffusedIrradiance); it is drawn forward
@@ -33,6 +35,9 @@ struct SkinMaterialConstants {
   glm::vec4 skin{0.0f};  ///< x: roughness, y: ρs, z: the table's maxCurvature (1/mm)
   glm::vec4 blur{0.0f};  ///< rgb: per channel, the weight of the geometric normal (blurred normals)
   std::array<glm::vec4, kSkinGaussianCount> profile{};  ///< rgb: weight, a: variance (mm²)
+  /// The specular's albedo with ρs = 1 (kelemenSzirmayKalosAlbedo) at N·V = 0, 1/7, …, 1, in
+  /// order: what scales the environment's pre-filtered radiance.
+  std::array<glm::vec4, 2> specularAlbedo{};
 };
 
 class SkinShading {

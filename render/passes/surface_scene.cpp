@@ -37,6 +37,8 @@ struct FrameUniforms {
 constexpr std::uint32_t kFirstShadowBinding = 1;
 constexpr std::uint32_t kLightDepthBinding = kFirstShadowBinding + HairShadowPass::kBindings;
 static_assert(kLightDepthBinding == 9, "shaders/light_depth.glsl binds the map at 9");
+// The environment's specular chain after it (shaders/frame_uniforms.glsl).
+constexpr std::uint32_t kEnvironmentSpecularBinding = kLightDepthBinding + 1;
 
 // std140 mirror of the Material block of shaders/skin_lights.glsl (set 1, binding 4).
 struct MaterialUniforms {
@@ -46,6 +48,7 @@ struct MaterialUniforms {
   glm::vec4 blur{0.0f};                     // SkinMaterialConstants::blur
   glm::vec4 extinction{0.0f};               // rgb: σ, 1/m
   glm::vec4 profile[kSkinGaussianCount]{};  // SkinMaterialConstants::profile
+  glm::vec4 specularAlbedo[2]{};            // SkinMaterialConstants::specularAlbedo
 };
 
 Image textureOrDefault(const Device& device, const std::optional<TextureData>& texture,
@@ -101,7 +104,8 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                                         shadow,
                                         shadow,
                                         shadow,    // hair shadow first depth, 4 slots
-                                        shadow});  // light 0's depth map of translucent surfaces
+                                        shadow,    // light 0's depth map of translucent surfaces
+                                        shadow});  // the environment's specular chain
   // albedo (the specular map in its alpha), normal map, pre-integrated skin table, diffused
   // irradiance, constants
   const vk::ShaderStageFlags fragment = Stage::eFragment;
@@ -114,11 +118,28 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   framePool_ = makeDescriptorPool(device, 1,
                                   {{vk::DescriptorType::eUniformBuffer, 1},
-                                   {vk::DescriptorType::eCombinedImageSampler, HairShadowPass::kBindings + 1}});
+                                   {vk::DescriptorType::eCombinedImageSampler, HairShadowPass::kBindings + 2}});
   frameSet_ = allocateSet(device, framePool_, frameLayout_);
   writeUniformBuffer(device, frameSet_, 0, frameUniforms_);
   writeSampledImage(device, frameSet_, kLightDepthBinding, lightDepth.image().view(), lightDepth.sampler());
+  // Without an environment the binding holds a black cube, never read.
+  noEnvironment_ = uploadCubeWithMips(device, CubeMap{.size = 1,
+                                                      .faces = {{{glm::vec3(0.0f)},
+                                                                 {glm::vec3(0.0f)},
+                                                                 {glm::vec3(0.0f)},
+                                                                 {glm::vec3(0.0f)},
+                                                                 {glm::vec3(0.0f)},
+                                                                 {glm::vec3(0.0f)}}}});
+  setEnvironment(nullptr);
   refreshShadows();
+}
+
+void SurfaceScene::setEnvironment(const EnvironmentPass* environment) {
+  environmentIrradiance_.reset();
+  if (environment) environmentIrradiance_ = environment->irradianceOverPi();
+  writeSampledImage(*device_, frameSet_, kEnvironmentSpecularBinding,
+                    environment ? environment->specular().image().view() : noEnvironment_.view(),
+                    environment ? environment->sampler() : sampler_);
 }
 
 GraphicsPipelineSettings SurfaceScene::meshPipeline(vk::Format depthFormat) const {
@@ -217,6 +238,7 @@ SurfaceScene::GpuMaterial SurfaceScene::uploadMaterial(const MaterialData& mater
     uniforms.skin = skin.skin;
     uniforms.blur = skin.blur;
     std::copy(skin.profile.begin(), skin.profile.end(), uniforms.profile);
+    std::copy(skin.specularAlbedo.begin(), skin.specularAlbedo.end(), uniforms.specularAlbedo);
   } else {
     writeSampledImage(*device_, gpu.descriptors, 2, skin_.unreadTable(), sampler_);
   }

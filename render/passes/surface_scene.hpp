@@ -15,6 +15,7 @@
 
 #include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
+#include "render/passes/environment_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_depth_pass.hpp"
 #include "render/passes/skin_shading.hpp"
@@ -86,11 +87,9 @@ public:
   /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
   void refreshShadows();
 
-  /// The environment's irradiance over π (EnvironmentPass::irradianceOverPi) that update() hands
-  /// the shaders from then on; none: no environment light.
-  void setEnvironmentIrradiance(const std::optional<SphericalHarmonics9>& irradianceOverPi) {
-    environmentIrradiance_ = irradianceOverPi;
-  }
+  /// The environment whose irradiance and specular chain the surfaces are lit by from now on
+  /// (none: nullptr); it must outlive its use.
+  void setEnvironment(const EnvironmentPass* environment);
 
   /// Writes the frame's camera, lights, the hair shadows' and the light depth map's current
   /// uniforms; call before recording the passes that draw surfaces, after HairShadowPass::prepare
@@ -114,6 +113,7 @@ public:
 
 private:
   std::optional<SphericalHarmonics9> environmentIrradiance_;
+  Image noEnvironment_;  // bound where there is no environment
   struct GpuMesh {
     Buffer vertices;
     Buffer indices;

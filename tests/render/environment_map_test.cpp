@@ -10,8 +10,11 @@
 #include <glm/geometric.hpp>
 
 #include "render/environment/environment_map.hpp"
+#include "render/environment/specular_reference.hpp"
 #include "render/environment/sky_model.hpp"
 #include "render/environment/spherical_harmonics.hpp"
+#include "render/luts/skin_specular.hpp"
+#include "tests/render/environment_cubes.hpp"
 
 namespace mane::render {
 namespace {
@@ -25,16 +28,6 @@ EquirectImage panoramaOf(int width, int height, auto radiance) {
       image.texels.push_back(
           radiance(equirectDirection({(float(column) + 0.5f) / float(width), (float(row) + 0.5f) / float(height)})));
   return image;
-}
-
-CubeMap cubeOf(int size, auto radiance) {
-  CubeMap cube{.size = size};
-  for (int face = 0; face < 6; ++face)
-    for (int row = 0; row < size; ++row)
-      for (int column = 0; column < size; ++column)
-        cube.faces[face].push_back(
-            radiance(cubeDirection(face, {(float(column) + 0.5f) / float(size), (float(row) + 0.5f) / float(size)})));
-  return cube;
 }
 
 // E(n) = Σ L·max(n·ω, 0)·dω over every texel: the irradiance by brute force.
@@ -225,6 +218,32 @@ TEST(SkyModel, SettingsOutOfRangeAreRefusedByName) {
   EXPECT_NE(message({.towardSun = glm::vec3(0.0f)}).find("sun"), std::string::npos);
   EXPECT_NE(message({.groundAlbedo = 1.5f}).find("albedo"), std::string::npos);
   EXPECT_NE(message({.zenithLuminance = -1.0f}).find("zenith"), std::string::npos);
+}
+
+TEST(SkinSpecularAlbedo, ASmoothSurfaceReflectsSchlicksFresnelAndARoughOneLess) {
+  // As the roughness goes to 0, h → n and |l + v|² → 4(n·v)²: the Kelemen/Szirmay-Kalos albedo
+  // tends to ∫D(h) dh × F(n·v) = F(n·v).
+  for (double cosView : {0.3, 0.6, 0.9}) {
+    const double smooth = kelemenSzirmayKalosAlbedo(cosView, 0.05);
+    EXPECT_NEAR(smooth, schlickFresnel(cosView), 0.03 * schlickFresnel(cosView)) << cosView;
+    const double rough = kelemenSzirmayKalosAlbedo(cosView, 0.3);
+    EXPECT_GT(rough, 0.0);
+    EXPECT_LT(rough, 1.0);
+  }
+}
+
+TEST(SpecularReference, GgxIsNormalisedOverTheHemisphere) {
+  // ∫ D(h)·cos θ_h dω = 1 (Walter et al. 2007, eq. 4), by the midpoint rule in θ.
+  for (double roughness : {0.3, 0.6, 1.0}) {
+    double sum = 0.0;
+    const int steps = 20000;
+    for (int i = 0; i < steps; ++i) {
+      const double theta = (i + 0.5) * (kPi / 2.0) / steps;
+      sum += ggxDistribution(std::cos(theta), roughness) * std::cos(theta) * std::sin(theta) * 2.0 * kPi * (kPi / 2.0) /
+             steps;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-4) << roughness;
+  }
 }
 
 }  // namespace

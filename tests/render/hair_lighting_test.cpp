@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -24,6 +25,7 @@
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "render/passes/opacity_shadow_map_reference.hpp"
+#include "render/environment/spherical_harmonics.hpp"
 #include "render/passes/hair_lighting_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "tests/support/vulkan_fixture.hpp"
@@ -163,6 +165,58 @@ TEST_F(HairLightingTest, VertexRadianceMatchesTheCpuModel) {
     }
   }
   std::printf("per-vertex radiance: worst relative error %.4f over %zu vertices\n", worst, expected.size());
+}
+
+// Under an environment and no lights, each vertex shows the environment's irradiance over π
+// averaged round its fibre (here by 64 normals perpendicular to the tangent, on the CPU) times
+// the white-furnace albedo. The sky is of bands 0 to 2 only, so its nine harmonics hold it whole.
+TEST_F(HairLightingTest, TheEnvironmentLightsEachFibreByItsIrradianceAveragedRoundIt) {
+  const HairShadingParams params = blondeHairParams();
+  const MarschnerLut& table = lut(params);
+  Random random(5);
+  Strands strands{.vertices = 2};
+  for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
+    strands.addStraight(-0.02f * axis, 0.02f * axis);
+  for (int s = 0; s < 20; ++s) strands.addStraight(glm::vec3(0.0f), glm::vec3(0.02 * random.direction()));
+  CubeMap sky{.size = 32};
+  for (int face = 0; face < 6; ++face)
+    for (int row = 0; row < sky.size; ++row)
+      for (int column = 0; column < sky.size; ++column) {
+        const glm::vec3 d = cubeDirection(face, {(column + 0.5f) / 32.0f, (row + 0.5f) / 32.0f});
+        sky.faces[face].push_back(glm::vec3(0.5f + 0.3f * d.y + 0.4f * d.y * d.y + 0.2f * d.x * d.z, 0.6f, 0.3f));
+      }
+  SphericalHarmonics9 irradianceOverPi = irradianceFromRadiance(projectRadiance(sky));
+  for (glm::vec3& coefficient : irradianceOverPi) coefficient /= float(std::numbers::pi);
+
+  const Buffer positions = upload(strands.positions);
+  const Buffer tangents = upload(strands.tangents);
+  auto shadows = HairShadowPass::create(device());
+  ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
+  auto pass =
+      HairLightingPass::create(device(), table, **shadows, positions, tangents, strands.count(), strands.vertices);
+  ASSERT_TRUE(pass.has_value()) << pass.error().message;
+  (*pass)->setEnvironment(irradianceOverPi);
+  ASSERT_TRUE((*pass)->update(viewProjection(), {}, glm::vec3(0.0f), (*shadows)->uniforms()).has_value());
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { (*pass)->record(commands); });
+  const std::vector<glm::vec4> radiance = readBack((*pass)->radiance());
+  double lowest = 1e9, highest = 0.0;
+  for (std::size_t v = 0; v < strands.positions.size(); ++v) {
+    const glm::vec3 tangent(strands.tangents[v]);
+    const glm::vec3 a =
+        glm::normalize(glm::cross(tangent, std::abs(tangent.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
+    const glm::vec3 b = glm::cross(tangent, a);
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 64; ++k) {
+      const double phi = 2.0 * std::numbers::pi * k / 64.0;
+      sum += glm::dvec3(evaluate(irradianceOverPi, float(std::cos(phi)) * a + float(std::sin(phi)) * b));
+    }
+    const glm::dvec3 expected = sum / 64.0 * ambientAlbedo(params);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(radiance[v][c], expected[c], 1e-3 * expected[c]) << "vertex " << v << " channel " << c;
+    lowest = std::min(lowest, expected.r);
+    highest = std::max(highest, expected.r);
+  }
+  EXPECT_GT(highest - lowest, 0.05 * highest);  // fibres along y see the sky's gradient differently
 }
 
 // A sheet of 2,000 horizontal strands along x (r = 20 µm, α = κ = 1, about 6 per map texel row) 2–3 cm above 8 shaded

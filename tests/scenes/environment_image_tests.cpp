@@ -34,18 +34,18 @@ TEST(EnvironmentImage, LoadsTheSharedPanoramasAsFiniteRadiance) {
     MANE_RESOLVE_OR_SKIP(file, name);
     auto image = loadEnvironmentImage(file);
     ASSERT_TRUE(image.has_value()) << image.error().message;
-    EXPECT_EQ(image->width, 1024);  // the assets README: 1k panoramas, 2:1
-    EXPECT_EQ(image->height, 512);
+    EXPECT_EQ(image->image.width, 1024);  // the assets README: 1k panoramas, 2:1
+    EXPECT_EQ(image->image.height, 512);
     float brightest = 0.0f;
     double sum = 0.0;
-    for (const glm::vec3& texel : image->texels) {
+    for (const glm::vec3& texel : image->image.texels) {
       ASSERT_TRUE(std::isfinite(texel.x) && std::isfinite(texel.y) && std::isfinite(texel.z));
       ASSERT_GE(std::min({texel.x, texel.y, texel.z}), 0.0f);
       brightest = std::max(brightest, texel.y);
       sum += texel.y;
     }
     // High dynamic range: the brightest texel (a sun or a lamp) far above the average.
-    EXPECT_GT(brightest, 20.0 * sum / double(image->texels.size()));
+    EXPECT_GT(brightest, 20.0 * sum / double(image->image.texels.size()));
   }
 }
 
@@ -55,8 +55,8 @@ TEST(EnvironmentImage, DecodesRgbeAsMantissaTimesTwoToTheExponent) {
   testing::ScratchDir dir;
   auto image = loadEnvironmentImage(dir.write("flat.hdr", rgbeFile(4, 2, 128, 64, 32, 129)));
   ASSERT_TRUE(image.has_value()) << image.error().message;
-  ASSERT_EQ(image->texels.size(), 8u);
-  for (const glm::vec3& texel : image->texels) {
+  ASSERT_EQ(image->image.texels.size(), 8u);
+  for (const glm::vec3& texel : image->image.texels) {
     EXPECT_NEAR(texel.x, 1.0f, 0.004f);
     EXPECT_NEAR(texel.y, 0.5f, 0.002f);
     EXPECT_NEAR(texel.z, 0.25f, 0.001f);
@@ -67,14 +67,30 @@ TEST(EnvironmentImage, DecodesRunLengthScanlines) {
   testing::ScratchDir dir;
   auto image = loadEnvironmentImage(dir.write("runs.hdr", runLengthFile(4, kEightOfEach)));
   ASSERT_TRUE(image.has_value()) << image.error().message;
-  ASSERT_EQ(image->texels.size(), 32u);
-  for (const glm::vec3& texel : image->texels) EXPECT_NEAR(texel.y, 0.5f, 0.002f);
+  ASSERT_EQ(image->image.texels.size(), 32u);
+  for (const glm::vec3& texel : image->image.texels) EXPECT_NEAR(texel.y, 0.5f, 0.002f);
 }
 
 // stb_image 2.27 reads a run-length count of zero for ever, and the zeros past a file's end as
 // such counts: both hung the loader until it checked them.
 TEST(EnvironmentImage, AZeroRunLengthOrAFileCutShortIsAnErrorNotAHang) {
   testing::ScratchDir dir;
+  // Found by tests/fuzz/fuzz_environment: stb_image reads sizes as strtol does, white space and
+  // all ("-Y  3+X 8"), and the loader's own walk must read them alike to see the zero.
+  const std::string spaced = std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y  3+X 8\n") +
+                             std::string("\x02\x02\x00\x08\x88\x80\x85\x04\x01\xc6\x02", 11);
+  auto hang = loadEnvironmentImage(dir.write("spaced.hdr", spaced));
+  ASSERT_FALSE(hang.has_value());
+  EXPECT_NE(hang.error().message.find("spaced.hdr: cannot decode the panorama:"), std::string::npos)
+      << hang.error().message;
+  // And its header ends at a line that a NUL starts, as a C string reads it.
+  const std::string nul = std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\0\0\0\n-Y 4+X 8\xa2\x32@ \n", 51) +
+                          std::string("\x02\x02\x00\x08", 4);
+  hang = loadEnvironmentImage(dir.write("nul.hdr", nul));
+  ASSERT_FALSE(hang.has_value());
+  EXPECT_NE(hang.error().message.find("nul.hdr: cannot decode the panorama: the file is cut short at scanline 0"),
+            std::string::npos)
+      << hang.error().message;
   std::string zero = kEightOfEach;
   zero[2] = 0;
   auto image = loadEnvironmentImage(dir.write("zero.hdr", runLengthFile(4, zero)));
@@ -96,6 +112,16 @@ TEST(EnvironmentImage, AZeroRunLengthOrAFileCutShortIsAnErrorNotAHang) {
       << image.error().message;
 }
 
+// Found by tests/fuzz/fuzz_environment: RGBE reaches 1.7e38, and four such texels overflowed
+// the panorama's resampling into a cube map.
+TEST(EnvironmentImage, RadianceBeyondFloatsReachIsClampedAndCounted) {
+  testing::ScratchDir dir;
+  auto image = loadEnvironmentImage(dir.write("bright.hdr", rgbeFile(4, 2, 255, 255, 255, 255)));
+  ASSERT_TRUE(image.has_value()) << image.error().message;
+  EXPECT_EQ(image->clampedTexels, 8u);
+  for (const glm::vec3& texel : image->image.texels) EXPECT_EQ(texel, glm::vec3(kMaxPanoramaRadiance));
+}
+
 TEST(EnvironmentImage, FilesThatAreNotPanoramasGiveClearErrors) {
   testing::ScratchDir dir;
   const auto message = [&](const std::string& name, const std::string& bytes) {
@@ -105,6 +131,10 @@ TEST(EnvironmentImage, FilesThatAreNotPanoramasGiveClearErrors) {
   EXPECT_NE(message("photo.hdr", "\x89PNG\r\n").find("photo.hdr: not a Radiance HDR file"), std::string::npos);
   EXPECT_NE(message("square.hdr", rgbeFile(4, 4, 1, 1, 1, 128)).find("twice as wide as it is high"), std::string::npos);
   EXPECT_NE(message("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 50000 +X 100000\n").find("too large"),
+            std::string::npos);
+  // Found by tests/fuzz/fuzz_environment: sizes beyond an int, which stb_image reads wrapped.
+  EXPECT_NE(message("wrapped.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1999499999 +X 999999499999\n")
+                .find("wrapped.hdr: cannot decode the panorama: the panorama is too large: 999999499999 x 1999499999"),
             std::string::npos);
   EXPECT_NE(
       message("format.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 2 +X 4\n").find("format.hdr: cannot decode"),
