@@ -262,9 +262,7 @@ void Renderer::addSkinning() {
 
 glm::vec3 Renderer::ambientRadiance(const FrameInput& frame) const {
   if (!environment_) return frame.ambient;
-  // Irradiance over π averaged over every normal is the band-0 term alone: c₀ × Y₀₀.
-  constexpr float kY00 = 0.282094792f;
-  return frame.ambient + environment_->irradianceOverPi()[0] * kY00;
+  return frame.ambient + sphereAverage(environment_->irradianceOverPi());
 }
 
 void Renderer::refreshShadowDescriptors() {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -14,6 +12,7 @@
 
 #include <glm/common.hpp>
 
+#include "scenes/detail/file_bytes.hpp"
 #include "stb_image.h"
 
 namespace mane::scenes {
@@ -126,14 +125,9 @@ std::optional<std::string> rgbeProblem(std::string_view bytes) {
 
 Result<Panorama> loadEnvironmentImage(const std::filesystem::path& file) {
   const std::string name = file.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) return fail(name + ": file not found");
-  std::vector<unsigned char> bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return fail(name + ": cannot open the file");
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  auto read = detail::readFileBytes(file);
+  if (!read) return std::unexpected(read.error());
+  const std::vector<unsigned char>& bytes = *read;
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     return fail(name + ": cannot decode the panorama: the file is over 2 GiB");
   const int size = static_cast<int>(bytes.size());

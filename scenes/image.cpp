@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -11,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "scenes/detail/file_bytes.hpp"
 #include "stb_image.h"
 
 namespace mane::scenes {
@@ -130,16 +129,11 @@ std::optional<std::string> preparePng(std::vector<unsigned char>& bytes) {
 
 Result<Image> loadImage(const std::filesystem::path& file) {
   const std::string name = file.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) return fail(name + ": file not found");
   // Decoded from memory: stb_image reading a file calls fread for every byte it asks for past
   // the end, so a truncated file declaring a large image took seconds to decode into zeros.
-  std::vector<unsigned char> bytes;
-  {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) return fail(name + ": cannot open the file");
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+  auto read = detail::readFileBytes(file);
+  if (!read) return std::unexpected(read.error());
+  std::vector<unsigned char>& bytes = *read;
   if (auto problem = preparePng(bytes)) return fail(name + ": cannot decode image: " + *problem);
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     return fail(name + ": cannot decode image: the file is over 2 GiB");

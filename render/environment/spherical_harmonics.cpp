@@ -7,9 +7,16 @@
 
 namespace mane::render {
 
+namespace {
+
+// Y00, the constant harmonic: √(1/4π).
+constexpr float kY00 = 0.282094792f;
+
+}  // namespace
+
 std::array<float, 9> harmonicsAt(glm::vec3 d) {
   // The real harmonics' normalisations: √(1/4π), √(3/4π), √(15/4π), √(5/16π), √(15/16π).
-  constexpr float k0 = 0.282094792f, k1 = 0.488602512f, k2 = 1.092548431f, k20 = 0.315391565f, k22 = 0.546274215f;
+  constexpr float k0 = kY00, k1 = 0.488602512f, k2 = 1.092548431f, k20 = 0.315391565f, k22 = 0.546274215f;
   return {k0,
           k1 * d.y,
           k1 * d.z,
@@ -47,6 +54,10 @@ SphericalHarmonics9 irradianceFromRadiance(const SphericalHarmonics9& radiance) 
   SphericalHarmonics9 result;
   for (std::size_t i = 0; i < 9; ++i) result[i] = radiance[i] * kBand[i];
   return result;
+}
+
+glm::vec3 sphereAverage(const SphericalHarmonics9& coefficients) {
+  return coefficients[0] * kY00;
 }
 
 glm::vec3 evaluate(const SphericalHarmonics9& coefficients, glm::vec3 direction) {

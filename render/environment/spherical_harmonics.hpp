@@ -28,6 +28,9 @@ using SphericalHarmonics9 = std::array<glm::vec3, 9>;
 /// equation 8).
 [[nodiscard]] SphericalHarmonics9 irradianceFromRadiance(const SphericalHarmonics9& radiance);
 
+/// The function's average over the sphere: the band-0 term alone, coefficient × Y00.
+[[nodiscard]] glm::vec3 sphereAverage(const SphericalHarmonics9& coefficients);
+
 /// Σ coefficient × Y at unit `direction`.
 [[nodiscard]] glm::vec3 evaluate(const SphericalHarmonics9& coefficients, glm::vec3 direction);
 
