@@ -17,6 +17,7 @@
 #include "app/mp4_encoding.hpp"
 #include "app/scene_loading.hpp"
 #include "app/timing_report.hpp"
+#include "render/exr.hpp"
 #include "render/png.hpp"
 #include "render/renderer.hpp"
 #include "physics/hash.hpp"
@@ -39,14 +40,16 @@ struct RenderOptions {
   std::string frameRange;  ///< "FIRST:LAST", inclusive; empty: every frame
   bool json = false;
   bool strict = false;  ///< every groom strict
+  bool exr = false;     ///< also each frame's linear HDR colour as OpenEXR
 };
 
 constexpr const char* kFrameNumber = "%04d";
 
-std::string frameFileName(const std::string& scene, int frame) {
+/// SCENE_ffff.png, or with `extension` in place of .png.
+std::string frameFileName(const std::string& scene, int frame, const std::string& extension = ".png") {
   char number[16];
   std::snprintf(number, sizeof(number), kFrameNumber, frame);
-  return scene + "_" + number + ".png";
+  return scene + "_" + number + extension;
 }
 
 void printProgress(int done, int total, double elapsedSeconds) {
@@ -74,6 +77,7 @@ Result<std::pair<int, int>> parseFrameRange(const std::string& text) {
 struct FrameRecord {
   int frame = 0;
   std::string file;
+  std::string exrFile;  ///< empty without --exr
   std::vector<render::PassTiming> passes;
   scenes::FrameStageTimes stages;  ///< the simulation's share (zero for cached frames)
   double loadCacheMs = 0.0;        ///< reading and showing the cached state
@@ -93,6 +97,7 @@ nlohmann::json jsonReport(const RenderOptions& options, const std::string& scene
     }
     perFrame.push_back({{"frame", record.frame},
                         {"file", record.file},
+                        {"exr_file", record.exrFile.empty() ? nlohmann::json() : nlohmann::json(record.exrFile)},
                         {"wall_ms", record.wallMs},
                         {"simulate_ms", record.stages.simulateMs},
                         {"upload_ms", record.stages.uploadMs},
@@ -223,10 +228,19 @@ void run(const RenderOptions& options, bool sceneGiven) {
     if (auto written = render::writePng(path, width, height, *pixels); !written)
       return failWith(written.error().message);
     record.file = std::filesystem::absolute(path).lexically_normal().string();
+    if (options.exr) {
+      auto hdr = (*renderer)->readHdrOutput();
+      if (!hdr) return failWith(hdr.error().message);
+      const auto exrPath = outDir / frameFileName(stem, frame, ".exr");
+      if (auto written = render::writeExr(exrPath, width, height, *hdr); !written)
+        return failWith(written.error().message);
+      record.exrFile = std::filesystem::absolute(exrPath).lexically_normal().string();
+    }
     record.wallMs = std::chrono::duration<double, std::milli>(Clock::now() - frameStart).count();
     records.push_back(std::move(record));
     if (frameCount == 1 && !options.json) {
       std::cout << "wrote " << records.back().file << " (" << width << "x" << height << ")\n";
+      if (options.exr) std::cout << "wrote " << records.back().exrFile << " (linear fp16 RGB)\n";
     } else if (progress) {
       printProgress(int(records.size()), frameCount, std::chrono::duration<double>(Clock::now() - start).count());
     }
@@ -234,7 +248,8 @@ void run(const RenderOptions& options, bool sceneGiven) {
   const double wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (frameCount > 1 && !options.json)
     std::cout << (progress ? "\n" : "") << "wrote " << frameCount << " frames to "
-              << std::filesystem::absolute(outDir).lexically_normal().string() << "/" << stem << "_NNNN.png\n";
+              << std::filesystem::absolute(outDir).lexically_normal().string() << "/" << stem << "_NNNN.png"
+              << (options.exr ? " and .exr" : "") << '\n';
   if (ffmpeg) {
     const std::filesystem::path mp4 = std::filesystem::absolute(options.mp4).lexically_normal();
     std::error_code error;
@@ -303,6 +318,9 @@ void addRenderCommand(CLI::App& app) {
   range->excludes(frames);
   cache->excludes(frames);
   cache->excludes(fps);
+  command->add_flag("--exr", options->exr,
+                    "Also write each frame's HDR colour as SCENE_ffff.exr beside its PNG: fp16 RGB, linear, before "
+                    "exposure, glow and tone mapping");
   command->add_flag("--strict", options->strict, kStrictGroomsHelp);
   command->add_flag("--json", options->json,
                     "Print a JSON report (per-frame and per-pass GPU times, frame times, state hash) instead of text");

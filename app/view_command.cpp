@@ -43,9 +43,11 @@ struct ViewOptions {
 constexpr const char* kKeyHelp =
     "Keys: Space pause/run the simulation, N step one frame while paused, K skin pre-integrated / texture-space "
     "diffusion, H hair shadows opacity / deep opacity maps, T tone map Reinhard / linear, G glow, A auto gain, "
-    "R god rays, F fur shells and fins / bare, O the on-screen text, J / L turn the key light left / right 15 degrees, "
+    "R god rays, F fur shells and fins / bare, S the surfaces' soft shadows, O the on-screen text, J / L turn the key "
+    "light left / right 15 degrees, "
     "I / M raise / lower it 10 degrees, C a character's next animation clip (cross-faded), E its next expression "
-    "(morph target blended in, the last one out), Esc quit. Mouse: left drag orbits, right drag turns the key light, wheel "
+    "(morph target blended in, the last one out), Esc quit. Mouse: left drag orbits, right drag turns the key light, "
+    "wheel "
     "zooms.";
 
 // Spherical coordinates around the scene camera's target.
@@ -117,8 +119,10 @@ struct InputState {
   // take a new Renderer::setScene, made when `techniquesChanged` is set.
   bool flipSkinDiffusion = false;
   bool flipHairShadows = false;
-  bool furShells = true;  // F: fur as shells and fins, or the bare body with its photo
+  bool furShells = true;       // F: fur as shells and fins, or the bare body with its photo
+  bool surfaceShadows = true;  // S: the surfaces' soft shadows from the key light
   bool techniquesChanged = false;
+  bool announceTechniques = false;  // print the technique line with the next frame (K, H, S)
   bool showOverlay = true;  // O
   // Characters: C plays each one's next clip, E blends in its next expression.
   bool nextClip = false;
@@ -137,14 +141,18 @@ void press(GLFWwindow* window, InputState& state, int key) {
     case GLFW_KEY_R: state.flipGodRays = !state.flipGodRays; break;
     case GLFW_KEY_K:
       state.flipSkinDiffusion = !state.flipSkinDiffusion;
-      state.techniquesChanged = true;
+      state.techniquesChanged = state.announceTechniques = true;
       break;
     case GLFW_KEY_H:
       state.flipHairShadows = !state.flipHairShadows;
-      state.techniquesChanged = true;
+      state.techniquesChanged = state.announceTechniques = true;
       break;
     case GLFW_KEY_O: state.showOverlay = !state.showOverlay; break;
     case GLFW_KEY_F: state.furShells = !state.furShells; break;
+    case GLFW_KEY_S:
+      state.surfaceShadows = !state.surfaceShadows;
+      state.announceTechniques = true;
+      break;
     case GLFW_KEY_C: state.nextClip = true; break;
     case GLFW_KEY_E: state.nextExpression = true; break;
     case GLFW_KEY_J:
@@ -201,8 +209,8 @@ std::string techniqueLine(const render::StaticScene& scene, const render::FrameI
                                                                                               : "OFF";
   const auto onOff = [](bool on) { return on ? "ON" : "OFF"; };
   const std::string fur = scene.furs.empty() ? "-" : frame.furShells ? "SHELLS" : "BARE";
-  return "K SKIN " + skin + "  H SHADOWS " + shadows + "  F FUR " + fur + "  T " +
-         (post.toneMapping == render::ToneMapping::kReinhard ? "REINHARD" : "LINEAR") + "  G GLOW " +
+  return "K SKIN " + skin + "  H SHADOWS " + shadows + "  S SOFT " + onOff(frame.surfaceShadows) + "  F FUR " + fur +
+         "  T " + (post.toneMapping == render::ToneMapping::kReinhard ? "REINHARD" : "LINEAR") + "  G GLOW " +
          onOff(post.glowStrength > 0.0f) + "  A GAIN " + onOff(post.autoGain) + "  R RAYS " +
          onOff(post.godRays > 0.0f);
 }
@@ -298,7 +306,6 @@ void run(const ViewOptions& options) {
       (*device)->device().waitIdle();
       drawn = withTechniques(world->staticScene(), input);
       if (auto set = loop->setScene(drawn); !set) return failWith(set.error().message);
-      std::cout << techniqueLine(drawn, world->frameInput()) << '\n';
     }
     // Over half a second: quick enough to follow the key, slow enough to see the blend.
     constexpr float kCharacterBlendSeconds = 0.5f;
@@ -320,6 +327,9 @@ void run(const ViewOptions& options) {
     frameInput.post = toggled(frameInput.post, input);
     frameInput.post.frameSeconds = float(dt);
     frameInput.furShells = input.furShells;
+    frameInput.surfaceShadows = input.surfaceShadows;
+    if (input.announceTechniques) std::cout << techniqueLine(drawn, frameInput) << '\n';
+    input.announceTechniques = false;
     if (!frameInput.lights.empty()) {
       frameInput.lights[0].direction = input.light.apply(frameInput.lights[0].direction);
       if (input.lightChanged) std::cout << lightLine(frameInput.lights[0].direction) << '\n';

@@ -24,6 +24,8 @@
 //   BM_NaluFrame/variant:11 as shipped, under an environment (the Venice sunset panorama as
 //                           timbury.json turns it): its irradiance on the surfaces, its
 //                           background; its cost is this row over row 0
+//   BM_NaluFrame/variant:12 as shipped without the surfaces' soft shadows
+//                           (FrameInput::surfaceShadows off): their cost is row 0 over this row
 //
 // The same frame of scenes/robot.json: a glTF character skinned on the GPU (walking), its crest
 // of hair and its cape simulated against it. The frozen rows empty the character's clips and
@@ -80,7 +82,8 @@ enum Variant : int {
   kDemoContentEveryStrand,
   kStrands50kFar,             // from 4× the camera's distance: the level of detail draws about half of them
   kStrands50kFarEveryStrand,  // the same without the level of detail
-  kEnvironment                // lit by a panorama, which is also the background
+  kEnvironment,               // lit by a panorama, which is also the background
+  kNoSurfaceShadows           // the surfaces without their soft shadows
 };
 
 double median(std::vector<double> values) {
@@ -94,6 +97,7 @@ struct FrameOptions {
   unsigned msaaSamples = 1;
   bool hideOccludedHair = true;
   bool furShells = true;
+  bool surfaceShadows = true;
   /// Untimed frames before the timed ones: first-use work (pipeline compiles, the diffusion's
   /// first irradiance), and for a moving body, the hair and cloth catching up with its motion.
   int untimedFrames = 1;
@@ -131,6 +135,7 @@ void measureFrames(benchmark::State& state, scenes::Scene scene, const FrameOpti
     render::FrameInput input = world->frameInput();
     input.post.frameSeconds = float(kFrameSeconds);
     if (!options.furShells) input.furShells = false;
+    if (!options.surfaceShadows) input.surfaceShadows = false;
     auto timings = loop->renderFrame(input);
     if (timed) {
       const scenes::FrameStageTimes& stages = loop->lastStageTimes();
@@ -213,6 +218,7 @@ void BM_NaluFrame(benchmark::State& state) {
                 {.msaaSamples = variant == kMsaa4 ? 4u : 1u,
                  .hideOccludedHair = variant != kDemoContentEveryStrand,
                  .furShells = variant != kNoFurShells,
+                 .surfaceShadows = variant != kNoSurfaceShadows,
                  .editStatics = [variant](render::StaticScene& statics) {
                    for (render::MaterialData& material : statics.materials)
                      if (variant == kTextureSpace && material.shading == render::SurfaceShading::kSkin)
@@ -223,7 +229,7 @@ void BM_NaluFrame(benchmark::State& state) {
 
 BENCHMARK(BM_NaluFrame)
     ->ArgName("variant")
-    ->DenseRange(kShipped, kEnvironment)
+    ->DenseRange(kShipped, kNoSurfaceShadows)
     ->Iterations(9)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -17,6 +17,7 @@ endif()
 
 if("render" IN_LIST MANE_COMPONENTS)
   find_package(Vulkan REQUIRED)
+  find_package(OpenEXR CONFIG REQUIRED)
   find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
   # stb: Debian builds the implementations into libstb; the headers live under stb/.

@@ -250,6 +250,9 @@ struct FrameInput {
   PostSettings post;
   /// Fur materials as shells and fins; off: as Lambert surfaces textured with their photo.
   bool furShells = true;
+  /// Soft shadows of the surfaces from the first light, as wide as its disc
+  /// (render/passes/surface_shadow_pass.hpp); off: only hair and fur shadow the surfaces.
+  bool surfaceShadows = true;
 };
 
 /// GPU time of each pass of one frame, in milliseconds, in the order the passes ran.

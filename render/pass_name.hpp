@@ -24,6 +24,7 @@ public:
   static const PassName kSkinning;           ///< skinned, morphing meshes deformed (compute)
   static const PassName kStrands;            ///< the grooms' strand interpolation (compute)
   static const PassName kHairShadows;        ///< the hair and fur opacity shadow maps from light 0
+  static const PassName kSurfaceShadows;     ///< light 0's depth map of every surface, for their soft shadows
   static const PassName kSkinDiffusion;      ///< texture-space skin: irradiance in uv space and its blurs
   static const PassName kTranslucencyDepth;  ///< light 0's depth map of the translucent surfaces
   static const PassName kSkinGBuffer;        ///< the deferred skin's G-buffer, where hair follows it
@@ -47,6 +48,7 @@ inline constexpr PassName PassName::kStrands{"strands"};
 inline constexpr PassName PassName::kHairShadows{"hair shadows"};
 inline constexpr PassName PassName::kSkinDiffusion{"skin diffusion"};
 inline constexpr PassName PassName::kTranslucencyDepth{"translucency depth"};
+inline constexpr PassName PassName::kSurfaceShadows{"surface shadows"};
 inline constexpr PassName PassName::kSkinGBuffer{"skin g-buffer"};
 inline constexpr PassName PassName::kSurfaces{"surfaces"};
 inline constexpr PassName PassName::kHairLighting{"hair lighting"};

@@ -27,7 +27,8 @@ Renderer::Renderer(const Device& device, const RendererSettings& settings, std::
       hideOccludedHair_(settings.hideOccludedHair),
       shadows_(std::move(shadows)),
       translucency_(device),
-      scene_(device, *shadows_, translucency_.lightDepth()),
+      surfaceShadows_(device, SurfaceScene::kVertexStride),
+      scene_(device, *shadows_, translucency_.lightDepth(), surfaceShadows_),
       surfaces_(device, scene_, translucency_, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat,
                 target_.samples()),
       deferredSkin_(device, scene_, *shadows_, RenderTarget::kHdrFormat, RenderTarget::kDepthFormat),
@@ -168,7 +169,8 @@ Result<void> Renderer::setTextureSpaceSkins(const StaticScene& scene) {
   for (std::size_t m = 0; m < scene.materials.size(); ++m) {
     const MaterialData& material = scene.materials[m];
     if (material.shading != SurfaceShading::kSkin || material.skin.diffusion != SkinDiffusion::kTextureSpace) continue;
-    auto pass = SkinDiffusionPass::create(*device_, {.size = material.skin.irradianceSize}, shadows_.get());
+    auto pass =
+        SkinDiffusionPass::create(*device_, {.size = material.skin.irradianceSize}, shadows_.get(), &surfaceShadows_);
     if (!pass) return fail("material " + std::to_string(m) + ": " + pass.error().message);
     if (auto set = pass->setNormalMap(material.normalMap); !set)
       return fail("material " + std::to_string(m) + ": " + set.error().message);
@@ -346,18 +348,34 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
                       groom.ribbons->setDrawOrder(groom.order->backToFront(groom.guideMiddles, eye));
     }
   }
+  // Before the skin diffusion, which reads it too.
+  if (frame.surfaceShadows) {
+    surfaceShadows_.prepare(frame, scene_);
+    if (surfaceShadows_.drawsAnything())
+      graph_.addPass(
+          PassName::kSurfaceShadows, [this](Builder& pass) { surfaceShadows_.declare(pass); },
+          [this](const Commands& c) { surfaceShadows_.record(c); });
+  }
+  const bool surfaceShadows = frame.surfaceShadows && surfaceShadows_.drawsAnything();
   if (!textureSpaceSkins_.empty()) {
-    // Skin lit in UV space (light 0 through the hair shadows) and blurred, before the surfaces
-    // sample it.
+    // Skin lit in UV space (light 0 through the hair's and the surfaces' shadows) and blurred,
+    // before the surfaces sample it.
     bool diffused = false;
     for (const TextureSpaceSkin& skin : textureSpaceSkins_) {
       const MeshInstance* instance = diffusionInstance(skin, frame);
       if (!instance) continue;
       graph_.addPass(
-          PassName::kSkinDiffusion, [&](Builder& pass) { skin.pass->declare(pass); },
-          [this, &frame, &skin, instance](const Commands& c) {
+          PassName::kSkinDiffusion,
+          [&](Builder& pass) {
+            skin.pass->declare(pass);
+            if (surfaceShadows) surfaceShadows_.declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);
+          },
+          [this, &frame, &skin, instance, surfaceShadows](const Commands& c) {
             skin.pass->record(c, *diffusionMeshes_[instance->mesh],
-                              {.model = instance->model, .lights = frame.lights, .ambient = ambientRadiance(frame)});
+                              {.model = instance->model,
+                               .lights = frame.lights,
+                               .ambient = ambientRadiance(frame),
+                               .surfaceShadows = surfaceShadows});
           });
       diffused = true;
     }
@@ -436,6 +454,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
       PassName::kOutput, [&](Builder& pass) { output_.declare(pass, target_, frame.post); },
       [this, &frame](const Commands& c) { output_.record(c, target_, frame.exposure, frame.post); });
   graph_.leaveAs(target_.output(), ResourceUse::transferSource());
+  graph_.leaveAs(target_.hdr(), ResourceUse::transferSource());
   for (std::size_t g = 0; g < hair_.size(); ++g)
     if (plan.drawn[g]) hair_[g].ribbons->leaveChoiceReadable(graph_);  // hairChoices reads it
 
@@ -490,6 +509,8 @@ void Renderer::addHairLighting() {
 void Renderer::declareSurfaceReads(FrameGraph::Builder& pass, const FrameInput& frame) const {
   shadows_->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);  // the surfaces' and the furs'
   if (translucency_.drawsTranslucency(frame, scene_)) translucency_.declareReads(pass);
+  if (frame.surfaceShadows && surfaceShadows_.drawsAnything())
+    surfaceShadows_.declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);
   for (const TextureSpaceSkin& skin : textureSpaceSkins_)
     if (diffusionInstance(skin, frame)) skin.pass->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);
 }
@@ -643,6 +664,17 @@ Result<std::vector<std::uint8_t>> Renderer::readOutput() const {
     return rgba;
   } catch (const std::exception& error) {
     return fail(std::string("reading the frame back failed: ") + error.what());
+  }
+}
+
+Result<std::vector<std::uint16_t>> Renderer::readHdrOutput() const {
+  try {
+    const auto bytes = readBack(*device_, target_.hdr(), 4 * sizeof(std::uint16_t));
+    std::vector<std::uint16_t> rgba(bytes.size() / sizeof(std::uint16_t));
+    std::memcpy(rgba.data(), bytes.data(), bytes.size());
+    return rgba;
+  } catch (const std::exception& error) {
+    return fail(std::string("reading the HDR frame back failed: ") + error.what());
   }
 }
 

@@ -94,7 +94,8 @@ public:
   /// FurPass::setLeans), e.g. from simulated guides; takes effect from the next render.
   Result<void> updateFurLeans(std::size_t fur, std::span<const glm::vec3> leans);
 
-  /// Records every pass of `frame`; leaves target().output() in TRANSFER_SRC layout.
+  /// Records every pass of `frame`; leaves target().output() and target().hdr() in TRANSFER_SRC
+  /// layout.
   void record(const vk::raii::CommandBuffer& commands, const FrameInput& frame);
 
   /// Renders `frame`, waits for it, and returns the GPU time of each pass.
@@ -102,6 +103,9 @@ public:
 
   /// The last rendered frame as sRGB-encoded RGBA8, rows top to bottom.
   Result<std::vector<std::uint8_t>> readOutput() const;
+  /// The last rendered frame's linear HDR colour before exposure, glow and tone mapping, as
+  /// fp16 RGBA bit patterns, rows top to bottom.
+  Result<std::vector<std::uint16_t>> readHdrOutput() const;
 
   /// GPU times of the last frame whose commands completed.
   std::vector<PassTiming> lastTimings() const { return timer_.results(); }
@@ -160,6 +164,7 @@ private:
   std::unique_ptr<HairShadowPass> shadows_;
   // The opaque surfaces: the scene's meshes and materials, translucency, forward and deferred.
   TranslucencyPass translucency_;
+  SurfaceShadowPass surfaceShadows_;
   SurfaceScene scene_;
   SurfacePass surfaces_;
   DeferredSkinPass deferredSkin_;

@@ -6,20 +6,23 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <glm/common.hpp>
 
+#include "render/exr.hpp"
 #include "scenes/detail/file_bytes.hpp"
 #include "stb_image.h"
 
 namespace mane::scenes {
 namespace {
 
-constexpr int kMaxSide = 16384;
-constexpr long long kMaxPixels = 8192LL * 8192;
+// The same limits as OpenEXR panoramas'.
+constexpr int kMaxSide = render::kMaxExrSide;
+constexpr long long kMaxPixels = render::kMaxExrPixels;
 
 /// The next header line from `at` as stb_image 2.27 reads it (stbi__hdr_gettoken): up to a
 /// newline, at most 1023 bytes (the rest of a longer line skipped), the file's last byte left out
@@ -121,34 +124,49 @@ std::optional<std::string> rgbeProblem(std::string_view bytes) {
   return std::nullopt;
 }
 
-}  // namespace
+bool isExr(std::span<const unsigned char> bytes) {
+  return bytes.size() >= 4 && bytes[0] == 0x76 && bytes[1] == 0x2f && bytes[2] == 0x31 && bytes[3] == 0x01;
+}
 
-Result<Panorama> loadEnvironmentImage(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  auto read = detail::readFileBytes(file);
-  if (!read) return std::unexpected(read.error());
-  const std::vector<unsigned char>& bytes = *read;
+/// stb_image's decoding of a Radiance file: three floats a texel, rows top to bottom.
+struct RgbePixels {
+  int width = 0;
+  int height = 0;
+  std::unique_ptr<float, void (*)(void*)> pixels{nullptr, &stbi_image_free};
+};
+
+Result<RgbePixels> decodeRgbe(const std::vector<unsigned char>& bytes, const std::string& name) {
   if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     return fail(name + ": cannot decode the panorama: the file is over 2 GiB");
   const int size = static_cast<int>(bytes.size());
   if (stbi_is_hdr_from_memory(bytes.data(), size) == 0)
-    return fail(name + ": not a Radiance HDR file (it must begin with \"#?RADIANCE\" or \"#?RGBE\")");
+    return fail(name +
+                ": not a Radiance HDR or OpenEXR file (it must begin with \"#?RADIANCE\", \"#?RGBE\" or the "
+                "bytes 76 2f 31 01)");
   if (auto problem = rgbeProblem(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size())))
     return fail(name + ": cannot decode the panorama: " + *problem);
-  int width = 0, height = 0, channels = 0;
+  RgbePixels rgbe;
+  int channels = 0;
   // The header as stb_image reads it, too: a large declared size would otherwise be allocated
   // before the scanlines are found missing.
-  if (stbi_info_from_memory(bytes.data(), size, &width, &height, &channels) != 0 &&
-      (width > kMaxSide || height > kMaxSide || static_cast<long long>(width) * height > kMaxPixels))
-    return fail(name + ": panorama too large: " + std::to_string(width) + " x " + std::to_string(height) +
+  if (stbi_info_from_memory(bytes.data(), size, &rgbe.width, &rgbe.height, &channels) != 0 &&
+      (rgbe.width > kMaxSide || rgbe.height > kMaxSide ||
+       static_cast<long long>(rgbe.width) * rgbe.height > kMaxPixels))
+    return fail(name + ": panorama too large: " + std::to_string(rgbe.width) + " x " + std::to_string(rgbe.height) +
                 " pixels (at most " + std::to_string(kMaxSide) + " on a side and " + std::to_string(kMaxPixels) +
                 " in all)");
-  std::unique_ptr<float, void (*)(void*)> pixels(
-      stbi_loadf_from_memory(bytes.data(), size, &width, &height, &channels, 3), &stbi_image_free);
-  if (!pixels) {
+  rgbe.pixels.reset(stbi_loadf_from_memory(bytes.data(), size, &rgbe.width, &rgbe.height, &channels, 3));
+  if (!rgbe.pixels) {
     const char* reason = stbi_failure_reason();
     return fail(name + ": cannot decode the panorama: " + (reason ? reason : "unknown error"));
   }
+  return rgbe;
+}
+
+/// The panorama of `width` × `height` texels given by `texel(i)`: checked to be equirectangular,
+/// its texels repaired (see Panorama).
+template <class Texel>
+Result<Panorama> panoramaOf(const std::string& name, int width, int height, Texel texel) {
   if (width <= 0 || height <= 0)
     return fail(name + ": the panorama has no pixels (" + std::to_string(width) + " x " + std::to_string(height) + ")");
   if (std::abs(width - 2 * height) > 1)
@@ -157,14 +175,42 @@ Result<Panorama> loadEnvironmentImage(const std::filesystem::path& file) {
   Panorama panorama{.image = {.width = width, .height = height}};
   const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   panorama.image.texels.resize(count);
-  const float* in = pixels.get();
-  for (std::size_t i = 0; i < count; ++i, in += 3) {
-    const glm::vec3 texel(in[0], in[1], in[2]);
-    const glm::vec3 clamped = glm::min(texel, glm::vec3(kMaxPanoramaRadiance));
-    if (clamped != texel) ++panorama.clampedTexels;
-    panorama.image.texels[i] = clamped;
+  for (std::size_t i = 0; i < count; ++i) {
+    glm::vec3 repaired = texel(i);
+    bool zeroed = false, clamped = false;
+    for (int c = 0; c < 3; ++c) {
+      if (!(repaired[c] >= 0.0f)) {  // negative or not a number
+        repaired[c] = 0.0f;
+        zeroed = true;
+      } else if (repaired[c] > kMaxPanoramaRadiance) {
+        repaired[c] = kMaxPanoramaRadiance;
+        clamped = true;
+      }
+    }
+    panorama.zeroedTexels += zeroed ? 1 : 0;
+    panorama.clampedTexels += clamped ? 1 : 0;
+    panorama.image.texels[i] = repaired;
   }
   return panorama;
+}
+
+}  // namespace
+
+Result<Panorama> loadEnvironmentImage(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  auto read = detail::readFileBytes(file);
+  if (!read) return std::unexpected(read.error());
+  const std::vector<unsigned char>& bytes = *read;
+  if (isExr(bytes)) {
+    auto exr = render::decodeExr(bytes, name);
+    if (!exr) return std::unexpected(exr.error());
+    return panoramaOf(name, exr->width, exr->height, [&](std::size_t i) { return glm::vec3(exr->texels[i]); });
+  }
+  auto rgbe = decodeRgbe(bytes, name);
+  if (!rgbe) return std::unexpected(rgbe.error());
+  const float* texels = rgbe->pixels.get();
+  return panoramaOf(name, rgbe->width, rgbe->height,
+                    [&](std::size_t i) { return glm::vec3(texels[3 * i], texels[3 * i + 1], texels[3 * i + 2]); });
 }
 
 }  // namespace mane::scenes

@@ -77,6 +77,17 @@ Camera parseCamera(const Json& json, const std::string& path) {
   camera.verticalFovDegrees = fields.optional<float>("fov_degrees", camera.verticalFovDegrees);
   camera.nearPlane = fields.optional<float>("near", camera.nearPlane);
   camera.farPlane = fields.optional<float>("far", camera.farPlane);
+  if (const Json* orbit = fields.take("orbit")) {
+    ObjectFields orbitFields(*orbit, path + ".orbit");
+    CameraOrbit turn;
+    turn.degrees = orbitFields.required<float>("degrees");
+    turn.seconds = orbitFields.required<float>("seconds");
+    orbitFields.finish();
+    require(std::abs(turn.degrees) <= 3600.0f, orbitFields.child("degrees"), "expected a turn within ±3600 degrees");
+    require(turn.seconds > 0.0f && turn.seconds <= 1e6f, orbitFields.child("seconds"),
+            "expected a duration in (0, 1e6] seconds");
+    camera.orbit = turn;
+  }
   fields.finish();
   require(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f, fields.child("fov_degrees"),
           "expected a vertical field of view in (0, 180) degrees");
@@ -490,6 +501,15 @@ Result<Scene> loadScene(const std::filesystem::path& file) {
   std::ostringstream text;
   text << stream.rdbuf();
   return parseScene(text.str(), file);
+}
+
+glm::vec3 cameraPositionAt(const Camera& camera, double seconds) {
+  if (!camera.orbit || !(seconds > 0.0)) return camera.position;
+  const double progress = std::min(seconds / double(camera.orbit->seconds), 1.0);
+  const double eased = 0.5 * (1.0 - std::cos(std::numbers::pi * progress));
+  const float angle = glm::radians(camera.orbit->degrees) * float(eased);
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), angle, glm::normalize(camera.up));
+  return camera.target + glm::vec3(turn * glm::vec4(camera.position - camera.target, 0.0f));
 }
 
 }  // namespace mane::scenes

@@ -32,6 +32,14 @@ struct OutputSettings {
   int height = 720;
 };
 
+/// A turn of the camera round its target, about the up axis through it, eased in and out: the
+/// angle at time t is degrees · (1 − cos(π·min(t/seconds, 1)))/2, counter-clockwise seen from
+/// above for positive degrees.
+struct CameraOrbit {
+  float degrees = 0.0f;  ///< the whole turn, in [−3600, 3600]
+  float seconds = 1.0f;  ///< how long it takes, > 0
+};
+
 /// A perspective camera; positions in metres.
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 3.0f};
@@ -40,7 +48,12 @@ struct Camera {
   float verticalFovDegrees = 40.0f;  ///< full vertical field of view, degrees, in (0, 180)
   float nearPlane = 0.05f;           ///< metres, > 0
   float farPlane = 100.0f;           ///< metres, > nearPlane
+  std::optional<CameraOrbit> orbit;  ///< none: the camera stays where it is
 };
+
+/// Where `camera` is at `seconds` into the scene: its position turned by its orbit (the position
+/// itself without one, or at time 0).
+[[nodiscard]] glm::vec3 cameraPositionAt(const Camera& camera, double seconds);
 
 enum class LightKind { directional };
 

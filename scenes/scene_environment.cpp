@@ -37,6 +37,9 @@ Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene&
       if (panorama->clampedTexels > 0)
         notes.push_back("environment: " + environment.file + ": " + std::to_string(panorama->clampedTexels) +
                         " texels brighter than " + std::to_string(kMaxPanoramaRadiance) + " clamped to it");
+      if (panorama->zeroedTexels > 0)
+        notes.push_back("environment: " + environment.file + ": " + std::to_string(panorama->zeroedTexels) +
+                        " texels negative or not a number set to 0");
       const int size = environment.cubeSize > 0 ? environment.cubeSize : kPanoramaCubeSize;
       return render::EnvironmentData{.radiance = render::cubeFromEquirect(panorama->image, size,
                                                                           glm::radians(environment.rotationDegrees),

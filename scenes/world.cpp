@@ -637,7 +637,7 @@ render::FrameInput World::frameInput() const {
   render::FrameInput frame;
   frame.post = scene_.post;
   const Camera& camera = scene_.camera;
-  frame.camera = render::Camera{.position = camera.position,
+  frame.camera = render::Camera{.position = cameraPositionAt(camera, time_),
                                 .target = camera.target,
                                 .up = camera.up,
                                 .verticalFovRadians = glm::radians(camera.verticalFovDegrees),

@@ -11,7 +11,7 @@ packages=(
   glslang-tools glslang-dev spirv-tools
   libglfw3-dev xvfb xauth
   libosd-dev libmeshoptimizer-dev
-  libtinygltf-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev libcli11-dev libssl-dev libcurl4-openssl-dev
+  libopenexr-dev libtinygltf-dev libtinyobjloader-dev libstb-dev nlohmann-json3-dev libcli11-dev libssl-dev libcurl4-openssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libbullet-dev
   python3-dev pybind11-dev python3-numpy python3-pytest
   curl

@@ -5,6 +5,9 @@
 #define HAIR_SHADOW_BINDING 1
 #include "hair_shadows.glsl"
 #include "light_depth.glsl"
+#define SURFACE_SHADOW_SET 0
+#define SURFACE_SHADOW_BINDING 11
+#include "surface_shadow_map.glsl"
 
 const int kMaxLights = 4;
 
@@ -20,6 +23,7 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   // The environment's irradiance over π as nine spherical harmonics (rgb), in the order of
   // render/environment/spherical_harmonics.hpp.
   vec4 environmentIrradiance[9];
+  SurfaceShadow surfaceShadow;  // cast by light 0
 } frame;
 
 // The environment's radiance pre-filtered for GGX roughness level/7 at each mip level

@@ -8,6 +8,7 @@
 // lavapipe runs the lanes a branch masks off, so it would light every pixel of the screen.
 #include "frame_uniforms.glsl"
 #include "skin_lights.glsl"
+#include "surface_shadows.glsl"
 
 layout(set = 2, binding = 0) uniform sampler2D gPosition;   // xyz: metres; w: curvature (1/mm)
 layout(set = 2, binding = 1) uniform sampler2D gGeometric;  // xyz: geometric normal; w: ρs
@@ -22,8 +23,9 @@ void main() {
   vec4 geometric = texelFetch(gGeometric, pixel, 0);
   vec3 detail = texelFetch(gDetail, pixel, 0).xyz;
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
-  float hairShadow = hairShadowTransmittance(frame.hairShadows, position.xyz);
+  float shadow = hairShadowTransmittance(frame.hairShadows, position.xyz) *
+                 surfaceShadowVisibility(frame.surfaceShadow, position.xyz, geometric.xyz, frame.lightDirection[0].xyz);
   vec3 diffuse = skinAmbient(geometric.xyz, detail), specular;
-  skinLights(position.xyz, geometric.xyz, detail, geometric.w, position.w, hairShadow, diffuse, specular);
+  skinLights(position.xyz, geometric.xyz, detail, geometric.w, position.w, shadow, diffuse, specular);
   outColor = vec4(albedo * diffuse + specular, 1.0);
 }

@@ -1,11 +1,12 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Irradiance and stretch in texture space (render/passes/skin_diffusion_pass.hpp): per texel
-// E = ambient + Σ max(N·L, 0)·radiance (light 0 through the hair shadows) with coverage 1, and the millimetres of surface one texel
+// E = ambient + Σ max(N·L, 0)·radiance (light 0 through the hair's and the surfaces' shadows) with coverage 1, and the millimetres of surface one texel
 // spans along u and along v (the stretch map of d'Eon & Luebke, GPU Gems 3 §14.4.2, here as
 // lengths rather than their inverses, so that texels off the mesh can hold 0).
 #include "skin_irradiance.glsl"
 #include "cotangent_frame.glsl"
+#include "surface_shadows.glsl"
 
 layout(set = 0, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y up (OpenGL convention)
 
@@ -23,6 +24,7 @@ void main() {
   outStretch = vec2(length(dFdx(inWorldPosition)), length(dFdy(inWorldPosition))) * irradiance.scales.x;
 
   vec3 normal = normalize(inWorldNormal);
+  vec3 geometric = normal;
   if (irradiance.counts.y != 0) {
     vec3 mapped = texture(normalMap, inUv).xyz * 2.0 - 1.0;
     // The uv v axis runs down the image, so the map's +Y (up) is −v (as in shaders/surface.frag).
@@ -30,9 +32,11 @@ void main() {
     normal = normalize(cotangentFrame(normal, inWorldPosition, inUv) * mapped);
   }
   vec3 sum = irradiance.ambient.rgb;
-  float hairShadow = hairShadowTransmittance(irradiance.hairShadows, inWorldPosition);
+  float shadow = hairShadowTransmittance(irradiance.hairShadows, inWorldPosition) *
+                 surfaceShadowVisibility(irradiance.surfaceShadow, inWorldPosition, geometric,
+                                         irradiance.lightDirection[0].xyz);
   for (int i = 0; i < irradiance.counts.x; ++i)
     sum += irradiance.lightRadiance[i].rgb * max(dot(normal, irradiance.lightDirection[i].xyz), 0.0) *
-           (i == 0 ? hairShadow : 1.0);
+           (i == 0 ? shadow : 1.0);
   outIrradiance = vec4(sum, 1.0);
 }

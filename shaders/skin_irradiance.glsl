@@ -7,6 +7,10 @@ const int kSkinIrradianceMaxLights = 4;  // SkinDiffusionPass::kMaxLights
 #define HAIR_SHADOW_SET 0
 #define HAIR_SHADOW_BINDING 2
 #include "hair_shadows.glsl"
+#include "light_depth_uniforms.glsl"
+#define SURFACE_SHADOW_SET 0
+#define SURFACE_SHADOW_BINDING 10
+#include "surface_shadow_map.glsl"
 
 layout(set = 0, binding = 0, std140) uniform SkinIrradiance {
   mat4 model;         // object → world
@@ -17,4 +21,5 @@ layout(set = 0, binding = 0, std140) uniform SkinIrradiance {
   ivec4 counts;       // x lights, y 1 with a normal map
   vec4 scales;        // x millimetres per world unit
   HairShadowUniforms hairShadows;  // cast by light 0
+  SurfaceShadow surfaceShadow;     // cast by light 0
 } irradiance;

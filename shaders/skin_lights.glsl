@@ -48,8 +48,8 @@ vec3 skinEnvironmentSpecular(vec3 detail, vec3 toEye, float rhoS) {
 // Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
 // `specular` to their specular radiance, at `position` (metres) with the geometric and the detail
 // (normal-mapped) normals, ρs scaled by the specular map, and curvature 1/r in 1/mm. The first
-// light is attenuated by `hairShadow`.
-void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float curvature, float hairShadow,
+// light is attenuated by `shadow` (the hair's and the surfaces' shadows).
+void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float curvature, float shadow,
                 inout vec3 diffuse, out vec3 specular) {
   vec3 toEye = normalize(frame.cameraPosition.xyz - position);
   vec3 normalR = normalize(mix(detail, geometric, draw.blur.r));
@@ -62,7 +62,7 @@ void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float cu
   int i = 0;
   do {
     vec3 toLight = frame.lightDirection[i].xyz;
-    vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? hairShadow : 1.0);
+    vec3 radiance = frame.lightRadiance[i].rgb * (i == 0 ? shadow : 1.0);
     vec3 lit = diffuse;
     if (!kTextureSpaceDiffusion) {
       vec3 scattered = vec3(preintegratedSkinDiffuse(skinTable, 0, dot(normalR, toLight), curvature, draw.skin.z),

@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Surfaces with an albedo texture and a tangent-space normal map, Lambert or skin (see
-// render/passes/surface_pass.hpp); the first light is attenuated by the hair shadows.
+// render/passes/surface_pass.hpp); the first light is attenuated by the hair's shadows and the
+// surfaces' own.
 #include "frame_uniforms.glsl"
 #include "cotangent_frame.glsl"
 
@@ -11,6 +12,7 @@ layout(set = 1, binding = 1) uniform sampler2D normalMap;  // tangent space, +Y 
 layout(set = 1, binding = 3) uniform sampler2D diffusedIrradiance;  // texture-space skin: blurred E at the uv
 #include "skin_lights.glsl"
 #include "translucency.glsl"
+#include "surface_shadows.glsl"
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inWorldNormal;
@@ -44,12 +46,12 @@ vec3 translucency(vec3 geometric) {
 
 // Diffuse (per RGB, to multiply by the albedo) and specular radiance of skin under the lights,
 // with ρs scaled by the specular map.
-void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float hairShadow, out vec3 diffuse,
+void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float shadow, out vec3 diffuse,
                out vec3 specular) {
   float rhoS = draw.skin.y * specularMap;
   diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : skinAmbient(geometric, detail)) +
             translucency(geometric);
-  skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, hairShadow, diffuse, specular);
+  skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, shadow, diffuse, specular);
 }
 
 void main() {
@@ -64,16 +66,17 @@ void main() {
   }
   vec4 albedoTexel = texture(albedoMap, inUv);
   vec3 albedo = albedoTexel.rgb * draw.baseColor.rgb;
-  float hairShadow = hairShadowTransmittance(frame.hairShadows, inWorldPosition);
+  float shadow = hairShadowTransmittance(frame.hairShadows, inWorldPosition) *
+                 surfaceShadowVisibility(frame.surfaceShadow, inWorldPosition, geometric, frame.lightDirection[0].xyz);
   if (kSkin) {
     vec3 diffuse, specular;
-    shadeSkin(geometric, normal, albedoTexel.a, hairShadow, diffuse, specular);
+    shadeSkin(geometric, normal, albedoTexel.a, shadow, diffuse, specular);
     outColor = vec4(albedo * diffuse + specular, 1.0);
     return;
   }
   vec3 irradiance = frame.ambient.rgb + environmentLight(normal) + translucency(geometric);
   for (int i = 0; i < frame.lightCount.x; ++i)
     irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
-                  (i == 0 ? hairShadow : 1.0);
+                  (i == 0 ? shadow : 1.0);
   outColor = vec4(albedo * irradiance, 1.0);
 }

@@ -216,11 +216,12 @@ FRAME_VARIANTS = [
     "50,000 strands × 30, the camera 4× as far (about half of them drawn)",
     "same, every strand drawn (no level of detail)",
     "as shipped, under the Venice panorama (environment light and background)",
+    "as shipped, without the surfaces' soft shadows",
 ]
 
 # The frame's passes in the order the Renderer records them; unknown ones follow alphabetically.
 PASS_ORDER = [
-    "skinning", "strands", "hair shadows", "skin diffusion", "translucency depth", "skin g-buffer",
+    "skinning", "strands", "hair shadows", "surface shadows", "skin diffusion", "translucency depth", "skin g-buffer",
     "hair lighting", "surfaces", "hair", "main pass", "clear", "post downsample", "downsample",
     "auto gain", "glow", "god rays", "post overlay", "overlay", "output",
 ]

@@ -1,6 +1,22 @@
 #include "render/passes/light_depth_pass.hpp"
 
+#include <algorithm>
+
 namespace mane::render {
+
+void DrawnBounds::add(const BoundingSphere& local, const glm::mat4& model, float margin) {
+  const glm::vec3 centre = glm::vec3(model * glm::vec4(local.centre, 1.0f));
+  const float scale =
+      std::max({glm::length(glm::vec3(model[0])), glm::length(glm::vec3(model[1])), glm::length(glm::vec3(model[2]))});
+  lo_ = glm::min(lo_, centre - local.radius * scale * margin);
+  hi_ = glm::max(hi_, centre + local.radius * scale * margin);
+  empty_ = false;
+}
+
+BoundingSphere DrawnBounds::sphere() const {
+  if (empty_) return {.centre = glm::vec3(0.0f), .radius = 1.0f};
+  return {.centre = 0.5f * (lo_ + hi_), .radius = 0.5f * glm::length(hi_ - lo_) * 1.001f};
+}
 
 LightDepthPass::LightDepthPass(const Device& device, std::uint32_t vertexStride)
     : depth_(device, {.extent = {kResolution, kResolution},

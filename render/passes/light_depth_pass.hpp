@@ -10,6 +10,7 @@
 // entry. Depth is linear (orthographic), so a texel's thickness error is the depth format's, not
 // a perspective's.
 
+#include <limits>
 #include <span>
 
 #include "render/frame_graph.hpp"
@@ -27,7 +28,23 @@ struct LightDepthDraw {
   glm::mat4 model{1.0f};
 };
 
-/// Mirrors `LightDepth` in shaders/translucency.glsl (std140).
+/// The meshes a depth map is drawn over, gathered into one sphere for its view (prepare).
+class DrawnBounds {
+public:
+  /// Adds a mesh whose vertices lie within `local` (mesh units) placed by `model`: its centre
+  /// moved, its radius scaled by the largest axis scale and by `margin`.
+  void add(const BoundingSphere& local, const glm::mat4& model, float margin = 1.0f);
+  /// A sphere holding every mesh added (the box of their spheres, widened by 0.1 %); the unit
+  /// sphere when none was.
+  [[nodiscard]] BoundingSphere sphere() const;
+
+private:
+  glm::vec3 lo_{std::numeric_limits<float>::max()};
+  glm::vec3 hi_{std::numeric_limits<float>::lowest()};
+  bool empty_ = true;
+};
+
+/// Mirrors `LightDepth` in shaders/light_depth_uniforms.glsl (std140).
 struct LightDepthUniforms {
   glm::mat4 lightFromWorld{1.0f};  ///< orthographicLightFrame of the light and the bounds
   /// x: 2R, metres per unit of depth; y: 1/resolution; z: the map's texel size, metres; w: 1 when

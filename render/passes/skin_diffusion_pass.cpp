@@ -26,11 +26,15 @@ struct IrradianceUniforms {
   glm::ivec4 counts;  // x lights, y normal map
   glm::vec4 scales;   // x millimetres per world unit
   HairShadowUniforms hairShadows;
+  SurfaceShadowUniforms surfaceShadow;  // all 0 where the frame draws no surface shadows
 };
-static_assert(sizeof(IrradianceUniforms) == 304 + sizeof(HairShadowUniforms));
+static_assert(sizeof(IrradianceUniforms) == 304 + sizeof(HairShadowUniforms) + sizeof(SurfaceShadowUniforms));
 
-// Where the hair shadow descriptors start in the irradiance set (shaders/skin_irradiance.glsl).
+// Where the hair shadow descriptors start in the irradiance set (shaders/skin_irradiance.glsl),
+// and the surfaces' shadow map after them, read as depths and compared.
 constexpr std::uint32_t kFirstShadowBinding = 2;
+constexpr std::uint32_t kSurfaceShadowBinding = kFirstShadowBinding + HairShadowPass::kBindings;
+static_assert(kSurfaceShadowBinding == 10, "shaders/skin_irradiance.glsl binds the surface shadow map at 10 and 11");
 
 // Push constants of shaders/skin_diffusion_blur.comp.
 struct BlurConstants {
@@ -104,7 +108,8 @@ Result<void> validate(const SkinDiffusionSettings& settings) {
 }
 
 Result<SkinDiffusionPass> SkinDiffusionPass::create(const Device& device, const SkinDiffusionSettings& settings,
-                                                    const HairShadowPass* shadows) {
+                                                    const HairShadowPass* shadows,
+                                                    const SurfaceShadowPass* surfaceShadows) {
   if (auto valid = validate(settings); !valid) return std::unexpected(valid.error());
   if (auto ok = checkDevice(device, settings.size); !ok) return std::unexpected(ok.error());
   SkinDiffusionPass pass;
@@ -118,7 +123,12 @@ Result<SkinDiffusionPass> SkinDiffusionPass::create(const Device& device, const 
     pass.noShadows_ = std::move(*empty);
     pass.shadows_ = pass.noShadows_.get();
   }
+  pass.surfaceShadows_ = surfaceShadows;
   try {
+    if (!surfaceShadows) {
+      pass.noSurfaceShadows_ = std::make_unique<SurfaceShadowPass>(device, sizeof(glm::vec3));
+      pass.surfaceShadows_ = pass.noSurfaceShadows_.get();
+    }
     pass.createResources();
   } catch (const std::exception& error) {
     return fail(std::string("skin diffusion: creating the pass failed: ") + error.what());
@@ -153,11 +163,14 @@ void SkinDiffusionPass::createResources() {
   normalSampler_ = makeLinearSampler(device, vk::SamplerAddressMode::eRepeat, 1.0f);
 
   using ShaderStage = vk::ShaderStageFlagBits;
-  // Uniforms, normal map, then the hair shadows (kFirstShadowBinding; 2 × 4 maps).
+  // Uniforms, normal map, then the hair shadows (kFirstShadowBinding; 2 × 4 maps), then the
+  // surfaces' shadow map twice (kSurfaceShadowBinding).
   const std::pair shadow{vk::DescriptorType::eCombinedImageSampler, vk::ShaderStageFlags(ShaderStage::eFragment)};
   irradianceLayout_ =
       makeSetLayout(device, {{vk::DescriptorType::eUniformBuffer, ShaderStage::eVertex | ShaderStage::eFragment},
                              {vk::DescriptorType::eCombinedImageSampler, ShaderStage::eFragment},
+                             shadow,
+                             shadow,
                              shadow,
                              shadow,
                              shadow,
@@ -204,11 +217,15 @@ void SkinDiffusionPass::createResources() {
 
   pool_ = makeDescriptorPool(device, 4,
                              {{vk::DescriptorType::eUniformBuffer, 1},
-                              {vk::DescriptorType::eCombinedImageSampler, 4 + HairShadowPass::kBindings},
+                              {vk::DescriptorType::eCombinedImageSampler, 6 + HairShadowPass::kBindings},
                               {vk::DescriptorType::eStorageImage, 12}});
   irradianceSet_ = allocateSet(device, pool_, irradianceLayout_);
   writeUniformBuffer(device, irradianceSet_, 0, uniforms_);
   writeSampledImage(device, irradianceSet_, 1, flatNormal_, normalSampler_);
+  writeSampledImage(device, irradianceSet_, kSurfaceShadowBinding, surfaceShadows_->image().view(),
+                    surfaceShadows_->depthSampler());
+  writeSampledImage(device, irradianceSet_, kSurfaceShadowBinding + 1, surfaceShadows_->image().view(),
+                    surfaceShadows_->compareSampler());
   refreshShadows();
 
   // The blurs: source, stretch, destination, sums of E·c, sums of c.
@@ -296,6 +313,7 @@ void SkinDiffusionPass::recordIrradiance(const vk::raii::CommandBuffer& commands
   uniforms.counts = glm::ivec4(lights, hasNormalMap_ ? 1 : 0, 0, 0);
   uniforms.scales = glm::vec4(float(settings_.profile.millimetresPerUnit), 0.0f, 0.0f, 0.0f);
   uniforms.hairShadows = shadows_->uniforms();
+  if (input.surfaceShadows) uniforms.surfaceShadow = surfaceShadows_->uniforms();
 
   // A uniform scale of the model (the cube root of its determinant) scales the mesh's uv stretch.
   const double modelScale = std::cbrt(std::abs(double(glm::determinant(glm::mat3(input.model)))));

@@ -53,6 +53,7 @@
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/skin_diffusion_kernel.hpp"
 #include "render/passes/skin_diffusion_mesh.hpp"
+#include "render/passes/surface_shadow_pass.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -78,6 +79,9 @@ struct SkinIrradianceInput {
   glm::mat4 model{1.0f};                     ///< object → world; world units are the profile's (metres by default)
   std::span<const DirectionalLight> lights;  ///< the first SkinDiffusionPass::kMaxLights are used
   glm::vec3 ambient{0.0f};                   ///< linear RGB irradiance added everywhere
+  /// Whether the surfaces' shadow map holds this frame's surfaces, to shadow light 0 with (the
+  /// renderer declares the map's read).
+  bool surfaceShadows = false;
 };
 
 class SkinDiffusionPass {
@@ -90,12 +94,14 @@ public:
 
   /// Makes the maps (cleared to 0) and pipelines. `shadows` (which must outlive the pass)
   /// attenuates the first light, with its maps as they are now (create the pass after
-  /// HairShadowPass::setGrooms); none: no hair shadows. Errors: invalid settings, a size past the
-  /// device's image or framebuffer limits, a device that cannot render to, store to or linearly
-  /// filter the formats, or a Vulkan failure.
+  /// HairShadowPass::setGrooms); none: no hair shadows. `surfaceShadows` (likewise) shadows it
+  /// where SkinIrradianceInput::surfaceShadows says; none: no surface shadows. Errors: invalid
+  /// settings, a size past the device's image or framebuffer limits, a device that cannot render
+  /// to, store to or linearly filter the formats, or a Vulkan failure.
   [[nodiscard]] static Result<SkinDiffusionPass> create(const Device& device,
                                                         const SkinDiffusionSettings& settings = {},
-                                                        const HairShadowPass* shadows = nullptr);
+                                                        const HairShadowPass* shadows = nullptr,
+                                                        const SurfaceShadowPass* surfaceShadows = nullptr);
 
   /// Re-reads the hair shadow maps' descriptors (after their slots changed). Between frames.
   void refreshShadows();
@@ -162,6 +168,8 @@ private:
   SkinDiffusionSettings settings_;
   const HairShadowPass* shadows_ = nullptr;
   std::unique_ptr<HairShadowPass> noShadows_;  ///< the empty maps bound when created without shadows
+  const SurfaceShadowPass* surfaceShadows_ = nullptr;
+  std::unique_ptr<SurfaceShadowPass> noSurfaceShadows_;  ///< the map bound, never read, when created without one
   std::array<SkinDiffusionStage, kSkinGaussianCount> stages_{};
   double uncoveredStretch_ = 1.0;  ///< mm per texel for texels off the mesh
 

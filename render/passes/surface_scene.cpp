@@ -30,6 +30,7 @@ struct FrameUniforms {
   HairShadowUniforms hairShadows;
   LightDepthUniforms lightDepth;
   glm::vec4 environmentIrradiance[9];  // rgb: E/π's spherical harmonics; all 0 without an environment
+  SurfaceShadowUniforms surfaceShadow;
 };
 
 // Where the hair shadow descriptors start in the frame set (shaders/surface.frag), and the light
@@ -37,8 +38,12 @@ struct FrameUniforms {
 constexpr std::uint32_t kFirstShadowBinding = 1;
 constexpr std::uint32_t kLightDepthBinding = kFirstShadowBinding + HairShadowPass::kBindings;
 static_assert(kLightDepthBinding == 9, "shaders/light_depth.glsl binds the map at 9");
-// The environment's specular chain after it (shaders/frame_uniforms.glsl).
+// The environment's specular chain after it (shaders/frame_uniforms.glsl), then the surfaces'
+// shadow map twice, read as depths and compared (shaders/surface_shadows.glsl).
 constexpr std::uint32_t kEnvironmentSpecularBinding = kLightDepthBinding + 1;
+constexpr std::uint32_t kSurfaceShadowDepthBinding = kEnvironmentSpecularBinding + 1;
+constexpr std::uint32_t kSurfaceShadowCompareBinding = kSurfaceShadowDepthBinding + 1;
+static_assert(kSurfaceShadowCompareBinding == 12, "shaders/surface_shadows.glsl binds the map at 11 and 12");
 
 // std140 mirror of the Material block of shaders/skin_lights.glsl (set 1, binding 4).
 struct MaterialUniforms {
@@ -90,8 +95,9 @@ Image albedoWithSpecular(const Device& device, const std::optional<TextureData>&
 
 }  // namespace
 
-SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, const LightDepthPass& lightDepth)
-    : device_(&device), shadows_(&shadows), lightDepth_(&lightDepth), skin_(device) {
+SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, const LightDepthPass& lightDepth,
+                           const SurfaceShadowPass& surfaceShadows)
+    : device_(&device), shadows_(&shadows), lightDepth_(&lightDepth), surfaceShadows_(&surfaceShadows), skin_(device) {
   using Stage = vk::ShaderStageFlagBits;
   // Vertex too: surface.vert includes the same declarations (frame_uniforms.glsl).
   const std::pair shadow{vk::DescriptorType::eCombinedImageSampler, Stage::eVertex | Stage::eFragment};
@@ -105,7 +111,9 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                                         shadow,
                                         shadow,    // hair shadow first depth, 4 slots
                                         shadow,    // light 0's depth map of translucent surfaces
-                                        shadow});  // the environment's specular chain
+                                        shadow,    // the environment's specular chain
+                                        shadow,    // light 0's depth map of every surface: depths
+                                        shadow});  // and comparisons
   // albedo (the specular map in its alpha), normal map, pre-integrated skin table, diffused
   // irradiance, constants
   const vk::ShaderStageFlags fragment = Stage::eFragment;
@@ -118,10 +126,14 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   framePool_ = makeDescriptorPool(device, 1,
                                   {{vk::DescriptorType::eUniformBuffer, 1},
-                                   {vk::DescriptorType::eCombinedImageSampler, HairShadowPass::kBindings + 2}});
+                                   {vk::DescriptorType::eCombinedImageSampler, HairShadowPass::kBindings + 4}});
   frameSet_ = allocateSet(device, framePool_, frameLayout_);
   writeUniformBuffer(device, frameSet_, 0, frameUniforms_);
   writeSampledImage(device, frameSet_, kLightDepthBinding, lightDepth.image().view(), lightDepth.sampler());
+  writeSampledImage(device, frameSet_, kSurfaceShadowDepthBinding, surfaceShadows.image().view(),
+                    surfaceShadows.depthSampler());
+  writeSampledImage(device, frameSet_, kSurfaceShadowCompareBinding, surfaceShadows.image().view(),
+                    surfaceShadows.compareSampler());
   // Without an environment the binding holds a black cube, never read.
   noEnvironment_ = uploadCubeWithMips(device, CubeMap{.size = 1,
                                                       .faces = {{{glm::vec3(0.0f)},
@@ -198,8 +210,8 @@ SurfaceScene::GpuMesh SurfaceScene::uploadMesh(const MeshData& mesh) const {
                                     vk::BufferUsageFlagBits::eVertexBuffer | vk::BufferUsageFlagBits::eStorageBuffer);
   } else {
     gpu.vertices = Buffer::withData(*device_, bytes, vk::BufferUsageFlagBits::eVertexBuffer);
-    if (auto sphere = boundingSphere(mesh.positions)) gpu.bounds = *sphere;
   }
+  if (auto sphere = boundingSphere(mesh.positions)) gpu.bounds = *sphere;
   return gpu;
 }
 
@@ -257,7 +269,9 @@ void SurfaceScene::setDiffusedIrradiance(std::size_t material, const vk::raii::I
 
 void SurfaceScene::updateVertices(std::size_t mesh, std::span<const glm::vec3> positions,
                                   std::span<const glm::vec3> normals) {
-  auto* vertices = reinterpret_cast<Vertex*>(meshes_.at(mesh).vertices.mapped().data());
+  GpuMesh& gpu = meshes_.at(mesh);
+  if (auto sphere = boundingSphere(positions)) gpu.bounds = *sphere;
+  auto* vertices = reinterpret_cast<Vertex*>(gpu.vertices.mapped().data());
   for (std::size_t i = 0; i < positions.size(); ++i) {
     vertices[i].position = positions[i];
     if (!normals.empty()) vertices[i].normal = normals[i];
@@ -280,6 +294,7 @@ void SurfaceScene::update(const FrameInput& frame, float aspect) {
       uniforms.environmentIrradiance[i] = glm::vec4((*environmentIrradiance_)[i], 0.0f);
   uniforms.hairShadows = shadows_->uniforms();
   uniforms.lightDepth = lightDepth_->uniforms();
+  if (frame.surfaceShadows) uniforms.surfaceShadow = surfaceShadows_->uniforms();
   std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));
 }
 

@@ -2,11 +2,10 @@
 // The scene's opaque meshes and their materials on the GPU, and the frame's camera and lights:
 // what the passes that draw surfaces share (SurfacePass, DeferredSkinPass, TranslucencyPass).
 // Their pipelines bind the frame as set 0 (camera, lights, the first light's hair shadows —
-// render/passes/hair_shadow_pass.hpp —, light 0's depth map of the translucent surfaces:
-// shaders/frame_uniforms.glsl) and a material as set 1 (albedo with the specular map in its
-// alpha, normal map, the pre-integrated skin table, the diffused irradiance, constants:
-// shaders/skin_lights.glsl), and draw the vertices of surface.vert: position, normal, uv,
-// curvature.
+// render/passes/hair_shadow_pass.hpp —, light 0's depth map of the translucent surfaces, its
+// shadow map of every surface: shaders/frame_uniforms.glsl) and a material as set 1 (albedo with the specular map in
+// its alpha, normal map, the pre-integrated skin table, the diffused irradiance, constants: shaders/skin_lights.glsl),
+// and draw the vertices of surface.vert: position, normal, uv, curvature.
 
 #include <cstdint>
 #include <optional>
@@ -20,6 +19,7 @@
 #include "render/passes/light_depth_pass.hpp"
 #include "render/passes/skin_shading.hpp"
 #include "render/passes/skinning_pass.hpp"
+#include "render/passes/surface_shadow_pass.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
 
@@ -37,9 +37,11 @@ class SurfaceScene {
 public:
   static constexpr std::size_t kMaxLights = 4;  ///< must match shaders/frame_uniforms.glsl
 
-  /// `shadows` (attenuating the first light) and `lightDepth` (light 0's depth map of the
-  /// translucent surfaces) must outlive the scene.
-  SurfaceScene(const Device& device, const HairShadowPass& shadows, const LightDepthPass& lightDepth);
+  /// `shadows` (the hair's, attenuating the first light), `lightDepth` (light 0's depth map of the
+  /// translucent surfaces) and `surfaceShadows` (light 0's shadows of every surface) must outlive
+  /// the scene.
+  SurfaceScene(const Device& device, const HairShadowPass& shadows, const LightDepthPass& lightDepth,
+               const SurfaceShadowPass& surfaceShadows);
 
   /// Uploads meshes and materials; replaces what was there. Throws vk::SystemError (or
   /// std::runtime_error when a skin table cannot be baked) on failure.
@@ -64,7 +66,8 @@ public:
   /// Where a SkinningPass writes skinned mesh `mesh`'s deformed positions and normals.
   SkinnedVertexTarget skinnedVertexTarget(std::size_t mesh) const;
   std::size_t vertexCount(std::size_t mesh) const { return meshes_.at(mesh).vertexCount; }
-  /// Of a static mesh: a sphere holding its vertices, mesh units.
+  /// A sphere holding the mesh's vertices, mesh units: of a dynamic mesh as last updated, of a
+  /// skinned one in its bind pose.
   const BoundingSphere& bounds(std::size_t mesh) const { return meshes_.at(mesh).bounds; }
   vk::Buffer vertices(std::size_t mesh) const { return *meshes_.at(mesh).vertices.buffer(); }
   vk::Buffer indices(std::size_t mesh) const { return *meshes_.at(mesh).indices.buffer(); }
@@ -121,7 +124,7 @@ private:
     std::size_t vertexCount = 0;
     bool dynamic = false;
     bool skinned = false;
-    BoundingSphere bounds;  ///< mesh units
+    BoundingSphere bounds;  ///< mesh units (bounds())
   };
   struct GpuMaterial {
     Image albedo;  ///< sRGB; alpha: the specular map's red (albedoWithSpecular)
@@ -138,6 +141,7 @@ private:
   const Device* device_;
   const HairShadowPass* shadows_;
   const LightDepthPass* lightDepth_;
+  const SurfaceShadowPass* surfaceShadows_;
   SkinShading skin_;
   vk::raii::DescriptorSetLayout frameLayout_{nullptr};
   vk::raii::DescriptorSetLayout materialLayout_{nullptr};

@@ -105,8 +105,7 @@ bool TranslucencyPass::drawsTranslucency(const FrameInput& frame, const SurfaceS
 
 void TranslucencyPass::prepareLightDepth(const FrameInput& frame, const SurfaceScene& scene) {
   lightDepthDraws_.clear();
-  glm::vec3 lo(std::numeric_limits<float>::max());
-  glm::vec3 hi(std::numeric_limits<float>::lowest());
+  DrawnBounds bounds;
   for (const MeshInstance& instance : frame.instances) {
     if (scene.material(instance).translucency.method == TranslucencyMethod::kNone || scene.isDeforming(instance.mesh))
       continue;
@@ -114,18 +113,10 @@ void TranslucencyPass::prepareLightDepth(const FrameInput& frame, const SurfaceS
                                 .indices = scene.indices(instance.mesh),
                                 .indexCount = scene.indexCount(instance.mesh),
                                 .model = instance.model});
-    // The mesh's sphere placed in the world: centre moved, radius by the largest axis scale.
-    const BoundingSphere& bounds = scene.bounds(instance.mesh);
-    const glm::vec3 centre = glm::vec3(instance.model * glm::vec4(bounds.centre, 1.0f));
-    const float scale = std::max({glm::length(glm::vec3(instance.model[0])), glm::length(glm::vec3(instance.model[1])),
-                                  glm::length(glm::vec3(instance.model[2]))});
-    lo = glm::min(lo, centre - bounds.radius * scale);
-    hi = glm::max(hi, centre + bounds.radius * scale);
+    bounds.add(scene.bounds(instance.mesh), instance.model);
   }
   const glm::vec3 towardLight = frame.lights.empty() ? glm::vec3(0, 1, 0) : glm::normalize(frame.lights[0].direction);
-  BoundingSphere bounds{.centre = glm::vec3(0.0f), .radius = 1.0f};
-  if (!lightDepthDraws_.empty()) bounds = {.centre = 0.5f * (lo + hi), .radius = 0.5f * glm::length(hi - lo) * 1.001f};
-  lightDepth_.prepare(towardLight, bounds, !lightDepthDraws_.empty());
+  lightDepth_.prepare(towardLight, bounds.sphere(), !lightDepthDraws_.empty());
 }
 
 void TranslucencyPass::declareLightDepth(FrameGraph::Builder& pass) const {

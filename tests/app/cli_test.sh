@@ -212,6 +212,18 @@ PY
     grep -q "wrote .*\.png" "$scratch/log" || fail "no 'wrote' line"
     grep -q "^main pass " "$scratch/log" || fail "no per-pass time for the main pass"
     ;;
+  render-writes-exr)
+    # --exr: an OpenEXR file beside each PNG (its contents: tests/render/environment_render_test.cpp).
+    "$mane" render --out "$scratch/out" --size 160x90 --msaa 1 --exr >"$scratch/log" 2>&1 ||
+      fail "render failed: $(cat "$scratch/log")"
+    exr=$(ls "$scratch"/out/*_0000.exr) || fail "no OpenEXR file beside the PNG: $(ls "$scratch/out")"
+    [ "$(head -c 4 "$exr" | od -An -tx1 | tr -d ' \n')" = "762f3101" ] || fail "$exr is not an OpenEXR file"
+    grep -q "wrote .*_0000\.exr (linear fp16 RGB)" "$scratch/log" || fail "no 'wrote' line for the EXR"
+    "$mane" render --out "$scratch/json" --size 160x90 --msaa 1 --frames 2 --exr --json >"$scratch/report" 2>&1 ||
+      fail "render --json failed: $(cat "$scratch/report")"
+    grep -q '"exr_file": ".*_0001\.exr"' "$scratch/report" || fail "no exr_file in the report: $(cat "$scratch/report")"
+    [ -s "$scratch/json/$(basename "${exr%_0000.exr}")_0001.exr" ] || fail "frame 1's EXR is missing"
+    ;;
   cape-sequence)
     # A simulated sequence: cloth uploaded every frame, frames numbered, the timing table.
     "$mane" render scenes/cape.json --frames 3 --size 160x90 --msaa 1 --out "$scratch/out" >"$scratch/log" 2>&1 ||
@@ -270,12 +282,15 @@ PY
       fail "the elevation is not held at 85: $(grep LIGHT "$scratch/OIIIIIIIIII.log")"
     ;;
   view-technique-toggles)
-    # K (texture-space skin) and H (deep opacity maps) rebuild the renderer's scene mid-run; O then
-    # hides the overlay. Validation stays clean (MANE_VALIDATION=1) and the frame is still drawn.
-    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view --frames 5 --press KHO --screenshot "$scratch/view.png" \
+    # K (texture-space skin) and H (deep opacity maps) rebuild the renderer's scene mid-run, S turns
+    # the soft shadows off; O then hides the overlay. Validation stays clean (MANE_VALIDATION=1) and
+    # the frame is still drawn.
+    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view --frames 6 --press KHSO --screenshot "$scratch/view.png" \
       >"$scratch/log" 2>&1 || fail "mane view failed: $(cat "$scratch/log")"
     grep -q "K SKIN TEXTURE  H SHADOWS OSM" "$scratch/log" || fail "K did not switch the skin: $(cat "$scratch/log")"
-    grep -q "K SKIN TEXTURE  H SHADOWS DEEP" "$scratch/log" || fail "H did not switch the shadows: $(cat "$scratch/log")"
+    grep -q "K SKIN TEXTURE  H SHADOWS DEEP  S SOFT ON" "$scratch/log" ||
+      fail "H did not switch the shadows: $(cat "$scratch/log")"
+    grep -q "H SHADOWS DEEP  S SOFT OFF" "$scratch/log" || fail "S did not switch the soft shadows: $(cat "$scratch/log")"
     size=$(stat -c %s "$scratch/view.png") || fail "no screenshot"
     [ "$size" -gt 20000 ] || fail "the screenshot looks blank ($size bytes)"
     if command -v python3 >/dev/null; then

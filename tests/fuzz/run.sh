@@ -44,7 +44,7 @@ while [[ $# -gt 0 ]]; do
   shift
 done
 harnesses=("$@")
-[[ ${#harnesses[@]} -eq 0 ]] && harnesses=(fuzz_scene fuzz_gltf fuzz_obj fuzz_image fuzz_manifest fuzz_groom fuzz_sim_state fuzz_environment)
+[[ ${#harnesses[@]} -eq 0 ]] && harnesses=(fuzz_scene fuzz_gltf fuzz_obj fuzz_image fuzz_manifest fuzz_groom fuzz_sim_state fuzz_environment fuzz_exr)
 harnesses=("${harnesses[@]/#fuzz_/}") && harnesses=("${harnesses[@]/#/fuzz_}")  # "obj" = "fuzz_obj"
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -79,7 +79,8 @@ cmake --build "$build" --target "${harnesses[@]}" -j "${FUZZ_BUILD_JOBS:-2}"
 
 # Largest input worth mutating per format, bytes: big enough for every seed's structure.
 declare -A maxLen=([fuzz_scene]=8192 [fuzz_gltf]=16384 [fuzz_obj]=8192 [fuzz_image]=16384
-                   [fuzz_manifest]=4096 [fuzz_groom]=4096 [fuzz_sim_state]=4096 [fuzz_environment]=16384)
+                   [fuzz_manifest]=4096 [fuzz_groom]=4096 [fuzz_sim_state]=4096 [fuzz_environment]=16384
+                   [fuzz_exr]=16384)
 # A few images decode to hundreds of MB (any size up to loadImage's limit of 8192 x 8192 is
 # legal, from a few KB of PNG or GIF) and take seconds each under the sanitizers: weight inputs
 # by their speed to keep the search on the rest, and allow such a decode 20 s before calling it

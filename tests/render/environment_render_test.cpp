@@ -2,12 +2,14 @@
 // the background shows the radiance along each pixel's ray, computed here from the camera alone;
 // a Lambertian sphere under a constant environment shows albedo × L (the white furnace); under a
 // sky linear in y it shows albedo × (a + ⅔·b·n_y), the cosine-convolved sky in closed form; a skin
-// sphere under a constant environment shows albedo × L plus its specular albedo at N·V × ρs × L.
+// sphere under a constant environment shows albedo × L plus its specular albedo at N·V × ρs × L;
+// the linear HDR frame holds the background's radiance above 1, which the 8-bit output clips.
 
 #include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
 #include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
@@ -55,9 +57,19 @@ public:
   }
 
   std::vector<std::uint8_t> render(CubeMap environment, const MaterialData& material) {
+    auto renderer = renderScene(std::move(environment), material);
+    if (!renderer) return {};
+    auto rgba = renderer->readOutput();
+    EXPECT_TRUE(rgba.has_value());
+    return rgba ? *rgba : std::vector<std::uint8_t>{};
+  }
+
+  /// The renderer after one frame of the unit sphere under `environment`; null on failure.
+  std::unique_ptr<Renderer> renderScene(CubeMap environment, const MaterialData& material) {
     const scenes::Mesh sphere = scenes::makeSphere(96, 192, 1.0f);
     auto renderer = Renderer::create(device(), {.extent = kExtent});
     EXPECT_TRUE(renderer.has_value());
+    if (!renderer) return nullptr;
     StaticScene scene{
         .environment = EnvironmentData{.radiance = std::move(environment)},
         .meshes = {MeshData{
@@ -65,12 +77,11 @@ public:
         .materials = {material}};
     auto set = (*renderer)->setScene(scene);
     EXPECT_TRUE(set.has_value()) << set.error().message;
+    if (!set) return nullptr;
     FrameInput frame{.camera = kCamera, .instances = {{.mesh = 0, .material = 0}}, .ambient = glm::vec3(0.0f)};
     auto timings = (*renderer)->render(frame);
     EXPECT_TRUE(timings.has_value()) << timings.error().message;
-    auto rgba = (*renderer)->readOutput();
-    EXPECT_TRUE(rgba.has_value());
-    return rgba ? *rgba : std::vector<std::uint8_t>{};
+    return timings ? std::move(*renderer) : nullptr;
   }
 
   static glm::dvec3 pixel(const std::vector<std::uint8_t>& rgba, int x, int y) {
@@ -95,6 +106,32 @@ TEST_F(EnvironmentRender, TheBackgroundShowsTheRadianceAlongEachPixelsRay) {
       ++checked;
     }
   EXPECT_GT(checked, 300);
+}
+
+// The linear HDR frame (`mane render --exr`) keeps what the 8-bit output clips: radiance up to 3.
+TEST_F(EnvironmentRender, TheHdrFrameHoldsTheRadianceBeyondWhite) {
+  const auto radiance = [](glm::vec3 d) { return glm::vec3(1.5f) + glm::vec3(1.5f, 1.0f, -0.5f) * d; };
+  auto renderer = renderScene(cubeOf(64, radiance), MaterialData{.baseColor = glm::vec3(0.5f)});
+  ASSERT_NE(renderer, nullptr);
+  auto halves = renderer->readHdrOutput();
+  ASSERT_TRUE(halves.has_value()) << halves.error().message;
+  ASSERT_EQ(halves->size(), std::size_t(kExtent.width) * kExtent.height * 4);
+  int checked = 0, aboveWhite = 0;
+  for (int y = 0; y < int(kExtent.height); y += 3)
+    for (int x = 0; x < int(kExtent.width); x += 3) {
+      const glm::vec3 d = pixelRay(x, y);
+      if (glm::length(glm::cross(d, kCamera.position)) < 1.1f) continue;
+      const std::size_t i = (std::size_t(y) * kExtent.width + std::size_t(x)) * 4;
+      for (int c = 0; c < 3; ++c) {
+        const float expected = radiance(d)[c], got = glm::unpackHalf1x16((*halves)[i + std::size_t(c)]);
+        // fp16 cube texels, filtered: within 1 % and fp16's step at 3.
+        ASSERT_NEAR(got, expected, 0.01f * expected + 0.002f) << "pixel " << x << ", " << y << " channel " << c;
+        aboveWhite += expected > 1.0f ? 1 : 0;
+      }
+      ++checked;
+    }
+  EXPECT_GT(checked, 300);
+  EXPECT_GT(aboveWhite, checked);
 }
 
 TEST_F(EnvironmentRender, ALambertianSphereUnderAConstantEnvironmentShowsAlbedoTimesRadiance) {

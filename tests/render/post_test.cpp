@@ -754,10 +754,11 @@ TEST_F(PostRendering, PostPassesAreTimedOnlyWhenAskedFor) {
   };
   draw(*renderer, litQuad(1.0f, {}), &timings);
   if (timings.empty()) GTEST_SKIP() << "the device has no timestamps";
-  EXPECT_EQ(names(), (std::vector{PassName::kSurfaces, PassName::kOutput})) << "the default adds no passes";
+  EXPECT_EQ(names(), (std::vector{PassName::kSurfaceShadows, PassName::kSurfaces, PassName::kOutput}))
+      << "the default adds no post passes";
   draw(*renderer, litQuad(1.0f, {.autoGain = true, .glowStrength = 0.5f}), &timings);
-  EXPECT_EQ(names(), (std::vector{PassName::kSurfaces, PassName::kPostDownsample, PassName::kAutoGain, PassName::kGlow,
-                                  PassName::kPostOverlay, PassName::kOutput}));
+  EXPECT_EQ(names(), (std::vector{PassName::kSurfaceShadows, PassName::kSurfaces, PassName::kPostDownsample,
+                                  PassName::kAutoGain, PassName::kGlow, PassName::kPostOverlay, PassName::kOutput}));
   for (const PassTiming& timing : timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
   // The passes run one after another in the order recorded: the first begins the frame, and each
   // begins no earlier than the one before it ended.

@@ -88,9 +88,10 @@ TEST_F(Surface, LambertOnAFlatQuadMatchesTheClosedForm) {
     // ±1: the sRGB encode of the attachment may round either way (Vulkan allows it).
     EXPECT_NEAR(centre[c], expected, 1.0) << "channel " << c;
   }
-  ASSERT_EQ(shot.timings.size(), 2u);
-  EXPECT_EQ(shot.timings[0].pass, PassName::kSurfaces);
-  EXPECT_EQ(shot.timings[1].pass, PassName::kOutput);
+  ASSERT_EQ(shot.timings.size(), 3u);
+  EXPECT_EQ(shot.timings[0].pass, PassName::kSurfaceShadows);
+  EXPECT_EQ(shot.timings[1].pass, PassName::kSurfaces);
+  EXPECT_EQ(shot.timings[2].pass, PassName::kOutput);
   for (const auto& timing : shot.timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
 }
 
@@ -153,8 +154,9 @@ TEST_F(Surface, TextureSpaceSkinOfAUniformlyLitQuadKeepsItsIrradiance) {
   const auto centre = shot.centre();
   for (int c = 0; c < 3; ++c)
     EXPECT_NEAR(centre[c], 255.0 * srgbEncode(base[c] * (ambient[c] + 0.9 * 0.8)), 1.5) << "channel " << c;
-  ASSERT_GE(shot.timings.size(), 3u);
-  EXPECT_EQ(shot.timings[0].pass, PassName::kSkinDiffusion);
+  ASSERT_GE(shot.timings.size(), 4u);
+  EXPECT_EQ(shot.timings[0].pass, PassName::kSurfaceShadows);
+  EXPECT_EQ(shot.timings[1].pass, PassName::kSkinDiffusion);
 }
 
 TEST_F(Surface, BackgroundOutsideTheQuad) {

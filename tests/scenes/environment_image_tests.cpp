@@ -1,11 +1,15 @@
-// Radiance panoramas: the shared assets, a hand-written file whose RGBE values fix the decoded
-// radiance, and the errors of files that are not panoramas.
+// Radiance and OpenEXR panoramas: the shared assets, a hand-written file whose RGBE values fix the
+// decoded radiance, a shared panorama written as OpenEXR, the repair of OpenEXR's flawed values,
+// and the errors of files that are not panoramas.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
+#include <glm/gtc/packing.hpp>
+
+#include "render/exr.hpp"
 #include "scenes/environment_image.hpp"
 #include "test_support.hpp"
 
@@ -122,13 +126,61 @@ TEST(EnvironmentImage, RadianceBeyondFloatsReachIsClampedAndCounted) {
   for (const glm::vec3& texel : image->image.texels) EXPECT_EQ(texel, glm::vec3(kMaxPanoramaRadiance));
 }
 
+// The OpenEXR path against the Radiance one: a shared panorama written as fp16 OpenEXR reads back
+// as its own texels rounded to fp16.
+TEST(EnvironmentImage, APanoramaReadsTheSameFromOpenExr) {
+  MANE_RESOLVE_OR_SKIP(file, "env/venice_sunset_1k.hdr");
+  auto radiance = loadEnvironmentImage(file);
+  ASSERT_TRUE(radiance.has_value()) << radiance.error().message;
+  const render::EquirectImage& source = radiance->image;
+  std::vector<std::uint16_t> halves;
+  for (const glm::vec3& texel : source.texels)
+    for (const float value : {texel.r, texel.g, texel.b, 1.0f}) halves.push_back(glm::packHalf1x16(value));
+  testing::ScratchDir dir;
+  ASSERT_TRUE(render::writeExr(dir.path() / "venice.exr", source.width, source.height, halves).has_value());
+  auto exr = loadEnvironmentImage(dir.path() / "venice.exr");
+  ASSERT_TRUE(exr.has_value()) << exr.error().message;
+  ASSERT_EQ(exr->image.width, source.width);
+  ASSERT_EQ(exr->image.height, source.height);
+  EXPECT_EQ(exr->clampedTexels + exr->zeroedTexels, 0u);
+  for (std::size_t i = 0; i < source.texels.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(exr->image.texels[i][c], glm::unpackHalf1x16(halves[4 * i + std::size_t(c)])) << i << ", " << c;
+}
+
+// OpenEXR holds what RGBE cannot: negative values, NaN and infinity. The first two become 0, the
+// last the brightest radiance kept, and each texel is counted.
+TEST(EnvironmentImage, NegativeAndNotANumberTexelsAreZeroedAndInfinityClamped) {
+  const std::uint16_t one = 0x3c00, minusOne = 0xbc00, nan = 0x7e00, infinity = 0x7c00;
+  std::vector<std::uint16_t> halves;
+  for (int i = 0; i < 8; ++i) {
+    const std::uint16_t red = i == 1 ? minusOne : i == 2 ? nan : i == 3 ? infinity : one;
+    halves.insert(halves.end(), {red, one, i == 4 ? nan : one, one});
+  }
+  testing::ScratchDir dir;
+  ASSERT_TRUE(render::writeExr(dir.path() / "flawed.exr", 4, 2, halves).has_value());
+  auto image = loadEnvironmentImage(dir.path() / "flawed.exr");
+  ASSERT_TRUE(image.has_value()) << image.error().message;
+  EXPECT_EQ(image->zeroedTexels, 3u);
+  EXPECT_EQ(image->clampedTexels, 1u);
+  EXPECT_EQ(image->image.texels[1], glm::vec3(0.0f, 1.0f, 1.0f));
+  EXPECT_EQ(image->image.texels[2], glm::vec3(0.0f, 1.0f, 1.0f));
+  EXPECT_EQ(image->image.texels[3], glm::vec3(kMaxPanoramaRadiance, 1.0f, 1.0f));
+  EXPECT_EQ(image->image.texels[4], glm::vec3(1.0f, 1.0f, 0.0f));
+  EXPECT_EQ(image->image.texels[5], glm::vec3(1.0f));
+}
+
 TEST(EnvironmentImage, FilesThatAreNotPanoramasGiveClearErrors) {
   testing::ScratchDir dir;
   const auto message = [&](const std::string& name, const std::string& bytes) {
     auto image = loadEnvironmentImage(dir.write(name, bytes));
     return image ? std::string("loaded") : image.error().message;
   };
-  EXPECT_NE(message("photo.hdr", "\x89PNG\r\n").find("photo.hdr: not a Radiance HDR file"), std::string::npos);
+  EXPECT_NE(message("photo.hdr", "\x89PNG\r\n").find("photo.hdr: not a Radiance HDR or OpenEXR file"),
+            std::string::npos);
+  EXPECT_NE(message("cut.exr", std::string("\x76\x2f\x31\x01\x02\x00\x00\x00channels", 16))
+                .find("cut.exr: cannot decode the OpenEXR file: "),
+            std::string::npos);
   EXPECT_NE(message("square.hdr", rgbeFile(4, 4, 1, 1, 1, 128)).find("twice as wide as it is high"), std::string::npos);
   EXPECT_NE(message("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 50000 +X 100000\n").find("too large"),
             std::string::npos);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -621,6 +623,39 @@ TEST(Scene, AnEnvironmentIsAPanoramaOrTheSky) {
   EXPECT_EQ(environmentError(R"({"cube_size": 4})"),
             "dir/bad.json: environment.cube_size: expected 8 to 2048 texels (or 0: the default)");
   EXPECT_NE(environmentError(R"({"sky": {"sun": 1}})").find("environment.sky.sun: unknown field"), std::string::npos);
+}
+
+TEST(Scene, ACameraOrbitTurnsItRoundItsTargetEasedInAndOut) {
+  const std::string camera = R"({"name": "x", "camera": {"position": [2, 1, 0], "target": [0, 1, 0], )";
+  auto scene = parseScene(camera + R"("orbit": {"degrees": 90, "seconds": 4}}, "lights": []})", "x.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  ASSERT_TRUE(scene->camera.orbit.has_value());
+  const Camera& turning = scene->camera;
+  const auto near = [](glm::vec3 a, glm::vec3 b) { return glm::length(a - b) < 1e-5f; };
+  EXPECT_EQ(cameraPositionAt(turning, 0.0), glm::vec3(2, 1, 0));
+  // A quarter turn counter-clockwise seen from above (+y): +x goes to −z.
+  EXPECT_TRUE(near(cameraPositionAt(turning, 4.0), glm::vec3(0, 1, -2)));
+  EXPECT_TRUE(near(cameraPositionAt(turning, 40.0), glm::vec3(0, 1, -2))) << "it stays where the turn ends";
+  // Half way in time, half way round: (1 − cos(π/2))/2 = ½ of 90°.
+  const float half = std::sqrt(2.0f);
+  EXPECT_TRUE(near(cameraPositionAt(turning, 2.0), glm::vec3(half, 1, -half)));
+  // Eased: a quarter of the time turns (1 − cos(π/4))/2 ≈ 14.6 % of the way.
+  const glm::vec3 early = cameraPositionAt(turning, 1.0);
+  EXPECT_NEAR(glm::degrees(std::atan2(-early.z, early.x)), 90.0 * (1.0 - std::cos(std::numbers::pi / 4.0)) / 2.0, 1e-3);
+  EXPECT_NEAR(glm::length(early - turning.target), 2.0f, 1e-5f) << "the distance to the target is kept";
+  auto still =
+      parseScene(R"({"name": "x", "camera": {"position": [2, 1, 0], "target": [0, 1, 0]}, "lights": []})", "x.json");
+  ASSERT_TRUE(still.has_value());
+  EXPECT_EQ(cameraPositionAt(still->camera, 3.0), glm::vec3(2, 1, 0));
+
+  const auto orbitError = [&](const std::string& orbit) {
+    return errorOf(camera + R"("orbit": )" + orbit + R"(}, "lights": []})");
+  };
+  EXPECT_EQ(orbitError(R"({"degrees": 90, "seconds": 0})"),
+            "dir/bad.json: camera.orbit.seconds: expected a duration in (0, 1e6] seconds");
+  EXPECT_EQ(orbitError(R"({"degrees": 4000, "seconds": 1})"),
+            "dir/bad.json: camera.orbit.degrees: expected a turn within ±3600 degrees");
+  EXPECT_NE(orbitError(R"({"seconds": 1})").find("camera.orbit.degrees"), std::string::npos);
 }
 
 TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
