@@ -15,10 +15,11 @@
 //   without translucency (the baseline), with the depth-map method and with the voxel table
 //   (N = 32, built before the timed frames).
 //
-//   BM_EnvironmentPreparation/stage:0..2: what a scene's environment costs when it is set (once
+//   BM_EnvironmentPreparation/stage:0..3: what a scene's environment costs when it is set (once
 //   per environment): the 1k Venice panorama resampled into a 256-texel cube (CPU), that cube's
-//   irradiance projected on nine harmonics (CPU), and the cube uploaded with its mips and its
-//   specular chain baked (GPU, 8 levels from 128 texels).
+//   irradiance projected on nine harmonics on the CPU (the reference), the cube uploaded with its
+//   mips and its specular chain baked (GPU, 8 levels from 128 texels), and the harmonics
+//   projected on the GPU (what the renderer runs).
 //
 //   build/release/bench/mane_render_bench --benchmark_min_time=2
 
@@ -28,6 +29,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "render/environment/harmonics_projection.hpp"
 #include "render/environment/specular_chain.hpp"
 #include "render/environment/spherical_harmonics.hpp"
 #include "render/renderer.hpp"
@@ -129,7 +131,8 @@ void BM_TranslucentCube(benchmark::State& state) {
 }
 BENCHMARK(BM_TranslucentCube)->ArgName("method")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// state.range(0): 0 the panorama → cube, 1 the harmonics, 2 the upload and the specular chain.
+// state.range(0): 0 the panorama → cube, 1 the harmonics on the CPU (the reference), 2 the upload
+// and the specular chain, 3 the harmonics on the GPU (what the renderer runs).
 void BM_EnvironmentPreparation(benchmark::State& state) {
   static const render::EquirectImage panorama = [] {
     const auto failed = [](const std::string& message) {
@@ -146,6 +149,7 @@ void BM_EnvironmentPreparation(benchmark::State& state) {
   }();
   static const render::CubeMap cube = render::cubeFromEquirect(panorama, 256);
   const vk::raii::Sampler sampler = render::makeLinearSampler(device(), vk::SamplerAddressMode::eClampToEdge, 1.0f);
+  const render::Image uploaded = render::uploadCubeWithMips(device(), cube);
   for (auto _ : state) {
     if (state.range(0) == 0) benchmark::DoNotOptimize(render::cubeFromEquirect(panorama, 256));
     if (state.range(0) == 1) benchmark::DoNotOptimize(render::projectRadiance(cube));
@@ -153,8 +157,9 @@ void BM_EnvironmentPreparation(benchmark::State& state) {
       const render::Image source = render::uploadCubeWithMips(device(), cube);
       benchmark::DoNotOptimize(render::SpecularChain::bake(device(), source, sampler, 128).has_value());
     }
+    if (state.range(0) == 3) benchmark::DoNotOptimize(render::projectRadianceOnGpu(device(), uploaded).has_value());
   }
 }
-BENCHMARK(BM_EnvironmentPreparation)->ArgName("stage")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_EnvironmentPreparation)->ArgName("stage")->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

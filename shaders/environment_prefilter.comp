@@ -1,9 +1,12 @@
 #version 450
+#extension GL_GOOGLE_include_directive : require
 // One level of the environment's specular chain (render/environment/specular_chain.hpp): the
 // radiance pre-filtered for GGX roughness r around each texel's direction n, with the view along
 // n (Karis's split sum): Σ L(l)·(n·l) / Σ (n·l) over half vectors h importance-sampled from
 // D(h)·(n·h), l = 2(n·h)h − n, each L(l) read from the source's mip whose texels subtend the
 // sample's solid angle 1/(N·pdf(l)), pdf(l) = D(h)/4 (Křivánek and Colbert).
+
+#include "cube_directions.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -17,20 +20,6 @@ layout(push_constant) uniform Prefilter {
 } prefilter;
 
 const float kPi = 3.14159265358979;
-
-// The major-axis table of Vulkan's cube face selection, inverted (as cubeDirection in
-// render/environment/environment_map.cpp).
-vec3 cubeDirection(uint face, vec2 st) {
-  float a = 2.0 * st.x - 1.0, b = 2.0 * st.y - 1.0;
-  vec3 d;
-  if (face == 0u) d = vec3(1.0, -b, -a);
-  else if (face == 1u) d = vec3(-1.0, -b, a);
-  else if (face == 2u) d = vec3(a, 1.0, b);
-  else if (face == 3u) d = vec3(a, -1.0, -b);
-  else if (face == 4u) d = vec3(a, -b, 1.0);
-  else d = vec3(-a, -b, -1.0);
-  return normalize(d);
-}
 
 // Point i of n of the Hammersley set: (i/n, the radical inverse of i in base 2).
 vec2 hammersley(uint i, uint n) { return vec2(float(i) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10); }

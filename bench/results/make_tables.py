@@ -199,8 +199,9 @@ def ratio_to(header: str, baseline: Callable[[Run], Optional[str]], key: str = "
 
 ENVIRONMENT_STAGES = {
     "0": "the panorama resampled into a 256-texel cube map (CPU, 2 × 2 samples a texel)",
-    "1": "the cube's irradiance projected on nine spherical harmonics (CPU)",
+    "1": "the cube's irradiance projected on nine spherical harmonics (CPU, the reference)",
     "2": "the cube uploaded with its mips, its specular chain baked (GPU: 8 levels from 128 texels)",
+    "3": "the cube's irradiance projected on nine spherical harmonics (GPU compute, what the renderer runs)",
 }
 
 FRAME_VARIANTS = [

@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "render/descriptors.hpp"
+#include "render/environment/harmonics_projection.hpp"
 
 namespace mane::render {
 namespace {
@@ -68,7 +69,9 @@ Result<std::unique_ptr<EnvironmentPass>> EnvironmentPass::create(const Device& d
   } catch (const std::exception& error) {
     return fail(std::string("environment: uploading the cube map failed: ") + error.what());
   }
-  SphericalHarmonics9 irradiance = irradianceFromRadiance(projectRadiance(environment.radiance));
+  auto radiance = projectRadianceOnGpu(device, pass->cube_);
+  if (!radiance) return std::unexpected(radiance.error());
+  SphericalHarmonics9 irradiance = irradianceFromRadiance(*radiance);
   for (glm::vec3& coefficient : irradiance) coefficient /= std::numbers::pi_v<float>;
   pass->irradianceOverPi_ = irradiance;
   return pass;

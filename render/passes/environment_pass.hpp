@@ -2,7 +2,8 @@
 // The scene's environment on the GPU: its radiance as an fp16 cube map, drawn behind the scene
 // (a triangle over the screen at the far plane, depth-tested, first in the main pass after the
 // deferred skin), and its diffuse light as nine spherical harmonics of E/π
-// (render/environment/spherical_harmonics.hpp) for the surfaces' shaders, in the units of the
+// (render/environment/spherical_harmonics.hpp, projected from the fp16 cube in a compute pass:
+// render/environment/harmonics_projection.hpp) for the surfaces' shaders, in the units of the
 // frame's ambient term: a white Lambertian surface under a constant environment of radiance L
 // shows L; and its glossy reflections as a chain pre-filtered for eight roughnesses
 // (render/environment/specular_chain.hpp).

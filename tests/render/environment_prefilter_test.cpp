@@ -1,12 +1,16 @@
-// The specular chain baked on the GPU against its brute-force CPU reference
+// The environment's pre-filtering on the GPU against CPU references. The specular chain
 // (render/environment/specular_reference.hpp): a constant environment stays constant at every
 // level, the mirror level is the source, and the glossy levels follow the GGX-weighted integral.
+// The spherical harmonics (render/environment/harmonics_projection.hpp): a constant environment
+// projects on Y00 alone, √(4π)·L, and a sky with a sun's glow as projectRadiance projects it.
 
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
+#include "render/environment/harmonics_projection.hpp"
 #include "render/environment/specular_chain.hpp"
 #include "render/environment/specular_reference.hpp"
 #include "tests/render/environment_cubes.hpp"
@@ -75,6 +79,45 @@ TEST_F(SpecularChainTest, GlossyLevelsFollowTheBruteForceIntegral) {
     RecordProperty("worst_relative_error_level_" + std::to_string(level), std::to_string(worst));
     EXPECT_LT(worst, level == 0 ? 0.01 : 0.05) << "level " << level;
     std::printf("level %u: worst relative error %.4f\n", level, worst);
+  }
+}
+
+class HarmonicsProjection : public testing::VulkanTest {
+public:
+  SphericalHarmonics9 project(const CubeMap& source) {
+    const Image cube = uploadCubeWithMips(device(), source);
+    auto projected = projectRadianceOnGpu(device(), cube);
+    EXPECT_TRUE(projected.has_value()) << projected.error().message;
+    return projected ? *projected : SphericalHarmonics9{};
+  }
+};
+
+TEST_F(HarmonicsProjection, AConstantEnvironmentProjectsOnTheFirstHarmonicAlone) {
+  const glm::vec3 radiance(0.25f, 1.5f, 3.0f);
+  const SphericalHarmonics9 sh = project(cubeOf(64, [&](glm::vec3) { return radiance; }));
+  const float y00 = std::sqrt(4.0f * 3.14159265f);  // ∫ Y00 dω
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(sh[0][c], y00 * radiance[c], 1e-5f * y00 * radiance[c]);
+    for (std::size_t i = 1; i < 9; ++i) EXPECT_NEAR(sh[i][c], 0.0f, 1e-5f * y00 * radiance[c]) << "harmonic " << i;
+  }
+}
+
+TEST_F(HarmonicsProjection, ASkyProjectsAsOnTheCpu) {
+  const glm::vec3 sun = glm::normalize(glm::vec3(0.3f, 0.6f, -0.7f));
+  const auto sky = [&](glm::vec3 d) {
+    const float glow = std::pow(std::max(glm::dot(d, sun), 0.0f), 6.0f);
+    return glm::vec3(0.1f + 0.3f * std::max(d.y, 0.0f)) + glm::vec3(3.0f, 2.5f, 2.0f) * glow;
+  };
+  for (const int size : {64, 256}) {
+    SCOPED_TRACE(size);
+    // The GPU reads the fp16 cube: the reference projects the same rounded texels.
+    CubeMap source = cubeOf(size, sky);
+    for (auto& face : source.faces)
+      for (glm::vec3& texel : face)
+        for (int c = 0; c < 3; ++c) texel[c] = glm::unpackHalf1x16(glm::packHalf1x16(texel[c]));
+    const SphericalHarmonics9 gpu = project(source), cpu = projectRadiance(source);
+    for (std::size_t i = 0; i < 9; ++i)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(gpu[i][c], cpu[i][c], 1e-5f * cpu[0][c]) << "harmonic " << i;
   }
 }
 
