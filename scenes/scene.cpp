@@ -140,7 +140,10 @@ Environment parseEnvironment(const Json& json, const std::string& path) {
   environment.rotationDegrees = fields.optional<float>("rotation_degrees", environment.rotationDegrees);
   environment.intensity = fields.optional<float>("intensity", environment.intensity);
   environment.cubeSize = fields.optional<int>("cube_size", environment.cubeSize);
+  environment.sunLight = fields.optional<bool>("sun_light", environment.sunLight);
   fields.finish();
+  require(!environment.sunLight || !environment.file.empty(), fields.child("sun_light"),
+          "expected a panorama file to cut the sun from (the sky's sun is the first light already)");
   require(std::isfinite(environment.rotationDegrees), fields.child("rotation_degrees"), "expected a finite angle");
   require(environment.intensity >= 0.0f && environment.intensity <= 1000.0f, fields.child("intensity"),
           "expected an intensity in [0, 1000]");

@@ -73,7 +73,7 @@ struct Light {
 /// (render/passes/environment_pass.hpp): a Radiance panorama or, without one, the procedural sky
 /// (render/environment/sky_model.hpp), whose sun is the first light.
 struct Environment {
-  /// Asset name or path of an equirectangular `.hdr` panorama; empty: the sky.
+  /// Asset name or path of an equirectangular `.hdr` or `.exr` panorama; empty: the sky.
   std::string file;
   float turbidity = 3.0f;     ///< the sky's haze, [1.7, 10]
   float groundAlbedo = 0.3f;  ///< the ground below the sky's horizon, [0, 1]
@@ -83,6 +83,9 @@ struct Environment {
   float intensity = 1.0f;
   /// Texels on a side of each cube face, 8..2048; 0: 256 for a panorama, 64 for the sky.
   int cubeSize = 0;
+  /// A panorama's sun cut out of it and made the scene's first light, ahead of `lights`
+  /// (render/environment/sun_extraction.hpp), so that it is counted once.
+  bool sunLight = false;
 };
 
 /// lambert: diffuse; skin: render::SurfaceShading::kSkin; fur: shells and fins grown from the

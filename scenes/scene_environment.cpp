@@ -2,7 +2,11 @@
 
 #include <glm/trigonometric.hpp>
 
+#include <cmath>
+#include <string>
+
 #include "render/environment/sky_model.hpp"
+#include "render/environment/sun_extraction.hpp"
 #include "scenes/environment_image.hpp"
 
 namespace mane::scenes {
@@ -24,8 +28,8 @@ render::CubeMap skyOf(const Scene& scene, const Environment& environment) {
 
 }  // namespace
 
-Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene& scene, const AssetResolver& resolver,
-                                                                    std::vector<std::string>& notes) {
+Result<std::optional<SceneEnvironment>> loadSceneEnvironment(const Scene& scene, const AssetResolver& resolver,
+                                                             std::vector<std::string>& notes) {
   if (!scene.environment) return std::nullopt;
   const Environment& environment = *scene.environment;
   if (!environment.file.empty()) {
@@ -41,14 +45,25 @@ Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene&
         notes.push_back("environment: " + environment.file + ": " + std::to_string(panorama->zeroedTexels) +
                         " texels negative or not a number set to 0");
       const int size = environment.cubeSize > 0 ? environment.cubeSize : kPanoramaCubeSize;
-      return render::EnvironmentData{.radiance = render::cubeFromEquirect(panorama->image, size,
-                                                                          glm::radians(environment.rotationDegrees),
-                                                                          environment.intensity)};
+      render::CubeMap cube = render::cubeFromEquirect(panorama->image, size, glm::radians(environment.rotationDegrees),
+                                                      environment.intensity);
+      if (!environment.sunLight) return SceneEnvironment{.data = {.radiance = std::move(cube)}};
+      render::SunExtraction cut = render::extractSun(std::move(cube));
+      if (cut.sun) {
+        const glm::vec3 toward = cut.sun->direction;
+        notes.push_back("environment: " + environment.file + ": its sun, " +
+                        std::to_string(int(std::lround(glm::degrees(std::asin(toward.y))))) +
+                        " degrees up, is the first light (irradiance " + std::to_string(cut.sun->intensity) +
+                        " at its brightest channel)");
+      } else {
+        notes.push_back("environment: " + environment.file + ": no sun stands out of the sky to cut; no light added");
+      }
+      return SceneEnvironment{.data = {.radiance = std::move(cut.radiance)}, .sun = cut.sun};
     }
     notes.push_back("environment: " + environment.file + " missing (" + lookup->missingReason +
                     "): lit by the procedural sky instead");
   }
-  return render::EnvironmentData{.radiance = skyOf(scene, environment)};
+  return SceneEnvironment{.data = {.radiance = skyOf(scene, environment)}};
 }
 
 }  // namespace mane::scenes

@@ -13,10 +13,19 @@
 
 namespace mane::scenes {
 
-/// The cube map of `scene.environment` (nothing when it has none). A panorama that is missing is
-/// replaced by the sky, with a line in `notes`; one that cannot be read is an error naming it.
-[[nodiscard]] Result<std::optional<render::EnvironmentData>> loadSceneEnvironment(const Scene& scene,
-                                                                                  const AssetResolver& resolver,
-                                                                                  std::vector<std::string>& notes);
+struct SceneEnvironment {
+  render::EnvironmentData data;
+  /// The panorama's sun, cut out of `data` where the scene asks (Environment::sunLight) and the
+  /// panorama has one.
+  std::optional<render::DirectionalLight> sun;
+};
+
+/// The cube map of `scene.environment` (nothing when it has none), and its sun where the scene
+/// asks for it (a note says where it lies, or that the panorama has none). A panorama that is
+/// missing is replaced by the sky, with a line in `notes`; one that cannot be read is an error
+/// naming it.
+[[nodiscard]] Result<std::optional<SceneEnvironment>> loadSceneEnvironment(const Scene& scene,
+                                                                           const AssetResolver& resolver,
+                                                                           std::vector<std::string>& notes);
 
 }  // namespace mane::scenes

@@ -81,7 +81,10 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
     if (auto loaded = world.loadMaterials(resolver); !loaded) return std::unexpected(loaded.error());
     auto environment = loadSceneEnvironment(world.scene_, resolver, world.notes_);
     if (!environment) return std::unexpected(environment.error());
-    world.environment_ = std::move(*environment);
+    if (*environment) {
+      world.environment_ = std::move((*environment)->data);
+      world.environmentSun_ = (*environment)->sun;
+    }
   } else {
     world.materials_.resize(world.scene_.materials.size());
   }
@@ -643,6 +646,7 @@ render::FrameInput World::frameInput() const {
                                 .verticalFovRadians = glm::radians(camera.verticalFovDegrees),
                                 .nearPlane = camera.nearPlane,
                                 .farPlane = camera.farPlane};
+  if (environmentSun_) frame.lights.push_back(*environmentSun_);
   for (const Light& light : scene_.lights)
     // The scene says where light travels; the renderer wants the way back to the light.
     frame.lights.push_back({.direction = -light.direction,

@@ -266,6 +266,7 @@ private:
   std::vector<std::unique_ptr<SkinnedCage>> skinnedCages_;
   std::vector<std::string> notes_;
   std::optional<render::EnvironmentData> environment_;  ///< the scene's, loaded with the textures
+  std::optional<render::DirectionalLight> environmentSun_;  ///< cut from its panorama: the first light
   double time_ = 0.0;
 };
 

@@ -19,9 +19,9 @@ float pixelTurn() {
 
 // The share of light 0's disc, which lies towards `towardLight` (unit), that the surfaces leave
 // visible from `position` (metres, world), whose geometric normal is `normal` (unit): 1 where the
-// map holds nothing or the point lies outside it. Towards the terminator the shadow fades out (fully from N·L = 0.2 down to 0): there
-// a surface shadows itself, where skin's pre-integrated diffuse still carries light scattered from
-// its lit side, and the map's depth runs parallel to the light.
+// map holds nothing or the point lies outside it. Towards the terminator the shadow fades out
+// (from N·L = 0.2 down to 0): there a surface shadows itself, where skin's pre-integrated diffuse
+// still carries light scattered from its lit side, and the map's depth runs parallel to the light.
 float surfaceShadowVisibility(SurfaceShadow shadow, vec3 position, vec3 normal, vec3 towardLight) {
   float facing = dot(normal, towardLight);
   if (shadow.map.scale.w == 0.0 || facing <= 0.0) return 1.0;

@@ -29,7 +29,7 @@ namespace mane::render {
 
 class SurfaceScene;
 
-/// Mirrors `SurfaceShadow` in shaders/surface_shadows.glsl (std140).
+/// Mirrors `SurfaceShadow` in shaders/surface_shadow_map.glsl (std140).
 struct SurfaceShadowUniforms {
   LightDepthUniforms map;  ///< the depth map's frame; map.scale.w: 1 when it holds this frame's surfaces
   /// x: tan α of the light's disc; y: the widest blocker search, map units (0..1 across); z: the

@@ -1,6 +1,6 @@
 // Environment maps on the CPU: panorama and cube-map directions, the cube's solid angles, the
-// panorama → cube conversion, nine spherical harmonics against closed forms and brute force, and
-// the Preetham sky's properties.
+// panorama → cube conversion, nine spherical harmonics against closed forms and brute force, the
+// Preetham sky's properties, and the sun cut out of an environment with its energy kept.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include "render/environment/specular_reference.hpp"
 #include "render/environment/sky_model.hpp"
 #include "render/environment/spherical_harmonics.hpp"
+#include "render/environment/sun_extraction.hpp"
 #include "render/luts/skin_specular.hpp"
 #include "tests/render/environment_cubes.hpp"
 
@@ -218,6 +219,43 @@ TEST(SkyModel, SettingsOutOfRangeAreRefusedByName) {
   EXPECT_NE(message({.towardSun = glm::vec3(0.0f)}).find("sun"), std::string::npos);
   EXPECT_NE(message({.groundAlbedo = 1.5f}).find("albedo"), std::string::npos);
   EXPECT_NE(message({.zenithLuminance = -1.0f}).find("zenith"), std::string::npos);
+}
+
+TEST(SunExtraction, TheSunBecomesALightAndTheEnvironmentKeepsTheRest) {
+  // A sky of radiance L_s with a sun of angular radius r and radiance L_d towards D.
+  const glm::vec3 sky(0.2f, 0.3f, 0.5f), sunRadiance(3000.0f, 2500.0f, 2000.0f);
+  const glm::vec3 toward = glm::normalize(glm::vec3(0.3f, 0.5f, -0.8f));
+  const double radius = 1.5 * kPi / 180.0;
+  const CubeMap before =
+      cubeOf(256, [&](glm::vec3 d) { return glm::dot(d, toward) >= float(std::cos(radius)) ? sunRadiance : sky; });
+  const SunExtraction cut = extractSun(before);
+  ASSERT_TRUE(cut.sun.has_value());
+  const DirectionalLight& sun = *cut.sun;
+  EXPECT_LT(std::acos(std::min(glm::dot(sun.direction, toward), 1.0f)), 0.2 * kPi / 180.0);
+  // The energy is kept: the light plus what is left light any surface as the whole did.
+  for (const glm::vec3 normal : {toward, glm::vec3(0, 1, 0), glm::normalize(glm::vec3(1, 0.2f, 0.4f)), -toward}) {
+    const glm::dvec3 whole = bruteForceIrradiance(before, normal);
+    const glm::dvec3 split =
+        bruteForceIrradiance(cut.radiance, normal) +
+        glm::dvec3(sun.color * sun.intensity) * double(std::max(glm::dot(normal, sun.direction), 0.0f));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(split[c], whole[c], 1e-3 * whole[c]) << "channel " << c;
+  }
+  // The light gives what the disc gave above the sky: (L_d − L_s)·Ω of a cone of radius r, within
+  // the texels' fit to the disc's rim.
+  const double cone = 2.0 * kPi * (1.0 - std::cos(radius));
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(sun.color[c] * sun.intensity, (sunRadiance[c] - sky[c]) * cone,
+                0.05 * (sunRadiance[c] - sky[c]) * cone);
+  EXPECT_NEAR(sun.discRadius, radius, 0.05 * radius);
+  for (const auto& face : cut.radiance.faces)
+    for (const glm::vec3& texel : face) ASSERT_LE(texel.g, sky.g * 1.0001f) << "the sun is cut out";
+}
+
+TEST(SunExtraction, AnOvercastSkyHasNoSunToCut) {
+  const CubeMap overcast = cubeOf(64, [](glm::vec3 d) { return glm::vec3(0.5f + 0.3f * d.y); });
+  const SunExtraction cut = extractSun(overcast);
+  EXPECT_FALSE(cut.sun.has_value());
+  EXPECT_EQ(cut.radiance.faces, overcast.faces);
 }
 
 TEST(SkinSpecularAlbedo, ASmoothSurfaceReflectsSchlicksFresnelAndARoughOneLess) {

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "render/environment/sun_extraction.hpp"
 #include "render/exr.hpp"
 #include "scenes/environment_image.hpp"
 #include "test_support.hpp"
@@ -124,6 +125,21 @@ TEST(EnvironmentImage, RadianceBeyondFloatsReachIsClampedAndCounted) {
   ASSERT_TRUE(image.has_value()) << image.error().message;
   EXPECT_EQ(image->clampedTexels, 8u);
   for (const glm::vec3& texel : image->image.texels) EXPECT_EQ(texel, glm::vec3(kMaxPanoramaRadiance));
+}
+
+// The Venice panorama's sun, cut out of it: low over the horizon (its brightest texel is 3° up)
+// and the warm light of a sunset.
+TEST(EnvironmentImage, TheVenicePanoramasSunIsCutOutAsAWarmLowLight) {
+  MANE_RESOLVE_OR_SKIP(file, "env/venice_sunset_1k.hdr");
+  auto panorama = loadEnvironmentImage(file);
+  ASSERT_TRUE(panorama.has_value()) << panorama.error().message;
+  const render::SunExtraction cut = render::extractSun(render::cubeFromEquirect(panorama->image, 256));
+  ASSERT_TRUE(cut.sun.has_value());
+  const double elevation = glm::degrees(std::asin(double(cut.sun->direction.y)));
+  EXPECT_GT(elevation, 0.0);
+  EXPECT_LT(elevation, 8.0);
+  EXPECT_GT(cut.sun->color.r, cut.sun->color.g);
+  EXPECT_GT(cut.sun->color.g, cut.sun->color.b);
 }
 
 // The OpenEXR path against the Radiance one: a shared panorama written as fp16 OpenEXR reads back

@@ -600,6 +600,11 @@ TEST(Scene, AnEnvironmentIsAPanoramaOrTheSky) {
   EXPECT_EQ(panorama->environment->rotationDegrees, 90.0f);
   EXPECT_EQ(panorama->environment->intensity, 2.0f);
   EXPECT_EQ(panorama->environment->cubeSize, 128);
+  EXPECT_FALSE(panorama->environment->sunLight);
+  auto withSun =
+      parseScene(head + R"("environment": {"file": "env/venice_sunset_1k.hdr", "sun_light": true}})", "x.json");
+  ASSERT_TRUE(withSun.has_value()) << withSun.error().message;
+  EXPECT_TRUE(withSun->environment->sunLight);
   auto sky = parseScene(head + R"("environment": {"sky": {"turbidity": 5, "ground_albedo": 0.2}}})", "x.json");
   ASSERT_TRUE(sky.has_value()) << sky.error().message;
   EXPECT_TRUE(sky->environment->file.empty());
@@ -620,6 +625,9 @@ TEST(Scene, AnEnvironmentIsAPanoramaOrTheSky) {
             "dir/bad.json: environment.sky.ground_albedo: expected an albedo in [0, 1]");
   EXPECT_EQ(environmentError(R"({"intensity": -1})"),
             "dir/bad.json: environment.intensity: expected an intensity in [0, 1000]");
+  EXPECT_EQ(environmentError(R"({"sky": {}, "sun_light": true})"),
+            "dir/bad.json: environment.sun_light: expected a panorama file to cut the sun from (the sky's sun is the "
+            "first light already)");
   EXPECT_EQ(environmentError(R"({"cube_size": 4})"),
             "dir/bad.json: environment.cube_size: expected 8 to 2048 texels (or 0: the default)");
   EXPECT_NE(environmentError(R"({"sky": {"sun": 1}})").find("environment.sky.sun: unknown field"), std::string::npos);
