@@ -176,6 +176,9 @@ TEST_F(ExrFiles, AHugeDeclaredImageIsRefusedBeforeItsPixelsAreRead) {
   auto image = decodeExr(bytes, "huge.exr");
   ASSERT_FALSE(image.has_value());
   EXPECT_EQ(image.error().message.rfind("huge.exr: ", 0), 0u) << image.error().message;
+  // Refused by the header's size limit (limitHeaderSizes), before any pixel is allocated.
+  EXPECT_NE(image.error().message.find("exceeds the maximum width of 16384"), std::string::npos)
+      << image.error().message;
 }
 
 TEST_F(ExrFiles, WritingRefusesAMismatchedSize) {
