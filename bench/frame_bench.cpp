@@ -259,4 +259,22 @@ BENCHMARK(BM_RobotFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+enum TimburyVariant : int { kTimburyShipped, kTimburyWithoutGlasses };
+
+// Timbury under the Venice panorama, with and without his glasses: what the lenses' refraction and
+// the frame cost, as the ratio of the two.
+void BM_TimburyFrame(benchmark::State& state) {
+  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "timbury.json");
+  if (!scene) return state.SkipWithError(scene.error().message.c_str());
+  if (state.range(0) == kTimburyWithoutGlasses) scene->glasses.clear();
+  measureFrames(state, std::move(*scene), {});
+}
+
+BENCHMARK(BM_TimburyFrame)
+    ->ArgName("variant")
+    ->DenseRange(kTimburyShipped, kTimburyWithoutGlasses)
+    ->Iterations(9)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "render/environment/environment_map.hpp"
 #include "render/hair_data.hpp"
+#include "render/lens.hpp"
 #include "render/pass_name.hpp"
 #include "render/skinned_mesh_data.hpp"
 
@@ -250,6 +251,8 @@ struct FrameInput {
   PostSettings post;
   /// Fur materials as shells and fins; off: as Lambert surfaces textured with their photo.
   bool furShells = true;
+  /// Spectacle lenses, drawn over the scene refracting it (render/passes/glasses_pass.hpp).
+  std::vector<Lens> lenses;
   /// Soft shadows of the surfaces from the first light, as wide as its disc
   /// (render/passes/surface_shadow_pass.hpp); off: only hair and fur shadow the surfaces.
   bool surfaceShadows = true;

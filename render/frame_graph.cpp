@@ -76,6 +76,10 @@ ResourceUse ResourceUse::transferSource() {
   return {Stage::eTransfer, Access::eTransferRead, Layout::eTransferSrcOptimal};
 }
 
+ResourceUse ResourceUse::transferDestination() {
+  return {Stage::eTransfer, Access::eTransferWrite, Layout::eTransferDstOptimal};
+}
+
 ResourceUse ResourceUse::hostRead() {
   return {Stage::eHost, Access::eHostRead};
 }

@@ -79,6 +79,8 @@ struct ResourceUse {
   static ResourceUse indirectCommands();
   /// Copied or blitted from (images: TRANSFER_SRC_OPTIMAL).
   static ResourceUse transferSource();
+  /// Copied or blitted into (images: TRANSFER_DST_OPTIMAL).
+  static ResourceUse transferDestination();
   /// Read by the host after the commands complete (a mapped buffer).
   static ResourceUse hostRead();
   /// Vertex data a compute pass wrote, as its later readers take it: drawn from (vertex input or

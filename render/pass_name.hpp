@@ -32,6 +32,7 @@ public:
   static const PassName kHairLighting;       ///< the hair's hiding, primitive choice and shading (compute)
   static const PassName kMainPass;           ///< deferred skin lighting, surfaces, furs and hair in one pass
   static const PassName kHair;               ///< the hair drawn over the opaque scene, when it has a pass of its own
+  static const PassName kGlasses;            ///< spectacle lenses refracting the frame drawn so far
   static const PassName kPostDownsample;     ///< the post chain's quarter-size copy of the frame
   static const PassName kAutoGain;           ///< the post chain's adapted exposure
   static const PassName kGlow;               ///< the post chain's glow blurs
@@ -54,6 +55,7 @@ inline constexpr PassName PassName::kSurfaces{"surfaces"};
 inline constexpr PassName PassName::kHairLighting{"hair lighting"};
 inline constexpr PassName PassName::kMainPass{"main pass"};
 inline constexpr PassName PassName::kHair{"hair"};
+inline constexpr PassName PassName::kGlasses{"glasses"};
 inline constexpr PassName PassName::kPostDownsample{"post downsample"};
 inline constexpr PassName PassName::kAutoGain{"auto gain"};
 inline constexpr PassName PassName::kGlow{"glow"};

@@ -103,7 +103,7 @@ void RenderTarget::beginScenePart(const vk::raii::CommandBuffer& commands, Scene
       .imageView = *depth().view(),
       .imageLayout = Layout::eDepthAttachmentOptimal,
       .loadOp = afterSkin ? vk::AttachmentLoadOp::eLoad : load,
-      .storeOp = ends ? vk::AttachmentStoreOp::eDontCare : vk::AttachmentStoreOp::eStore,
+      .storeOp = vk::AttachmentStoreOp::eStore,  // the glasses read it after the scene
       .clearValue = {.depthStencil = {.depth = 1.0f, .stencil = 0}}};
   commands.beginRendering(vk::RenderingInfo{.renderArea = {.extent = extent()},
                                             .layerCount = 1,

@@ -449,6 +449,17 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         });
   }
 
+  if (!frame.lenses.empty()) {
+    // Over everything the frame holds by now, which they refract.
+    glasses_->prepare(frame, target_.aspect());
+    graph_.addPass(
+        PassName::kGlasses, [this](Builder& pass) { glasses_->declareCopy(pass); },
+        [this](const Commands& c) { glasses_->recordCopy(c); });
+    graph_.addPass(
+        PassName::kGlasses, [this](Builder& pass) { glasses_->declareDraw(pass); },
+        [this, &frame](const Commands& c) { glasses_->recordDraw(c, frame.lenses); });
+  }
+
   addPost(frame);
   graph_.addPass(
       PassName::kOutput, [&](Builder& pass) { output_.declare(pass, target_, frame.post); },
@@ -618,6 +629,17 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
                   " with a fur material, but the scene grows no fur (StaticScene::furs) on that pair");
   }
   if (auto valid = validate(frame.post); !valid) return std::unexpected(valid.error());
+  for (std::size_t i = 0; i < frame.lenses.size(); ++i) {
+    if (auto valid = validateLens(frame.lenses[i]); !valid)
+      return fail("lens " + std::to_string(i) + ": " + valid.error().message);
+  }
+  if (!frame.lenses.empty() && !glasses_) {
+    try {
+      glasses_ = std::make_unique<GlassesPass>(*device_, scene_, target_);
+    } catch (const std::exception& error) {
+      return fail(std::string("creating the glasses pass failed: ") + error.what());
+    }
+  }
   if (frame.post.godRays > 0.0f && frame.post.godRayLight > 0 && frame.post.godRayLight >= frame.lights.size())
     return fail("the god rays stream from light " + std::to_string(frame.post.godRayLight) + ", but the frame has " +
                 std::to_string(frame.lights.size()) + " lights");

@@ -25,6 +25,7 @@
 #include "render/passes/hair_pass.hpp"
 #include "render/passes/deferred_skin_pass.hpp"
 #include "render/passes/environment_pass.hpp"
+#include "render/passes/glasses_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_disc_pass.hpp"
 #include "render/passes/skin_diffusion_pass.hpp"
@@ -170,6 +171,7 @@ private:
   DeferredSkinPass deferredSkin_;
   LightDiscPass discs_;
   std::unique_ptr<EnvironmentPass> environment_;  // where the scene has one
+  std::unique_ptr<GlassesPass> glasses_;          // from the first frame with lenses
   // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {
     std::unique_ptr<StrandInterpolationPass> strands;

@@ -23,6 +23,7 @@ using detail::FieldError;
 using detail::ObjectFields;
 using detail::parseCharacter;
 using detail::parseCloth;
+using detail::parseGlasses;
 using detail::parseGroom;
 using detail::parseHairShadows;
 using detail::parseMaterial;
@@ -318,6 +319,17 @@ void checkReferences(const Scene& scene) {
             "fur grows on meshes, not on cloth (its shells need a mesh that does not deform)");
     checkColliderReferences(scene, cloth.colliders, cloth.attachedMesh, path + ".colliders");
   }
+  names.clear();
+  for (std::size_t i = 0; i < scene.glasses.size(); ++i) {
+    const Glasses& glasses = scene.glasses[i];
+    const std::string path = "glasses[" + std::to_string(i) + "]";
+    require(names.insert(glasses.name).second, path + ".name", "duplicate glasses name \"" + glasses.name + "\"");
+    require(scene.namesMesh(glasses.attachedMesh), path + ".attached_mesh", noMesh(glasses.attachedMesh));
+    require(glasses.material.empty() || scene.findMaterial(glasses.material), path + ".material",
+            "no material named \"" + glasses.material + "\" in materials");
+    require(glasses.material.empty() || scene.findMaterial(glasses.material)->kind != MaterialKind::fur,
+            path + ".material", "fur grows on meshes, not on a spectacle frame");
+  }
   if (scene.headMotion.kind != HeadMotionKind::none) {
     require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
             "no mesh named \"" + scene.headMotion.mesh + "\" in meshes");
@@ -343,6 +355,7 @@ Scene parseRoot(const Json& json) {
   scene.grooms = parseList<Groom>(fields, "grooms", parseGroom);
   scene.cloths = parseList<Cloth>(fields, "cloths", parseCloth);
   scene.characters = parseList<CharacterInstance>(fields, "characters", parseCharacter);
+  scene.glasses = parseList<Glasses>(fields, "glasses", parseGlasses);
   if (const Json* animation = fields.take("animation")) {
     ObjectFields anim(*animation, "animation");
     if (const Json* head = anim.take("head")) scene.headMotion = parseHeadMotion(*head, "animation.head");

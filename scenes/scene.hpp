@@ -428,6 +428,28 @@ struct CharacterInstance {
   std::optional<Subdivision> subdivision;  ///< set exactly when subdividedMeshes is not empty
 };
 
+/// A pair of spectacles worn on a mesh (scenes/glasses.hpp builds them): two lenses ground to a
+/// prescription, which refract what lies behind them (render/passes/glasses_pass.hpp), in a frame
+/// of rims, a bridge and two temples drawn as a mesh. Sizes in metres.
+struct Glasses {
+  std::string name;          ///< unique among the scene's glasses
+  std::string attachedMesh;  ///< the head, a `MeshInstance` or character part: the glasses follow it
+  /// Where the glasses sit in the head's body frame (as a cloth's transform: metres from its placed
+  /// pivot, axes turned with it, its scale not applied), scale 1. Their own frame has its origin at
+  /// the middle of the bridge on the lenses' front, +x to the wearer's left, +y up, +z forward.
+  Transform transform;
+  float powerDioptres = 0.0f;  ///< both lenses' thin-lens power, [−20, 20]: < 0 for the short-sighted
+  float lensWidth = 0.05f;     ///< each lens's elliptical outline, (0, 0.2]
+  float lensHeight = 0.036f;   ///< (0, 0.2]
+  float bridge = 0.018f;       ///< between the two lenses, [0, 0.1]
+  float templeLength = 0.1f;   ///< from the hinges back to where the temples bend over the ears, [0, 0.3]
+  /// Between the temples' ends, behind the head's widest part; 0: the frame's width and 1 cm.
+  float templeWidth = 0.0f;
+  float ior = 1.5f;      ///< the lenses' index of refraction, (1, 3]
+  glm::vec3 tint{1.0f};  ///< what the lenses let through, each channel in [0, 1]: < 1 for sunglasses
+  std::string material;  ///< the frame's, a `Material` (empty: the default one)
+};
+
 /// A head pose at a time; the motion interpolates these linearly.
 struct Keyframe {
   float timeSeconds = 0.0f;
@@ -485,6 +507,7 @@ struct Scene {
   std::vector<Groom> grooms;
   std::vector<Cloth> cloths;
   std::vector<CharacterInstance> characters;
+  std::vector<Glasses> glasses;
   HeadMotion headMotion;
   SimulationSettings simulation;
   render::HairShadowSettings hairShadows;  ///< opacity shadow maps at 512 × 512 unless the file says otherwise

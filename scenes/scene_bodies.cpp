@@ -394,6 +394,46 @@ Cloth parseCloth(const Json& json, const std::string& path) {
   return cloth;
 }
 
+Glasses parseGlasses(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Glasses glasses;
+  glasses.name = fields.required<std::string>("name");
+  require(!glasses.name.empty(), fields.child("name"), "expected a non-empty name");
+  glasses.attachedMesh = fields.required<std::string>("attached_mesh");
+  if (const Json* transform = fields.take("transform")) {
+    glasses.transform = parseTransform(*transform, fields.child("transform"));
+    require(glasses.transform.scale == 1.0f, fields.child("transform") + ".scale",
+            "glasses are sized by lens_width, lens_height, bridge and temple_length; leave the scale at 1");
+  }
+  glasses.powerDioptres = fields.optional<float>("power_dioptres", glasses.powerDioptres);
+  glasses.lensWidth = fields.optional<float>("lens_width", glasses.lensWidth);
+  glasses.lensHeight = fields.optional<float>("lens_height", glasses.lensHeight);
+  glasses.bridge = fields.optional<float>("bridge", glasses.bridge);
+  glasses.templeLength = fields.optional<float>("temple_length", glasses.templeLength);
+  glasses.templeWidth = fields.optional<float>("temple_width", glasses.templeWidth);
+  glasses.ior = fields.optional<float>("ior", glasses.ior);
+  glasses.tint = fields.optional<glm::vec3>("tint", glasses.tint);
+  glasses.material = fields.optional<std::string>("material", "");
+  fields.finish();
+  require(std::abs(glasses.powerDioptres) <= 20.0f, fields.child("power_dioptres"),
+          "expected a power in [-20, 20] dioptres");
+  require(glasses.lensWidth > 0.0f && glasses.lensWidth <= 0.2f, fields.child("lens_width"),
+          "expected a width in (0, 0.2] metres");
+  require(glasses.lensHeight > 0.0f && glasses.lensHeight <= 0.2f, fields.child("lens_height"),
+          "expected a height in (0, 0.2] metres");
+  require(glasses.bridge >= 0.0f && glasses.bridge <= 0.1f, fields.child("bridge"),
+          "expected a gap in [0, 0.1] metres");
+  require(glasses.templeLength >= 0.0f && glasses.templeLength <= 0.3f, fields.child("temple_length"),
+          "expected a length in [0, 0.3] metres");
+  require(glasses.templeWidth >= 0.0f && glasses.templeWidth <= 0.5f, fields.child("temple_width"),
+          "expected a width in [0, 0.5] metres (0: the frame's width and 1 cm)");
+  require(glasses.ior > 1.0f && glasses.ior <= 3.0f, fields.child("ior"), "expected an index of refraction in (1, 3]");
+  require(glasses.tint.x >= 0.0f && glasses.tint.y >= 0.0f && glasses.tint.z >= 0.0f && glasses.tint.x <= 1.0f &&
+              glasses.tint.y <= 1.0f && glasses.tint.z <= 1.0f,
+          fields.child("tint"), "expected each channel in [0, 1]");
+  return glasses;
+}
+
 render::HairShadowSettings parseHairShadows(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   render::HairShadowSettings shadows;

@@ -94,6 +94,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   if (auto loaded = world.loadGrooms(resolver, colliders); !loaded) return std::unexpected(loaded.error());
   if (auto loaded = world.loadCloths(resolver, colliders); !loaded) return std::unexpected(loaded.error());
   if (auto loaded = world.loadFurDynamics(); !loaded) return std::unexpected(loaded.error());
+  if (auto loaded = world.loadGlasses(); !loaded) return std::unexpected(loaded.error());
   // Settling: 1/60 s frames with every body held where it is at time 0; the clock stays at 0.
   const int settleFrames = static_cast<int>(std::lround(world.scene_.simulation.settleSeconds * 60.0f));
   for (int frame = 0; frame < settleFrames; ++frame)
@@ -477,6 +478,19 @@ glm::mat4 World::bodyPlacement(std::size_t mesh, double time) const {
   return bodyMatrix(scene_, scene_.meshes[mesh], static_cast<float>(time));
 }
 
+Result<void> World::loadGlasses() {
+  for (const Glasses& glasses : scene_.glasses) {
+    auto model = buildGlasses(glasses);
+    if (!model) return std::unexpected(model.error());
+    const auto body = std::find_if(scene_.meshes.begin(), scene_.meshes.end(),
+                                   [&](const MeshInstance& mesh) { return mesh.name == glasses.attachedMesh; });
+    glasses_.push_back({.body = static_cast<std::size_t>(body - scene_.meshes.begin()),
+                        .placement = glasses.transform.matrix(),
+                        .model = std::move(*model)});
+  }
+  return {};
+}
+
 Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& colliders) {
   for (const Cloth& cloth : scene_.cloths) {
     auto rest = loadClothMesh(cloth, resolver, scene_.file.parent_path());
@@ -626,6 +640,12 @@ render::StaticScene World::staticScene() const {
     const Mesh& surface = cloth.surface();
     result.meshes.push_back(render::MeshData{surface.positions, surface.normals, surface.uvs, surface.indices, true});
   }
+  // Then the glasses' frames, in their own frame.
+  for (const WornGlasses& glasses : glasses_) {
+    const Mesh& frame = glasses.model.frame;
+    result.meshes.push_back(render::MeshData{
+        .positions = frame.positions, .normals = frame.normals, .uvs = frame.uvs, .indices = frame.indices});
+  }
   return result;
 }
 
@@ -673,6 +693,14 @@ render::FrameInput World::frameInput() const {
   }
   for (std::size_t i = 0; i < cloths_.size(); ++i)  // already in world space
     frame.instances.push_back({.mesh = meshes_.size() + i, .material = materialIndex(scene_.cloths[i].material)});
+  for (std::size_t i = 0; i < glasses_.size(); ++i) {
+    const WornGlasses& glasses = glasses_[i];
+    const glm::mat4 placed = bodyPlacement(glasses.body, time_) * glasses.placement;
+    frame.instances.push_back({.mesh = meshes_.size() + cloths_.size() + i,
+                               .material = materialIndex(scene_.glasses[i].material),
+                               .model = placed});
+    for (const render::Lens& lens : glasses.model.lenses) frame.lenses.push_back({lens.shape, placed * lens.model});
+  }
   return frame;
 }
 

@@ -19,6 +19,7 @@
 #include "render/frame.hpp"
 #include "scenes/assets.hpp"
 #include "scenes/fur_dynamics.hpp"
+#include "scenes/glasses.hpp"
 #include "scenes/image.hpp"
 #include "scenes/joint_colliders.hpp"
 #include "scenes/scene_cloth.hpp"
@@ -226,6 +227,8 @@ private:
                           std::vector<glm::vec3>& normals, unsigned threads = 1);
   Result<void> loadGrooms(const AssetResolver& resolver, SceneColliders& colliders);
   Result<void> loadCloths(const AssetResolver& resolver, SceneColliders& colliders);
+  /// Builds the scene's glasses (scenes/glasses.hpp); their frames are drawn after the cloths.
+  Result<void> loadGlasses();
   /// The rigid part of mesh `mesh`'s placement at `time` (its scale divided out, `bodyMatrix`):
   /// what hair roots, cloth pins and their colliders follow. For a character part, its part
   /// frame at the current pose (poseCharacters keeps that at time()).
@@ -253,6 +256,12 @@ private:
   };
   std::vector<MovingFur> movingFurs_;
   std::vector<std::size_t> clothBodies_;  ///< per cloth: index into scene_.meshes
+  struct WornGlasses {
+    std::size_t body = 0;       ///< index into scene_.meshes: the head they follow
+    glm::mat4 placement{1.0f};  ///< the glasses' frame in the body frame
+    GlassesModel model;
+  };
+  std::vector<WornGlasses> glasses_;
   std::vector<ClothOnCharacter> clothFollowers_;  ///< per cloth
   std::vector<SceneCharacter> characters_;
   /// Per character: the morph target nextExpression() last blended in (its count: none).

@@ -31,16 +31,26 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
 layout(set = 0, binding = 10) uniform samplerCube environmentSpecular;
 const float kEnvironmentSpecularLevels = 8.0;
 
-// What a white Lambertian surface facing `normal` (unit) shows of the environment: 0 without one.
-vec3 environmentLight(vec3 normal) {
-  if (frame.lightCount.y == 0) return vec3(0.0);
+// What a white Lambertian surface facing `normal` (unit) shows of the environment, band by band
+// (ℓ = 0, 1, 2): 0 without one.
+void environmentLightBands(vec3 normal, out vec3 band0, out vec3 band1, out vec3 band2) {
+  if (frame.lightCount.y == 0) {
+    band0 = band1 = band2 = vec3(0.0);
+    return;
+  }
   vec3 n = normal;
   // The real harmonics' normalisations, as on the CPU.
-  return frame.environmentIrradiance[0].rgb * 0.282094792 +
-         (frame.environmentIrradiance[1].rgb * n.y + frame.environmentIrradiance[2].rgb * n.z +
-          frame.environmentIrradiance[3].rgb * n.x) * 0.488602512 +
-         (frame.environmentIrradiance[4].rgb * (n.x * n.y) + frame.environmentIrradiance[5].rgb * (n.y * n.z) +
-          frame.environmentIrradiance[7].rgb * (n.x * n.z)) * 1.092548431 +
-         frame.environmentIrradiance[6].rgb * (0.315391565 * (3.0 * n.z * n.z - 1.0)) +
-         frame.environmentIrradiance[8].rgb * (0.546274215 * (n.x * n.x - n.y * n.y));
+  band0 = frame.environmentIrradiance[0].rgb * 0.282094792;
+  band1 = (frame.environmentIrradiance[1].rgb * n.y + frame.environmentIrradiance[2].rgb * n.z +
+           frame.environmentIrradiance[3].rgb * n.x) * 0.488602512;
+  band2 = (frame.environmentIrradiance[4].rgb * (n.x * n.y) + frame.environmentIrradiance[5].rgb * (n.y * n.z) +
+           frame.environmentIrradiance[7].rgb * (n.x * n.z)) * 1.092548431 +
+          frame.environmentIrradiance[6].rgb * (0.315391565 * (3.0 * n.z * n.z - 1.0)) +
+          frame.environmentIrradiance[8].rgb * (0.546274215 * (n.x * n.x - n.y * n.y));
+}
+
+vec3 environmentLight(vec3 normal) {
+  vec3 band0, band1, band2;
+  environmentLightBands(normal, band0, band1, band2);
+  return band0 + band1 + band2;
 }

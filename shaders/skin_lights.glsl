@@ -15,20 +15,35 @@ layout(set = 1, binding = 4, std140) uniform Material {
   vec4 extinction;   // rgb: σ, 1/m (translucency of materials other than skin)
   vec4 profile[6];   // skin: d'Eon's Gaussians, rgb weight, a variance (mm²)
   vec4 specularAlbedo[2];  // skin: the specular's albedo with ρs = 1 at N·V = 0, 1/7, …, 1
+  // skin: rgb, the factor of the environment's band ℓ at curvature maxCurvature·(i/15)², at [16ℓ + i]
+  vec4 ambientBands[48];
 } draw;
 
 // Skin's diffuse light from texture-space diffusion (ambient and lights already in it, blurred;
 // render/passes/skin_diffusion_pass.hpp) rather than from the pre-integrated table.
 layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 
-// The frame's ambient light and the environment's on skin (per RGB, to multiply by the albedo):
-// each channel looks up the environment's irradiance with its own blurred normal, as the lights'
-// pre-integrated diffuse does, so red light wraps further round the skin's curves than blue.
-vec3 skinAmbient(vec3 geometric, vec3 detail) {
-  if (frame.lightCount.y == 0) return frame.ambient.rgb;
-  return frame.ambient.rgb + vec3(environmentLight(normalize(mix(detail, geometric, draw.blur.r))).r,
-                                  environmentLight(normalize(mix(detail, geometric, draw.blur.g))).g,
-                                  environmentLight(normalize(mix(detail, geometric, draw.blur.b))).b);
+// The frame's ambient light and the environment's on skin of curvature 1/r (1/mm), per RGB, to
+// multiply by the albedo: each band of the irradiance scaled as the pre-integrated profile
+// scatters it at that curvature (render/luts/preintegrated_skin.hpp, preintegratedAmbientBands),
+// and each channel looking up the environment with its own blurred normal, as the lights'
+// pre-integrated diffuse does, so that red light wraps further round the skin's curves than blue.
+vec3 skinAmbient(vec3 geometric, vec3 detail, float curvature) {
+  float at = sqrt(clamp(curvature / draw.skin.z, 0.0, 1.0)) * 15.0;
+  int below = min(int(at), 14);
+  float t = at - float(below);
+  vec3 scale[3];
+  for (int l = 0; l < 3; ++l)
+    scale[l] = mix(draw.ambientBands[16 * l + below].rgb, draw.ambientBands[16 * l + below + 1].rgb, t);
+  vec3 ambient = frame.ambient.rgb * scale[0];
+  if (frame.lightCount.y == 0) return ambient;
+  vec3 lit;
+  for (int c = 0; c < 3; ++c) {
+    vec3 band0, band1, band2;
+    environmentLightBands(normalize(mix(detail, geometric, draw.blur[c])), band0, band1, band2);
+    lit[c] = scale[0][c] * band0[c] + scale[1][c] * band1[c] + scale[2][c] * band2[c];
+  }
+  return ambient + lit;
 }
 
 // Skin's specular reflection of the environment (a split sum): the radiance pre-filtered for its

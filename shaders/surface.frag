@@ -49,7 +49,7 @@ vec3 translucency(vec3 geometric) {
 void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float shadow, out vec3 diffuse,
                out vec3 specular) {
   float rhoS = draw.skin.y * specularMap;
-  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : skinAmbient(geometric, detail)) +
+  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : skinAmbient(geometric, detail, inCurvature)) +
             translucency(geometric);
   skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, shadow, diffuse, specular);
 }

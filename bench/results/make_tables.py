@@ -223,7 +223,7 @@ FRAME_VARIANTS = [
 # The frame's passes in the order the Renderer records them; unknown ones follow alphabetically.
 PASS_ORDER = [
     "skinning", "strands", "hair shadows", "surface shadows", "skin diffusion", "translucency depth", "skin g-buffer",
-    "hair lighting", "surfaces", "hair", "main pass", "clear", "post downsample", "downsample",
+    "hair lighting", "surfaces", "hair", "main pass", "glasses", "clear", "post downsample", "downsample",
     "auto gain", "glow", "god rays", "post overlay", "overlay", "output",
 ]
 
@@ -247,6 +247,14 @@ ROBOT_VARIANTS = [
     "animated, 4× MSAA (`mane render`'s default)",
     "the body frozen, 4× MSAA",
 ]
+
+
+TIMBURY_VARIANTS = ["as shipped, with his glasses", "without the glasses"]
+
+
+def timbury_bare_row(run: Run) -> Optional[str]:
+    """The row without glasses, for the row with them."""
+    return "BM_TimburyFrame/variant:1" if run.args.get("variant") == "0" else None
 
 
 def robot_frozen_row(run: Run) -> Optional[str]:
@@ -383,6 +391,19 @@ BENCHES: list[Bench] = [
                           "in its rest pose while the hair and the cape are still simulated, so the ratio is "
                           "what the moving body costs. 9 frames of 1/30 s after 15 untimed ones; medians of "
                           "the frames, then of 5 repetitions; the ratio is of those medians.",
+                    more_counters=r"_ms$", counter_order=[pass_key(p) for p in PASS_ORDER],
+                    counter_header=pass_header),
+              Table("Timbury's frame", r"^BM_TimburyFrame/",
+                    lambda r: TIMBURY_VARIANTS[int(r.args["variant"])] if r.args["variant"].isdigit()
+                    and int(r.args["variant"]) < len(TIMBURY_VARIANTS) else r.name,
+                    [Column("frame (wall, ms)", "frame_ms"), Column("fps", "fps"),
+                     ratio_to("ratio to no glasses", timbury_bare_row, "frame_ms"),
+                     Column("uploads", "upload_ms"), Column("GPU span", "gpu_ms")],
+                    about="`scenes/timbury.json` the same way, at 1280×720 and 1× MSAA: the head as a "
+                          "subdivision surface under the Venice panorama, its sun cut out as the first light, "
+                          "with and without the glasses (two -2 D lenses refracting the frame in screen space, "
+                          "and their frame drawn as a mesh). 9 frames of 1/30 s after an untimed one; medians "
+                          "of the frames, then of 5 repetitions; the ratio is of those medians.",
                     more_counters=r"_ms$", counter_order=[pass_key(p) for p in PASS_ORDER],
                     counter_header=pass_header),
           ]),

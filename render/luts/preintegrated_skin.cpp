@@ -78,6 +78,22 @@ double integrationHalfRange(SkinIntegrationRange range, double curvature) {
   return range == SkinIntegrationRange::kPenner ? 0.5 * kPi : 0.5 * kPi * (1.0 + curvature);
 }
 
+std::array<glm::dvec3, 3> preintegratedAmbientBands(const SkinProfile& profile, SkinIntegrationRange range,
+                                                    double curvature) {
+  static const std::vector<QuadratureNode> nodes = gaussLegendre(32);
+  constexpr double kLambert[3] = {std::numbers::pi, 2.0 * std::numbers::pi / 3.0, std::numbers::pi / 4.0};
+  std::array<glm::dvec3, 3> bands{};
+  for (const double side : {-1.0, 1.0})  // the halves either side of D's kink at μ = 0 for flat skin
+    for (const QuadratureNode& node : nodes) {
+      const double mu = side * 0.5 * (node.position + 1.0);
+      const glm::dvec3 d = preintegratedDiffuse(profile, range, mu, curvature) * (0.5 * node.weight);
+      const double legendre[3] = {1.0, mu, 0.5 * (3.0 * mu * mu - 1.0)};
+      for (int l = 0; l < 3; ++l) bands[std::size_t(l)] += d * (2.0 * std::numbers::pi * legendre[l]);
+    }
+  for (int l = 0; l < 3; ++l) bands[std::size_t(l)] /= kLambert[l];
+  return bands;
+}
+
 glm::dvec3 preintegratedDiffuse(const SkinProfile& profile, SkinIntegrationRange range, double nDotL,
                                 double curvature) {
   nDotL = std::clamp(nDotL, -1.0, 1.0);

@@ -55,6 +55,15 @@ double integrationHalfRange(SkinIntegrationRange range, double curvature);
 /// Equation (1) per RGB for N·L ∈ [−1, 1] and curvature 1/r ≥ 0 in 1/mm.
 glm::dvec3 preintegratedDiffuse(const SkinProfile& profile, SkinIntegrationRange range, double nDotL, double curvature);
 
+/// What the ambient light of an environment does on skin of curvature 1/r (1/mm), per RGB and per
+/// spherical-harmonic band ℓ = 0, 1, 2: by the Funk–Hecke theorem, light L(ω) = Σ L_ℓm·Y_ℓm(ω)
+/// reaching skin whose response to a direction at cosine μ is D(μ) of equation (1) leaves
+/// Σ A_ℓ·L_ℓm·Y_ℓm(n), A_ℓ = 2π ∫ D(μ)·P_ℓ(μ) dμ over [−1, 1]. Returned as A_ℓ over Lambert's
+/// (D = max(μ, 0): π, 2π/3, π/4; Ramamoorthi & Hanrahan 2001), the factors by which skin scales
+/// each band of a Lambertian surface's irradiance: 1 at 1/r = 0. Each half of [−1, 1] by
+/// 32-point Gauss-Legendre.
+std::array<glm::dvec3, 3> preintegratedAmbientBands(const SkinProfile& profile, SkinIntegrationRange range,
+                                                    double curvature);
 /// Gauss-Legendre nodes of each piece of the quadrature (see the file comment).
 inline constexpr std::uint32_t kSkinQuadratureNodes = 12;
 /// How many standard deviations of each Gaussian the quadrature covers.

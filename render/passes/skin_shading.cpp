@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "render/luts/preintegrated_skin.hpp"
 #include "render/luts/skin_specular.hpp"
 
 namespace mane::render {
@@ -47,6 +48,13 @@ SkinMaterialConstants SkinShading::constants(const SkinParameters& skin, const P
     constants.profile[i] = glm::vec4(glm::vec3(profile.gaussians[i].weight), float(profile.gaussians[i].variance));
   for (int k = 0; k < 8; ++k)
     constants.specularAlbedo[std::size_t(k / 4)][k % 4] = float(kelemenSzirmayKalosAlbedo(k / 7.0, skin.roughness));
+  constexpr std::size_t kSamples = SkinMaterialConstants::kSkinAmbientSamples;
+  for (std::size_t i = 0; i < kSamples; ++i) {
+    const double share = double(i) / double(kSamples - 1);
+    const auto bands =
+        preintegratedAmbientBands(profile, table.settings().range, table.settings().maxCurvature * share * share);
+    for (std::size_t l = 0; l < 3; ++l) constants.ambientBands[kSamples * l + i] = glm::vec4(glm::vec3(bands[l]), 0.0f);
+  }
   return constants;
 }
 

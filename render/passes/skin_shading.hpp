@@ -8,6 +8,8 @@
 //    weight in d'Eon's Gaussians of variance ≥ 0.187 mm² (σ ≥ 0.43 mm, wider than pores;
 //    SkinProfile::broadShare): (0.667, 0.209, 0.007) — red light has left the pores' scale
 //    before it exits, blue has not;
+//  - the environment's irradiance: each spherical-harmonic band scaled as the profile scatters
+//    it at the curvature (preintegratedAmbientBands), through the blurred normals;
 //  - specular: Kelemen/Szirmay-Kalos with the table's Beckmann term and Schlick's Fresnel
 //    (F0 = 0.028) on the detail normal, ρs scaled by the specular map's red channel; under an
 //    environment, its pre-filtered radiance in the reflected direction (GGX of α = the Beckmann
@@ -38,6 +40,10 @@ struct SkinMaterialConstants {
   /// The specular's albedo with ρs = 1 (kelemenSzirmayKalosAlbedo) at N·V = 0, 1/7, …, 1, in
   /// order: what scales the environment's pre-filtered radiance.
   std::array<glm::vec4, 2> specularAlbedo{};
+  /// rgb: preintegratedAmbientBands' factor of band ℓ at curvature maxCurvature·(i/15)², at
+  /// [kSkinAmbientSamples·ℓ + i]: the samples crowd where skin's curvatures lie.
+  static constexpr std::size_t kSkinAmbientSamples = 16;
+  std::array<glm::vec4, 3 * kSkinAmbientSamples> ambientBands{};
 };
 
 class SkinShading {

@@ -54,6 +54,7 @@ struct MaterialUniforms {
   glm::vec4 extinction{0.0f};               // rgb: σ, 1/m
   glm::vec4 profile[kSkinGaussianCount]{};  // SkinMaterialConstants::profile
   glm::vec4 specularAlbedo[2]{};            // SkinMaterialConstants::specularAlbedo
+  glm::vec4 ambientBands[3 * SkinMaterialConstants::kSkinAmbientSamples]{};  // SkinMaterialConstants::ambientBands
 };
 
 Image textureOrDefault(const Device& device, const std::optional<TextureData>& texture,
@@ -251,6 +252,7 @@ SurfaceScene::GpuMaterial SurfaceScene::uploadMaterial(const MaterialData& mater
     uniforms.blur = skin.blur;
     std::copy(skin.profile.begin(), skin.profile.end(), uniforms.profile);
     std::copy(skin.specularAlbedo.begin(), skin.specularAlbedo.end(), uniforms.specularAlbedo);
+    std::copy(skin.ambientBands.begin(), skin.ambientBands.end(), uniforms.ambientBands);
   } else {
     writeSampledImage(*device_, gpu.descriptors, 2, skin_.unreadTable(), sampler_);
   }

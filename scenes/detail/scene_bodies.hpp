@@ -17,6 +17,7 @@ Transform parseTransform(const nlohmann::json& json, const std::string& path);
 Subdivision parseSubdivision(const nlohmann::json& json, const std::string& path);
 Groom parseGroom(const nlohmann::json& json, const std::string& path);
 Cloth parseCloth(const nlohmann::json& json, const std::string& path);
+Glasses parseGlasses(const nlohmann::json& json, const std::string& path);
 render::HairShadowSettings parseHairShadows(const nlohmann::json& json, const std::string& path);
 /// The scene's "post" block: tone mapping, auto gain, key, glow, adaptation time.
 render::PostSettings parsePost(const nlohmann::json& json, const std::string& path);

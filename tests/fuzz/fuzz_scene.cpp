@@ -1,5 +1,6 @@
 // libFuzzer harness: scene JSON text → parseScene. Must return a value or an error, never
-// crash, hang or leak; a scene it accepts must hold only finite numbers.
+// crash, hang or leak; a scene it accepts must hold only finite numbers, and its glasses must be
+// built or refused by name (scenes/glasses.hpp).
 
 #include <cmath>
 #include <cstddef>
@@ -7,6 +8,8 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "render/lens.hpp"
+#include "scenes/glasses.hpp"
 #include "scenes/scene.hpp"
 
 namespace {
@@ -78,6 +81,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!finite(cloth.colliders)) std::abort();
     for (const auto& [lower, upper] : cloth.pinRegions)
       if (!finite(lower) || !finite(upper)) std::abort();
+  }
+  for (const auto& glasses : scene->glasses) {
+    if (!finite(glasses.transform) || !finite(glasses.tint)) std::abort();
+    auto built = mane::scenes::buildGlasses(glasses);
+    if (!built) {
+      if (built.error().message.find(glasses.name) == std::string::npos) std::abort();
+      continue;
+    }
+    for (const auto& lens : built->lenses)
+      if (!mane::render::validateLens(lens)) std::abort();
+    for (const glm::vec3& p : built->frame.positions)
+      if (!finite(p)) std::abort();
   }
   return 0;
 }

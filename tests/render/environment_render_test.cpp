@@ -13,6 +13,7 @@
 #include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
+#include "render/luts/preintegrated_skin.hpp"
 #include "render/luts/skin_specular.hpp"
 #include "render/renderer.hpp"
 #include "scenes/procedural.hpp"
@@ -64,17 +65,21 @@ public:
     return rgba ? *rgba : std::vector<std::uint8_t>{};
   }
 
-  /// The renderer after one frame of the unit sphere under `environment`; null on failure.
-  std::unique_ptr<Renderer> renderScene(CubeMap environment, const MaterialData& material) {
+  /// The renderer after one frame of the unit sphere under `environment`, its skin shaded as if
+  /// of curvature `curvature` per metre; null on failure.
+  std::unique_ptr<Renderer> renderScene(CubeMap environment, const MaterialData& material, float curvature = 0.0f) {
     const scenes::Mesh sphere = scenes::makeSphere(96, 192, 1.0f);
+    const std::vector<float> curvatures(curvature > 0.0f ? sphere.positions.size() : 0, curvature);
     auto renderer = Renderer::create(device(), {.extent = kExtent});
     EXPECT_TRUE(renderer.has_value());
     if (!renderer) return nullptr;
-    StaticScene scene{
-        .environment = EnvironmentData{.radiance = std::move(environment)},
-        .meshes = {MeshData{
-            .positions = sphere.positions, .normals = sphere.normals, .uvs = sphere.uvs, .indices = sphere.indices}},
-        .materials = {material}};
+    StaticScene scene{.environment = EnvironmentData{.radiance = std::move(environment)},
+                      .meshes = {MeshData{.positions = sphere.positions,
+                                          .normals = sphere.normals,
+                                          .uvs = sphere.uvs,
+                                          .indices = sphere.indices,
+                                          .curvatures = curvatures}},
+                      .materials = {material}};
     auto set = (*renderer)->setScene(scene);
     EXPECT_TRUE(set.has_value()) << set.error().message;
     if (!set) return nullptr;
@@ -206,6 +211,39 @@ TEST_F(EnvironmentRender, ASkinSphereUnderAConstantEnvironmentShowsItsDiffuseAnd
     }
   EXPECT_GT(checked, 500);
   EXPECT_GT(highest - lowest, 0.005);  // the specular's rise towards the rim is within the check
+}
+
+TEST_F(EnvironmentRender, SkinScattersEachBandOfALinearSkyAsItsCurvatureSays) {
+  // Under L = a + b·y, Lambert shows a + ⅔·b·n_y; skin of curvature 1/r shows k₀·a + k₁·⅔·b·n_y
+  // per channel, k_ℓ the pre-integrated profile's Funk–Hecke factors (preintegratedAmbientBands).
+  // At 1/r = 0.5/mm (an ear's rim) red gains 2 % on band 0 and loses 2.7 % on band 1. Read from
+  // the linear HDR frame, with no specular (ρs = 0).
+  const float a = 0.45f, b = 0.4f;
+  constexpr double kCurvature = 0.5;  // 1/mm
+  const MaterialData skin{
+      .baseColor = glm::vec3(0.9f), .shading = SurfaceShading::kSkin, .skin = {.specularIntensity = 0.0f}};
+  auto renderer =
+      renderScene(cubeOf(32, [&](glm::vec3 d) { return glm::vec3(a + b * d.y); }), skin, float(kCurvature * 1000.0));
+  ASSERT_TRUE(renderer);
+  auto halves = renderer->readHdrOutput();
+  ASSERT_TRUE(halves.has_value());
+  const auto bands = preintegratedAmbientBands(SkinProfile{}, skin.skin.range, kCurvature);
+  int checked = 0;
+  double furthestFromLambert = 0.0;
+  for (int y = 0; y < int(kExtent.height); ++y)
+    for (int x = 0; x < int(kExtent.width); ++x) {
+      const std::optional<glm::vec3> n = sphereNormal(x, y);
+      if (!n) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double expected = 0.9 * (bands[0][c] * a + bands[1][c] * 2.0 / 3.0 * b * n->y);
+        const double shown = glm::unpackHalf1x16((*halves)[(std::size_t(y) * kExtent.width + std::size_t(x)) * 4 + c]);
+        ASSERT_NEAR(shown, expected, 2e-3) << "pixel " << x << ", " << y << " channel " << c << " n_y " << n->y;
+        furthestFromLambert = std::max(furthestFromLambert, std::abs(expected - 0.9 * (a + 2.0 / 3.0 * b * n->y)));
+      }
+      ++checked;
+    }
+  EXPECT_GT(checked, 500);
+  EXPECT_GT(furthestFromLambert, 5e-3);  // the check tells skin from Lambert
 }
 
 }  // namespace

@@ -148,6 +148,38 @@ TEST(PreintegratedSkin, DiffuseMatchesBruteForceIntegration) {
   ::testing::Test::RecordProperty("worst_brute_force_error", std::to_string(worst));
 }
 
+TEST(PreintegratedSkin, AmbientBandsAreTheDiffusesFunkHeckeProjection) {
+  // Light L(ω) = P_ℓ(ω·n) leaves skin facing n with A_ℓ = 2π ∫ D(μ)·P_ℓ(μ) dμ; against a midpoint
+  // rule over μ of the brute-force ring integral, within 2e-3 of Lambert's A_ℓ.
+  const SkinProfile profile;
+  for (const SkinIntegrationRange range : {SkinIntegrationRange::kPenner, SkinIntegrationRange::kCurvature}) {
+    const auto flat = preintegratedAmbientBands(profile, range, 0.0);
+    for (const glm::dvec3& band : flat)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(band[c], 1.0, 1e-9) << "flat skin is Lambertian";
+    for (const double curvature : {0.05, 0.2, 0.5}) {
+      SCOPED_TRACE(curvature);
+      const auto bands = preintegratedAmbientBands(profile, range, curvature);
+      constexpr int kSteps = 400;
+      const double lambert[3] = {kPi, 2.0 * kPi / 3.0, kPi / 4.0};
+      for (int l = 0; l < 3; ++l) {
+        glm::dvec3 reference(0.0);
+        for (int k = 0; k < kSteps; ++k) {
+          const double mu = -1.0 + (k + 0.5) * 2.0 / kSteps;
+          const double legendre = l == 0 ? 1.0 : l == 1 ? mu : 0.5 * (3.0 * mu * mu - 1.0);
+          reference += bruteForceDiffuse(profile, range, mu, curvature) * (2.0 * kPi * legendre * 2.0 / kSteps);
+        }
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(bands[std::size_t(l)][c], reference[c] / lambert[l], 2e-3) << "band " << l << " channel " << c;
+      }
+      // Scattering blurs: the higher band loses more, and red, which spreads furthest, most.
+      for (int c = 0; c < 3; ++c) EXPECT_LT(bands[2][c], bands[1][c]);
+      EXPECT_LT(bands[2].r, bands[2].b);
+      std::printf("[ ambient ] range %d, 1/r %.2f /mm: bands 0, 1, 2 (red) %.4f %.4f %.4f (blue) %.4f %.4f %.4f\n",
+                  int(range), curvature, bands[0].r, bands[1].r, bands[2].r, bands[0].b, bands[1].b, bands[2].b);
+    }
+  }
+}
+
 TEST(PreintegratedSkin, TendsToSaturatedNDotLAsCurvatureVanishes) {
   // 1/r = 0 is the limit itself (a flat surface: the kernel is a delta), stored exactly in row 0.
   // As 1/r falls the kernel narrows to ~σ/r radians and D approaches max(N·L, 0): the largest

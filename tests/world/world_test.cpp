@@ -473,5 +473,45 @@ TEST_F(WorldRender, GroomsAreInterpolatedOnTheGpuAndDrawnOverTheSurfaces) {
   EXPECT_GT(changed, 300u) << "of " << bare.size() / 4 << " pixels";
 }
 
+// --- Glasses -------------------------------------------------------------------------------
+
+// Glasses ride the head they are worn on: the frame's instance and both lenses keep their place in
+// the head's body frame while it turns, and the frame is drawn as a mesh of its own, last.
+TEST(WorldGlasses, TheFrameAndLensesFollowTheTurningHead) {
+  auto scene = parseScene(R"({"name": "specs", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+      "materials": [{"name": "frame", "base_colour": [0.02, 0.02, 0.02]}],
+      "meshes": [{"name": "head", "source": "procedural:sphere", "transform": {"scale": 0.09}}],
+      "glasses": [{"name": "specs", "attached_mesh": "head", "transform": {"translation": [0, 0.01, 0.1],
+                   "rotation_degrees": [8, 0, 0]}, "power_dioptres": -2, "material": "frame"}],
+      "animation": {"head": {"mesh": "head", "motion": "turn", "amplitude_degrees": 30, "frequency_hz": 0.5}}})",
+                          "specs.json");
+  ASSERT_TRUE(scene.has_value()) << scene.error().message;
+  const Scene copy = *scene;
+  auto world = World::create(std::move(*scene), resolverWithoutAssets(), {.loadTextures = false});
+  ASSERT_TRUE(world.has_value()) << world.error().message;
+  auto built = buildGlasses(copy.glasses[0]);
+  ASSERT_TRUE(built.has_value());
+  const render::StaticScene statics = world->staticScene();
+  EXPECT_EQ(statics.meshes.back().positions.size(), built->frame.positions.size());
+  for (int frame = 0; frame < 3; ++frame) {
+    if (frame > 0) {
+      ASSERT_TRUE(world->advance(0.4, 1).has_value());
+    }
+    const glm::mat4 placed =
+        bodyMatrix(copy, copy.meshes[0], float(world->time())) * copy.glasses[0].transform.matrix();
+    const render::FrameInput input = world->frameInput();
+    const render::MeshInstance& instance = input.instances.back();
+    EXPECT_EQ(instance.mesh, statics.meshes.size() - 1);
+    EXPECT_EQ(instance.material, 0u);
+    ASSERT_EQ(input.lenses.size(), 2u);
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_LT(glm::distance(instance.model[c], placed[c]), 1e-5f) << "at " << world->time() << " s";
+      for (std::size_t l = 0; l < 2; ++l)
+        EXPECT_LT(glm::distance(input.lenses[l].model[c], (placed * built->lenses[l].model)[c]), 1e-5f);
+    }
+    EXPECT_NEAR(render::thinLensPower(input.lenses[0].shape), -2.0f, 1e-4f);
+  }
+}
+
 }  // namespace
 }  // namespace mane::scenes
