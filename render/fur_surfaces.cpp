@@ -67,7 +67,8 @@ bool FurSurfaces::draws(const MeshInstance& instance, const FrameInput& frame) c
   return false;
 }
 
-Result<void> FurSurfaces::update(const FrameInput& frame, glm::vec3 ambient, vk::Extent2D extent, float aspect) {
+Result<void> FurSurfaces::update(const FrameInput& frame, glm::vec3 ambient, const SphericalHarmonics9& environment,
+                                 vk::Extent2D extent, float aspect) {
   const glm::mat4 viewProjection = frame.camera.projection(aspect) * frame.camera.view();
   const DirectionalLight light = frame.lights.empty() ? DirectionalLight{.intensity = 0.0f} : frame.lights[0];
   for (std::size_t f = 0; f < furs_.size(); ++f) {
@@ -82,6 +83,7 @@ Result<void> FurSurfaces::update(const FrameInput& frame, glm::vec3 ambient, vk:
                                            .extent = extent,
                                            .light = light,
                                            .ambient = ambient,
+                                           .environment = environment,
                                            .look = fur.look});
           !updated)
         return fail("fur " + std::to_string(f) + ": " + updated.error().message);

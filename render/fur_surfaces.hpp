@@ -50,9 +50,10 @@ public:
   [[nodiscard]] bool draws(const MeshInstance& instance, const FrameInput& frame) const;
 
   /// Points each fur at the first instance of the frame that draws it (the others are not
-  /// drawn: one uniform block per pass) with the first light and `ambient` radiance. Errors as
-  /// FurPass::update.
-  [[nodiscard]] Result<void> update(const FrameInput& frame, glm::vec3 ambient, vk::Extent2D extent, float aspect);
+  /// drawn: one uniform block per pass) with the first light, `ambient` radiance and the
+  /// `environment`'s irradiance over π (zeros: none). Errors as FurPass::update.
+  [[nodiscard]] Result<void> update(const FrameInput& frame, glm::vec3 ambient, const SphericalHarmonics9& environment,
+                                    vk::Extent2D extent, float aspect);
 
   /// Records the furs update() found instances for, inside the main pass.
   void draw(const vk::raii::CommandBuffer& commands) const;

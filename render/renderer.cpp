@@ -652,7 +652,10 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   if (auto prepared = translucency_.prepareThickness(frame, scene_); !prepared)
     return std::unexpected(prepared.error());
   if (auto posed = poseSkinnedFurs(); !posed) return std::unexpected(posed.error());
-  if (auto updated = furs_.update(frame, ambientRadiance(frame), target_.extent(), target_.aspect()); !updated)
+  if (auto updated =
+          furs_.update(frame, frame.ambient, environment_ ? environment_->irradianceOverPi() : SphericalHarmonics9{},
+                       target_.extent(), target_.aspect());
+      !updated)
     return std::unexpected(updated.error());
   // Drawn furs cast shadows from where they are now (their slots follow the grooms'); the others
   // cast none.

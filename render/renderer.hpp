@@ -154,8 +154,8 @@ private:
 
   /// Points every pass that receives hair shadows at the current maps.
   void refreshShadowDescriptors();
-  /// The ambient radiance of what does not look up the environment's irradiance by a normal (the
-  /// fur, texture-space skin): the frame's own plus the environment's average radiance.
+  /// The ambient radiance of what does not look up the environment's irradiance by a normal
+  /// (texture-space skin): the frame's own plus the environment's average radiance.
   glm::vec3 ambientRadiance(const FrameInput& frame) const;
 
   const Device* device_;

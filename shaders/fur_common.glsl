@@ -24,11 +24,14 @@ layout(set = 0, binding = 0) uniform FurUniforms {
   vec4 layField;        // xyz: the fur-direction field (model space), w: photo repeats per metre (0: by uvs)
   vec4 tint;            // rgb: multiplies the photo's colour
   vec4 comb;            // xyz: world lean of the tips (units of h_b) before projection on the surface
+  vec4 environment[9];  // rgb: the environment's E/π as nine harmonics; 0 without one
   vec4 thresholds[17];  // I(0 … 64), four to a vec4
   HairShadowUniforms shadows;
 } fur;
 
 layout(set = 0, binding = 1) uniform sampler2D photo;  // sRGB: sampled values are linear
+
+#include "environment_fibre.glsl"
 
 // Rec. 709 relative luminance of linear RGB, as photoLuminance on the CPU.
 float luminance(vec3 rgb) {
@@ -94,7 +97,8 @@ vec2 kajiyaKay(vec3 t, vec3 l, vec3 e) {
 // would be black under a light along n, which the photo, taken lit from above, contradicts). The
 // diffuse term is divided by its value for light along n, so the photo's own colour comes back
 // under the light it was taken in; the fur's body shades it as it turns away from the light
-// (half-Lambert wrap: fur scatters light past the terminator).
+// (half-Lambert wrap: fur scatters light past the terminator). The environment lights each fibre
+// as it does a hair: its irradiance averaged round the fibre's side.
 struct FurLight {
   vec3 diffuse;   // multiplies the photo's colour
   vec3 specular;  // added
@@ -114,7 +118,8 @@ FurLight furLight(vec3 n, vec3 d, vec3 world) {
   float diffuseUnderTopLight = max(fur.lay.y, 1e-3);  // sin(t, n) of every tilted fibre
   float body = clamp(0.5 * dot(n, l) + 0.5, 0.0, 1.0);
   vec3 light = fur.lightRadiance.rgb * body * hairShadowTransmittance(fur.shadows, world);
-  return FurLight(fur.tint.rgb * (fur.ambient.rgb + light * (sum.x / diffuseUnderTopLight)),
+  vec3 ambient = fur.ambient.rgb + environmentAroundFibre(fur.environment, d);
+  return FurLight(fur.tint.rgb * (ambient + light * (sum.x / diffuseUnderTopLight)),
                   light * fur.shells.w * sum.y);
 }
 

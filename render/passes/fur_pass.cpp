@@ -30,11 +30,12 @@ struct FurUniforms {
   glm::vec4 layField;  // xyz: the fur-direction field (model space), w: photo repeats per metre (0: by uvs)
   glm::vec4 tint;      // rgb: multiplies the photo's colour
   glm::vec4 comb;      // xyz: world lean of the fur's top, in units of h_b, before its projection on the surface
+  std::array<glm::vec4, 9> environment;  // rgb: E/π's harmonics
   std::array<float, 4 * 17> thresholds;
   HairShadowUniforms shadows;
 };
 static_assert((kMaxFurLayers + 1) <= 4 * 17, "shaders/fur_common.glsl holds I(0 … 64)");
-static_assert(sizeof(FurUniforms) == 3 * 64 + 9 * 16 + 17 * 16 + sizeof(HairShadowUniforms));
+static_assert(sizeof(FurUniforms) == 3 * 64 + 18 * 16 + 17 * 16 + sizeof(HairShadowUniforms));
 
 // Binding of the first hair shadow image (shaders/fur_common.glsl); 2 × 4 of them.
 constexpr std::uint32_t kFirstShadowBinding = 5;
@@ -433,6 +434,7 @@ Result<void> FurPass::update(const FurView& view) {
       field ? glm::vec4(glm::normalize(view.look.layDirection), view.look.layRepeatsPerMetre) : glm::vec4(0.0f);
   uniforms.tint = glm::vec4(view.look.tint, 1.0f);
   uniforms.comb = glm::vec4(view.look.comb, 0.0f);
+  for (std::size_t i = 0; i < 9; ++i) uniforms.environment[i] = glm::vec4(view.environment[i], 0.0f);
   if (vertexCount_ > 0) writeShadowStrands(view.model, view.look.comb);
   // About one shell per `pixelsPerLayer` of the fur's height on screen: where it is a few pixels
   // tall, shells closer together than a pixel add cost and no parallax.

@@ -65,6 +65,7 @@
 
 #include <glm/glm.hpp>
 
+#include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
 #include "render/luts/fur_shells.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
@@ -124,6 +125,9 @@ struct FurView {
   vk::Extent2D extent{};
   DirectionalLight light;
   glm::vec3 ambient{0.03f};
+  /// The environment's irradiance over π (EnvironmentPass::irradianceOverPi); zeros: none. Each
+  /// fibre takes it averaged round its side.
+  SphericalHarmonics9 environment{};
   FurLook look;
 };
 

@@ -27,7 +27,9 @@
 #include "render/fur_surfaces.hpp"
 #include "render/passes/fur_pass.hpp"
 #include "render/render_target.hpp"
+#include "render/environment/spherical_harmonics.hpp"
 #include "scenes/image.hpp"
+#include "tests/render/environment_cubes.hpp"
 #include "tests/scenes/test_support.hpp"
 #include "tests/support/image_compare.hpp"
 #include "tests/support/vulkan_fixture.hpp"
@@ -342,6 +344,60 @@ TEST_F(FurPassTest, FurColourComesFromThePhoto) {
     ++checked;
   }
   EXPECT_GT(checked, 1000u);
+}
+
+// The environment lights each fibre by its irradiance averaged round the fibre's side, as it does
+// a hair. Under L = a + c·y², E/π at a normal n is a + c·(1 + n_y²)/4 (∫ ω_i ω_j max(n·ω, 0) dω =
+// π(δ_ij + n_i n_j)/4), and the mean of n_y² over the normals perpendicular to a fibre along t is
+// (1 − t_y²)/2: white fur growing along the sphere's normal shows a + c·(3 − t_y²)/8 with no light.
+TEST_F(FurPassTest, TheEnvironmentLightsEachFibreRoundItsSide) {
+  // White but for one texel a step darker: a photo needs some contrast to make shells of.
+  scenes::Image white{.width = 4, .height = 4, .rgba = std::vector<std::uint8_t>(64, 255)};
+  for (int k = 0; k < 3; ++k) white.rgba[std::size_t(k)] = 254;
+  auto pass = makePass(white, {});
+  ASSERT_TRUE(pass);
+  const SphereMesh sphere = unitSphere(48, 96);
+  ASSERT_TRUE(pass->setMesh(sphere.data()).has_value());
+  constexpr float a = 0.1f, c = 1.0f;
+  SphericalHarmonics9 environment =
+      irradianceFromRadiance(projectRadiance(cubeOf(32, [&](glm::vec3 d) { return glm::vec3(a + c * d.y * d.y); })));
+  for (glm::vec3& coefficient : environment) coefficient /= std::numbers::pi_v<float>;
+  FurView view = sphereView({.specularStrength = 0.0f});
+  view.light.intensity = 0.0f;
+  view.ambient = glm::vec3(0.0f);
+  view.environment = environment;
+  const Pixels pixels = render(*pass, view);
+  // A pixel shows fibres where its ray crosses the fur, between the skin (radius 1) and the top
+  // shell (1 + h_b), growing along the sphere's normal there: between what the two normals give.
+  const float aspect = float(kExtent.width) / float(kExtent.height);
+  const glm::mat4 toWorld = glm::inverse(kCamera.projection(aspect) * kCamera.view());
+  const auto fibreAt = [&](glm::vec3 ray, float radius) -> std::optional<glm::vec3> {
+    const float b = glm::dot(kCamera.position, ray);
+    const float discriminant = b * b - (glm::dot(kCamera.position, kCamera.position) - radius * radius);
+    if (discriminant < 0.3f) return std::nullopt;  // near the outline, where the fins show
+    return glm::normalize(kCamera.position + (-b - std::sqrt(discriminant)) * ray);
+  };
+  const auto shown = [&](glm::vec3 t) { return a + c * (3.0 - t.y * t.y) / 8.0; };
+  std::size_t checked = 0;
+  double lowest = 1.0, highest = 0.0;
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    if (pixels[i].a < 0.5f) continue;
+    const glm::vec2 ndc((float(i % kExtent.width) + 0.5f) / float(kExtent.width) * 2.0f - 1.0f,
+                        (float(i / kExtent.width) + 0.5f) / float(kExtent.height) * 2.0f - 1.0f);
+    const glm::vec4 far = toWorld * glm::vec4(ndc, 1.0f, 1.0f);
+    const glm::vec3 ray = glm::normalize(glm::vec3(far) / far.w - kCamera.position);
+    const auto top = fibreAt(ray, 1.0f + kThickness), skin = fibreAt(ray, 1.0f);
+    if (!top || !skin) continue;
+    const double low = std::min(shown(*top), shown(*skin)), high = std::max(shown(*top), shown(*skin));
+    // The darker texel, and the shading interpolated between the shells' vertices: within 1 %.
+    ASSERT_GE(pixels[i].r, 0.99 * low) << "pixel " << i << " t_y " << top->y;
+    ASSERT_LE(pixels[i].r, 1.01 * high) << "pixel " << i << " t_y " << top->y;
+    lowest = std::min(lowest, low);
+    highest = std::max(highest, high);
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000u);
+  EXPECT_GT(highest - lowest, 0.04);  // the check spans the fibres' turn towards the poles
 }
 
 // Fins change only pixels at the silhouette: the difference between renders with and without
