@@ -153,4 +153,15 @@ Mesh makeTorus(float majorRadius, float minorRadius, int majorSegments, int mino
   return mesh;
 }
 
+Mesh makePlane(float halfSide) {
+  Mesh mesh;
+  mesh.name = "plane";
+  const float h = halfSide;
+  mesh.positions = {{-h, 0.0f, -h}, {-h, 0.0f, h}, {h, 0.0f, h}, {h, 0.0f, -h}};
+  mesh.normals.assign(4, glm::vec3(0.0f, 1.0f, 0.0f));
+  mesh.uvs = {{0.0f, 0.0f}, {0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  return mesh;
+}
+
 }  // namespace mane::scenes

@@ -39,4 +39,8 @@ namespace mane::scenes {
 /// 2π²·R·r² · s(majorSegments) · s(minorSegments), s(k) = k·sin(2π/k) / 2π.
 [[nodiscard]] Mesh makeTorus(float majorRadius, float minorRadius, int majorSegments, int minorSegments);
 
+/// A floor: the square [−halfSide, halfSide]² in the XZ plane at y = 0, facing +Y, as 2 triangles
+/// (counter-clockwise seen from above) with uvs 0..1 across it.
+[[nodiscard]] Mesh makePlane(float halfSide);
+
 }  // namespace mane::scenes

@@ -138,8 +138,10 @@ struct Transform {
 inline constexpr std::string_view kProceduralPrefix = "procedural:";
 
 /// The kinds after `kProceduralPrefix` that `loadSceneMesh` builds (scenes/procedural.hpp): a
-/// unit sphere, the cube [−1, 1]³ with a hollow of radius 0.5, a torus of radii 1 and 0.4 around +Y.
-inline constexpr std::array<std::string_view, 3> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus"};
+/// unit sphere, the cube [−1, 1]³ with a hollow of radius 0.5, a torus of radii 1 and 0.4 around +Y,
+/// a floor 1 m square in the XZ plane facing +Y.
+inline constexpr std::array<std::string_view, 4> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus",
+                                                                         "plane"};
 
 /// Bounds of `Subdivision`'s fields (subdiv::LimitSurfaceSettings, subdiv::TessellationSettings).
 inline constexpr int kMinSubdivisionLevel = 1;

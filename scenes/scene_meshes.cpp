@@ -34,6 +34,7 @@ std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
   if (kind == "cube_with_hollow")
     return makeCubeWithHollow(kCubeHalfSide, kHollowRadius, kSphereRings, kSphereSegments);
   if (kind == "torus") return makeTorus(kTorusMajorRadius, kTorusMinorRadius, kTorusMajorSegments, kTorusMinorSegments);
+  if (kind == "plane") return makePlane(0.5f);
   return std::nullopt;
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -289,4 +290,24 @@ TEST(SmoothNormals, UnusedVertexGetsUp) {
 }
 
 }  // namespace
+TEST(ProceduralPlane, IsAFloorOfTheAskedSideFacingUp) {
+  const Mesh plane = makePlane(0.5f);
+  ASSERT_EQ(plane.indices.size(), 6u);
+  ASSERT_EQ(plane.uvs.size(), plane.positions.size());
+  float area = 0.0f;
+  for (std::size_t t = 0; t < plane.indices.size(); t += 3) {
+    const glm::vec3 a = plane.positions[plane.indices[t]], b = plane.positions[plane.indices[t + 1]],
+                    c = plane.positions[plane.indices[t + 2]];
+    const glm::vec3 twice = glm::cross(b - a, c - a);
+    EXPECT_GT(twice.y, 0.0f) << "counter-clockwise seen from above";
+    area += 0.5f * glm::length(twice);
+  }
+  EXPECT_FLOAT_EQ(area, 1.0f);
+  for (const glm::vec3& p : plane.positions) {
+    EXPECT_EQ(p.y, 0.0f);
+    EXPECT_EQ(std::max(std::abs(p.x), std::abs(p.z)), 0.5f);
+  }
+  for (const glm::vec3& n : plane.normals) EXPECT_EQ(n, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
 }  // namespace mane::scenes

@@ -224,7 +224,7 @@ TEST(Scene, ReferencesMustResolve) {
   EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                         "meshes": [{"name": "m", "source": "procedural:cube"}]})"),
             "dir/bad.json: meshes[0].source: unknown procedural mesh \"procedural:cube\" "
-            "(known: procedural:sphere, procedural:cube_with_hollow, procedural:torus)");
+            "(known: procedural:sphere, procedural:cube_with_hollow, procedural:torus, procedural:plane)");
 }
 
 TEST(Scene, InvertZIsForGroomFilesOnly) {
