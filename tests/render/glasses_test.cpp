@@ -103,12 +103,12 @@ double fresnel(double thetaI, double n) {
 TEST_F(Glasses, ATiltedSlabShiftsWhatLiesBehindItAsSnellsLawSays) {
   // A flat slab 3 cm thick, turned 30° about +y, halfway between the camera and a white half-plane
   // x > 0. A ray at angle φ meets it at θi = 30° + φ and leaves it parallel, shifted towards −x by
-  // d = t·sin(θi − θr)/cos θr: it lands on the plane at 0.5·tan φ − d/cos φ.
+  // d = t·sin(θi − θr)/cos θr: it lands on the plane at 0.5·tan φ − d/cos φ. Turned a further
+  // 180°, its back face towards the camera (traced mirrored through its mid-plane), it is the
+  // same slab and shifts the edge alike.
   constexpr double kThickness = 0.03, kTilt = 30.0, kTanHalfWidth = 0.12;
   const Camera camera = cameraAt(0.5f, float(kTanHalfWidth));
   const LensShape slab{.centreThickness = float(kThickness), .halfAperture = {0.1f, 0.1f}, .ior = kIor};
-  const glm::mat4 placement = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 0.25f)),
-                                          glm::radians(float(kTilt)), glm::vec3(0, 1, 0));
   const auto landing = [&](double phi) {
     const double thetaI = glm::radians(kTilt) + phi, thetaR = std::asin(std::sin(thetaI) / kIor);
     return 0.5 * std::tan(phi) - kThickness * std::sin(thetaI - thetaR) / std::cos(thetaR) / std::cos(phi);
@@ -118,19 +118,26 @@ TEST_F(Glasses, ATiltedSlabShiftsWhatLiesBehindItAsSnellsLawSays) {
   const double expected = columnOf(0.5 * (low + high), kTanHalfWidth);
 
   const std::vector<double> bare = middleRow(camera, 0.0f, 1.0f, {});
-  const std::vector<double> through = middleRow(camera, 0.0f, 1.0f, {Lens{slab, placement}});
-  ASSERT_EQ(through.size(), kExtent.width);
   const double lit = bare.back();
   EXPECT_NEAR(lit, 1.0, 0.01);
+  const std::optional<double> bareEdge = risingEdge(bare, lit);
+  ASSERT_TRUE(bareEdge);
+  EXPECT_NEAR(*bareEdge, 0.5 * kExtent.width, 0.5);
   // What passes both faces: (1 − R(θi))(1 − R(θr seen from inside)), the same factor twice.
   const double thetaI = glm::radians(kTilt) + std::atan((expected / kExtent.width * 2.0 - 1.0) * kTanHalfWidth);
   const double passed = std::pow(1.0 - fresnel(thetaI, kIor), 2.0);
-  const std::optional<double> bareEdge = risingEdge(bare, lit), shiftedEdge = risingEdge(through, through.back());
-  ASSERT_TRUE(bareEdge && shiftedEdge);
-  EXPECT_NEAR(*bareEdge, 0.5 * kExtent.width, 0.5);
-  EXPECT_GT(*shiftedEdge - *bareEdge, 20.0);
-  EXPECT_NEAR(*shiftedEdge, expected, 0.5) << "the slab moved the edge from " << *bareEdge;
-  EXPECT_NEAR(through.back(), lit * passed, 0.01 * lit);
+  for (const double turn : {kTilt, kTilt + 180.0}) {
+    SCOPED_TRACE(turn);
+    const glm::mat4 placement = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 0.25f)),
+                                            glm::radians(float(turn)), glm::vec3(0, 1, 0));
+    const std::vector<double> through = middleRow(camera, 0.0f, 1.0f, {Lens{slab, placement}});
+    ASSERT_EQ(through.size(), kExtent.width);
+    const std::optional<double> shiftedEdge = risingEdge(through, through.back());
+    ASSERT_TRUE(shiftedEdge);
+    EXPECT_GT(*shiftedEdge - *bareEdge, 20.0);
+    EXPECT_NEAR(*shiftedEdge, expected, 0.5) << "the slab moved the edge from " << *bareEdge;
+    EXPECT_NEAR(through.back(), lit * passed, 0.01 * lit);
+  }
 }
 
 TEST_F(Glasses, APlusLensMagnifiesAsTheThinLensEquationSays) {
