@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "render/lens.hpp"
 #include "scenes/detail/json_fields.hpp"
 
 namespace mane::scenes::detail {
@@ -415,7 +416,7 @@ Glasses parseGlasses(const Json& json, const std::string& path) {
   glasses.tint = fields.optional<glm::vec3>("tint", glasses.tint);
   glasses.material = fields.optional<std::string>("material", "");
   fields.finish();
-  require(std::abs(glasses.powerDioptres) <= 20.0f, fields.child("power_dioptres"),
+  require(std::abs(glasses.powerDioptres) <= render::kMaxLensPower, fields.child("power_dioptres"),
           "expected a power in [-20, 20] dioptres");
   require(glasses.lensWidth > 0.0f && glasses.lensWidth <= 0.2f, fields.child("lens_width"),
           "expected a width in (0, 0.2] metres");
