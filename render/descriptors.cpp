@@ -89,4 +89,15 @@ void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set,
       {});
 }
 
+void writeStorageImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                       const vk::raii::ImageView& view) {
+  const vk::DescriptorImageInfo info{.imageView = *view, .imageLayout = vk::ImageLayout::eGeneral};
+  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
+                                                              .dstBinding = binding,
+                                                              .descriptorCount = 1,
+                                                              .descriptorType = vk::DescriptorType::eStorageImage,
+                                                              .pImageInfo = &info},
+                                       {});
+}
+
 }  // namespace mane::render

@@ -29,6 +29,9 @@ void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set,
 vk::raii::BufferView makeTexelView(const Device& device, vk::Buffer buffer, vk::Format format);
 void writeUniformTexelBuffer(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
                              const vk::raii::BufferView& view);
+/// A storage image of `view` in GENERAL layout.
+void writeStorageImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
+                       const vk::raii::ImageView& view);
 /// A combined image sampler of `view` in `layout` (GENERAL for an image compute passes also
 /// write as a storage image).
 void writeSampledImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,

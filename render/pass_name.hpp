@@ -23,6 +23,7 @@ public:
   // The passes of the renderer's frame (render/renderer.hpp), in the order they can run.
   static const PassName kSkinning;           ///< skinned, morphing meshes deformed (compute)
   static const PassName kStrands;            ///< the grooms' strand interpolation (compute)
+  static const PassName kHairDensity;        ///< the hair's density and what it leaves of the environment (compute)
   static const PassName kHairShadows;        ///< the hair and fur opacity shadow maps from light 0
   static const PassName kSurfaceShadows;     ///< light 0's depth map of every surface, for their soft shadows
   static const PassName kSkinDiffusion;      ///< texture-space skin: irradiance in uv space and its blurs
@@ -46,6 +47,7 @@ private:
 
 inline constexpr PassName PassName::kSkinning{"skinning"};
 inline constexpr PassName PassName::kStrands{"strands"};
+inline constexpr PassName PassName::kHairDensity{"hair density"};
 inline constexpr PassName PassName::kHairShadows{"hair shadows"};
 inline constexpr PassName PassName::kSkinDiffusion{"skin diffusion"};
 inline constexpr PassName PassName::kTranslucencyDepth{"translucency depth"};

@@ -60,6 +60,8 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const Device& device, const R
 Result<void> Renderer::setScene(const StaticScene& scene) {
   if (auto valid = validateScene(scene, device_->limits()); !valid) return valid;
   skinned_.clear();  // before the buffers they write into go
+  scene_.setHairVisibility(nullptr);  // before the volume it reads goes
+  hairDensity_.reset();               // before the strands it reads go
   hair_.clear();
   // Strands first: the shadow maps read their positions, and the shading reads the maps.
   std::vector<HairShadowPass::Groom> shadowed;
@@ -109,6 +111,14 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     if (!environment) return std::unexpected(environment.error());
     environment_ = std::move(*environment);
   }
+  // The hair hides part of the environment (render/passes/hair_density_pass.hpp): the grooms'
+  // entries of `shadowed`, ahead of the furs'.
+  if (scene.environment && !scene.grooms.empty()) {
+    auto density = HairDensityPass::create(*device_, std::span(shadowed).first(scene.grooms.size()));
+    if (!density) return std::unexpected(density.error());
+    hairDensity_ = std::move(*density);
+    scene_.setHairVisibility(hairDensity_.get());
+  }
   // After the maps exist: the surfaces' pipelines are specialised for them.
   try {
     scene_.setScene(scene);
@@ -157,6 +167,7 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     if (hideOccludedHair_) (*ribbons)->setOcclusion(occlusion_.tileMaxDepth(), occlusion_.tiles());
     (*lighting)->setShadeList((*ribbons)->shadeList());
     (*lighting)->setEnvironment(environment_ ? std::optional(environment_->irradianceOverPi()) : std::nullopt);
+    (*lighting)->setHairVisibility(hairDensity_.get());
     drawn.lighting = std::move(*lighting);
     drawn.ribbons = std::move(*ribbons);
   }
@@ -287,6 +298,13 @@ Result<void> Renderer::updateHair(std::size_t groom, std::span<const glm::vec3> 
   if (!sphere) return fail("groom " + std::to_string(groom) + ": " + sphere.error().message);
   sphere->radius += hair.strayFromGuides * 1.001f;
   hair.centre = sphere->centre;
+  hair.bounds = {.low = guidePositions.front(), .high = guidePositions.front()};
+  for (const glm::vec3& guide : guidePositions) {
+    hair.bounds.low = glm::min(hair.bounds.low, guide);
+    hair.bounds.high = glm::max(hair.bounds.high, guide);
+  }
+  hair.bounds.low -= hair.strayFromGuides;
+  hair.bounds.high += hair.strayFromGuides;
   if (auto bounded = shadows_->setBounds(groom, *sphere); !bounded) return bounded;
   // Guide middles, the keys the strands are sorted by when drawn (render/hair_order.hpp).
   const std::size_t perGuide = guidePositions.size() / hair.strands->guideCount();
@@ -320,6 +338,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         [strands](const Commands& c) { strands->execute(c); });
     hair = true;
   }
+  if (hairDensity_) addHairDensity();
   // The first light casts the hair and fur shadows; without lights nothing is lit, any direction does.
   const bool fur = std::ranges::any_of(frame.instances, [&](const MeshInstance& i) { return furs_.draws(i, frame); });
   if ((hair || fur) && shadows_->mapCount() > 0) {
@@ -517,7 +536,27 @@ void Renderer::addHairLighting() {
   if (!any) addEmptyPass(PassName::kHairLighting);
 }
 
+void Renderer::addHairDensity() {
+  using Builder = FrameGraph::Builder;
+  using Commands = vk::raii::CommandBuffer;
+  std::vector<HairBounds> bounds;
+  for (const HairGroom& groom : hair_) bounds.push_back(groom.hasGuides ? groom.bounds : HairBounds{});
+  hairDensity_->place(bounds);
+  if (hairDensity_->placement().scale.w == 0.0f) return;  // no groom placed: nothing hidden
+  const HairDensityPass* density = hairDensity_.get();
+  graph_.addPass(
+      PassName::kHairDensity, [density](Builder& pass) { density->declareClear(pass); },
+      [density](const Commands& c) { density->executeClear(c); });
+  graph_.addPass(
+      PassName::kHairDensity, [density](Builder& pass) { density->declareSplat(pass); },
+      [density](const Commands& c) { density->executeSplat(c); });
+  graph_.addPass(
+      PassName::kHairDensity, [density](Builder& pass) { density->declareVisibility(pass); },
+      [density](const Commands& c) { density->executeVisibility(c); });
+}
+
 void Renderer::declareSurfaceReads(FrameGraph::Builder& pass, const FrameInput& frame) const {
+  if (hairDensity_) hairDensity_->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);
   shadows_->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);  // the surfaces' and the furs'
   if (translucency_.drawsTranslucency(frame, scene_)) translucency_.declareReads(pass);
   if (frame.surfaceShadows && surfaceShadows_.drawsAnything())

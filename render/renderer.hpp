@@ -20,6 +20,7 @@
 #include "render/hair_order.hpp"
 #include "render/gpu_timer.hpp"
 #include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_density_pass.hpp"
 #include "render/passes/hair_lighting_pass.hpp"
 #include "render/passes/hair_occlusion_pass.hpp"
 #include "render/passes/hair_pass.hpp"
@@ -143,6 +144,8 @@ private:
   void addPost(const FrameInput& frame);
   /// The hair's hiding, choice and shading (HairOcclusionPass, HairPass, HairLightingPass).
   void addHairLighting();
+  /// The hair's density and the environment's visibility through it, round this frame's grooms.
+  void addHairDensity();
   /// A pass that records nothing, so that its timer is there as in every frame of its kind.
   void addEmptyPass(PassName name);
   /// What the surfaces, furs and deferred skin of the scene pass read from earlier passes.
@@ -171,6 +174,7 @@ private:
   DeferredSkinPass deferredSkin_;
   LightDiscPass discs_;
   std::unique_ptr<EnvironmentPass> environment_;  // where the scene has one
+  std::unique_ptr<HairDensityPass> hairDensity_;  // where hair meets an environment
   std::unique_ptr<GlassesPass> glasses_;          // from the first frame with lenses
   // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {
@@ -181,6 +185,7 @@ private:
     Buffer looks;                         // the strands' own looks, where the groom has them
     std::vector<glm::vec3> guideMiddles;  // of the last updateHair: the sort keys
     glm::vec3 centre{0.0f};               // of the guides' bounding sphere: where the level of detail is measured
+    HairBounds bounds;                    // the guides' box widened to hold every dense vertex
     HairGroomSettings settings;
     float strayFromGuides = 0.0f;  // metres: bound on a dense vertex's distance from its guides
     bool hasGuides = false;        // updateHair called at least once

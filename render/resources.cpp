@@ -61,23 +61,25 @@ Buffer Buffer::withData(const Device& device, std::span<const std::byte> bytes, 
 
 Image::Image(const Device& device, const ImageSettings& settings)
     : settings_(settings),
-      image_(device.device(), vk::ImageCreateInfo{.flags = settings.cube ? vk::ImageCreateFlagBits::eCubeCompatible
-                                                                         : vk::ImageCreateFlags{},
-                                                  .imageType = vk::ImageType::e2D,
-                                                  .format = settings.format,
-                                                  .extent = {settings.extent.width, settings.extent.height, 1},
-                                                  .mipLevels = settings.mipLevels,
-                                                  .arrayLayers = settings.layers,
-                                                  .samples = settings.samples,
-                                                  .tiling = vk::ImageTiling::eOptimal,
-                                                  .usage = settings.usage,
-                                                  .initialLayout = vk::ImageLayout::eUndefined}) {
+      image_(device.device(),
+             vk::ImageCreateInfo{
+                 .flags = settings.cube ? vk::ImageCreateFlagBits::eCubeCompatible : vk::ImageCreateFlags{},
+                 .imageType = settings.depth > 0 ? vk::ImageType::e3D : vk::ImageType::e2D,
+                 .format = settings.format,
+                 .extent = {settings.extent.width, settings.extent.height, std::max(settings.depth, 1u)},
+                 .mipLevels = settings.mipLevels,
+                 .arrayLayers = settings.layers,
+                 .samples = settings.samples,
+                 .tiling = vk::ImageTiling::eOptimal,
+                 .usage = settings.usage,
+                 .initialLayout = vk::ImageLayout::eUndefined}) {
   allocation_ = Allocation(device, image_.getMemoryRequirements(), vk::MemoryPropertyFlagBits::eDeviceLocal);
   image_.bindMemory(*allocation_.memory(), 0);
   view_ = vk::raii::ImageView(
       device.device(),
       vk::ImageViewCreateInfo{.image = *image_,
                               .viewType = settings.cube         ? vk::ImageViewType::eCube
+                                          : settings.depth > 0  ? vk::ImageViewType::e3D
                                           : settings.layers > 1 ? vk::ImageViewType::e2DArray
                                                                 : vk::ImageViewType::e2D,
                               .format = settings.format,

@@ -60,6 +60,7 @@ struct ImageSettings {
   vk::ImageAspectFlags aspect = vk::ImageAspectFlagBits::eColor;
   std::uint32_t layers = 1;  ///< more than 1: an array image, viewed as a 2D array
   bool cube = false;         ///< six layers viewed as a cube map (+X, −X, +Y, −Y, +Z, −Z)
+  std::uint32_t depth = 0;   ///< 0: a 2D image; otherwise a 3D image of this many slices
 };
 
 class Image {

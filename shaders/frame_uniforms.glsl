@@ -8,6 +8,9 @@
 #define SURFACE_SHADOW_SET 0
 #define SURFACE_SHADOW_BINDING 11
 #include "surface_shadow_map.glsl"
+#define HAIR_VISIBILITY_SET 0
+#define HAIR_VISIBILITY_BINDING 13
+#include "hair_visibility.glsl"
 
 const int kMaxLights = 4;
 
@@ -24,6 +27,9 @@ layout(set = 0, binding = 0, std140) uniform FrameUniforms {
   // render/environment/spherical_harmonics.hpp.
   vec4 environmentIrradiance[9];
   SurfaceShadow surfaceShadow;  // cast by light 0
+  // Where the hair's occlusion volume lies (HairVisibilityPlacement): w = 0 without one.
+  vec4 hairVisibilityOrigin;
+  vec4 hairVisibilityScale;
 } frame;
 
 // The environment's radiance pre-filtered for GGX roughness level/7 at each mip level
@@ -47,6 +53,12 @@ void environmentLightBands(vec3 normal, out vec3 band0, out vec3 band1, out vec3
            frame.environmentIrradiance[7].rgb * (n.x * n.z)) * 1.092548431 +
           frame.environmentIrradiance[6].rgb * (0.315391565 * (3.0 * n.z * n.z - 1.0)) +
           frame.environmentIrradiance[8].rgb * (0.546274215 * (n.x * n.x - n.y * n.y));
+}
+
+// The share of the environment's diffuse light the hair leaves to a surface at `position` facing
+// `normal` (render/passes/hair_density_pass.hpp).
+float environmentVisibility(vec3 position, vec3 normal) {
+  return hairSurfaceVisibility(frame.hairVisibilityOrigin, frame.hairVisibilityScale, position, normal);
 }
 
 vec3 environmentLight(vec3 normal) {

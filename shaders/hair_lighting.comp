@@ -25,18 +25,40 @@ const int kLightRadianceTexel = 2 + kHairLightingMaxLights;  // + light i: rgb p
 const int kCountsTexel = 2 + 2 * kHairLightingMaxLights;     // x: lights, y: vertices per strand
 const int kShadowsTexel = kCountsTexel + 1;                  // HairShadowUniforms: 6 per map, then the count
 const int kShadowCountTexel = kShadowsTexel + 6 * 4;
-const int kEnvironmentTexel = kShadowCountTexel + 1;  // 9: E/π's harmonics × the white-furnace albedo
+const int kEnvironmentTexel = kShadowCountTexel + 1;  // 9: the environment's radiance as harmonics
+// Then per θr sample k and band l, texel kEnvironmentBandsTexel + 3k + l: rgb = the TT and TRT
+// lobes' weight of band l, a = the R lobe's (render/luts/hair_environment.hpp).
+const int kEnvironmentBandsTexel = kEnvironmentTexel + 9;
+const int kEnvironmentSamples = 65;  // kHairEnvironmentSamples, at θr = −π/2 + πk/64
+// The hair's occlusion volume's origin and scale (HairVisibilityPlacement; w = 0: none).
+const int kHairVisibilityTexel = kEnvironmentBandsTexel + 3 * kEnvironmentSamples;
+#define HAIR_VISIBILITY_SET 0
+#define HAIR_VISIBILITY_BINDING 16
+#include "hair_visibility.glsl"
 
 vec4 lightingVector(int texel) {
   return uintBitsToFloat(texelFetch(lightingTexels, texel));
 }
 
-#include "environment_fibre.glsl"
+#include "spherical_harmonics.glsl"
 
-vec3 environmentAround(vec3 tangent) {
+// The environment scattered towards the eye by the three lobes: each band of its radiance at the
+// tangent, weighted by the lobes' band weights at the eye's θr, interpolated between samples.
+vec3 environmentScattered(vec3 tangent, float sinThetaR, vec3 bodyColour) {
   vec4 harmonics[9];
   for (int k = 0; k < 9; ++k) harmonics[k] = lightingVector(kEnvironmentTexel + k);
-  return environmentAroundFibre(harmonics, tangent);
+  vec3 bands[3];
+  harmonicBands(harmonics, tangent, bands[0], bands[1], bands[2]);
+  float x = (asin(clamp(sinThetaR, -1.0, 1.0)) / kHairPi + 0.5) * float(kEnvironmentSamples - 1);
+  int sample0 = clamp(int(x), 0, kEnvironmentSamples - 2);
+  float f = clamp(x - float(sample0), 0.0, 1.0);
+  vec3 result = vec3(0.0);
+  for (int l = 0; l < 3; ++l) {
+    int texel = kEnvironmentBandsTexel + 3 * sample0 + l;
+    vec4 weights = mix(lightingVector(texel), lightingVector(texel + 3), f);
+    result += (weights.rgb * bodyColour + weights.a) * bands[l];
+  }
+  return result;
 }
 
 // The maps that exist (kHairShadowMaps, a specialisation constant): hairShadowTransmittance looks
@@ -93,9 +115,10 @@ void main() {
   float shadow = hairShadowTransmittance(readShadows(), position);
   // The ambient term stands for light scattered many times inside the hair: all of it has
   // crossed fibres, so the strand's colour multiplies it whole.
-  vec3 ambient = lightingVector(kAmbientTexel).rgb;
-  if (counts.z != 0u) ambient += environmentAround(tangent);
-  vec3 result = ambient * bodyColour;
+  vec3 result = lightingVector(kAmbientTexel).rgb * bodyColour;
+  if (counts.z != 0u)
+    result += environmentScattered(tangent, dot(toEye, tangent), bodyColour) *
+              hairFibreVisibility(lightingVector(kHairVisibilityTexel), lightingVector(kHairVisibilityTexel + 1), position);
   // Each light's vectors fetched where they are used: indexing an array of them by the loop's
   // counter made lavapipe load them lane by lane. And the test at the end of the loop: lavapipe
   // (Mesa 22.3) runs the body once more, every lane masked off, lookups and all, before a test at

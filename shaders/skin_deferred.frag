@@ -25,7 +25,7 @@ void main() {
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   float shadow = hairShadowTransmittance(frame.hairShadows, position.xyz) *
                  surfaceShadowVisibility(frame.surfaceShadow, position.xyz, geometric.xyz, frame.lightDirection[0].xyz);
-  vec3 diffuse = skinAmbient(geometric.xyz, detail, position.w), specular;
+  vec3 diffuse = skinAmbient(position.xyz, geometric.xyz, detail, position.w), specular;
   skinLights(position.xyz, geometric.xyz, detail, geometric.w, position.w, shadow, diffuse, specular);
   outColor = vec4(albedo * diffuse + specular, 1.0);
 }

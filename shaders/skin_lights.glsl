@@ -28,7 +28,8 @@ layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 // scatters it at that curvature (render/luts/preintegrated_skin.hpp, preintegratedAmbientBands),
 // and each channel looking up the environment with its own blurred normal, as the lights'
 // pre-integrated diffuse does, so that red light wraps further round the skin's curves than blue.
-vec3 skinAmbient(vec3 geometric, vec3 detail, float curvature) {
+// The hair over the skin at `position` (metres) hides part of the environment.
+vec3 skinAmbient(vec3 position, vec3 geometric, vec3 detail, float curvature) {
   float at = sqrt(clamp(curvature / draw.skin.z, 0.0, 1.0)) * 15.0;
   int below = min(int(at), 14);
   float t = at - float(below);
@@ -43,12 +44,13 @@ vec3 skinAmbient(vec3 geometric, vec3 detail, float curvature) {
     environmentLightBands(normalize(mix(detail, geometric, draw.blur[c])), band0, band1, band2);
     lit[c] = scale[0][c] * band0[c] + scale[1][c] * band1[c] + scale[2][c] * band2[c];
   }
-  return ambient + lit;
+  return ambient + lit * environmentVisibility(position, geometric);
 }
 
 // Skin's specular reflection of the environment (a split sum): the radiance pre-filtered for its
-// roughness in the mirror direction, times the BRDF's albedo at N·V; 0 without an environment.
-vec3 skinEnvironmentSpecular(vec3 detail, vec3 toEye, float rhoS) {
+// roughness in the mirror direction, times the BRDF's albedo at N·V, times what the hair leaves of
+// the environment's light there (its diffuse share: the lobe is broad); 0 without an environment.
+vec3 skinEnvironmentSpecular(vec3 position, vec3 geometric, vec3 detail, vec3 toEye, float rhoS) {
   if (frame.lightCount.y == 0) return vec3(0.0);
   float cosView = clamp(dot(detail, toEye), 0.0, 1.0);
   float at = cosView * 7.0;
@@ -57,7 +59,8 @@ vec3 skinEnvironmentSpecular(vec3 detail, vec3 toEye, float rhoS) {
                      at - float(below));
   // GGX of α = m stands in for Beckmann's m; the chain's level ℓ holds roughness ℓ/7, α = roughness².
   float level = sqrt(draw.skin.x) * (kEnvironmentSpecularLevels - 1.0);
-  return rhoS * albedo * textureLod(environmentSpecular, reflect(-toEye, detail), level).rgb;
+  return rhoS * albedo * textureLod(environmentSpecular, reflect(-toEye, detail), level).rgb *
+         environmentVisibility(position, geometric);
 }
 
 // Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
@@ -92,5 +95,5 @@ void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float cu
     specular = on ? shone : specular;
     ++i;
   } while (i < frame.lightCount.x);
-  specular += skinEnvironmentSpecular(detail, toEye, rhoS);
+  specular += skinEnvironmentSpecular(position, geometric, detail, toEye, rhoS);
 }

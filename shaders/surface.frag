@@ -49,7 +49,8 @@ vec3 translucency(vec3 geometric) {
 void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float shadow, out vec3 diffuse,
                out vec3 specular) {
   float rhoS = draw.skin.y * specularMap;
-  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb : skinAmbient(geometric, detail, inCurvature)) +
+  diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb
+                                   : skinAmbient(inWorldPosition, geometric, detail, inCurvature)) +
             translucency(geometric);
   skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, shadow, diffuse, specular);
 }
@@ -74,7 +75,8 @@ void main() {
     outColor = vec4(albedo * diffuse + specular, 1.0);
     return;
   }
-  vec3 irradiance = frame.ambient.rgb + environmentLight(normal) + translucency(geometric);
+  vec3 irradiance = frame.ambient.rgb + environmentLight(normal) * environmentVisibility(inWorldPosition, geometric) +
+                    translucency(geometric);
   for (int i = 0; i < frame.lightCount.x; ++i)
     irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
                   (i == 0 ? shadow : 1.0);

@@ -222,8 +222,8 @@ FRAME_VARIANTS = [
 
 # The frame's passes in the order the Renderer records them; unknown ones follow alphabetically.
 PASS_ORDER = [
-    "skinning", "strands", "hair shadows", "surface shadows", "skin diffusion", "translucency depth", "skin g-buffer",
-    "hair lighting", "surfaces", "hair", "main pass", "glasses", "clear", "post downsample", "downsample",
+    "skinning", "strands", "hair density", "hair shadows", "surface shadows", "skin diffusion", "translucency depth",
+    "skin g-buffer", "hair lighting", "surfaces", "hair", "main pass", "glasses", "clear", "post downsample", "downsample",
     "auto gain", "glow", "god rays", "post overlay", "overlay", "output",
 ]
 

@@ -22,10 +22,13 @@ struct LightingUniforms {
   glm::vec4 lightRadiance[HairLightingPass::kMaxLights];
   glm::uvec4 counts;  // x: lights, y: vertices per strand, z: 1 where the environment lights the hair
   HairShadowUniforms shadows;
-  glm::vec4 environment[9];  // rgb: E/π's harmonics × the white-furnace albedo
+  glm::vec4 environment[9];  // rgb: the environment's radiance as harmonics
+  HairLightingPass::EnvironmentBands environmentBands;
+  HairVisibilityPlacement hairVisibility;  // w = 0: no occlusion volume this frame
 };
-static_assert(sizeof(LightingUniforms) ==
-              3 * 16 + 2 * 16 * HairLightingPass::kMaxLights + sizeof(HairShadowUniforms) + 9 * 16);
+static_assert(sizeof(LightingUniforms) == 3 * 16 + 2 * 16 * HairLightingPass::kMaxLights + sizeof(HairShadowUniforms) +
+                                              (9 + 3 * kHairEnvironmentSamples + 2) * 16);
+constexpr std::uint32_t kHairVisibilityBinding = 16;
 
 }  // namespace
 
@@ -91,13 +94,14 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
                                       sampler,
                                       sampler,
                                       sampler,                               // shadow first depth, 4 slots
-                                      {Type::eUniformTexelBuffer, compute},    // the shade list
-                                      {Type::eUniformTexelBuffer, compute}});  // the strands' looks
+                                      {Type::eUniformTexelBuffer, compute},  // the shade list
+                                      {Type::eUniformTexelBuffer, compute},  // the strands' looks
+                                      sampler});                             // the hair's occlusion volume
   pipeline_ = makeComputePipeline(device, "hair_lighting.comp", setLayout_, 0, shadows.shaderConstants());
   pool_ = makeDescriptorPool(device, 1,
                              {{Type::eStorageBuffer, 1},
                               {Type::eUniformTexelBuffer, 5},
-                              {Type::eCombinedImageSampler, 2 + HairShadowPass::kBindings}});
+                              {Type::eCombinedImageSampler, 3 + HairShadowPass::kBindings}});
   set_ = allocateSet(device, pool_, setLayout_);
 
   uniforms_ = Buffer(device, sizeof(LightingUniforms), vk::BufferUsageFlagBits::eUniformTexelBuffer,
@@ -122,10 +126,24 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   writeSampledImage(device, set_, 4, lut.longitudinalView(), lut.sampler());
   writeSampledImage(device, set_, 5, lut.azimuthalView(), lut.sampler());
   refreshShadows();
+  noHairVisibility_ = clearedVisibilityVolume(device, 1);
+  hairVisibilitySampler_ = makeVisibilitySampler(device);
+  setHairVisibility(nullptr);
 
   // Ambient: La · ∫S dωi, the white-furnace albedo of marschner.hpp, at θr = 0.
   const AzimuthalLobes albedo = azimuthalAlbedo(lut.params(), 1.0);
   ambientAlbedo_ = glm::vec3(albedo.tt + albedo.trt + glm::dvec3(albedo.r));
+  const std::vector<HairEnvironmentBands> table = hairEnvironmentTable(lut.params());
+  for (std::size_t k = 0; k < kHairEnvironmentSamples; ++k)
+    for (std::size_t l = 0; l < 3; ++l)
+      environmentBands_[3 * k + l] = glm::vec4(glm::vec3(table[k].crossed[l]), float(table[k].reflected[l]));
+}
+
+void HairLightingPass::setHairVisibility(const HairDensityPass* visibility) {
+  hairVisibility_ = visibility;
+  writeSampledImage(*device_, set_, kHairVisibilityBinding,
+                    visibility ? visibility->occlusion().view() : noHairVisibility_.view(),
+                    visibility ? visibility->sampler() : hairVisibilitySampler_);
 }
 
 void HairLightingPass::setShadeList(const Buffer& shadeList) {
@@ -177,8 +195,14 @@ Result<void> HairLightingPass::update(const glm::mat4& viewProjection, std::span
   uniforms.ambient = glm::vec4(ambient * ambientAlbedo_, 0.0f);
   uniforms.counts = glm::uvec4(static_cast<std::uint32_t>(count), verticesPerStrand_, environment_ ? 1u : 0u, 0u);
   uniforms.shadows = shadows;
-  if (environment_)
-    for (std::size_t i = 0; i < 9; ++i) uniforms.environment[i] = glm::vec4((*environment_)[i] * ambientAlbedo_, 0.0f);
+  if (environment_) {
+    // The radiance's harmonics: the irradiance's over π with the clamped cosine's band factors
+    // (1, 2/3, 1/4) undone.
+    constexpr std::array<float, 9> kUnconvolve{1.0f, 1.5f, 1.5f, 1.5f, 4.0f, 4.0f, 4.0f, 4.0f, 4.0f};
+    for (std::size_t i = 0; i < 9; ++i) uniforms.environment[i] = glm::vec4((*environment_)[i] * kUnconvolve[i], 0.0f);
+    uniforms.environmentBands = environmentBands_;
+    if (hairVisibility_) uniforms.hairVisibility = hairVisibility_->placement();
+  }
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));
   return {};
 }
@@ -191,6 +215,7 @@ void HairLightingPass::declare(FrameGraph::Builder& pass) const {
   pass.read(*shadeList_, ResourceUse::sampled(compute));
   pass.read(*shadeList_, ResourceUse::indirectCommands());  // the dispatch's size
   shadows_->declareReads(pass, compute);
+  if (hairVisibility_) hairVisibility_->declareReads(pass, compute);
   pass.write(radiance_, ResourceUse::storageWrite(compute));
 }
 

@@ -16,10 +16,13 @@
 // with E_i the light's perpendicular irradiance (colour × intensity), T the hair shadows'
 // transmittance (render/passes/hair_shadow_pass.hpp) at the vertex, La the ambient radiance and A the
 // groom's white-furnace albedo at θr = 0 (render/luts/marschner.hpp, azimuthalAlbedo). ωr points
-// from the vertex to the eye. A strand's colour (setStrandLooks, HairStrandLook::colour)
+// from the vertex to the eye. Under an environment, rgb adds its light scattered by the three
+// lobes (render/luts/hair_environment.hpp), times what the hair leaves of it at the vertex
+// (setHairVisibility). A strand's colour (setStrandLooks, HairStrandLook::colour)
 // multiplies the TT and TRT lobes of S and the ambient term: the light that has crossed fibres.
 // The R lobe, reflected off the fibre's surface before entering it, keeps the light's colour.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -30,7 +33,9 @@
 #include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
 #include "render/frame_graph.hpp"
+#include "render/luts/hair_environment.hpp"
 #include "render/luts/marschner_lut.hpp"
+#include "render/passes/hair_density_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/pipelines.hpp"
 #include "render/resources.hpp"
@@ -41,6 +46,9 @@ class HairLightingPass {
 public:
   /// Lights read per frame; more are ignored. Must match shaders/hair_lighting.comp.
   static constexpr std::size_t kMaxLights = 4;
+  /// The environment's band weights as the shader reads them: per θr sample k and band l, vector
+  /// 3k + l holds (TT + TRT per RGB, R).
+  using EnvironmentBands = std::array<glm::vec4, 3 * kHairEnvironmentSamples>;
 
   /// Shades the strands in `positions` and `tangents` (StrandInterpolationPass layout: vec4 per
   /// vertex, strand-major, `verticesPerStrand` per strand; read as texel buffers, so they need
@@ -64,10 +72,14 @@ public:
                                     glm::vec3 ambient, const HairShadowUniforms& shadows);
 
   /// The environment's irradiance over π (EnvironmentPass::irradianceOverPi) that lights the hair
-  /// from the next update() on, or none. Each vertex takes its average over the normals
-  /// perpendicular to its tangent (a cylinder's side), times the groom's white-furnace albedo, on
-  /// top of the ambient radiance.
+  /// from the next update() on, or none. Each vertex adds the environment's radiance scattered by
+  /// the groom's lobes towards the eye (render/luts/hair_environment.hpp: each band at the tangent
+  /// weighed by the lobes' cones at the eye's θr), on top of the ambient radiance.
   void setEnvironment(const std::optional<SphericalHarmonics9>& irradianceOverPi) { environment_ = irradianceOverPi; }
+
+  /// The hair's occlusion volume that hides part of the environment from each vertex, or none;
+  /// update() takes its placement as it is then. It must outlive its use; between frames.
+  void setHairVisibility(const HairDensityPass* visibility);
 
   /// Re-reads the shadow maps' descriptors (after HairShadowPass' slots changed). Between frames.
   void refreshShadows();
@@ -112,6 +124,7 @@ private:
   const Buffer* positions_;
   const Buffer* tangents_;
   glm::vec3 ambientAlbedo_{0.0f};
+  EnvironmentBands environmentBands_{};
   std::optional<SphericalHarmonics9> environment_;
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
@@ -124,6 +137,9 @@ private:
   Buffer everyStrandPlain_;                        ///< looks of factor 1, until setStrandLooks
   vk::raii::BufferView strandLookTexels_{nullptr};  ///< the strands' looks, RGBA32F texels
   const Buffer* shadeList_ = nullptr;
+  const HairDensityPass* hairVisibility_ = nullptr;
+  Image noHairVisibility_;  ///< bound where there is no occlusion volume
+  vk::raii::Sampler hairVisibilitySampler_{nullptr};
   vk::raii::DescriptorSetLayout setLayout_{nullptr};
   vk::raii::DescriptorPool pool_{nullptr};
   vk::raii::DescriptorSet set_{nullptr};

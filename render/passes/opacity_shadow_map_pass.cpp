@@ -328,13 +328,7 @@ OpacityShadowMapPass::OpacityShadowMapPass(const Device& device, const OpacitySh
     const std::vector<std::uint32_t> zeros(std::size_t(settings.resolution) * settings.resolution * kSlices, 0u);
     increments_ = Buffer::withData(device, std::as_bytes(std::span(zeros)), vk::BufferUsageFlagBits::eStorageBuffer);
     writeStorageBuffer(device, set_, 2, increments_);
-    const vk::DescriptorImageInfo storage{.imageView = *opacity_.view, .imageLayout = Layout::eGeneral};
-    device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set_,
-                                                                .dstBinding = 3,
-                                                                .descriptorCount = 1,
-                                                                .descriptorType = vk::DescriptorType::eStorageImage,
-                                                                .pImageInfo = &storage},
-                                         {});
+    writeStorageImage(device, set_, 3, opacity_.view);
     splatPipeline_ = makeComputePipeline(device, "opacity_shadow_splat.comp", setLayout_, sizeof(BuildConstants));
     resolvePipeline_ = makeComputePipeline(device, "opacity_shadow_resolve.comp", setLayout_, sizeof(BuildConstants));
   } else if (firstHair) {

@@ -62,18 +62,6 @@ vk::Extent2D toExtent(glm::uvec2 size) {
   return {size.x, size.y};
 }
 
-// A storage image in GENERAL layout.
-void writeGeneralImage(const Device& device, const vk::raii::DescriptorSet& set, std::uint32_t binding,
-                       const Image& image) {
-  const vk::DescriptorImageInfo info{.imageView = *image.view(), .imageLayout = Layout::eGeneral};
-  device.device().updateDescriptorSets(vk::WriteDescriptorSet{.dstSet = *set,
-                                                              .dstBinding = binding,
-                                                              .descriptorCount = 1,
-                                                              .descriptorType = vk::DescriptorType::eStorageImage,
-                                                              .pImageInfo = &info},
-                                       {});
-}
-
 // A pass's storage writes reach the next pass's reads; its reads finish before the next writes.
 void computeToCompute(const vk::raii::CommandBuffer& commands) {
   const vk::MemoryBarrier2 barrier{.srcStageMask = Stage::eComputeShader,
@@ -209,11 +197,11 @@ PostPass::PostPass(const Device& device, const Image& frame)
                               {vk::DescriptorType::eStorageBuffer, 2}});
   downsampleSet_ = allocateSet(device, pool_, sampledLayout_);
   writeSampledImage(device, downsampleSet_, 0, frame, sampler_);
-  writeGeneralImage(device, downsampleSet_, 1, downsampled_);
+  writeStorageImage(device, downsampleSet_, 1, downsampled_.view());
   const auto pair = [&](const Image& source, const Image& destination) {
     vk::raii::DescriptorSet set = allocateSet(device, pool_, storageLayout_);
-    writeGeneralImage(device, set, 0, source);
-    writeGeneralImage(device, set, 1, destination);
+    writeStorageImage(device, set, 0, source.view());
+    writeStorageImage(device, set, 1, destination.view());
     return set;
   };
   acrossSets_[0] = pair(downsampled_, across_);
@@ -221,7 +209,7 @@ PostPass::PostPass(const Device& device, const Image& frame)
   downSet_ = pair(across_, glow_);
   tinySet_ = pair(downsampled_, tiny_);
   adaptSet_ = allocateSet(device, pool_, adaptLayout_);
-  writeGeneralImage(device, adaptSet_, 0, tiny_);
+  writeStorageImage(device, adaptSet_, 0, tiny_.view());
   writeStorageBuffer(device, adaptSet_, 1, exposure_);
   rayBrightSet_ = pair(downsampled_, rayBright_);
   rayPolarSet_ = pair(rayBright_, polar_);
@@ -229,10 +217,10 @@ PostPass::PostPass(const Device& device, const Image& frame)
   rayUnpolarSets_[0] = pair(polar_, godRays_);
   rayUnpolarSets_[1] = pair(polarBlurred_, godRays_);
   overlaySet_ = allocateSet(device, pool_, overlayLayout_);
-  writeGeneralImage(device, overlaySet_, 0, glow_);
-  writeGeneralImage(device, overlaySet_, 1, godRays_);
+  writeStorageImage(device, overlaySet_, 0, glow_.view());
+  writeStorageImage(device, overlaySet_, 1, godRays_.view());
   writeStorageBuffer(device, overlaySet_, 2, exposure_);
-  writeGeneralImage(device, overlaySet_, 3, overlay_);
+  writeStorageImage(device, overlaySet_, 3, overlay_.view());
   initialiseImages();
 }
 

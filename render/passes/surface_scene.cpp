@@ -31,6 +31,7 @@ struct FrameUniforms {
   LightDepthUniforms lightDepth;
   glm::vec4 environmentIrradiance[9];  // rgb: E/π's spherical harmonics; all 0 without an environment
   SurfaceShadowUniforms surfaceShadow;
+  HairVisibilityPlacement hairVisibility;  // w = 0: no hair volume this frame
 };
 
 // Where the hair shadow descriptors start in the frame set (shaders/surface.frag), and the light
@@ -44,6 +45,8 @@ constexpr std::uint32_t kEnvironmentSpecularBinding = kLightDepthBinding + 1;
 constexpr std::uint32_t kSurfaceShadowDepthBinding = kEnvironmentSpecularBinding + 1;
 constexpr std::uint32_t kSurfaceShadowCompareBinding = kSurfaceShadowDepthBinding + 1;
 static_assert(kSurfaceShadowCompareBinding == 12, "shaders/surface_shadows.glsl binds the map at 11 and 12");
+// The hair's occlusion volume last (shaders/frame_uniforms.glsl).
+constexpr std::uint32_t kHairVisibilityBinding = kSurfaceShadowCompareBinding + 1;
 
 // std140 mirror of the Material block of shaders/skin_lights.glsl (set 1, binding 4).
 struct MaterialUniforms {
@@ -114,7 +117,8 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                                         shadow,    // light 0's depth map of translucent surfaces
                                         shadow,    // the environment's specular chain
                                         shadow,    // light 0's depth map of every surface: depths
-                                        shadow});  // and comparisons
+                                        shadow,    // and comparisons
+                                        shadow});  // the hair's occlusion volume
   // albedo (the specular map in its alpha), normal map, pre-integrated skin table, diffused
   // irradiance, constants
   const vk::ShaderStageFlags fragment = Stage::eFragment;
@@ -127,7 +131,7 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                           vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
   framePool_ = makeDescriptorPool(device, 1,
                                   {{vk::DescriptorType::eUniformBuffer, 1},
-                                   {vk::DescriptorType::eCombinedImageSampler, HairShadowPass::kBindings + 4}});
+                                   {vk::DescriptorType::eCombinedImageSampler, HairShadowPass::kBindings + 5}});
   frameSet_ = allocateSet(device, framePool_, frameLayout_);
   writeUniformBuffer(device, frameSet_, 0, frameUniforms_);
   writeSampledImage(device, frameSet_, kLightDepthBinding, lightDepth.image().view(), lightDepth.sampler());
@@ -144,7 +148,17 @@ SurfaceScene::SurfaceScene(const Device& device, const HairShadowPass& shadows, 
                                                                  {glm::vec3(0.0f)},
                                                                  {glm::vec3(0.0f)}}}});
   setEnvironment(nullptr);
+  noHairVisibility_ = clearedVisibilityVolume(device, 1);
+  hairVisibilitySampler_ = makeVisibilitySampler(device);
+  setHairVisibility(nullptr);
   refreshShadows();
+}
+
+void SurfaceScene::setHairVisibility(const HairDensityPass* visibility) {
+  hairVisibility_ = visibility;
+  writeSampledImage(*device_, frameSet_, kHairVisibilityBinding,
+                    visibility ? visibility->occlusion().view() : noHairVisibility_.view(),
+                    visibility ? visibility->sampler() : hairVisibilitySampler_);
 }
 
 void SurfaceScene::setEnvironment(const EnvironmentPass* environment) {
@@ -297,6 +311,7 @@ void SurfaceScene::update(const FrameInput& frame, float aspect) {
   uniforms.hairShadows = shadows_->uniforms();
   uniforms.lightDepth = lightDepth_->uniforms();
   if (frame.surfaceShadows) uniforms.surfaceShadow = surfaceShadows_->uniforms();
+  if (hairVisibility_) uniforms.hairVisibility = hairVisibility_->placement();
   std::memcpy(frameUniforms_.mapped().data(), &uniforms, sizeof(uniforms));
 }
 

@@ -15,6 +15,7 @@
 #include "render/environment/spherical_harmonics.hpp"
 #include "render/frame.hpp"
 #include "render/passes/environment_pass.hpp"
+#include "render/passes/hair_density_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
 #include "render/passes/light_depth_pass.hpp"
 #include "render/passes/skin_shading.hpp"
@@ -93,6 +94,10 @@ public:
   /// The environment whose irradiance and specular chain the surfaces are lit by from now on
   /// (none: nullptr); it must outlive its use.
   void setEnvironment(const EnvironmentPass* environment);
+  /// The hair's occlusion volume that hides part of the environment from the surfaces, or none.
+  /// update() takes its placement as it is then (scale.w = 0: nothing hidden this frame). It must
+  /// outlive its use; between frames.
+  void setHairVisibility(const HairDensityPass* visibility);
 
   /// Writes the frame's camera, lights, the hair shadows' and the light depth map's current
   /// uniforms; call before recording the passes that draw surfaces, after HairShadowPass::prepare
@@ -117,6 +122,9 @@ public:
 private:
   std::optional<SphericalHarmonics9> environmentIrradiance_;
   Image noEnvironment_;  // bound where there is no environment
+  const HairDensityPass* hairVisibility_ = nullptr;
+  Image noHairVisibility_;  // bound where there is no hair volume
+  vk::raii::Sampler hairVisibilitySampler_{nullptr};
   struct GpuMesh {
     Buffer vertices;
     Buffer indices;

@@ -22,12 +22,15 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "render/luts/hair_environment.hpp"
 #include "render/luts/marschner.hpp"
 #include "render/luts/marschner_lut.hpp"
 #include "render/passes/opacity_shadow_map_reference.hpp"
 #include "render/environment/spherical_harmonics.hpp"
+#include "render/passes/hair_density_pass.hpp"
 #include "render/passes/hair_lighting_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
+#include "render/strand_looks.hpp"
 #include "tests/support/vulkan_fixture.hpp"
 
 namespace mane::render {
@@ -167,17 +170,23 @@ TEST_F(HairLightingTest, VertexRadianceMatchesTheCpuModel) {
   std::printf("per-vertex radiance: worst relative error %.4f over %zu vertices\n", worst, expected.size());
 }
 
-// Under an environment and no lights, each vertex shows the environment's irradiance over π
-// averaged round its fibre (here by 64 normals perpendicular to the tangent, on the CPU) times
-// the white-furnace albedo. The sky is of bands 0 to 2 only, so its nine harmonics hold it whole.
-TEST_F(HairLightingTest, TheEnvironmentLightsEachFibreByItsIrradianceAveragedRoundIt) {
+// Under an environment and no lights, each vertex shows the environment scattered by the lobes
+// (render/luts/hair_environment.hpp, whose own test holds its weights to the full model): each band
+// of the sky's radiance at the tangent times the band's weights at the vertex's θr, computed here
+// at the exact θr, where the pass interpolates its table linearly between samples 2.8° apart
+// (within 1 %). The sky is of bands 0 to 2 only, so its nine harmonics hold it whole; the
+// strands' colours multiply the TT and TRT lobes alone.
+TEST_F(HairLightingTest, TheEnvironmentLightsEachFibreThroughItsLobes) {
   const HairShadingParams params = blondeHairParams();
   const MarschnerLut& table = lut(params);
   Random random(5);
   Strands strands{.vertices = 2};
   for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
     strands.addStraight(-0.02f * axis, 0.02f * axis);
-  for (int s = 0; s < 20; ++s) strands.addStraight(glm::vec3(0.0f), glm::vec3(0.02 * random.direction()));
+  for (int s = 0; s < 40; ++s) {
+    const glm::vec3 root(0.3 * random.direction());
+    strands.addStraight(root, root + glm::vec3(0.02 * random.direction()));
+  }
   CubeMap sky{.size = 32};
   for (int face = 0; face < 6; ++face)
     for (int row = 0; row < sky.size; ++row)
@@ -185,8 +194,11 @@ TEST_F(HairLightingTest, TheEnvironmentLightsEachFibreByItsIrradianceAveragedRou
         const glm::vec3 d = cubeDirection(face, {(column + 0.5f) / 32.0f, (row + 0.5f) / 32.0f});
         sky.faces[face].push_back(glm::vec3(0.5f + 0.3f * d.y + 0.4f * d.y * d.y + 0.2f * d.x * d.z, 0.6f, 0.3f));
       }
-  SphericalHarmonics9 irradianceOverPi = irradianceFromRadiance(projectRadiance(sky));
+  const SphericalHarmonics9 radiance = projectRadiance(sky);
+  SphericalHarmonics9 irradianceOverPi = irradianceFromRadiance(radiance);
   for (glm::vec3& coefficient : irradianceOverPi) coefficient /= float(std::numbers::pi);
+  std::vector<HairStrandLook> looks(strands.count());
+  for (HairStrandLook& look : looks) look.colour = glm::vec3(random.uniform(), random.uniform(), random.uniform());
 
   const Buffer positions = upload(strands.positions);
   const Buffer tangents = upload(strands.tangents);
@@ -195,28 +207,105 @@ TEST_F(HairLightingTest, TheEnvironmentLightsEachFibreByItsIrradianceAveragedRou
   auto pass =
       HairLightingPass::create(device(), table, **shadows, positions, tangents, strands.count(), strands.vertices);
   ASSERT_TRUE(pass.has_value()) << pass.error().message;
+  const Buffer looksBuffer = uploadStrandLooks(device(), looks, strands.count());
+  ASSERT_TRUE((*pass)->setStrandLooks(looksBuffer).has_value());
   (*pass)->setEnvironment(irradianceOverPi);
   ASSERT_TRUE((*pass)->update(viewProjection(), {}, glm::vec3(0.0f), (*shadows)->uniforms()).has_value());
   device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { (*pass)->record(commands); });
-  const std::vector<glm::vec4> radiance = readBack((*pass)->radiance());
-  double lowest = 1e9, highest = 0.0;
+  const std::vector<glm::vec4> shaded = readBack((*pass)->radiance());
+  double worst = 0.0, lowest = 1e9, highest = 0.0;
   for (std::size_t v = 0; v < strands.positions.size(); ++v) {
-    const glm::vec3 tangent(strands.tangents[v]);
-    const glm::vec3 a =
-        glm::normalize(glm::cross(tangent, std::abs(tangent.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0)));
-    const glm::vec3 b = glm::cross(tangent, a);
-    glm::dvec3 sum(0.0);
-    for (int k = 0; k < 64; ++k) {
-      const double phi = 2.0 * std::numbers::pi * k / 64.0;
-      sum += glm::dvec3(evaluate(irradianceOverPi, float(std::cos(phi)) * a + float(std::sin(phi)) * b));
+    const glm::dvec3 tangent(strands.tangents[v]);
+    const glm::dvec3 toEye = glm::normalize(glm::dvec3(kEye) - glm::dvec3(strands.positions[v]));
+    const HairEnvironmentBands bands =
+        hairEnvironmentBands(params, std::asin(std::clamp(glm::dot(toEye, tangent), -1.0, 1.0)));
+    const std::array<float, 9> y = harmonicsAt(glm::vec3(tangent));
+    const std::array<glm::dvec3, 3> atTangent{glm::dvec3(radiance[0] * y[0]),
+                                              glm::dvec3(radiance[1] * y[1] + radiance[2] * y[2] + radiance[3] * y[3]),
+                                              glm::dvec3(radiance[4] * y[4] + radiance[5] * y[5] + radiance[6] * y[6] +
+                                                         radiance[7] * y[7] + radiance[8] * y[8])};
+    const glm::dvec3 colour(looks[v / strands.vertices].colour);
+    glm::dvec3 expected(0.0);
+    for (int l = 0; l < 3; ++l) expected += (bands.crossed[l] * colour + bands.reflected[l]) * atTangent[l];
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(shaded[v][c], expected[c], 1e-2 * expected[c]) << "vertex " << v << " channel " << c;
+      worst = std::max(worst, std::abs(shaded[v][c] - expected[c]) / expected[c]);
     }
-    const glm::dvec3 expected = sum / 64.0 * ambientAlbedo(params);
-    for (int c = 0; c < 3; ++c)
-      EXPECT_NEAR(radiance[v][c], expected[c], 1e-3 * expected[c]) << "vertex " << v << " channel " << c;
     lowest = std::min(lowest, expected.r);
     highest = std::max(highest, expected.r);
   }
+  std::printf("environment through the lobes: worst relative error %.5f\n", worst);
   EXPECT_GT(highest - lowest, 0.05 * highest);  // fibres along y see the sky's gradient differently
+}
+
+// Strands at the middle of a shell of hair 3 cm thick receive e^−τ of the environment they would
+// receive without it, τ the shell's optical depth along a radius (render/passes/hair_density_pass.hpp,
+// whose own test checks the visibility in every direction): the lit radiance with and without the
+// occlusion volume, vertex by vertex, within 0.03.
+TEST_F(HairLightingTest, TheHairAroundAFibreHidesTheEnvironmentFromIt) {
+  const HairShadingParams params = blondeHairParams();
+  const MarschnerLut& table = lut(params);
+  constexpr double inner = 0.08, outer = 0.11, segment = 0.004, width = 1.5e-3;
+  Random random(9);
+  std::vector<glm::vec4> shell;
+  double length = 0.0;
+  while (shell.size() < 2 * 30000) {
+    const glm::dvec3 p(2 * random.uniform() - 1, 2 * random.uniform() - 1, 2 * random.uniform() - 1);
+    const double r = glm::length(p) * outer;
+    if (glm::length(p) > 1.0 || r < inner) continue;
+    const glm::dvec3 along = glm::normalize(glm::cross(p, random.direction()));
+    shell.emplace_back(glm::vec3(glm::normalize(p) * r - 0.5 * segment * along), 0.0f);
+    shell.emplace_back(glm::vec3(glm::normalize(p) * r + 0.5 * segment * along), 1.0f);
+    length += segment;
+  }
+  const double shellVolume = 4.0 * std::numbers::pi / 3.0 * (outer * outer * outer - inner * inner * inner);
+  const double tau = width * std::numbers::pi / 4.0 * length / shellVolume * (outer - inner);
+  const Buffer shellPositions = upload(shell);
+  const HairShadowPass::Groom shellGroom{
+      .strands = {.positions = &shellPositions, .strandCount = std::uint32_t(shell.size() / 2), .verticesPerStrand = 2},
+      .width = float(width),
+      .opacity = 1.0f,
+      .extinction = 1.0f};
+  auto density = HairDensityPass::create(device(), std::span(&shellGroom, 1));
+  ASSERT_TRUE(density.has_value()) << density.error().message;
+  const HairBounds bounds{.low = glm::vec3(-0.12f), .high = glm::vec3(0.12f)};
+  (*density)->place(std::span(&bounds, 1));
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { (*density)->record(commands); });
+
+  // Short strands every way through the shell's middle voxel's centre.
+  const glm::vec3 middle((0.5f + HairDensityPass::kResolution / 2) * (*density)->voxelSide() -
+                         0.5f * HairDensityPass::kResolution * (*density)->voxelSide());
+  Strands strands{.vertices = 2};
+  for (int s = 0; s < 20; ++s) {
+    const glm::vec3 half(0.002 * random.direction());
+    strands.addStraight(middle - half, middle + half);
+  }
+  CubeMap sky{.size = 16};
+  for (auto& face : sky.faces) face.assign(16 * 16, glm::vec3(1.0f, 0.8f, 0.6f));
+  SphericalHarmonics9 irradianceOverPi = irradianceFromRadiance(projectRadiance(sky));
+  for (glm::vec3& coefficient : irradianceOverPi) coefficient /= float(std::numbers::pi);
+  const Buffer positions = upload(strands.positions);
+  const Buffer tangents = upload(strands.tangents);
+  auto shadows = HairShadowPass::create(device());
+  ASSERT_TRUE(shadows.has_value()) << shadows.error().message;
+  std::vector<std::vector<glm::vec4>> shaded;
+  for (const bool hidden : {false, true}) {
+    auto pass =
+        HairLightingPass::create(device(), table, **shadows, positions, tangents, strands.count(), strands.vertices);
+    ASSERT_TRUE(pass.has_value()) << pass.error().message;
+    (*pass)->setEnvironment(irradianceOverPi);
+    if (hidden) (*pass)->setHairVisibility(density->get());
+    ASSERT_TRUE((*pass)->update(viewProjection(), {}, glm::vec3(0.0f), (*shadows)->uniforms()).has_value());
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) { (*pass)->record(commands); });
+    shaded.push_back(readBack((*pass)->radiance()));
+  }
+  std::printf("shell τ %.3f: e^-τ %.4f, vertex 0 keeps %.4f\n", tau, std::exp(-tau), shaded[1][0].g / shaded[0][0].g);
+  EXPECT_GT(tau, 1.0);
+  for (std::size_t v = 0; v < strands.positions.size(); ++v)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_GT(shaded[0][v][c], 0.0f);
+      EXPECT_NEAR(shaded[1][v][c] / shaded[0][v][c], std::exp(-tau), 0.03) << "vertex " << v << " channel " << c;
+    }
 }
 
 // A sheet of 2,000 horizontal strands along x (r = 20 µm, α = κ = 1, about 6 per map texel row) 2–3 cm above 8 shaded
