@@ -1,7 +1,7 @@
 #pragma once
 // How much of the environment's light the hair leaves at each point near it: the dense strands'
 // optical depth gathered in a voxel grid round the grooms (shaders/hair_density_splat.comp), then,
-// at each voxel, the hair's transmittance towards 32 directions reduced to its first two bands
+// at each voxel, the hair's transmittance towards 16 directions reduced to its first two bands
 // (shaders/hair_visibility.comp). The surfaces' and the hair's environment terms read it
 // (shaders/hair_visibility.glsl).
 //
@@ -13,7 +13,7 @@
 // by integer atomics: the sums do not depend on the order the invocations run in.
 //
 // Visibility. From each voxel's centre the transmittance exp(−τ) is marched a voxel at a time
-// along 32 directions of a spherical Fibonacci set, equal in weight, up to kMarchVoxels away,
+// along 16 directions of a spherical Fibonacci set, equal in weight, up to kMarchVoxels away,
 // half the voxel's own depth included. Its projection on bands 0 and 1,
 // V(ω) ≈ a + b·ω, is stored as occlusion (−b, 1 − a) in an RGBA16F 3D image, sampled linearly
 // with a transparent black border: no occlusion outside the grid. A surface facing n receives

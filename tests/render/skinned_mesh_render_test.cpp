@@ -182,8 +182,9 @@ TEST_F(SkinnedMeshRender, TheGpuSkinnedMeshMatchesTheCpuDeformedOneAndIsNotTheBi
       const std::vector<glm::mat4> identity(2, glm::mat4(1.0f));
       ASSERT_TRUE(renderer->updateSkinning(0, identity, std::vector<float>{0.0f}).has_value());
 
-      const std::string name = std::string("/tmp/mane_skinned_") + (dqs ? "dqs_" : "lbs_") +
-                               (material == 0 ? "lambert" : "skin");
+      std::string name = "/tmp/mane_skinned_";
+      name += dqs ? "dqs_" : "lbs_";
+      name += material == 0 ? "lambert" : "skin";
       ASSERT_TRUE(writePng(name + "_gpu.png", kExtent.width, kExtent.height, onGpu));
       ASSERT_TRUE(writePng(name + "_cpu.png", kExtent.width, kExtent.height, onCpu));
       ASSERT_TRUE(writePng(name + "_rest.png", kExtent.width, kExtent.height, rest));

@@ -244,8 +244,9 @@ TEST(GroomLoaderMalformed, TfxWrongVersionIsNotATfxFile) {
   expectError(loadTfx(dir.write("old.tfx", bytes)), {"old.tfx", "version 2", "not supported"});
   putF32(bytes, 0, std::numeric_limits<float>::quiet_NaN());
   expectError(loadTfx(dir.write("nan.tfx", bytes)), {"nan.tfx", "version", "not supported"});
-  expectError(loadTfx(dir.write("png.tfx", std::string("\x89PNG\r\n\x1a\n", 8) + std::string(400, 'x'))),
-              {"png.tfx", "not supported"});
+  std::string png("\x89PNG\r\n\x1a\n", 8);
+  png.append(400, 'x');
+  expectError(loadTfx(dir.write("png.tfx", png)), {"png.tfx", "not supported"});
 }
 
 // Flaws in single strands are repaired or dropped (groom_repair_tests.cpp); loaded strictly,
