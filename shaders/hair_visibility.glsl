@@ -7,10 +7,12 @@
 
 layout(set = HAIR_VISIBILITY_SET, binding = HAIR_VISIBILITY_BINDING) uniform sampler3D hairOcclusion;
 
-// The occlusion (−b, 1 − a) at `position` (metres): 0 outside the grid and where it is off.
+// The occlusion (−b, 1 − a) at `position` (metres): 0 outside the grid and where it is off. The
+// test spares the lookup where a whole block of pixels lies outside, as most of a frame does.
 vec4 hairOcclusionAt(vec4 origin, vec4 scale, vec3 position) {
-  if (scale.w == 0.0) return vec4(0.0);
-  return texture(hairOcclusion, (position - origin.xyz) * scale.xyz);
+  vec3 uvw = (position - origin.xyz) * scale.xyz;
+  if (scale.w == 0.0 || any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) return vec4(0.0);
+  return texture(hairOcclusion, uvw);
 }
 
 // The share of a surface's diffuse environment light facing `normal`: a + ⅔ b·n, the clamped

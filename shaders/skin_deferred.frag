@@ -25,7 +25,8 @@ void main() {
   vec3 albedo = texelFetch(gAlbedo, pixel, 0).rgb;
   float shadow = hairShadowTransmittance(frame.hairShadows, position.xyz) *
                  surfaceShadowVisibility(frame.surfaceShadow, position.xyz, geometric.xyz, frame.lightDirection[0].xyz);
-  vec3 diffuse = skinAmbient(position.xyz, geometric.xyz, detail, position.w), specular;
-  skinLights(position.xyz, geometric.xyz, detail, geometric.w, position.w, shadow, diffuse, specular);
+  float visibility = environmentVisibility(position.xyz, geometric.xyz);
+  vec3 diffuse = skinAmbient(geometric.xyz, detail, position.w, visibility), specular;
+  skinLights(position.xyz, geometric.xyz, detail, geometric.w, position.w, shadow, visibility, diffuse, specular);
   outColor = vec4(albedo * diffuse + specular, 1.0);
 }

@@ -28,8 +28,8 @@ layout(constant_id = 3) const bool kTextureSpaceDiffusion = false;
 // scatters it at that curvature (render/luts/preintegrated_skin.hpp, preintegratedAmbientBands),
 // and each channel looking up the environment with its own blurred normal, as the lights'
 // pre-integrated diffuse does, so that red light wraps further round the skin's curves than blue.
-// The hair over the skin at `position` (metres) hides part of the environment.
-vec3 skinAmbient(vec3 position, vec3 geometric, vec3 detail, float curvature) {
+// `visibility` is the share of the environment the hair leaves (environmentVisibility).
+vec3 skinAmbient(vec3 geometric, vec3 detail, float curvature, float visibility) {
   float at = sqrt(clamp(curvature / draw.skin.z, 0.0, 1.0)) * 15.0;
   int below = min(int(at), 14);
   float t = at - float(below);
@@ -44,13 +44,13 @@ vec3 skinAmbient(vec3 position, vec3 geometric, vec3 detail, float curvature) {
     environmentLightBands(normalize(mix(detail, geometric, draw.blur[c])), band0, band1, band2);
     lit[c] = scale[0][c] * band0[c] + scale[1][c] * band1[c] + scale[2][c] * band2[c];
   }
-  return ambient + lit * environmentVisibility(position, geometric);
+  return ambient + lit * visibility;
 }
 
 // Skin's specular reflection of the environment (a split sum): the radiance pre-filtered for its
-// roughness in the mirror direction, times the BRDF's albedo at N·V, times what the hair leaves of
-// the environment's light there (its diffuse share: the lobe is broad); 0 without an environment.
-vec3 skinEnvironmentSpecular(vec3 position, vec3 geometric, vec3 detail, vec3 toEye, float rhoS) {
+// roughness in the mirror direction, times the BRDF's albedo at N·V, times the share `visibility`
+// the hair leaves of the environment (its diffuse share: the lobe is broad); 0 without one.
+vec3 skinEnvironmentSpecular(vec3 detail, vec3 toEye, float rhoS, float visibility) {
   if (frame.lightCount.y == 0) return vec3(0.0);
   float cosView = clamp(dot(detail, toEye), 0.0, 1.0);
   float at = cosView * 7.0;
@@ -59,16 +59,16 @@ vec3 skinEnvironmentSpecular(vec3 position, vec3 geometric, vec3 detail, vec3 to
                      at - float(below));
   // GGX of α = m stands in for Beckmann's m; the chain's level ℓ holds roughness ℓ/7, α = roughness².
   float level = sqrt(draw.skin.x) * (kEnvironmentSpecularLevels - 1.0);
-  return rhoS * albedo * textureLod(environmentSpecular, reflect(-toEye, detail), level).rgb *
-         environmentVisibility(position, geometric);
+  return rhoS * albedo * textureLod(environmentSpecular, reflect(-toEye, detail), level).rgb * visibility;
 }
 
 // Adds the lights' diffuse light (per RGB, to multiply by the albedo) to `diffuse` and sets
 // `specular` to their specular radiance, at `position` (metres) with the geometric and the detail
 // (normal-mapped) normals, ρs scaled by the specular map, and curvature 1/r in 1/mm. The first
-// light is attenuated by `shadow` (the hair's and the surfaces' shadows).
+// light is attenuated by `shadow` (the hair's and the surfaces' shadows), the environment's
+// reflection by `visibility` (environmentVisibility).
 void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float curvature, float shadow,
-                inout vec3 diffuse, out vec3 specular) {
+                float visibility, inout vec3 diffuse, out vec3 specular) {
   vec3 toEye = normalize(frame.cameraPosition.xyz - position);
   vec3 normalR = normalize(mix(detail, geometric, draw.blur.r));
   vec3 normalG = normalize(mix(detail, geometric, draw.blur.g));
@@ -95,5 +95,5 @@ void skinLights(vec3 position, vec3 geometric, vec3 detail, float rhoS, float cu
     specular = on ? shone : specular;
     ++i;
   } while (i < frame.lightCount.x);
-  specular += skinEnvironmentSpecular(position, geometric, detail, toEye, rhoS);
+  specular += skinEnvironmentSpecular(detail, toEye, rhoS, visibility);
 }

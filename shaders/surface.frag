@@ -49,10 +49,11 @@ vec3 translucency(vec3 geometric) {
 void shadeSkin(vec3 geometric, vec3 detail, float specularMap, float shadow, out vec3 diffuse,
                out vec3 specular) {
   float rhoS = draw.skin.y * specularMap;
+  float visibility = environmentVisibility(inWorldPosition, geometric);
   diffuse = (kTextureSpaceDiffusion ? texture(diffusedIrradiance, inUv).rgb
-                                   : skinAmbient(inWorldPosition, geometric, detail, inCurvature)) +
+                                   : skinAmbient(geometric, detail, inCurvature, visibility)) +
             translucency(geometric);
-  skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, shadow, diffuse, specular);
+  skinLights(inWorldPosition, geometric, detail, rhoS, inCurvature, shadow, visibility, diffuse, specular);
 }
 
 void main() {
