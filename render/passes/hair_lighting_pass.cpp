@@ -133,10 +133,17 @@ HairLightingPass::HairLightingPass(const Device& device, const MarschnerLut& lut
   // Ambient: La · ∫S dωi, the white-furnace albedo of marschner.hpp, at θr = 0.
   const AzimuthalLobes albedo = azimuthalAlbedo(lut.params(), 1.0);
   ambientAlbedo_ = glm::vec3(albedo.tt + albedo.trt + glm::dvec3(albedo.r));
-  const std::vector<HairEnvironmentBands> table = hairEnvironmentTable(lut.params());
+  params_ = lut.params();
+}
+
+void HairLightingPass::setEnvironment(const std::optional<SphericalHarmonics9>& irradianceOverPi) {
+  environment_ = irradianceOverPi;
+  if (!environment_ || environmentBands_) return;
+  const std::vector<HairEnvironmentBands> table = hairEnvironmentTable(params_);
+  EnvironmentBands& bands = environmentBands_.emplace();
   for (std::size_t k = 0; k < kHairEnvironmentSamples; ++k)
     for (std::size_t l = 0; l < 3; ++l)
-      environmentBands_[3 * k + l] = glm::vec4(glm::vec3(table[k].crossed[l]), float(table[k].reflected[l]));
+      bands[3 * k + l] = glm::vec4(glm::vec3(table[k].crossed[l]), float(table[k].reflected[l]));
 }
 
 void HairLightingPass::setHairVisibility(const HairDensityPass* visibility) {
@@ -200,7 +207,7 @@ Result<void> HairLightingPass::update(const glm::mat4& viewProjection, std::span
     // (1, 2/3, 1/4) undone.
     constexpr std::array<float, 9> kUnconvolve{1.0f, 1.5f, 1.5f, 1.5f, 4.0f, 4.0f, 4.0f, 4.0f, 4.0f};
     for (std::size_t i = 0; i < 9; ++i) uniforms.environment[i] = glm::vec4((*environment_)[i] * kUnconvolve[i], 0.0f);
-    uniforms.environmentBands = environmentBands_;
+    uniforms.environmentBands = *environmentBands_;
     if (hairVisibility_) uniforms.hairVisibility = hairVisibility_->placement();
   }
   std::memcpy(uniforms_.mapped().data(), &uniforms, sizeof(uniforms));

@@ -75,7 +75,8 @@ public:
   /// from the next update() on, or none. Each vertex adds the environment's radiance scattered by
   /// the groom's lobes towards the eye (render/luts/hair_environment.hpp: each band at the tangent
   /// weighed by the lobes' cones at the eye's θr), on top of the ambient radiance.
-  void setEnvironment(const std::optional<SphericalHarmonics9>& irradianceOverPi) { environment_ = irradianceOverPi; }
+  /// The lobes' band weights are baked the first time an environment comes.
+  void setEnvironment(const std::optional<SphericalHarmonics9>& irradianceOverPi);
 
   /// The hair's occlusion volume that hides part of the environment from each vertex, or none;
   /// update() takes its placement as it is then. It must outlive its use; between frames.
@@ -124,7 +125,8 @@ private:
   const Buffer* positions_;
   const Buffer* tangents_;
   glm::vec3 ambientAlbedo_{0.0f};
-  EnvironmentBands environmentBands_{};
+  HairShadingParams params_;
+  std::optional<EnvironmentBands> environmentBands_;  // baked with the first environment
   std::optional<SphericalHarmonics9> environment_;
   std::uint32_t verticesPerStrand_;
   Buffer radiance_;
