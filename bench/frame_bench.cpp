@@ -37,6 +37,13 @@
 //   BM_RobotFrame/variant:2  animated, 4× MSAA (`mane render`'s default)
 //   BM_RobotFrame/variant:3  the body frozen, 4× MSAA
 //
+// The same frame of scenes/clear_sailing.json: the sea (45 Gerstner waves on a 150 × 150
+// projected grid, foam) and the 30 m ship floating on it. The row without the sea hands the
+// renderer no ocean (the ship still floats): the first row over it is what the sea costs.
+//
+//   BM_ClearSailingFrame/variant:0  as shipped, 1× MSAA
+//   BM_ClearSailingFrame/variant:1  the sea not drawn
+//
 //   build/release/bench/mane_frame_bench --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -273,6 +280,24 @@ void BM_TimburyFrame(benchmark::State& state) {
 BENCHMARK(BM_TimburyFrame)
     ->ArgName("variant")
     ->DenseRange(kTimburyShipped, kTimburyWithoutGlasses)
+    ->Iterations(9)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+enum ClearSailingVariant : int { kClearSailingShipped, kClearSailingWithoutSea };
+
+void BM_ClearSailingFrame(benchmark::State& state) {
+  auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "clear_sailing.json");
+  if (!scene) return state.SkipWithError(scene.error().message.c_str());
+  const bool withoutSea = state.range(0) == kClearSailingWithoutSea;
+  measureFrames(state, std::move(*scene), {.editStatics = [withoutSea](render::StaticScene& statics) {
+                  if (withoutSea) statics.ocean.reset();
+                }});
+}
+
+BENCHMARK(BM_ClearSailingFrame)
+    ->ArgName("variant")
+    ->DenseRange(kClearSailingShipped, kClearSailingWithoutSea)
     ->Iterations(9)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

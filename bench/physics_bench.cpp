@@ -52,7 +52,9 @@
 #include "physics/constraints.hpp"
 #include "physics/detail/strand_lanes.hpp"
 #include "physics/groom_generator.hpp"
+#include "physics/floating_body.hpp"
 #include "physics/hair.hpp"
+#include "physics/ocean_waves.hpp"
 #include "physics/sdf.hpp"
 #include "physics/skinning.hpp"
 #include "physics/surface_binding.hpp"
@@ -440,6 +442,49 @@ void BM_StateHash(benchmark::State& state) {
                           static_cast<std::int64_t>(2 * hair->particles().size() * sizeof(glm::vec3)));
 }
 BENCHMARK(BM_StateHash)->Unit(benchmark::kMillisecond);
+
+// ---- The sea: wave queries on the CPU (BM_OceanQueries) and a floating box (BM_FloatingBody). ----
+
+// Queries of clear_sailing.json's sea (45 waves, choppiness 0.9): arg 0 the water resting at a
+// point (OceanWaves::sample), arg 1 the water found over a point (surfaceAt, Newton's method),
+// at points spread over 200 m; items per second are queries per second.
+void BM_OceanQueries(benchmark::State& state) {
+  const auto ocean = OceanWaves::create(
+      {.windSpeed = 14.0f, .windDirection = {1.0f, 0.4f}, .choppiness = 0.9f, .shortestWavelength = 0.8f});
+  if (!ocean) return state.SkipWithError(ocean.error().message.c_str());
+  const bool surface = state.range(0) == 1;
+  constexpr int kPoints = 1024;
+  for (auto _ : state) {
+    for (int i = 0; i < kPoints; ++i) {
+      const glm::vec2 p(float(i % 32) * 6.3f - 100.0f, float(i / 32) * 6.1f - 100.0f);
+      benchmark::DoNotOptimize(surface ? ocean->surfaceAt(p, 10.0) : ocean->sample(p, 10.0));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * kPoints);
+}
+BENCHMARK(BM_OceanQueries)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// One 1/120 s step of a 30 × 8 × 4 m box of 24 × 8 × 8 cells (192 columns, one surface query
+// each) on that sea.
+void BM_FloatingBody(benchmark::State& state) {
+  const auto ocean = OceanWaves::create({.windSpeed = 14.0f, .choppiness = 0.9f, .shortestWavelength = 0.8f});
+  if (!ocean) return state.SkipWithError(ocean.error().message.c_str());
+  FloatingBodySettings settings{.mass = 1025.0f * 30.0f * 8.0f * 2.0f, .position = {0.0f, 0.0f, 0.0f}};
+  const glm::vec3 size(30.0f, 4.0f, 8.0f);
+  const glm::vec3 cell = size / glm::vec3(24.0f, 8.0f, 8.0f);
+  for (int i = 0; i < 24; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 8; ++k)
+        settings.hull.push_back({.centre = (glm::vec3(i, j, k) + 0.5f) * cell - 0.5f * size, .size = cell});
+  auto body = FloatingBody::create(std::move(settings));
+  if (!body) return state.SkipWithError(body.error().message.c_str());
+  double time = 0.0;
+  for (auto _ : state) {
+    body->step(*ocean, time, 1.0f / 120.0f, glm::vec3(0.0f));
+    time += 1.0 / 120.0;
+  }
+}
+BENCHMARK(BM_FloatingBody)->Unit(benchmark::kMicrosecond);
 
 // ---- A character: a skinned head and its groom (BM_CharacterBind, BM_CharacterStep). ----
 

@@ -159,8 +159,39 @@ struct EnvironmentData {
   CubeMap radiance;  ///< linear RGB, in the units of the lights' radiance
 };
 
+/// The sea (render/passes/ocean_pass.hpp): a sum of Gerstner waves, as physics/ocean_waves.hpp
+/// grows them, drawn on a grid projected from the screen, with a foam map over part of it.
+struct OceanData {
+  /// Per wave: its direction (x, z, unit), wavenumber (1/m) and amplitude (m); 1 … 64 waves.
+  std::vector<glm::vec4> waves;
+  float choppiness = 0.0f;    ///< λ: metres the water moves towards a crest per metre of height
+  glm::uvec2 grid{150, 150};  ///< cells across and down the screen, 1 … 1024 each
+  float reach = 20000.0f;     ///< metres from the eye where the grid ends (keep the camera's far plane beyond)
+  glm::vec3 waterColor{0.006f, 0.03f, 0.04f};  ///< what the water sends up from below per unit of light
+  float fresnelPower = 3.0f;                   ///< p of F₀ + (1 − F₀)(1 − n·v)^p, 1 … 5
+  glm::vec3 skyColor{0.5f, 0.65f, 0.85f};      ///< the sky it reflects where the scene has no environment
+  glm::vec3 fogColor{0.6f, 0.7f, 0.8f};        ///< the horizon where the scene has no environment
+  float fogDensity = 2e-4f;                    ///< 1/m
+  glm::vec3 foamColor{0.9f};                   ///< albedo
+  float foamThreshold = 0.35f;                 ///< J (the waves' Jacobian) under which a crest breaks
+  float foamHalfLife = 3.0f;                   ///< seconds, > 0
+  float foamGrowth = 6.0f;                     ///< foam a breaking crest adds per second (1 covers)
+  glm::vec2 foamCenter{0.0f};                  ///< (x, z) of the foam map's centre, metres at rest
+  float foamExtent = 160.0f;                   ///< metres a side of the foam map
+  std::uint32_t foamResolution = 256;          ///< texels a side, 1 … 4096
+};
+
+/// The sea this frame.
+struct OceanFrame {
+  /// Each wave's phase φ − ω t reduced to [0, 2π), one per OceanData wave
+  /// (physics::OceanWaves::phasesAt).
+  std::vector<float> phases;
+  float seconds = 1.0f / 30.0f;  ///< since the foam map last grew and faded, ≥ 0
+};
+
 struct StaticScene {
   std::optional<EnvironmentData> environment;  ///< none: the flat background and ambient of FrameInput
+  std::optional<OceanData> ocean;
   std::vector<MeshData> meshes;
   std::vector<MaterialData> materials;
   std::vector<HairGroomData> grooms;  ///< drawn after the surfaces; guides via Renderer::updateHair
@@ -243,6 +274,8 @@ struct PostSettings {
 /// What changes every frame.
 struct FrameInput {
   Camera camera;
+  /// The sea's phases where StaticScene::ocean is set (required there).
+  std::optional<OceanFrame> ocean;
   std::vector<DirectionalLight> lights;
   std::vector<MeshInstance> instances;
   glm::vec3 ambient{0.03f};  ///< linear RGB added to every lit surface

@@ -28,6 +28,7 @@ public:
   static const PassName kSurfaceShadows;     ///< light 0's depth map of every surface, for their soft shadows
   static const PassName kSkinDiffusion;      ///< texture-space skin: irradiance in uv space and its blurs
   static const PassName kTranslucencyDepth;  ///< light 0's depth map of the translucent surfaces
+  static const PassName kOcean;  ///< the sea's grid displaced by the waves, its foam map faded and grown (compute)
   static const PassName kSkinGBuffer;        ///< the deferred skin's G-buffer, where hair follows it
   static const PassName kSurfaces;           ///< the opaque scene: its G-buffer, surfaces, discs and furs
   static const PassName kHairLighting;       ///< the hair's hiding, primitive choice and shading (compute)
@@ -52,6 +53,7 @@ inline constexpr PassName PassName::kHairShadows{"hair shadows"};
 inline constexpr PassName PassName::kSkinDiffusion{"skin diffusion"};
 inline constexpr PassName PassName::kTranslucencyDepth{"translucency depth"};
 inline constexpr PassName PassName::kSurfaceShadows{"surface shadows"};
+inline constexpr PassName PassName::kOcean{"ocean"};
 inline constexpr PassName PassName::kSkinGBuffer{"skin g-buffer"};
 inline constexpr PassName PassName::kSurfaces{"surfaces"};
 inline constexpr PassName PassName::kHairLighting{"hair lighting"};

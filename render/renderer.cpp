@@ -119,6 +119,17 @@ Result<void> Renderer::setScene(const StaticScene& scene) {
     hairDensity_ = std::move(*density);
     scene_.setHairVisibility(hairDensity_.get());
   }
+  ocean_.reset();
+  if (scene.ocean) {
+    auto ocean = OceanPass::create(*device_, *scene.ocean);
+    if (!ocean) return std::unexpected(ocean.error());
+    ocean_ = std::move(*ocean);
+    if (auto built = ocean_->buildDrawPipeline(
+            {.color = RenderTarget::kHdrFormat, .depth = RenderTarget::kDepthFormat, .samples = target_.samples()},
+            scene_.frameLayout());
+        !built)
+      return built;
+  }
   // After the maps exist: the surfaces' pipelines are specialised for them.
   try {
     scene_.setScene(scene);
@@ -407,6 +418,14 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         [this](const Commands& c) { translucency_.recordLightDepth(c); });
   }
   scene_.update(frame, target_.aspect());
+  if (ocean_) {
+    graph_.addPass(
+        PassName::kOcean, [this](Builder& pass) { ocean_->declareGrid(pass); },
+        [this](const Commands& c) { ocean_->recordGrid(c); });
+    graph_.addPass(
+        PassName::kOcean, [this](Builder& pass) { ocean_->declareFoam(pass); },
+        [this](const Commands& c) { ocean_->recordFoam(c); });
+  }
 
   // The skin's G-buffer and depth first where it is deferred
   // (render/passes/deferred_skin_pass.hpp); the main pass lights it before anything else. With
@@ -444,6 +463,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         target_.beginScenePart(c, plan.scene, plan.background, plan.skinDeferred);
         if (plan.skinDeferred) deferredSkin_.drawLighting(c, frame);
         if (environment_) environment_->draw(c, frame.camera, target_.extent());
+        if (ocean_) ocean_->draw(c, scene_.frameSet(), target_.extent());
         discs_.draw(c, frame.camera, frame.lights, target_.extent());
         surfaces_.draw(c, frame, plan.skinDeferred);
         furs_.draw(c);
@@ -485,6 +505,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
       [this, &frame](const Commands& c) { output_.record(c, target_, frame.exposure, frame.post); });
   graph_.leaveAs(target_.output(), ResourceUse::transferSource());
   graph_.leaveAs(target_.hdr(), ResourceUse::transferSource());
+  if (ocean_) ocean_->leaveFoam(graph_);
   for (std::size_t g = 0; g < hair_.size(); ++g)
     if (plan.drawn[g]) hair_[g].ribbons->leaveChoiceReadable(graph_);  // hairChoices reads it
 
@@ -556,6 +577,7 @@ void Renderer::addHairDensity() {
 }
 
 void Renderer::declareSurfaceReads(FrameGraph::Builder& pass, const FrameInput& frame) const {
+  if (ocean_) ocean_->declareDrawReads(pass);
   if (hairDensity_) hairDensity_->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);
   shadows_->declareReads(pass, vk::PipelineStageFlagBits2::eFragmentShader);  // the surfaces' and the furs'
   if (translucency_.drawsTranslucency(frame, scene_)) translucency_.declareReads(pass);
@@ -690,6 +712,9 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
   }
   if (auto prepared = translucency_.prepareThickness(frame, scene_); !prepared)
     return std::unexpected(prepared.error());
+  if (ocean_) {
+    if (auto prepared = ocean_->prepare(frame, target_.aspect()); !prepared) return std::unexpected(prepared.error());
+  }
   if (auto posed = poseSkinnedFurs(); !posed) return std::unexpected(posed.error());
   if (auto updated =
           furs_.update(frame, frame.ambient, environment_ ? environment_->irradianceOverPi() : SphericalHarmonics9{},

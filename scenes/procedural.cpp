@@ -164,4 +164,54 @@ Mesh makePlane(float halfSide) {
   return mesh;
 }
 
+Mesh makeHull(int stations, int sectionPoints) {
+  Mesh mesh;
+  mesh.name = "hull";
+  const float pi = std::numbers::pi_v<float>;
+  // Along the length t in [−1, 1] (stern to bow): the half beam, fuller aft than forward; the
+  // keel's depth; the deck's height (its sheer).
+  const auto halfBeam = [](float t) {
+    const float fullness = t < 0.0f ? t * t * t * t : t * t;
+    return 0.14f * std::sqrt(std::max(0.0f, 1.0f - fullness));
+  };
+  const auto keel = [](float t) { return 0.1f * (1.0f - 0.4f * t * t); };
+  const auto deck = [](float t) { return 0.06f + 0.03f * t * t; };
+  const auto point = [&](int station, int p) {
+    const float t = -1.0f + 2.0f * float(station) / float(stations - 1);
+    const float phi = -0.5f * pi + pi * float(p) / float(sectionPoints - 1);
+    const float depth = deck(t) + keel(t);
+    // sin φ across, and a U whose sides stand nearly upright: cos φ to the power 0.6.
+    const float down = std::pow(std::max(0.0f, std::cos(phi)), 0.6f);
+    return glm::vec3(0.5f * t, deck(t) - depth * down, halfBeam(t) * std::sin(phi));
+  };
+  for (int station = 0; station < stations; ++station)
+    for (int p = 0; p < sectionPoints; ++p) {
+      mesh.positions.push_back(point(station, p));
+      mesh.uvs.emplace_back(float(station) / float(stations - 1), float(p) / float(sectionPoints - 1));
+    }
+  for (int station = 0; station + 1 < stations; ++station)
+    for (int p = 0; p + 1 < sectionPoints; ++p) {
+      const auto a = std::uint32_t(station * sectionPoints + p);
+      const auto b = a + std::uint32_t(sectionPoints);
+      // Counter-clockwise seen from outside: port (z < 0) to starboard runs under the keel.
+      mesh.indices.insert(mesh.indices.end(), {a, b + 1, a + 1, a, b, b + 1});
+    }
+  computeSmoothNormals(mesh);
+  // The deck: the sections' first and last points, again, facing up.
+  const auto deckStart = std::uint32_t(mesh.positions.size());
+  for (int station = 0; station < stations; ++station)
+    for (int side : {0, sectionPoints - 1}) {
+      const glm::vec3 p = point(station, side);
+      mesh.positions.push_back(p);
+      mesh.normals.emplace_back(0.0f, 1.0f, 0.0f);
+      mesh.uvs.emplace_back(p.x + 0.5f, p.z / 0.28f + 0.5f);
+    }
+  for (int station = 0; station + 1 < stations; ++station) {
+    const std::uint32_t port = deckStart + std::uint32_t(2 * station);
+    const std::uint32_t starboard = port + 1;
+    mesh.indices.insert(mesh.indices.end(), {port, starboard + 2, port + 2, port, starboard, starboard + 2});
+  }
+  return mesh;
+}
+
 }  // namespace mane::scenes

@@ -43,4 +43,12 @@ namespace mane::scenes {
 /// (counter-clockwise seen from above) with uvs 0..1 across it.
 [[nodiscard]] Mesh makePlane(float halfSide);
 
+/// A ship's hull, one unit long from stern (x = −½) to bow (x = ½), 0.28 wide at its widest,
+/// from its keel 0.1 below y = 0 (0.06 at the ends) to a flat deck 0.06 above it amidships,
+/// rising to 0.09 at the ends. Each of `stations` cross-sections is a U from the deck's port edge
+/// round the keel to its starboard edge (`sectionPoints` points); the sections close to a stem
+/// line at both ends, and the deck closes the top, so the mesh is closed. The hull's vertices
+/// carry smooth normals, the deck's its own, so the edge between them stays sharp.
+[[nodiscard]] Mesh makeHull(int stations, int sectionPoints);
+
 }  // namespace mane::scenes

@@ -15,6 +15,7 @@
 #include "scenes/detail/scene_bodies.hpp"
 #include "scenes/detail/scene_characters.hpp"
 #include "scenes/detail/scene_materials.hpp"
+#include "scenes/detail/scene_ocean.hpp"
 
 namespace mane::scenes {
 namespace {
@@ -330,6 +331,16 @@ void checkReferences(const Scene& scene) {
     require(glasses.material.empty() || scene.findMaterial(glasses.material)->kind != MaterialKind::fur,
             path + ".material", "fur grows on meshes, not on a spectacle frame");
   }
+  if (scene.ship) {
+    require(scene.ocean.has_value(), "ship", "a ship floats on an ocean: the scene has none");
+    const MeshInstance* hull = scene.findMesh(scene.ship->mesh);
+    require(hull != nullptr, "ship.mesh", "no mesh named \"" + scene.ship->mesh + "\" in meshes");
+    require(hull->transform.rotationDegrees.x == 0.0f && hull->transform.rotationDegrees.z == 0.0f, "ship.mesh",
+            "the ship's mesh may turn about +Y only (its rotation's x and z must be 0)");
+    require(!hull->subdivision, "ship.mesh", "a subdivided mesh cannot float (its triangles change with the view)");
+    require(scene.headMotion.kind == HeadMotionKind::none || scene.headMotion.mesh != scene.ship->mesh, "ship.mesh",
+            "the sea moves the ship; the head motion cannot move it too");
+  }
   if (scene.headMotion.kind != HeadMotionKind::none) {
     require(scene.findMesh(scene.headMotion.mesh) != nullptr, "animation.head.mesh",
             "no mesh named \"" + scene.headMotion.mesh + "\" in meshes");
@@ -356,6 +367,8 @@ Scene parseRoot(const Json& json) {
   scene.cloths = parseList<Cloth>(fields, "cloths", parseCloth);
   scene.characters = parseList<CharacterInstance>(fields, "characters", parseCharacter);
   scene.glasses = parseList<Glasses>(fields, "glasses", parseGlasses);
+  if (const Json* ocean = fields.take("ocean")) scene.ocean = detail::parseOcean(*ocean, "ocean");
+  if (const Json* ship = fields.take("ship")) scene.ship = detail::parseShip(*ship, "ship");
   if (const Json* animation = fields.take("animation")) {
     ObjectFields anim(*animation, "animation");
     if (const Json* head = anim.take("head")) scene.headMotion = parseHeadMotion(*head, "animation.head");

@@ -20,6 +20,7 @@
 #include "physics/colliders.hpp"
 #include "physics/groom_drape.hpp"
 #include "physics/interpolation.hpp"
+#include "physics/ocean_waves.hpp"
 #include "physics/skinning.hpp"
 #include "render/frame.hpp"
 #include "render/hair_data.hpp"
@@ -140,8 +141,8 @@ inline constexpr std::string_view kProceduralPrefix = "procedural:";
 /// The kinds after `kProceduralPrefix` that `loadSceneMesh` builds (scenes/procedural.hpp): a
 /// unit sphere, the cube [−1, 1]³ with a hollow of radius 0.5, a torus of radii 1 and 0.4 around +Y,
 /// a floor 1 m square in the XZ plane facing +Y.
-inline constexpr std::array<std::string_view, 4> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus",
-                                                                         "plane"};
+inline constexpr std::array<std::string_view, 5> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus", "plane",
+                                                                         "hull"};
 
 /// Bounds of `Subdivision`'s fields (subdiv::LimitSurfaceSettings, subdiv::TessellationSettings).
 inline constexpr int kMinSubdivisionLevel = 1;
@@ -492,6 +493,37 @@ struct SimulationSettings {
   float settleSeconds = 0.0f;
 };
 
+/// The sea (scenes/README.md#ocean): Gerstner waves grown by the wind (physics/ocean_waves.hpp),
+/// drawn on a projected grid (render/passes/ocean_pass.hpp).
+struct Ocean {
+  physics::OceanSettings waves;
+  int grid = 150;                               ///< cells across and down the screen, 16 … 1024
+  float reach = 20000.0f;                       ///< metres the grid reaches from the eye
+  glm::vec3 waterColour{0.006f, 0.03f, 0.04f};  ///< light sent up from below, per unit of light
+  float fresnelPower = 3.0f;                    ///< 1 … 5
+  glm::vec3 skyColour{0.5f, 0.65f, 0.85f};      ///< reflected where there is no environment
+  glm::vec3 fogColour{0.6f, 0.7f, 0.8f};        ///< the horizon where there is no environment
+  float fogDensity = 2e-4f;                     ///< 1/m, ≥ 0
+  glm::vec3 foamColour{0.9f};
+  float foamThreshold = 0.35f;  ///< the Jacobian under which crests break
+  float foamHalfLife = 3.0f;    ///< seconds, > 0
+  float foamGrowth = 6.0f;      ///< per second of breaking, ≥ 0
+  float foamExtent = 160.0f;    ///< metres a side of the foam map, round the ship (or the origin)
+  int foamResolution = 256;     ///< texels a side, 16 … 4096
+};
+
+/// A mesh that floats on the sea (physics/floating_body.hpp): it heaves, pitches and rolls and
+/// keeps its place and heading, those of its transform (turned about +Y only; its model's +X is
+/// the bow). Its hull is its mesh filled with upright cells.
+struct Ship {
+  std::string mesh;            ///< the floating `MeshInstance`; a closed mesh
+  float mass = 0.0f;           ///< kg, > 0
+  glm::ivec3 cells{24, 8, 8};  ///< hull cells along its length (x), height (y) and beam (z), 1 … 64 each
+  float drag = 0.5f;           ///< the water's linear drag, 1/s, ≥ 0
+  float sailArea = 0.0f;       ///< m² the wind pushes on, ≥ 0
+  glm::vec3 sailCentre{0.0f};  ///< where the wind pushes, model space (the mesh's units)
+};
+
 /// Hair shadow map sizes a scene may ask for, texels per side (render::HairShadowSettings).
 inline constexpr int kMinHairShadowResolution = 16;
 inline constexpr int kMaxHairShadowResolution = 4096;
@@ -510,6 +542,8 @@ struct Scene {
   std::vector<Cloth> cloths;
   std::vector<CharacterInstance> characters;
   std::vector<Glasses> glasses;
+  std::optional<Ocean> ocean;
+  std::optional<Ship> ship;  ///< only with an ocean
   HeadMotion headMotion;
   SimulationSettings simulation;
   render::HairShadowSettings hairShadows;  ///< opacity shadow maps at 512 × 512 unless the file says otherwise

@@ -27,6 +27,8 @@ constexpr float kTorusMajorRadius = 1.0f;
 constexpr float kTorusMinorRadius = 0.4f;
 constexpr int kTorusMajorSegments = 96;
 constexpr int kTorusMinorSegments = 32;
+constexpr int kHullStations = 64;
+constexpr int kHullSectionPoints = 24;
 
 /// The mesh of a `kProceduralMeshKinds` entry; nothing for another kind.
 std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
@@ -35,6 +37,7 @@ std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
     return makeCubeWithHollow(kCubeHalfSide, kHollowRadius, kSphereRings, kSphereSegments);
   if (kind == "torus") return makeTorus(kTorusMajorRadius, kTorusMinorRadius, kTorusMajorSegments, kTorusMinorSegments);
   if (kind == "plane") return makePlane(0.5f);
+  if (kind == "hull") return makeHull(kHullStations, kHullSectionPoints);
   return std::nullopt;
 }
 

@@ -95,6 +95,18 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   if (auto loaded = world.loadCloths(resolver, colliders); !loaded) return std::unexpected(loaded.error());
   if (auto loaded = world.loadFurDynamics(); !loaded) return std::unexpected(loaded.error());
   if (auto loaded = world.loadGlasses(); !loaded) return std::unexpected(loaded.error());
+  if (world.scene_.ocean) {
+    std::size_t shipIndex = 0;
+    const Mesh* shipMesh = nullptr;
+    for (std::size_t m = 0; m < world.scene_.meshes.size(); ++m)
+      if (world.scene_.ship && world.scene_.meshes[m].name == world.scene_.ship->mesh) {
+        shipIndex = m;
+        shipMesh = &world.meshes_[m].mesh;
+      }
+    auto ocean = SceneOcean::create(world.scene_, shipMesh, shipIndex);
+    if (!ocean) return std::unexpected(ocean.error());
+    world.ocean_ = std::move(*ocean);
+  }
   // Settling: 1/60 s frames with every body held where it is at time 0; the clock stays at 0.
   const int settleFrames = static_cast<int>(std::lround(world.scene_.simulation.settleSeconds * 60.0f));
   for (int frame = 0; frame < settleFrames; ++frame)
@@ -473,6 +485,7 @@ std::vector<World::HairGuides> World::hairGuides() const {
 }
 
 glm::mat4 World::bodyPlacement(std::size_t mesh, double time) const {
+  if (ocean_ && ocean_->shipMesh() == mesh) return ocean_->shipBody();
   if (const std::optional<CharacterPart>& part = characterParts_[mesh])
     return characters_[part->character].partFrame(part->part);
   return bodyMatrix(scene_, scene_.meshes[mesh], static_cast<float>(time));
@@ -543,6 +556,7 @@ Result<void> World::loadCloths(const AssetResolver& resolver, SceneColliders& co
 Result<void> World::advance(double frameDt, unsigned threads) {
   if (!(frameDt >= 0.0) || !std::isfinite(frameDt)) return fail("frame time must be finite and ≥ 0");
   time_ += frameDt;
+  lastFrameDt_ = frameDt;
   poseCharacters();
   return simulate(frameDt, threads);
 }
@@ -550,11 +564,14 @@ Result<void> World::advance(double frameDt, unsigned threads) {
 Result<void> World::showTime(double time) {
   if (!(time >= 0.0) || !std::isfinite(time)) return fail("time must be finite and ≥ 0");
   time_ = time;
+  lastFrameDt_ = 0.0;
   poseCharacters();
   return {};
 }
 
 Result<void> World::simulate(double frameDt, unsigned threads) {
+  // The ship first: what rides on it follows where it is at the end of the frame.
+  if (ocean_) ocean_->advance(time_, frameDt);
   std::vector<glm::vec3> targets, normals;
   for (SimulatedGroom& groom : grooms_) {
     const std::string& name = scene_.grooms[groom.sceneGroom].name;
@@ -598,6 +615,7 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
 render::StaticScene World::staticScene() const {
   render::StaticScene result;
   result.environment = environment_;
+  if (ocean_) result.ocean = ocean_->oceanData();
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     const Mesh& mesh = meshes_[m].mesh;
     result.meshes.push_back(render::MeshData{.positions = mesh.positions,
@@ -659,6 +677,7 @@ std::vector<World::DynamicMesh> World::dynamicMeshes() const {
 render::FrameInput World::frameInput() const {
   render::FrameInput frame;
   frame.post = scene_.post;
+  if (ocean_) frame.ocean = ocean_->frame(time_, static_cast<float>(lastFrameDt_));
   const Camera& camera = scene_.camera;
   frame.camera = render::Camera{.position = cameraPositionAt(camera, time_),
                                 .target = camera.target,
@@ -689,7 +708,9 @@ render::FrameInput World::frameInput() const {
     frame.instances.push_back({.mesh = i,
                                .material = materialIndex(mesh.material),
                                .model = part ? characters_[part->character].partFrame(part->part)
-                                             : animatedMatrix(scene_, mesh, static_cast<float>(time_))});
+                                        : ocean_ && ocean_->shipMesh() == i
+                                            ? ocean_->shipModel()
+                                            : animatedMatrix(scene_, mesh, static_cast<float>(time_))});
   }
   for (std::size_t i = 0; i < cloths_.size(); ++i)  // already in world space
     frame.instances.push_back({.mesh = meshes_.size() + i, .material = materialIndex(scene_.cloths[i].material)});
@@ -709,6 +730,7 @@ std::uint64_t World::stateHash() const {
   for (const SimulatedGroom& groom : grooms_) hasher.addValue(groom.hair.stateHash());
   for (const SceneCloth& cloth : cloths_) hasher.addValue(cloth.cloth().stateHash());
   for (const MovingFur& fur : movingFurs_) hasher.addValue(fur.dynamics.guides().stateHash());
+  if (ocean_) ocean_->hash(hasher);
   hasher.addValue(time_);
   return hasher.value();
 }

@@ -26,6 +26,7 @@
 #include "scenes/scene.hpp"
 #include "scenes/scene_character.hpp"
 #include "scenes/scene_meshes.hpp"
+#include "scenes/scene_ocean.hpp"
 #include "scenes/skinned_cage.hpp"
 #include "scenes/subdivided_mesh.hpp"
 
@@ -262,6 +263,8 @@ private:
     GlassesModel model;
   };
   std::vector<WornGlasses> glasses_;
+  std::optional<SceneOcean> ocean_;               ///< where the scene has a sea
+  double lastFrameDt_ = 0.0;                      ///< the last advance's, for the sea's foam
   std::vector<ClothOnCharacter> clothFollowers_;  ///< per cloth
   std::vector<SceneCharacter> characters_;
   /// Per character: the morph target nextExpression() last blended in (its count: none).

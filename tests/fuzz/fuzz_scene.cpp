@@ -1,6 +1,7 @@
 // libFuzzer harness: scene JSON text → parseScene. Must return a value or an error, never
-// crash, hang or leak; a scene it accepts must hold only finite numbers, and its glasses must be
-// built or refused by name (scenes/glasses.hpp).
+// crash, hang or leak; a scene it accepts must hold only finite numbers, its glasses must be
+// built or refused by name (scenes/glasses.hpp), and its sea must grow from its settings, with a
+// finite surface.
 
 #include <cmath>
 #include <cstddef>
@@ -8,6 +9,7 @@
 #include <cstdlib>
 #include <string_view>
 
+#include "physics/ocean_waves.hpp"
 #include "render/lens.hpp"
 #include "scenes/glasses.hpp"
 #include "scenes/scene.hpp"
@@ -81,6 +83,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!finite(cloth.colliders)) std::abort();
     for (const auto& [lower, upper] : cloth.pinRegions)
       if (!finite(lower) || !finite(upper)) std::abort();
+  }
+  if (scene->ship && !scene->ocean) std::abort();
+  if (scene->ocean) {
+    auto waves = mane::physics::OceanWaves::create(scene->ocean->waves);
+    if (!waves) std::abort();  // the parser has checked the settings
+    const auto water = waves->surfaceAt({3.0f, -7.0f}, 12.5);
+    if (!finite(water.position) || !finite(water.normal) || !std::isfinite(water.jacobian)) std::abort();
   }
   for (const auto& glasses : scene->glasses) {
     if (!finite(glasses.transform) || !finite(glasses.tint)) std::abort();

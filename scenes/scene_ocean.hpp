@@ -1,0 +1,65 @@
+#pragma once
+// A scene's sea and the ship that floats on it: the waves (physics/ocean_waves.hpp), the ship's
+// body (physics/floating_body.hpp) stepped at the scene's fixed step, and what the renderer is
+// given of both.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "common/error.hpp"
+#include "physics/floating_body.hpp"
+#include "physics/hash.hpp"
+#include "physics/ocean_waves.hpp"
+#include "physics/solver.hpp"
+#include "render/frame.hpp"
+#include "scenes/mesh.hpp"
+#include "scenes/scene.hpp"
+
+namespace mane::scenes {
+
+/// The hull of a closed mesh as upright cells: the cells of a grid of `cells` (along x, y, z)
+/// over its bounds whose centres lie inside it (an odd number of its triangles above them),
+/// in model units times `scale`. Errors: no triangles, or no cell inside.
+[[nodiscard]] Result<std::vector<physics::HullCell>> hullCells(const Mesh& mesh, float scale, glm::ivec3 cells);
+
+class SceneOcean {
+public:
+  /// The sea of `scene` (which has one), with its ship when it has one, floating `shipMesh`
+  /// (the ship's mesh as loaded, of scene mesh `shipIndex`).
+  [[nodiscard]] static Result<SceneOcean> create(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex);
+
+  /// Steps the ship over the frame that ends at `time`, lasting `frameDt` seconds.
+  void advance(double time, double frameDt);
+
+  [[nodiscard]] const physics::OceanWaves& waves() const { return waves_; }
+  [[nodiscard]] render::OceanData oceanData() const;
+  /// The waves' phases at `time`, and the foam's step.
+  [[nodiscard]] render::OceanFrame frame(double time, float seconds) const;
+
+  /// The scene mesh that floats, if any.
+  [[nodiscard]] std::optional<std::size_t> shipMesh() const { return ship_ ? std::optional(shipIndex_) : std::nullopt; }
+  /// The ship's mesh's model matrix now, and its body frame (the same without the scale).
+  [[nodiscard]] glm::mat4 shipModel() const;
+  [[nodiscard]] glm::mat4 shipBody() const;
+  [[nodiscard]] const physics::FloatingBody* ship() const { return ship_ ? &*ship_ : nullptr; }
+
+  void hash(physics::StateHasher& hasher) const;
+
+private:
+  SceneOcean(const Scene& scene, physics::OceanWaves waves);
+
+  Ocean settings_;
+  physics::OceanWaves waves_;
+  glm::vec3 wind_{0.0f};  ///< m/s, at the sails
+  std::optional<physics::FloatingBody> ship_;
+  std::size_t shipIndex_ = 0;
+  glm::vec3 centreOfMass_{0.0f};  ///< in the mesh's model space × scale
+  float shipScale_ = 1.0f;
+  glm::vec2 foamCentre_{0.0f};
+  std::optional<physics::FixedStepAccumulator> steps_;
+};
+
+}  // namespace mane::scenes

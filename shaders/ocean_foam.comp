@@ -1,0 +1,26 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The foam map, over the sea at rest (the water a texel holds only circles about it, so foam
+// stays with its water as the waves pass): each frame the foam fades by 2^(−Δt/T½) and breaking
+// crests (J under the threshold, over 0.2 of J) add to it, up to 1.
+layout(local_size_x = 8, local_size_y = 8) in;
+#define OCEAN_SET 0
+#include "ocean_uniforms.glsl"
+#include "ocean_waves.glsl"
+
+layout(set = 0, binding = 1, r32f) uniform image2D foamMap;
+
+void main() {
+  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  int side = int(ocean.foamMap.w);
+  if (texel.x >= side || texel.y >= side) return;
+  float metresPerTexel = 1.0 / (ocean.foamMap.z * float(side));
+  vec2 rest = ocean.foamMap.xy + (vec2(texel) + 0.5) * metresPerTexel;
+  float breaking = 0.0;
+  if (ocean.foamStep.y > 0.0) {
+    OceanPoint point = oceanWaves(rest, metresPerTexel);
+    breaking = clamp((ocean.foam.a - point.jacobian) / 0.2, 0.0, 1.0);
+  }
+  float foam = imageLoad(foamMap, texel).r * ocean.foamStep.x + breaking * ocean.foamStep.y;
+  imageStore(foamMap, texel, vec4(min(foam, 1.0)));
+}

@@ -1,0 +1,194 @@
+// The sea on the GPU.
+//
+// Oracles: the CPU's sum of the same waves (physics/ocean_waves.hpp), in double precision; the
+// foam's exponential fade, 2^(−t/T½), over frames in which nothing breaks; and the horizon line
+// computed from the camera alone, below which every pixel must show water.
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
+#include <glm/matrix.hpp>
+#include <gtest/gtest.h>
+
+#include "physics/ocean_waves.hpp"
+#include "render/passes/ocean_pass.hpp"
+#include "render/renderer.hpp"
+#include "tests/support/vulkan_fixture.hpp"
+
+namespace mane::render {
+namespace {
+
+OceanData oceanData(const physics::OceanWaves& waves) {
+  OceanData data;
+  for (const physics::GerstnerWave& w : waves.waves())
+    data.waves.emplace_back(w.direction.x, w.direction.y, w.wavenumber, w.amplitude);
+  data.choppiness = waves.choppiness();
+  return data;
+}
+
+FrameInput frameAt(const physics::OceanWaves& waves, double time, float seconds) {
+  FrameInput frame;
+  frame.ocean = OceanFrame{.phases = std::vector<float>(waves.waves().size()), .seconds = seconds};
+  waves.phasesAt(time, frame.ocean->phases);
+  return frame;
+}
+
+class OceanTest : public testing::VulkanTest {};
+
+TEST_F(OceanTest, TheGpuSumsTheWavesAsTheCpuDoesWithinATenthOfAMillimetre) {
+  const auto waves = physics::OceanWaves::create({.windSpeed = 12.0f, .choppiness = 0.9f, .shortestWavelength = 0.5f});
+  ASSERT_TRUE(waves) << waves.error().message;
+  auto pass = OceanPass::create(device(), oceanData(*waves));
+  ASSERT_TRUE(pass) << pass.error().message;
+  std::vector<glm::vec2> rests;
+  for (float x = -150.0f; x <= 150.0f; x += 7.7f)
+    for (float z = -150.0f; z <= 150.0f; z += 9.1f) rests.emplace_back(x, z);
+  float worstPosition = 0.0f;
+  float worstNormal = 0.0f;
+  float worstJacobian = 0.0f;
+  for (double time : {0.0, 12.5, 3600.25}) {
+    ASSERT_TRUE((*pass)->prepare(frameAt(*waves, time, 0.0f), 1.0f));
+    const std::vector<OceanProbeSample> gpu = (*pass)->probe(rests);
+    ASSERT_EQ(gpu.size(), rests.size());
+    for (std::size_t i = 0; i < rests.size(); ++i) {
+      const physics::OceanSample cpu = waves->sample(rests[i], time);
+      const glm::vec3 displacement = cpu.position - glm::vec3(rests[i].x, 0.0f, rests[i].y);
+      worstPosition = std::max(worstPosition, glm::length(gpu[i].displacement - displacement));
+      worstNormal = std::max(worstNormal, glm::length(gpu[i].normal - cpu.normal));
+      worstJacobian = std::max(worstJacobian, std::abs(gpu[i].jacobian - cpu.jacobian));
+    }
+  }
+  RecordProperty("worst_position_m", std::to_string(worstPosition));
+  EXPECT_LT(worstPosition, 1e-4f);
+  EXPECT_LT(worstNormal, 1e-4f);
+  EXPECT_LT(worstJacobian, 1e-4f);
+}
+
+TEST_F(OceanTest, FoamFadesWithItsHalfLifeWhereNothingBreaks) {
+  // One wave of λ k A = 1.5, so J = 1 − 1.5 cos θ: where cos θ > 0.43 the crest breaks.
+  const float k = 0.2f;
+  const float a = 1.0f;
+  const auto waves = physics::OceanWaves::fromWaves(
+      {physics::GerstnerWave{
+          .direction = {1.0f, 0.0f}, .wavenumber = k, .angularFrequency = std::sqrt(9.81f * k), .amplitude = a}},
+      1.5f / (k * a));
+  ASSERT_TRUE(waves);
+  OceanData data = oceanData(*waves);
+  data.foamHalfLife = 2.0f;
+  data.foamGrowth = 1000.0f;  // a breaking crest covers its texel at once
+  data.foamExtent = 64.0f;
+  data.foamResolution = 64;
+  auto pass = OceanPass::create(device(), data);
+  ASSERT_TRUE(pass) << pass.error().message;
+  // The foam step alone (it leaves the map in GENERAL, where it rests).
+  struct FoamStep {
+    const OceanPass* pass;
+    void declare(FrameGraph::Builder& builder) const { pass->declareFoam(builder); }
+    void execute(const vk::raii::CommandBuffer& commands) const { pass->recordFoam(commands); }
+  };
+  const auto runFoam = [&](const FrameInput& frame) {
+    ASSERT_TRUE((*pass)->prepare(frame, 1.0f));
+    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+      FrameGraph::recordAlone(commands, PassName::kOcean, FoamStep{pass->get()});
+    });
+  };
+  // Breaking where J < threshold − 0.2 at the first phases, fully; then half a period later
+  // J = 1 + 1.5 cos θ there, and nothing breaks where it did.
+  FrameInput frame = frameAt(*waves, 0.0, 0.1f);
+  runFoam(frame);
+  const float phase = frame.ocean->phases[0];
+  frame.ocean->phases[0] = phase + std::numbers::pi_v<float>;
+  frame.ocean->seconds = 0.25f;
+  for (int i = 0; i < 16; ++i) runFoam(frame);
+  const std::vector<float> foam = (*pass)->readFoam();
+  ASSERT_EQ(foam.size(), 64u * 64u);
+  const double expected = std::exp2(-16 * 0.25 / 2.0);
+  int checked = 0;
+  for (int texel = 0; texel < 64; ++texel) {
+    const float x = -32.0f + (float(texel) + 0.5f);
+    const float j = 1.0f - 1.5f * std::cos(k * x + phase);
+    if (j > data.foamThreshold - 0.21f) continue;
+    for (int row = 0; row < 64; ++row) ASSERT_NEAR(foam[std::size_t(row) * 64 + texel] / expected, 1.0, 0.02) << texel;
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+}
+
+class OceanRender : public testing::VulkanTest {};
+
+// The background's colour, which no water shows.
+constexpr glm::vec3 kBackground{1.0f, 0.0f, 1.0f};
+
+TEST_F(OceanRender, TheProjectedGridLeavesNoBackgroundBelowTheHorizon) {
+  const auto waves = physics::OceanWaves::create({.windSpeed = 14.0f, .choppiness = 0.9f});
+  ASSERT_TRUE(waves);
+  constexpr vk::Extent2D extent{160, 96};
+  auto renderer = Renderer::create(device(), {.extent = extent});
+  ASSERT_TRUE(renderer) << renderer.error().message;
+  StaticScene scene;
+  scene.ocean = oceanData(*waves);
+  ASSERT_TRUE((*renderer)->setScene(scene));
+  // Low over the water and looking up past the horizon, high and looking down, turned and tilted.
+  const Camera cameras[] = {
+      {.position = {0.0f, 3.0f, 0.0f},
+       .target = {100.0f, 8.0f, 30.0f},
+       .verticalFovRadians = 0.8f,
+       .nearPlane = 0.1f,
+       .farPlane = 30000.0f},
+      {.position = {5.0f, 40.0f, -3.0f},
+       .target = {-60.0f, 0.0f, 40.0f},
+       .verticalFovRadians = 0.9f,
+       .nearPlane = 0.1f,
+       .farPlane = 30000.0f},
+      {.position = {0.0f, 12.0f, 0.0f},
+       .target = {0.0f, 11.0f, -100.0f},
+       .up = {0.3f, 1.0f, 0.0f},
+       .verticalFovRadians = 0.6f,
+       .nearPlane = 0.1f,
+       .farPlane = 30000.0f},
+  };
+  for (const Camera& camera : cameras) {
+    FrameInput frame = frameAt(*waves, 7.0, 1.0f / 30.0f);
+    frame.camera = camera;
+    frame.background = kBackground;
+    frame.ambient = glm::vec3(0.2f);
+    frame.lights = {{.direction = glm::normalize(glm::vec3(0.3f, 0.5f, -0.4f)), .intensity = 2.0f}};
+    ASSERT_TRUE((*renderer)->render(frame));
+    const auto hdr = (*renderer)->readHdrOutput();
+    ASSERT_TRUE(hdr);
+    const float aspect = float(extent.width) / float(extent.height);
+    const glm::mat4 clipToWorld = glm::inverse(camera.projection(aspect) * camera.view());
+    const float pixelAngle = camera.verticalFovRadians / float(extent.height);
+    int water = 0;
+    int sky = 0;
+    for (int y = 0; y < int(extent.height); ++y) {
+      for (int x = 0; x < int(extent.width); ++x) {
+        const glm::vec2 ndc((float(x) + 0.5f) / float(extent.width) * 2.0f - 1.0f,
+                            (float(y) + 0.5f) / float(extent.height) * 2.0f - 1.0f);
+        const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
+        const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
+        const glm::vec3 ray = glm::normalize(glm::vec3(far) / far.w - glm::vec3(near) / near.w);
+        const std::size_t i = (std::size_t(y) * extent.width + std::size_t(x)) * 4;
+        const glm::vec3 colour(glm::unpackHalf1x16((*hdr)[i]), glm::unpackHalf1x16((*hdr)[i + 1]),
+                               glm::unpackHalf1x16((*hdr)[i + 2]));
+        const bool background = glm::length(colour - kBackground) < 0.05f;
+        // More than a pixel below the horizon: water, whatever the waves do.
+        if (ray.y < -std::sin(pixelAngle)) {
+          ASSERT_FALSE(background) << "pixel " << x << ", " << y << " below the horizon shows the background";
+          ++water;
+        } else if (ray.y > std::sin(2.0f * pixelAngle) + 0.1f) {
+          // Well above the highest crest seen from here: the sky.
+          sky += background;
+        }
+      }
+    }
+    EXPECT_GT(water, 1000);
+    (void)sky;
+  }
+}
+
+}  // namespace
+}  // namespace mane::render

@@ -1,0 +1,111 @@
+// The scene file's "ocean" and "ship" blocks, and a hull filled with cells.
+//
+// Oracles: the documented defaults and the errors' field paths; the volume a closed mesh holds,
+// against its closed form (a procedural sphere, whose facets make it a little smaller than the
+// sphere's 4/3 π r³).
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "scenes/procedural.hpp"
+#include "scenes/scene.hpp"
+#include "scenes/scene_ocean.hpp"
+
+namespace mane::scenes {
+namespace {
+
+constexpr const char* kCamera = R"("camera": {"position": [0, 5, 20], "target": [0, 0, 0], "far": 30000})";
+
+std::string sceneWith(const std::string& blocks) {
+  return std::string(R"({"name": "sea", )") + kCamera +
+         R"(, "meshes": [{"name": "boat", "source": "procedural:hull", "transform": {"scale": 10}}])" + blocks + "}";
+}
+
+std::string errorOf(const std::string& text) {
+  auto scene = parseScene(text, "sea.json");
+  return scene ? std::string() : scene.error().message;
+}
+
+TEST(SceneOcean, AnOceanAndAShipGetTheDocumentedDefaults) {
+  auto scene = parseScene(sceneWith(R"(, "ocean": {}, "ship": {"mesh": "boat", "mass": 5000})"), "sea.json");
+  ASSERT_TRUE(scene) << scene.error().message;
+  ASSERT_TRUE(scene->ocean && scene->ship);
+  EXPECT_EQ(scene->ocean->waves.windSpeed, 10.0f);
+  EXPECT_EQ(scene->ocean->waves.waveCount, 45);
+  EXPECT_EQ(scene->ocean->grid, 150);
+  EXPECT_EQ(scene->ocean->foamHalfLife, 3.0f);
+  EXPECT_EQ(scene->ship->cells, glm::ivec3(24, 8, 8));
+  EXPECT_EQ(scene->ship->drag, 0.5f);
+}
+
+TEST(SceneOcean, BadBlocksNameTheirField) {
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ship": {"mesh": "boat", "mass": 5000})")),
+            "sea.json: ship: a ship floats on an ocean: the scene has none");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {}, "ship": {"mesh": "raft", "mass": 5000})")),
+            "sea.json: ship.mesh: no mesh named \"raft\" in meshes");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {}, "ship": {"mesh": "boat", "mass": -1})")),
+            "sea.json: ship.mass: expected kilograms > 0");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {}, "ship": {"mesh": "boat", "mass": 1, "cells": [4, 0.5, 4]})")),
+            "sea.json: ship.cells: expected three whole numbers of cells, 1 to 64 each");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"choppiness": 2})")),
+            "sea.json: ocean: Ocean settings: choppiness must be in [0, 1].");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": 4})")), "sea.json: ocean.grid: expected 16 to 1024 cells");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"foam": {"half_life": 0}})")),
+            "sea.json: ocean.foam.half_life: expected seconds > 0");
+  EXPECT_NE(errorOf(sceneWith(R"(, "ocean": {"swell": 1})")).find("ocean.swell: unknown field"), std::string::npos);
+  const std::string turned = std::string(R"({"name": "sea", )") + kCamera +
+                             R"(, "meshes": [{"name": "boat", "source": "procedural:hull",
+                                 "transform": {"rotation_degrees": [10, 0, 0]}}],
+                                 "ocean": {}, "ship": {"mesh": "boat", "mass": 5000}})";
+  EXPECT_EQ(errorOf(turned),
+            "sea.json: ship.mesh: the ship's mesh may turn about +Y only (its rotation's x and z must be 0)");
+}
+
+TEST(HullCells, ASphereHoldsItsVolume) {
+  const Mesh sphere = makeSphere(64, 128, 1.0f);
+  const auto cells = hullCells(sphere, 2.0f, {40, 40, 40});
+  ASSERT_TRUE(cells) << cells.error().message;
+  double volume = 0.0;
+  glm::dvec3 centre(0.0);
+  for (const physics::HullCell& cell : *cells) {
+    const double v = double(cell.size.x) * cell.size.y * cell.size.z;
+    volume += v;
+    centre += glm::dvec3(cell.centre) * v;
+  }
+  // Radius 2 after the scale: 4/3 π 8 = 33.51 m³; the cells' staircase is within a percent.
+  EXPECT_NEAR(volume / (4.0 / 3.0 * std::numbers::pi * 8.0), 1.0, 0.01);
+  EXPECT_LT(glm::length(centre / volume), 0.01);
+}
+
+TEST(HullCells, TheProceduralHullIsClosed) {
+  const Mesh hull = makeHull(64, 24);
+  const auto cells = hullCells(hull, 1.0f, {48, 16, 16});
+  ASSERT_TRUE(cells) << cells.error().message;
+  // Every cell lies within the hull's bounds.
+  const Bounds bounds = hull.bounds();
+  for (const physics::HullCell& cell : *cells) {
+    EXPECT_GE(cell.centre.x, bounds.min.x);
+    EXPECT_LE(cell.centre.x, bounds.max.x);
+    EXPECT_GE(cell.centre.y, bounds.min.y);
+    EXPECT_LE(cell.centre.y, bounds.max.y);
+  }
+  double volume = 0.0;
+  for (const physics::HullCell& cell : *cells) volume += double(cell.size.x) * cell.size.y * cell.size.z;
+  // A closed hull of length 1, beam 0.28 and depth 0.16 amidships holds a share of its box
+  // between a diamond's (1/3) and the box's own: an open one would hold nothing or its box.
+  const double box = 1.0 * 0.28 * 0.16;
+  EXPECT_GT(volume, 0.4 * box);
+  EXPECT_LT(volume, 0.9 * box);
+}
+
+TEST(HullCells, AnOpenSheetHoldsNothing) {
+  const Mesh plane = makePlane(1.0f);
+  const auto cells = hullCells(plane, 1.0f, {4, 4, 4});
+  ASSERT_FALSE(cells);
+  EXPECT_NE(cells.error().message.find("is it closed?"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mane::scenes
