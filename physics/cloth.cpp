@@ -92,6 +92,18 @@ Cloth::Cloth(const ClothSettings& settings)
     : settings_{.solver = settings.solver, .bendingStiffness = settings.bendingStiffness, .tasks = settings.tasks},
       accumulator_(settings.solver.fixedStep, settings.solver.maxSubstepsPerFrame) {}
 
+Result<void> Cloth::setWind(const glm::vec3& velocity) {
+  if (!wind_) {
+    // The vertices' masses from the cloth's shape now: its area is its rest area to the
+    // constraints' tolerance.
+    auto wind = ClothWindLoad::create({.velocity = velocity}, triangles_, particles_.positions);
+    if (!wind) return std::unexpected(wind.error());
+    wind_ = std::move(*wind);
+    return {};
+  }
+  return wind_->setVelocity(velocity);
+}
+
 Result<Cloth> Cloth::create(std::span<const glm::vec3> positions, std::span<const std::uint32_t> triangles,
                             std::span<const std::uint32_t> pinnedVertices, const ClothSettings& settings,
                             const glm::mat4& bodyTransform) {
@@ -205,6 +217,12 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
   if (!settings.colliders.empty())
     if (auto set = cloth.setColliders(settings.colliders); !set)
       return fail("ClothSettings.colliders: " + set.error().message);
+  cloth.triangles_.assign(triangles.begin(), triangles.end());
+  if (settings.wind) {
+    auto wind = ClothWindLoad::create(*settings.wind, triangles, restShape);
+    if (!wind) return std::unexpected(wind.error());
+    cloth.wind_ = std::move(*wind);
+  }
   return cloth;
 }
 
@@ -322,9 +340,18 @@ Result<void> Cloth::advanceWith(double frameDt, const TaskRunner& tasks) {
       particles_.positions[pinned_[p]] = t >= 1.0f ? to : from + (to - from) * t;
       particles_.previousPositions[pinned_[p]] = particles_.positions[pinned_[p]];
     }
+    if (wind_)
+      runPhase([&](std::uint32_t w) {
+        const auto [first, end] = slice(wind_->triangleCount(), w);
+        wind_->computeForces(particles_.positions, particles_.previousPositions, step, first, end);
+      });
     runPhase([&](std::uint32_t w) {
       const auto [first, end] = slice(particles_.size(), w);
       integrateVerlet(particles_, first, end - first, settings_.solver.gravity, settings_.solver.damping, step);
+      if (wind_)
+        for (std::size_t i = first; i < end; ++i)
+          if (particles_.inverseMasses[i] > 0.0f)
+            particles_.positions[i] += wind_->acceleration(static_cast<std::uint32_t>(i)) * (step * step);
       if (!colliders_.empty()) collide(k, first, end, true);
     });
     for (int iteration = 0; iteration < settings_.solver.constraintIterations; ++iteration)

@@ -30,6 +30,7 @@
 
 #include "common/error.hpp"
 #include "physics/cloth_self_collision.hpp"
+#include "physics/cloth_wind.hpp"
 #include "physics/colliders.hpp"
 #include "physics/constraints.hpp"
 #include "physics/particles.hpp"
@@ -60,6 +61,8 @@ struct ClothSettings {
   glm::mat4 bodyTransform{1.0f};
   /// Shapes the cloth collides with, body-local (empty: none).
   ColliderSet colliders;
+  /// Air blowing on the cloth's triangles (cloth_wind.hpp); none: still air.
+  std::optional<ClothWind> wind;
   /// What runs the step's parallel loops (task_runner.hpp); by default the built-in pool with
   /// one worker per hardware thread. The state does not depend on it.
   TaskRunner tasks = defaultTaskRunner();
@@ -102,6 +105,9 @@ public:
   /// body transform. Fails, changing nothing, on a count that is not `pinnedVertices().size()`
   /// or a NaN or infinite entry (naming the pin and its vertex).
   [[nodiscard]] Result<void> setPinTargets(std::span<const glm::vec3> positions);
+  /// The air's velocity from the next `advance` on (world m/s, finite; an error otherwise). A
+  /// cloth made without `ClothSettings::wind` takes the wind's defaults for the rest.
+  [[nodiscard]] Result<void> setWind(const glm::vec3& velocity);
   /// True when pins follow `setPinTargets` targets rather than the body transform.
   [[nodiscard]] bool pinsFollowTargets() const noexcept { return !pinTargets_.empty(); }
   /// The pinned vertices, each once, in the order they first appear in `create`'s list: the
@@ -159,6 +165,8 @@ private:
   std::vector<DistanceConstraint> edges_;
   std::vector<Tether> tethers_;  // sorted by particle
   std::optional<ClothSelfCollision> selfCollision_;
+  std::optional<ClothWindLoad> wind_;
+  std::vector<std::uint32_t> triangles_;  // kept for a wind set after creation
   std::vector<std::uint32_t> pinned_;
   std::vector<glm::vec3> pinnedLocal_;
   std::vector<glm::vec3> pinTargets_;  // per pin, world: empty while pins follow the body

@@ -139,6 +139,11 @@ struct MaterialData {
   std::optional<TextureData> specularMap;
   TranslucencyParameters translucency;
   FurParameters fur;  ///< kFur only
+  /// Lambert only: the share of a light's diffuse light that a thin sheet (a sail, a paper
+  /// screen) passes to its other side, in [0, 1]. A face lit from behind shows
+  /// t·albedo·radiance·|cos θ|, one lit from the front (1 − t)·albedo·radiance·cos θ: both vanish
+  /// edge-on, so no seam shows where the light crosses the sheet.
+  float transmission = 0.0f;
   /// Both faces drawn (and lit from the side they face). False culls the faces turned away from
   /// the camera, as glTF's doubleSided: false: for closed meshes, whose back faces are hidden,
   /// it saves shading them where they are drawn before the front faces in front of them.

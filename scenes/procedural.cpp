@@ -214,4 +214,45 @@ Mesh makeHull(int stations, int sectionPoints) {
   return mesh;
 }
 
+Mesh makeSpar(float radius, int segments) {
+  Mesh mesh;
+  mesh.name = "spar";
+  const float pi = std::numbers::pi_v<float>;
+  for (int i = 0; i <= segments; ++i) {
+    const float angle = 2.0f * pi * float(i) / float(segments);
+    const glm::vec3 out(std::cos(angle), 0.0f, std::sin(angle));
+    for (float y : {0.0f, 1.0f}) {
+      mesh.positions.push_back(out * radius + glm::vec3(0.0f, y, 0.0f));
+      mesh.normals.push_back(out);
+      mesh.uvs.emplace_back(float(i) / float(segments), 1.0f - y);
+    }
+  }
+  for (int i = 0; i < segments; ++i) {
+    const auto a = std::uint32_t(2 * i);
+    // Counter-clockwise seen from outside.
+    mesh.indices.insert(mesh.indices.end(), {a, a + 1, a + 3, a, a + 3, a + 2});
+  }
+  for (float y : {0.0f, 1.0f}) {
+    const auto centre = std::uint32_t(mesh.positions.size());
+    const glm::vec3 normal(0.0f, y > 0.0f ? 1.0f : -1.0f, 0.0f);
+    mesh.positions.emplace_back(0.0f, y, 0.0f);
+    mesh.normals.push_back(normal);
+    mesh.uvs.emplace_back(0.5f, 0.5f);
+    for (int i = 0; i < segments; ++i) {
+      const float angle = 2.0f * pi * float(i) / float(segments);
+      mesh.positions.emplace_back(radius * std::cos(angle), y, radius * std::sin(angle));
+      mesh.normals.push_back(normal);
+      mesh.uvs.emplace_back(0.5f + 0.5f * std::cos(angle), 0.5f + 0.5f * std::sin(angle));
+    }
+    for (int i = 0; i < segments; ++i) {
+      const std::uint32_t a = centre + 1 + std::uint32_t(i), b = centre + 1 + std::uint32_t((i + 1) % segments);
+      if (y > 0.0f)
+        mesh.indices.insert(mesh.indices.end(), {centre, b, a});
+      else
+        mesh.indices.insert(mesh.indices.end(), {centre, a, b});
+    }
+  }
+  return mesh;
+}
+
 }  // namespace mane::scenes

@@ -51,4 +51,8 @@ namespace mane::scenes {
 /// carry smooth normals, the deck's its own, so the edge between them stays sharp.
 [[nodiscard]] Mesh makeHull(int stations, int sectionPoints);
 
+/// A mast or a yard: a cylinder of `radius` along +y from 0 to 1, of `segments` sides, capped
+/// at both ends (the caps' vertices their own, so the edges stay sharp).
+[[nodiscard]] Mesh makeSpar(float radius, int segments);
+
 }  // namespace mane::scenes

@@ -179,6 +179,7 @@ MeshInstance parseMesh(const Json& json, const std::string& path) {
             "unknown procedural mesh \"" + mesh.source + "\" (known: " + knownProceduralMeshes() + ")");
   }
   mesh.material = fields.optional<std::string>("material", "");
+  mesh.attachedMesh = fields.optional<std::string>("attached_mesh", "");
   if (const Json* transform = fields.take("transform")) {
     mesh.transform = parseTransform(*transform, fields.child("transform"));
   }
@@ -288,6 +289,14 @@ void checkReferences(const Scene& scene) {
     const MeshInstance& mesh = scene.meshes[i];
     const std::string path = "meshes[" + std::to_string(i) + "]";
     require(names.insert(mesh.name).second, path + ".name", "duplicate mesh name \"" + mesh.name + "\"");
+    if (!mesh.attachedMesh.empty()) {
+      const MeshInstance* body = scene.findMesh(mesh.attachedMesh);
+      require(body != nullptr && body != &mesh, path + ".attached_mesh",
+              "no other mesh named \"" + mesh.attachedMesh + "\" in meshes");
+      require(body->attachedMesh.empty(), path + ".attached_mesh",
+              "\"" + mesh.attachedMesh + "\" rides on another mesh itself: attach to the one it rides on");
+      require(!mesh.subdivision, path + ".attached_mesh", "a subdivided mesh cannot ride on another");
+    }
     require(mesh.material.empty() || scene.findMaterial(mesh.material), path + ".material",
             "no material named \"" + mesh.material + "\" in materials");
     require(!isCharacterPart(mesh.name), path + ".name", "expected a name without '/' (kept for character parts)");

@@ -122,6 +122,8 @@ struct Material {
   render::TranslucencyParameters translucency;
   /// False culls the faces turned away from the camera (render::MaterialData::doubleSided).
   bool doubleSided = true;
+  /// Kind lambert: the share of light a thin sheet passes through (render::MaterialData::transmission).
+  float transmission = 0.0f;
 };
 
 /// Placement of a mesh: scale, then rotation (X, then Y, then Z, about the fixed axes), then
@@ -141,8 +143,8 @@ inline constexpr std::string_view kProceduralPrefix = "procedural:";
 /// The kinds after `kProceduralPrefix` that `loadSceneMesh` builds (scenes/procedural.hpp): a
 /// unit sphere, the cube [−1, 1]³ with a hollow of radius 0.5, a torus of radii 1 and 0.4 around +Y,
 /// a floor 1 m square in the XZ plane facing +Y.
-inline constexpr std::array<std::string_view, 5> kProceduralMeshKinds = {"sphere", "cube_with_hollow", "torus", "plane",
-                                                                         "hull"};
+inline constexpr std::array<std::string_view, 6> kProceduralMeshKinds = {
+    "sphere", "cube_with_hollow", "torus", "plane", "hull", "spar"};
 
 /// Bounds of `Subdivision`'s fields (subdiv::LimitSurfaceSettings, subdiv::TessellationSettings).
 inline constexpr int kMinSubdivisionLevel = 1;
@@ -186,6 +188,9 @@ struct MeshInstance {
   std::optional<Subdivision> subdivision;
   /// Simplify the triangles at load (not with `subdivision`); none: as they are.
   std::optional<MeshSimplification> simplify;
+  /// The mesh it rides on (not itself attached): placed by that mesh's body frame every frame,
+  /// `transform` then relative to it (metres; the body's scale does not apply). Empty: none.
+  std::string attachedMesh;
 
   [[nodiscard]] bool isProcedural() const { return source.starts_with(kProceduralPrefix); }
   /// "sphere" for "procedural:sphere"; empty for asset meshes.
@@ -382,6 +387,9 @@ struct Cloth {
   float bendingStiffness = 0.5f;          ///< in [0, 1]
   float selfCollision = 0.0f;             ///< metres each vertex keeps off the cloth's other triangles; 0: off
   glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s²
+  /// Air blowing on the cloth, world m/s (physics/cloth_wind.hpp); none: still air.
+  std::optional<glm::vec3> wind;
+  float arealDensity = 0.3f;              ///< kg/m², what the wind pushes against, > 0
   Colliders colliders;                    ///< in the attached mesh's body frame (not the cloth's transform)
   CapeShape cape;                         ///< the cut of a "procedural:cape"
 };

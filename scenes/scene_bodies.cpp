@@ -379,7 +379,11 @@ Cloth parseCloth(const Json& json, const std::string& path) {
     cloth.bendingStiffness = simFields.optional<float>("bending", cloth.bendingStiffness);
     cloth.selfCollision = simFields.optional<float>("self_collision", cloth.selfCollision);
     cloth.gravity = simFields.optional<glm::vec3>("gravity", cloth.gravity);
+    if (const Json* wind = simFields.take("wind")) cloth.wind = detail::read<glm::vec3>(*wind, simFields.child("wind"));
+    cloth.arealDensity = simFields.optional<float>("areal_density", cloth.arealDensity);
     simFields.finish();
+    require(cloth.arealDensity > 0.0f && cloth.arealDensity <= 100.0f, simFields.child("areal_density"),
+            "expected kilograms per square metre in (0, 100]");
     require(cloth.iterations >= 1 && cloth.iterations <= 1000, simFields.child("iterations"),
             "expected 1..1000 iterations");
     require(cloth.damping >= 0.0f && cloth.damping < 1.0f, simFields.child("damping"), "expected a damping in [0, 1)");

@@ -147,6 +147,7 @@ Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const Simul
   settings.solver.gravity = cloth.gravity;
   settings.bendingStiffness = cloth.bendingStiffness;
   settings.selfCollisionThickness = cloth.selfCollision;
+  if (cloth.wind) settings.wind = physics::ClothWind{.velocity = *cloth.wind, .arealDensity = cloth.arealDensity};
   auto physical = physics::Cloth::create(local, rest.indices, pinned, settings, body);
   if (!physical) return fail("cloth '" + cloth.name + "': " + physical.error().message);
   if (!colliders.empty())

@@ -163,6 +163,11 @@ Material parseMaterial(const Json& json, const std::string& path) {
   material.specularMap = fields.optional<std::string>("specular_map", "");
   material.baseColour = fields.optional<glm::vec3>("base_colour", material.baseColour);
   material.doubleSided = fields.optional<bool>("double_sided", material.doubleSided);
+  material.transmission = fields.optional<float>("transmission", material.transmission);
+  require(material.transmission >= 0.0f && material.transmission <= 1.0f, fields.child("transmission"),
+          "expected a share in [0, 1]");
+  require(material.transmission == 0.0f || material.kind == MaterialKind::lambert, fields.child("transmission"),
+          "applies to materials of kind \"lambert\" only");
   if (const Json* translucency = fields.take("translucency")) {
     material.translucency = parseTranslucency(*translucency, fields.child("translucency"), material.kind);
   }

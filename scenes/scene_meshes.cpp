@@ -29,6 +29,8 @@ constexpr int kTorusMajorSegments = 96;
 constexpr int kTorusMinorSegments = 32;
 constexpr int kHullStations = 64;
 constexpr int kHullSectionPoints = 24;
+constexpr float kSparRadius = 0.015f;
+constexpr int kSparSegments = 16;
 
 /// The mesh of a `kProceduralMeshKinds` entry; nothing for another kind.
 std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
@@ -38,6 +40,7 @@ std::optional<Mesh> makeProceduralMesh(std::string_view kind) {
   if (kind == "torus") return makeTorus(kTorusMajorRadius, kTorusMinorRadius, kTorusMajorSegments, kTorusMinorSegments);
   if (kind == "plane") return makePlane(0.5f);
   if (kind == "hull") return makeHull(kHullStations, kHullSectionPoints);
+  if (kind == "spar") return makeSpar(kSparRadius, kSparSegments);
   return std::nullopt;
 }
 

@@ -484,6 +484,16 @@ std::vector<World::HairGuides> World::hairGuides() const {
   return result;
 }
 
+glm::mat4 World::meshModel(std::size_t mesh) const {
+  if (ocean_ && ocean_->shipMesh() == mesh) return ocean_->shipModel();
+  const MeshInstance& instance = scene_.meshes[mesh];
+  if (!instance.attachedMesh.empty()) {
+    const auto body = std::ranges::find(scene_.meshes, instance.attachedMesh, &MeshInstance::name);
+    return bodyPlacement(static_cast<std::size_t>(body - scene_.meshes.begin()), time_) * instance.transform.matrix();
+  }
+  return animatedMatrix(scene_, instance, static_cast<float>(time_));
+}
+
 glm::mat4 World::bodyPlacement(std::size_t mesh, double time) const {
   if (ocean_ && ocean_->shipMesh() == mesh) return ocean_->shipBody();
   if (const std::optional<CharacterPart>& part = characterParts_[mesh])
@@ -628,6 +638,7 @@ render::StaticScene World::staticScene() const {
   for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
     render::MaterialData material{.baseColor = scene_.materials[i].baseColour,
                                   .translucency = scene_.materials[i].translucency,
+                                  .transmission = scene_.materials[i].transmission,
                                   .doubleSided = scene_.materials[i].doubleSided};
     if (materials_[i].albedo) material.albedo = textureOf(*materials_[i].albedo);
     if (materials_[i].normalMap) material.normalMap = textureOf(*materials_[i].normalMap);
@@ -707,10 +718,7 @@ render::FrameInput World::frameInput() const {
     if (part && part->primitive < 0) continue;  // a whole part, for the physics; its primitives draw it
     frame.instances.push_back({.mesh = i,
                                .material = materialIndex(mesh.material),
-                               .model = part ? characters_[part->character].partFrame(part->part)
-                                        : ocean_ && ocean_->shipMesh() == i
-                                            ? ocean_->shipModel()
-                                            : animatedMatrix(scene_, mesh, static_cast<float>(time_))});
+                               .model = part ? characters_[part->character].partFrame(part->part) : meshModel(i)});
   }
   for (std::size_t i = 0; i < cloths_.size(); ++i)  // already in world space
     frame.instances.push_back({.mesh = meshes_.size() + i, .material = materialIndex(scene_.cloths[i].material)});

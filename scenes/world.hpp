@@ -234,6 +234,9 @@ private:
   /// what hair roots, cloth pins and their colliders follow. For a character part, its part
   /// frame at the current pose (poseCharacters keeps that at time()).
   glm::mat4 bodyPlacement(std::size_t mesh, double time) const;
+  /// Where scene mesh `mesh` (not a character's part) is drawn now: floating, riding on another
+  /// mesh, or as the scene animates it.
+  glm::mat4 meshModel(std::size_t mesh) const;
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
   /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts) as

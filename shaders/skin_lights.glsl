@@ -12,7 +12,7 @@ layout(set = 1, binding = 4, std140) uniform Material {
   ivec4 flags;       // x: has normal map
   vec4 skin;         // x: roughness, y: ρs, z: the skin table's maxCurvature (1/mm)
   vec4 blur;         // rgb: skin, per channel, the weight of the geometric normal (blurred normals)
-  vec4 extinction;   // rgb: σ, 1/m (translucency of materials other than skin)
+  vec4 extinction;   // rgb: σ, 1/m (translucency of materials other than skin); w: a Lambert sheet's transmission
   vec4 profile[6];   // skin: d'Eon's Gaussians, rgb weight, a variance (mm²)
   vec4 specularAlbedo[2];  // skin: the specular's albedo with ρs = 1 at N·V = 0, 1/7, …, 1
   // skin: rgb, the factor of the environment's band ℓ at curvature maxCurvature·(i/15)², at [16ℓ + i]

@@ -78,8 +78,13 @@ void main() {
   }
   vec3 irradiance = frame.ambient.rgb + environmentLight(normal) * environmentVisibility(inWorldPosition, geometric) +
                     translucency(geometric);
-  for (int i = 0; i < frame.lightCount.x; ++i)
-    irradiance += frame.lightRadiance[i].rgb * max(dot(normal, frame.lightDirection[i].xyz), 0.0) *
+  // A thin sheet passes `transmission` of the light from behind it and reflects the rest.
+  float transmission = draw.extinction.w;
+  for (int i = 0; i < frame.lightCount.x; ++i) {
+    float cosine = dot(normal, frame.lightDirection[i].xyz);
+    irradiance += frame.lightRadiance[i].rgb *
+                  ((1.0 - transmission) * max(cosine, 0.0) + transmission * max(-cosine, 0.0)) *
                   (i == 0 ? shadow : 1.0);
+  }
   outColor = vec4(albedo * irradiance, 1.0);
 }

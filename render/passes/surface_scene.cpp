@@ -54,7 +54,7 @@ struct MaterialUniforms {
   glm::ivec4 flags{0};                      // x: normal map
   glm::vec4 skin{0.0f};                     // SkinMaterialConstants::skin
   glm::vec4 blur{0.0f};                     // SkinMaterialConstants::blur
-  glm::vec4 extinction{0.0f};               // rgb: σ, 1/m
+  glm::vec4 extinction{0.0f};               // rgb: σ, 1/m; w: MaterialData::transmission
   glm::vec4 profile[kSkinGaussianCount]{};  // SkinMaterialConstants::profile
   glm::vec4 specularAlbedo[2]{};            // SkinMaterialConstants::specularAlbedo
   glm::vec4 ambientBands[3 * SkinMaterialConstants::kSkinAmbientSamples]{};  // SkinMaterialConstants::ambientBands
@@ -257,7 +257,7 @@ SurfaceScene::GpuMaterial SurfaceScene::uploadMaterial(const MaterialData& mater
   writeSampledImage(*device_, gpu.descriptors, 1, gpu.normalMap, sampler_);
   MaterialUniforms uniforms{.baseColor = glm::vec4(material.baseColor, 1.0f),
                             .flags = glm::ivec4(material.normalMap ? 1 : 0, 0, 0, 0),
-                            .extinction = glm::vec4(material.translucency.extinction, 0.0f)};
+                            .extinction = glm::vec4(material.translucency.extinction, material.transmission)};
   if (material.shading == SurfaceShading::kSkin) {
     const PreintegratedSkinLut& table = skin_.table(material.skin.range);
     writeSampledImage(*device_, gpu.descriptors, 2, table.view(), table.sampler());

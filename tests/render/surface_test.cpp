@@ -95,6 +95,26 @@ TEST_F(Surface, LambertOnAFlatQuadMatchesTheClosedForm) {
   for (const auto& timing : shot.timings) EXPECT_GT(timing.milliseconds, 0.0) << timing.pass;
 }
 
+// A thin sheet of transmission t: lit from the front it shows (1 − t)·albedo·E·cos θ, lit from
+// behind t·albedo·E·|cos θ| on the face the camera sees, and both fall to the ambient edge-on.
+TEST_F(Surface, AThinSheetPassesItsTransmissionOfTheLightBehindIt) {
+  const glm::vec3 base(0.8f, 0.7f, 0.5f);
+  const float t = 0.3f;
+  const glm::vec3 ambient(0.02f);
+  for (float z : {0.8f, -0.8f, 0.0f}) {
+    const DirectionalLight light{
+        .direction = glm::normalize(glm::vec3(0, 0.6f, z)), .color = {1, 1, 1}, .intensity = 0.9f};
+    const float cosine = light.direction.z;
+    const float share = cosine > 0.0f ? (1.0f - t) * cosine : t * -cosine;
+    const Shot shot = render({.baseColor = base, .transmission = t}, light, ambient);
+    const auto centre = shot.centre();
+    for (int c = 0; c < 3; ++c) {
+      const double expected = 255.0 * srgbEncode(base[c] * (ambient[c] + 0.9 * share));
+      EXPECT_NEAR(centre[c], expected, 1.0) << "light z " << z << ", channel " << c;
+    }
+  }
+}
+
 // Skin at 1/r = 0.2 mm⁻¹ with both integration ranges, lit at N·L = 0.25 and from just behind
 // the terminator (N·L = −0.15): the table lookup reproduces the CPU integral (the table's
 // bilinear error and 16-bit storage are below 1e-3, then the 8-bit sRGB output: ±1.5 levels);

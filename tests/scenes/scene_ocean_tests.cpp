@@ -63,6 +63,24 @@ TEST(SceneOcean, BadBlocksNameTheirField) {
             "sea.json: ship.mesh: the ship's mesh may turn about +Y only (its rotation's x and z must be 0)");
 }
 
+TEST(SceneOcean, AMeshRidesOnAnotherThatIsNotItselfAttached) {
+  const auto scene = [](const std::string& meshes) {
+    return std::string(R"({"name": "sea", )") + kCamera +
+           R"(, "meshes": [{"name": "boat", "source": "procedural:hull"})" + meshes + "]}";
+  };
+  auto good =
+      parseScene(scene(R"(, {"name": "mast", "source": "procedural:spar", "attached_mesh": "boat"})"), "sea.json");
+  ASSERT_TRUE(good) << good.error().message;
+  EXPECT_EQ(good->meshes[1].attachedMesh, "boat");
+  EXPECT_EQ(errorOf(scene(R"(, {"name": "mast", "source": "procedural:spar", "attached_mesh": "raft"})")),
+            "sea.json: meshes[1].attached_mesh: no other mesh named \"raft\" in meshes");
+  EXPECT_EQ(errorOf(scene(R"(, {"name": "mast", "source": "procedural:spar", "attached_mesh": "mast"})")),
+            "sea.json: meshes[1].attached_mesh: no other mesh named \"mast\" in meshes");
+  EXPECT_EQ(errorOf(scene(R"(, {"name": "mast", "source": "procedural:spar", "attached_mesh": "boat"},
+                              {"name": "flag", "source": "procedural:plane", "attached_mesh": "mast"})")),
+            "sea.json: meshes[2].attached_mesh: \"mast\" rides on another mesh itself: attach to the one it rides on");
+}
+
 TEST(HullCells, ASphereHoldsItsVolume) {
   const Mesh sphere = makeSphere(64, 128, 1.0f);
   const auto cells = hullCells(sphere, 2.0f, {40, 40, 40});
@@ -98,6 +116,17 @@ TEST(HullCells, TheProceduralHullIsClosed) {
   const double box = 1.0 * 0.28 * 0.16;
   EXPECT_GT(volume, 0.4 * box);
   EXPECT_LT(volume, 0.9 * box);
+}
+
+TEST(HullCells, ASparHoldsItsCylinder) {
+  // 16 sides: the polygon's area is (16/2π)·sin(2π/16) = 0.9745 of the circle's.
+  const Mesh spar = makeSpar(0.015f, 16);
+  const auto cells = hullCells(spar, 10.0f, {24, 4, 24});
+  ASSERT_TRUE(cells) << cells.error().message;
+  double volume = 0.0;
+  for (const physics::HullCell& cell : *cells) volume += double(cell.size.x) * cell.size.y * cell.size.z;
+  const double polygon = 0.5 * 16.0 * std::sin(2.0 * std::numbers::pi / 16.0) * 0.15 * 0.15 * 10.0;
+  EXPECT_NEAR(volume / polygon, 1.0, 0.03);
 }
 
 TEST(HullCells, AnOpenSheetHoldsNothing) {

@@ -221,11 +221,11 @@ TEST(Scene, ReferencesMustResolve) {
   EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                         "grooms": [{"name": "h", "source": "procedural", "attached_mesh": "head"}]})"),
             "dir/bad.json: grooms[0].attached_mesh: no mesh named \"head\" in meshes, nor a character part \"<character>/<mesh>\" of characters");
-  EXPECT_EQ(
-      errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+  EXPECT_EQ(errorOf(R"({"name": "x", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
                         "meshes": [{"name": "m", "source": "procedural:cube"}]})"),
-      "dir/bad.json: meshes[0].source: unknown procedural mesh \"procedural:cube\" "
-      "(known: procedural:sphere, procedural:cube_with_hollow, procedural:torus, procedural:plane, procedural:hull)");
+            "dir/bad.json: meshes[0].source: unknown procedural mesh \"procedural:cube\" "
+            "(known: procedural:sphere, procedural:cube_with_hollow, procedural:torus, procedural:plane, "
+            "procedural:hull, procedural:spar)");
 }
 
 TEST(Scene, InvertZIsForGroomFilesOnly) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
 #include "scenes/world.hpp"
@@ -42,6 +43,11 @@ TEST(OceanWorld, TheShipRidesTheSeaInItsPlaceAndTheHullIsDrawnWhereItFloats) {
     ASSERT_NEAR(level.y, -std::sin(heading), 1e-5f);
     lowest = std::min(lowest, hull.model[3].y);
     highest = std::max(highest, hull.model[3].y);
+    // The masts ride on the hull: the foremast's foot stays where the scene puts it in the hull's frame.
+    const render::MeshInstance& mast = input.instances.at(1);
+    const glm::vec3 foot = glm::vec3(glm::inverse(hull.model) * mast.model * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const glm::vec3 placed = world.scene().findMesh("foremast")->transform.translation / ship.transform.scale;
+    ASSERT_NEAR(glm::distance(foot, placed), 0.0f, 1e-4f);
     // The sea drawn is the sea simulated: one phase per wave.
     ASSERT_TRUE(input.ocean.has_value());
     ASSERT_EQ(input.ocean->phases.size(), world.staticScene().ocean->waves.size());
