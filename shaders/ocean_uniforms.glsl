@@ -1,7 +1,7 @@
-// The sea's constants and this frame's phases (render/passes/ocean_pass.hpp), at set OCEAN_SET (1 by
-// default: the draw binds the surfaces' frame set first) of the
-// ocean's shaders; mirrors OceanUniforms in render/passes/ocean_pass.cpp (vectors of four: std430 lays them
-// out as std140 would).
+// The sea's constants and this frame's phases (render/passes/ocean_pass.hpp), at set OCEAN_SET of
+// the ocean's shaders (1 by default: the draw binds the surfaces' frame set first). Mirrors
+// OceanUniforms in render/passes/ocean_pass.cpp (vectors of four floats: std430 lays them out as
+// std140 would).
 
 const int kMaxOceanWaves = 64;
 
