@@ -3,24 +3,20 @@
 #include <cmath>
 #include <string>
 
+#include "physics/detail/hair_math.hpp"
+
 namespace mane::physics {
 namespace {
 
-glm::vec3 cross(const glm::vec3& a, const glm::vec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 float dot(const glm::vec3& a, const glm::vec3& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 }  // namespace
 
 Result<ClothWindLoad> ClothWindLoad::create(const ClothWind& wind, std::span<const std::uint32_t> triangles,
                                             std::span<const glm::vec3> rest) {
-  if (!finite(wind.velocity)) return fail("ClothSettings.wind.velocity must be finite");
+  if (!detail::isFinite(wind.velocity)) return fail("ClothSettings.wind.velocity must be finite");
   if (!(std::isfinite(wind.arealDensity) && wind.arealDensity > 0.0f))
     return fail("ClothSettings.wind.arealDensity must be positive (kg/m²), got " + std::to_string(wind.arealDensity));
   if (!(std::isfinite(wind.dragCoefficient) && wind.dragCoefficient >= 0.0f))
@@ -38,8 +34,8 @@ Result<ClothWindLoad> ClothWindLoad::create(const ClothWind& wind, std::span<con
   for (std::size_t t = 0; t < triangles.size() / 3; ++t) {
     const std::uint32_t* corner = &triangles[3 * t];
     const float area =
-        0.5f * std::sqrt(dot(cross(rest[corner[1]] - rest[corner[0]], rest[corner[2]] - rest[corner[0]]),
-                             cross(rest[corner[1]] - rest[corner[0]], rest[corner[2]] - rest[corner[0]])));
+        0.5f * std::sqrt(dot(detail::cross(rest[corner[1]] - rest[corner[0]], rest[corner[2]] - rest[corner[0]]),
+                             detail::cross(rest[corner[1]] - rest[corner[0]], rest[corner[2]] - rest[corner[0]])));
     for (int i = 0; i < 3; ++i) {
       mass[corner[i]] += wind.arealDensity * area / 3.0f;
       load.vertexTriangles_[filled[corner[i]]++] = static_cast<std::uint32_t>(t);
@@ -52,7 +48,7 @@ Result<ClothWindLoad> ClothWindLoad::create(const ClothWind& wind, std::span<con
 }
 
 Result<void> ClothWindLoad::setVelocity(const glm::vec3& velocity) {
-  if (!finite(velocity)) return fail("cloth wind: the velocity must be finite");
+  if (!detail::isFinite(velocity)) return fail("cloth wind: the velocity must be finite");
   wind_.velocity = velocity;
   return {};
 }
@@ -65,7 +61,7 @@ void ClothWindLoad::computeForces(std::span<const glm::vec3> positions, std::spa
     const glm::vec3 moved = (positions[a] - previous[a]) + (positions[b] - previous[b]) + (positions[c] - previous[c]);
     const glm::vec3 air = wind_.velocity - moved / (3.0f * step);
     // |cross| = 2A: the area-weighted normal.
-    const glm::vec3 doubleAreaNormal = cross(positions[b] - positions[a], positions[c] - positions[a]);
+    const glm::vec3 doubleAreaNormal = detail::cross(positions[b] - positions[a], positions[c] - positions[a]);
     const float doubleArea = std::sqrt(dot(doubleAreaNormal, doubleAreaNormal));
     if (doubleArea <= 0.0f) {
       cornerForce_[t] = glm::vec3(0.0f);

@@ -5,19 +5,12 @@
 #include <string>
 #include <utility>
 
+#include "physics/detail/hair_math.hpp"
 #include "physics/detail/portable_math.hpp"
 
 namespace mane::physics {
 
 namespace {
-
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-glm::vec3 cross(const glm::vec3& a, const glm::vec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 
 float dot(const glm::vec3& a, const glm::vec3& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -42,18 +35,18 @@ Result<FloatingBody> FloatingBody::create(FloatingBodySettings settings) {
     return fail("Floating body: " + field + " must be " + expected + ".");
   };
   if (!(std::isfinite(settings.mass) && settings.mass > 0.0f)) return bad("mass", "positive (kg)");
-  if (!finite(settings.position)) return bad("position", "finite");
+  if (!detail::isFinite(settings.position)) return bad("position", "finite");
   if (!std::isfinite(settings.heading)) return bad("heading", "finite");
   if (!(std::isfinite(settings.waterDensity) && settings.waterDensity > 0.0f)) return bad("waterDensity", "positive");
   if (!(std::isfinite(settings.dragPerSecond) && settings.dragPerSecond >= 0.0f)) return bad("dragPerSecond", "≥ 0");
-  if (!finite(settings.sailCentre)) return bad("sailCentre", "finite");
+  if (!detail::isFinite(settings.sailCentre)) return bad("sailCentre", "finite");
   if (!(std::isfinite(settings.sailArea) && settings.sailArea >= 0.0f)) return bad("sailArea", "≥ 0");
   if (settings.hull.empty()) return bad("hull", "at least one cell");
   double volume = 0.0;
   for (std::size_t i = 0; i < settings.hull.size(); ++i) {
     const HullCell& cell = settings.hull[i];
-    if (!finite(cell.centre)) return bad("hull cell " + std::to_string(i) + "'s centre", "finite");
-    if (!(finite(cell.size) && cell.size.x > 0.0f && cell.size.y > 0.0f && cell.size.z > 0.0f))
+    if (!detail::isFinite(cell.centre)) return bad("hull cell " + std::to_string(i) + "'s centre", "finite");
+    if (!(detail::isFinite(cell.size) && cell.size.x > 0.0f && cell.size.y > 0.0f && cell.size.z > 0.0f))
       return bad("hull cell " + std::to_string(i) + "'s size", "positive on every axis");
     volume += static_cast<double>(cell.size.x) * cell.size.y * cell.size.z;
   }
@@ -113,20 +106,20 @@ void FloatingBody::step(const OceanWaves& ocean, double time, float dt, const gl
       const float share = std::clamp((water.position.y - bottom) / cell.size.y, 0.0f, 1.0f);
       if (share <= 0.0f) continue;
       const float submerged = cell.size.x * cell.size.y * cell.size.z * share;
-      const glm::vec3 velocity = glm::vec3(0.0f, state_.heaveVelocity, 0.0f) + cross(angularVelocity, arm);
+      const glm::vec3 velocity = glm::vec3(0.0f, state_.heaveVelocity, 0.0f) + detail::cross(angularVelocity, arm);
       const glm::vec3 push = glm::vec3(0.0f, rho * gravity * submerged, 0.0f) +
                              (rho * submerged * settings_.dragPerSecond) * (water.velocity - velocity);
       // The buoyancy acts at the submerged part's centre: half its depth above the bottom.
       const glm::vec3 lever(arm.x, bottom + 0.5f * share * cell.size.y - centre.y, arm.z);
       force += push;
-      torque += cross(lever, push);
+      torque += detail::cross(lever, push);
     }
   }
   if (settings_.sailArea > 0.0f) {
     const float speed = std::sqrt(dot(wind, wind));
     const glm::vec3 push = (0.5f * kAirDensity * settings_.sailArea * speed) * wind;
     force += push;
-    torque += cross(turn * settings_.sailCentre, push);
+    torque += detail::cross(turn * settings_.sailCentre, push);
   }
   // The body keeps its (x, z) and heading: only the vertical force and the two torques act.
   state_.heaveVelocity += dt * force.y / settings_.mass;

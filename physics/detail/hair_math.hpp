@@ -1,6 +1,7 @@
 #pragma once
 // Small exact helpers shared by the hair system's setup (hair.cpp) and its step
-// (hair_step.cpp): points, quaternions as (x, y, z, w), rotations. Only + − × ÷ and sqrt, no
+// (hair_step.cpp), the cloth's wind and the floating body: points, quaternions as (x, y, z, w),
+// rotations. Only + − × ÷ and sqrt, no
 // libm trigonometry, so they give the same bits everywhere (docs/design.md#determinism).
 
 #include <cmath>
