@@ -46,7 +46,8 @@ constexpr const char* kKeyHelp =
     "R god rays, F fur shells and fins / bare, S the surfaces' soft shadows, O the on-screen text, J / L turn the key "
     "light left / right 15 degrees, "
     "I / M raise / lower it 10 degrees, C a character's next animation clip (cross-faded), E its next expression "
-    "(morph target blended in, the last one out), Esc quit. Mouse: left drag orbits, right drag turns the key light, "
+    "(morph target blended in, the last one out), B fire the ship's cannon, W / Q the sea's wind stronger / calmer, "
+    "Esc quit. Mouse: left drag orbits, right drag turns the key light, "
     "wheel "
     "zooms.";
 
@@ -127,7 +128,11 @@ struct InputState {
   // Characters: C plays each one's next clip, E blends in its next expression.
   bool nextClip = false;
   bool nextExpression = false;
+  bool fireCannon = false;  // B: the ship's cannon
+  float windFactor = 1.0f;  // W / Q: the sea's wind stronger / calmer by kWindStep, applied once
 };
+
+constexpr float kWindStep = 1.25f;
 
 // What a key does; the window's key callback and --press both come here.
 void press(GLFWwindow* window, InputState& state, int key) {
@@ -155,6 +160,9 @@ void press(GLFWwindow* window, InputState& state, int key) {
       break;
     case GLFW_KEY_C: state.nextClip = true; break;
     case GLFW_KEY_E: state.nextExpression = true; break;
+    case GLFW_KEY_B: state.fireCannon = true; break;
+    case GLFW_KEY_W: state.windFactor *= kWindStep; break;
+    case GLFW_KEY_Q: state.windFactor /= kWindStep; break;
     case GLFW_KEY_J:
     case GLFW_KEY_L:
       state.light.yaw += (key == GLFW_KEY_L ? 1.0f : -1.0f) * LightControl::kYawStep;
@@ -299,6 +307,17 @@ void run(const ViewOptions& options) {
     glfwPollEvents();
     if (frame >= 1 && std::size_t(frame - 1) < scripted.size())
       press((*window)->handle(), input, scripted[std::size_t(frame - 1)]);
+    if (input.windFactor != 1.0f) {
+      if (const scenes::SceneOcean* ocean = world->ocean()) {
+        const float speed = std::clamp(ocean->windSpeed() * input.windFactor, 2.0f, 30.0f);
+        if (auto set = world->setWindSpeed(speed); !set) return failWith(set.error().message);
+        std::cout << "wind " << speed << " m/s\n";
+        input.techniquesChanged = true;  // the renderer takes the new waves below
+      } else {
+        std::cout << "the scene has no sea\n";
+      }
+      input.windFactor = 1.0f;
+    }
     if (input.techniquesChanged) {
       // New passes and maps for the switched techniques; the frame in flight must not use the old
       // ones.
@@ -311,7 +330,8 @@ void run(const ViewOptions& options) {
     constexpr float kCharacterBlendSeconds = 0.5f;
     if (input.nextClip) std::cout << "clips: " << world->playNextClips(kCharacterBlendSeconds) << '\n';
     if (input.nextExpression) std::cout << "expressions: " << world->nextExpression(kCharacterBlendSeconds) << '\n';
-    input.nextClip = input.nextExpression = false;
+    if (input.fireCannon) std::cout << (world->fireCannon() ? "cannon fired\n" : "the scene has no cannon\n");
+    input.nextClip = input.nextExpression = input.fireCannon = false;
     const auto now = std::chrono::steady_clock::now();
     const double dt = std::chrono::duration<double>(now - last).count();
     last = now;

@@ -38,11 +38,14 @@
 //   BM_RobotFrame/variant:3  the body frozen, 4× MSAA
 //
 // The same frame of scenes/clear_sailing.json: the sea (45 Gerstner waves on a 150 × 150
-// projected grid, foam) and the 30 m ship floating on it. The row without the sea hands the
-// renderer no ocean (the ship still floats): the first row over it is what the sea costs.
+// projected grid, foam) and the 30 m ship floating on it, its cannon fired before the first
+// frame so that its smoke is in every one. The row without the sea hands the renderer no ocean
+// (the ship still floats): the first row over it is what the sea costs; the row without effects
+// hands it no spray, smoke, rigging or debris (still simulated).
 //
 //   BM_ClearSailingFrame/variant:0  as shipped, 1× MSAA
 //   BM_ClearSailingFrame/variant:1  the sea not drawn
+//   BM_ClearSailingFrame/variant:2  the effects not drawn
 //
 //   build/release/bench/mane_frame_bench --benchmark_counters_tabular=true
 
@@ -110,6 +113,8 @@ struct FrameOptions {
   int untimedFrames = 1;
   /// Techniques other than the scene's own (none: as the scene says).
   std::function<void(render::StaticScene&)> editStatics;
+  bool effects = true;      ///< false: the frames hand the renderer no particles, lines or debris
+  bool fireCannon = false;  ///< fire the scene's cannon before the first frame
 };
 
 /// Each iteration: one frame of 1/30 s of `scene` through scenes::FrameLoop at 1280×720, timed by
@@ -122,6 +127,7 @@ void measureFrames(benchmark::State& state, scenes::Scene scene, const FrameOpti
   // Fallbacks (a missing asset) change what is measured: say so beside the figures.
   for (const std::string& note : world->notes()) std::fprintf(stderr, "note: %s\n", note.c_str());
 
+  if (options.fireCannon && !world->fireCannon()) return state.SkipWithError("the scene has no cannon");
   render::StaticScene statics = world->staticScene();
   if (options.editStatics) options.editStatics(statics);
   auto renderer = render::Renderer::create(device(), {.extent = {1280, 720},
@@ -143,6 +149,7 @@ void measureFrames(benchmark::State& state, scenes::Scene scene, const FrameOpti
     input.post.frameSeconds = float(kFrameSeconds);
     if (!options.furShells) input.furShells = false;
     if (!options.surfaceShadows) input.surfaceShadows = false;
+    if (!options.effects) input.effects = {};
     auto timings = loop->renderFrame(input);
     if (timed) {
       const scenes::FrameStageTimes& stages = loop->lastStageTimes();
@@ -284,20 +291,24 @@ BENCHMARK(BM_TimburyFrame)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-enum ClearSailingVariant : int { kClearSailingShipped, kClearSailingWithoutSea };
+enum ClearSailingVariant : int { kClearSailingShipped, kClearSailingWithoutSea, kClearSailingWithoutEffects };
 
 void BM_ClearSailingFrame(benchmark::State& state) {
   auto scene = scenes::loadScene(std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "clear_sailing.json");
   if (!scene) return state.SkipWithError(scene.error().message.c_str());
   const bool withoutSea = state.range(0) == kClearSailingWithoutSea;
-  measureFrames(state, std::move(*scene), {.editStatics = [withoutSea](render::StaticScene& statics) {
-                  if (withoutSea) statics.ocean.reset();
-                }});
+  measureFrames(state, std::move(*scene),
+                {.editStatics =
+                     [withoutSea](render::StaticScene& statics) {
+                       if (withoutSea) statics.ocean.reset();
+                     },
+                 .effects = state.range(0) != kClearSailingWithoutEffects,
+                 .fireCannon = true});
 }
 
 BENCHMARK(BM_ClearSailingFrame)
     ->ArgName("variant")
-    ->DenseRange(kClearSailingShipped, kClearSailingWithoutSea)
+    ->DenseRange(kClearSailingShipped, kClearSailingWithoutEffects)
     ->Iterations(9)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

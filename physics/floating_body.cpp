@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
+
+#include <glm/common.hpp>
 
 #include "physics/detail/hair_math.hpp"
 #include "physics/detail/portable_math.hpp"
@@ -70,6 +73,30 @@ Result<FloatingBody> FloatingBody::create(FloatingBodySettings settings) {
       columns.push_back({.axis = {c.x, 0.0f, c.z}, .first = i, .end = i});
     columns.back().end = i + 1;
   }
+  // The cells' grid: a column is on the hull's side where a neighbour a cell away is missing.
+  const auto has = [&columns](float x, float z) {
+    return std::ranges::any_of(columns, [x, z](const Column& c) {
+      return std::abs(c.axis.x - x) < 1e-3f * std::abs(x) + 1e-6f &&
+             std::abs(c.axis.z - z) < 1e-3f * std::abs(z) + 1e-6f;
+    });
+  };
+  for (Column& column : columns) {
+    const glm::vec3 size = settings.hull[column.first].size;
+    column.bottom = std::numeric_limits<float>::max();
+    column.top = std::numeric_limits<float>::lowest();
+    for (std::size_t i = column.first; i < column.end; ++i) {
+      column.bottom = std::min(column.bottom, settings.hull[i].centre.y - 0.5f * settings.hull[i].size.y);
+      column.top = std::max(column.top, settings.hull[i].centre.y + 0.5f * settings.hull[i].size.y);
+    }
+    glm::vec3 out(0.0f);
+    const glm::vec3 a = column.axis;
+    if (!has(a.x + size.x, a.z)) out.x += 1.0f;
+    if (!has(a.x - size.x, a.z)) out.x -= 1.0f;
+    if (!has(a.x, a.z + size.z)) out.z += 1.0f;
+    if (!has(a.x, a.z - size.z)) out.z -= 1.0f;
+    const float length = std::sqrt(dot(out, out));
+    if (length > 0.0f) column.outward = out / length;
+  }
   return FloatingBody(std::move(settings), std::move(columns), static_cast<float>(pitch), static_cast<float>(roll));
 }
 
@@ -95,9 +122,11 @@ void FloatingBody::step(const OceanWaves& ocean, double time, float dt, const gl
   const float rho = settings_.waterDensity;
   glm::vec3 force(0.0f, -settings_.mass * gravity, 0.0f);
   glm::vec3 torque(0.0f);
+  waterline_.clear();
   for (const Column& column : columns_) {
     const glm::vec3 axis = centre + turn * column.axis;
     const OceanSample water = ocean.surfaceAt({axis.x, axis.z}, time);
+    if (column.outward != glm::vec3(0.0f)) recordWaterline(column, turn, centre, angularVelocity, water);
     for (std::size_t i = column.first; i < column.end; ++i) {
       const HullCell& cell = settings_.hull[i];
       const glm::vec3 arm = turn * cell.centre;
@@ -128,6 +157,32 @@ void FloatingBody::step(const OceanWaves& ocean, double time, float dt, const gl
   state_.height += dt * state_.heaveVelocity;
   state_.pitch += dt * state_.pitchRate;
   state_.roll += dt * state_.rollRate;
+}
+
+void FloatingBody::recordWaterline(const Column& column, const glm::mat3& turn, const glm::vec3& centre,
+                                   const glm::vec3& angularVelocity, const OceanSample& water) {
+  const float height = water.position.y - centre.y;
+  const glm::vec3 lowest = turn * glm::vec3(column.axis.x, column.bottom, column.axis.z);
+  const glm::vec3 highest = turn * glm::vec3(column.axis.x, column.top, column.axis.z);
+  if (height < lowest.y || height > highest.y) return;
+  const glm::vec3 arm(column.axis.x, 0.0f, column.axis.z);
+  // Out to the side of its cell: a corner column to its corner.
+  const glm::vec3 side = turn * (arm + glm::sign(column.outward) * 0.5f * settings_.hull[column.first].size);
+  const glm::vec3 at(centre.x + side.x, water.position.y, centre.z + side.z);
+  glm::vec3 outward = turn * column.outward;
+  outward.y = 0.0f;
+  const float length = std::sqrt(dot(outward, outward));
+  if (length <= 0.0f) return;
+  outward /= length;
+  const glm::vec3 hull = glm::vec3(0.0f, state_.heaveVelocity, 0.0f) + detail::cross(angularVelocity, at - centre);
+  const glm::vec3 u = hull - water.velocity;
+  // The water at the side rests about as far from the axis's as it lies from it (the waves'
+  // horizontal map is near the identity over a cell).
+  const glm::vec2 rest = water.rest + glm::vec2(at.x - water.position.x, at.z - water.position.z);
+  waterline_.push_back({.position = at,
+                        .rest = rest,
+                        .outward = outward,
+                        .cutSpeed = std::max(0.0f, dot(u, outward)) + std::max(0.0f, -u.y)});
 }
 
 glm::mat4 FloatingBody::transform() const {

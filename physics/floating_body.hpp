@@ -58,6 +58,16 @@ struct FloatingBodyState {
   float rollRate = 0.0f;       ///< rad/s
 };
 
+/// Where the sea's surface meets the hull's side in the last step, as spray would leave it.
+struct WaterlineContact {
+  glm::vec3 position{0.0f};  ///< on the surface, at the hull's side (world)
+  glm::vec2 rest{0.0f};      ///< (x, z) where the water there rests, to first order
+  glm::vec3 outward{0.0f};   ///< horizontal unit normal of the hull's side there (world)
+  /// m/s: how fast the hull cuts into the water there, max(0, u·outward) + max(0, −u_y) with
+  /// u the hull's velocity less the water's.
+  float cutSpeed = 0.0f;
+};
+
 /// The density of air, kg/m³ (ISA at sea level).
 inline constexpr float kAirDensity = 1.225f;
 
@@ -74,6 +84,9 @@ public:
   [[nodiscard]] const FloatingBodyState& state() const { return state_; }
   void setState(const FloatingBodyState& state) { state_ = state; }
   [[nodiscard]] const FloatingBodySettings& settings() const { return settings_; }
+  /// The hull's side columns (those missing a neighbour in the cells' grid) whose height spans
+  /// the sea's surface at the last step, in the order of the columns.
+  [[nodiscard]] const std::vector<WaterlineContact>& waterline() const { return waterline_; }
 
   /// Moments of inertia about the lateral (pitch) and long (roll) axes through the centre of
   /// mass, kg m², of the mass spread evenly over the cells.
@@ -87,13 +100,19 @@ private:
     glm::vec3 axis{0.0f};  ///< (x, 0, z)
     std::size_t first = 0;
     std::size_t end = 0;
+    glm::vec3 outward{0.0f};  ///< towards its missing neighbours, unit; zero inside the hull
+    float bottom = 0.0f;      ///< of its lowest cell
+    float top = 0.0f;         ///< of its highest cell
   };
 
   FloatingBody(FloatingBodySettings settings, std::vector<Column> columns, float pitchInertia, float rollInertia);
+  void recordWaterline(const Column& column, const glm::mat3& turn, const glm::vec3& centre,
+                       const glm::vec3& angularVelocity, const OceanSample& water);
 
   FloatingBodySettings settings_;
   std::vector<Column> columns_;
   FloatingBodyState state_;
+  std::vector<WaterlineContact> waterline_;
   float pitchInertia_;
   float rollInertia_;
 };

@@ -202,6 +202,7 @@ OceanSample OceanWaves::evaluate(glm::vec2 rest, double time, glm::dmat2* horizo
                      alongZ.x * alongX.y - alongZ.y * alongX.x};
   const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
   OceanSample result;
+  result.rest = rest;
   result.position = glm::vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
   result.normal = glm::vec3(n / length);
   result.velocity = glm::vec3(velocity);

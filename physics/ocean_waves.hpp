@@ -63,6 +63,7 @@ struct GerstnerWave {
 
 /// The water that rests at x₀, at one time.
 struct OceanSample {
+  glm::vec2 rest{0.0f};                ///< (x, z) where this water rests, metres
   glm::vec3 position{0.0f};            ///< metres
   glm::vec3 normal{0.0f, 1.0f, 0.0f};  ///< unit, upward
   glm::vec3 velocity{0.0f};            ///< m/s

@@ -3,6 +3,7 @@
 // subdiv convert their own types into these; render includes none of them
 // (docs/design.md#dependency-rules).
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -192,6 +193,48 @@ struct OceanFrame {
   /// (physics::OceanWaves::phasesAt).
   std::vector<float> phases;
   float seconds = 1.0f / 30.0f;  ///< since the foam map last grew and faded, ≥ 0
+  /// Foam laid this frame besides the breaking crests' (a ship's wake): per source, (x, z) at
+  /// rest (metres), a radius r (metres, > 0) and the foam it adds per second at its centre (≥ 0),
+  /// falling off as exp(−d²/r²); at most kMaxFoamSources.
+  std::vector<glm::vec4> foamSources;
+};
+
+/// What OceanFrame::foamSources holds at most (shaders/ocean_uniforms.glsl).
+inline constexpr std::size_t kMaxFoamSources = 64;
+
+/// A round particle (spray, smoke), drawn as a soft disc facing the eye
+/// (render/passes/effects_pass.hpp).
+struct EffectSprite {
+  glm::vec3 centre{0.0f};  ///< metres
+  float radius = 0.1f;     ///< metres, > 0
+  glm::vec3 colour{1.0f};  ///< albedo, lit by the frame's lights and environment
+  float opacity = 1.0f;    ///< [0, 1] at its centre
+  float underside = 0.0f;  ///< [0, 1]: how much darker its lower edge is than its upper (smoke)
+};
+
+/// A line (rigging) whose width follows the distance; thinner than a pixel, it is drawn a pixel
+/// wide and that much fainter.
+struct EffectLine {
+  glm::vec3 from{0.0f};
+  glm::vec3 to{0.0f};
+  float width = 0.02f;  ///< metres, > 0
+  glm::vec3 colour{0.1f};
+  float opacity = 1.0f;
+};
+
+/// A flat, two-sided triangle (debris).
+struct EffectTriangle {
+  std::array<glm::vec3, 3> corners{};
+  glm::vec3 colour{0.5f};
+};
+
+/// What the effects pass draws this frame, over the opaque scene.
+struct EffectsFrame {
+  std::vector<EffectSprite> sprites;
+  std::vector<EffectLine> lines;
+  std::vector<EffectTriangle> triangles;
+
+  [[nodiscard]] bool empty() const { return sprites.empty() && lines.empty() && triangles.empty(); }
 };
 
 struct StaticScene {
@@ -281,6 +324,8 @@ struct FrameInput {
   Camera camera;
   /// The sea's phases where StaticScene::ocean is set (required there).
   std::optional<OceanFrame> ocean;
+  /// Particles, lines and debris drawn over the opaque scene.
+  EffectsFrame effects;
   std::vector<DirectionalLight> lights;
   std::vector<MeshInstance> instances;
   glm::vec3 ambient{0.03f};  ///< linear RGB added to every lit surface

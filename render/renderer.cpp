@@ -467,6 +467,7 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         discs_.draw(c, frame.camera, frame.lights, target_.extent());
         surfaces_.draw(c, frame, plan.skinDeferred);
         furs_.draw(c);
+        if (effects_) effects_->draw(c, scene_.frameSet(), target_.extent());
         if (plan.hairBeforeMainPass) {
           timer_.handOff(c);
           drawHair(c);
@@ -714,6 +715,18 @@ Result<std::vector<PassTiming>> Renderer::render(const FrameInput& frame) {
     return std::unexpected(prepared.error());
   if (ocean_) {
     if (auto prepared = ocean_->prepare(frame, target_.aspect()); !prepared) return std::unexpected(prepared.error());
+  }
+  if (!frame.effects.empty() && !effects_) {
+    auto effects = EffectsPass::create(
+        *device_,
+        {.color = RenderTarget::kHdrFormat, .depth = RenderTarget::kDepthFormat, .samples = target_.samples()},
+        scene_.frameLayout());
+    if (!effects) return std::unexpected(effects.error());
+    effects_ = std::move(*effects);
+  }
+  if (effects_) {
+    if (auto prepared = effects_->prepare(frame, target_.extent().height); !prepared)
+      return std::unexpected(prepared.error());
   }
   if (auto posed = poseSkinnedFurs(); !posed) return std::unexpected(posed.error());
   if (auto updated =

@@ -26,6 +26,7 @@
 #include "render/passes/hair_pass.hpp"
 #include "render/passes/deferred_skin_pass.hpp"
 #include "render/passes/environment_pass.hpp"
+#include "render/passes/effects_pass.hpp"
 #include "render/passes/ocean_pass.hpp"
 #include "render/passes/glasses_pass.hpp"
 #include "render/passes/hair_shadow_pass.hpp"
@@ -177,6 +178,7 @@ private:
   std::unique_ptr<EnvironmentPass> environment_;  // where the scene has one
   std::unique_ptr<HairDensityPass> hairDensity_;  // where hair meets an environment
   std::unique_ptr<OceanPass> ocean_;              // where the scene has a sea
+  std::unique_ptr<EffectsPass> effects_;          // from the first frame with effects
   std::unique_ptr<GlassesPass> glasses_;          // from the first frame with lenses
   // A groom: its strands interpolated on the GPU, shaded per vertex, then drawn as ribbons.
   struct HairGroom {

@@ -19,6 +19,7 @@
 #include "common/strand_layout.hpp"
 #include "physics/colliders.hpp"
 #include "physics/groom_drape.hpp"
+#include "physics/floating_debris.hpp"
 #include "physics/interpolation.hpp"
 #include "physics/ocean_waves.hpp"
 #include "physics/skinning.hpp"
@@ -518,6 +519,24 @@ struct Ocean {
   float foamGrowth = 6.0f;      ///< per second of breaking, ≥ 0
   float foamExtent = 160.0f;    ///< metres a side of the foam map, round the ship (or the origin)
   int foamResolution = 256;     ///< texels a side, 16 … 4096
+  /// Wooden debris afloat round the ship (or the origin); none by default.
+  std::optional<physics::FloatingDebrisSettings> debris;
+};
+
+/// A rope of the rigging, between two points of the ship's frame (metres, as the translations of
+/// the meshes attached to it).
+struct RiggingLine {
+  glm::vec3 from{0.0f};
+  glm::vec3 to{0.0f};
+  float width = 0.05f;  ///< metres, > 0
+};
+
+/// A cannon on the ship: fired, it blows smoke from its muzzle.
+struct Cannon {
+  glm::vec3 muzzle{0.0f};                 ///< ship's frame, metres
+  glm::vec3 direction{0.0f, 0.0f, 1.0f};  ///< ship's frame, unit
+  float firstSeconds = -1.0f;             ///< when it first fires by itself; < 0: only when fired (`mane view`'s B)
+  float intervalSeconds = 0.0f;           ///< then again every so often; 0: once
 };
 
 /// A mesh that floats on the sea (physics/floating_body.hpp): it heaves, pitches and rolls and
@@ -530,6 +549,9 @@ struct Ship {
   float drag = 0.5f;           ///< the water's linear drag, 1/s, ≥ 0
   float sailArea = 0.0f;       ///< m² the wind pushes on, ≥ 0
   glm::vec3 sailCentre{0.0f};  ///< where the wind pushes, model space (the mesh's units)
+  bool spray = true;           ///< spray thrown up where the hull cuts the sea
+  std::vector<RiggingLine> rigging;
+  std::optional<Cannon> cannon;
 };
 
 /// Hair shadow map sizes a scene may ask for, texels per side (render::HairShadowSettings).

@@ -33,6 +33,8 @@ public:
   /// Pins that follow a deforming body: where each pinned vertex (`cloth().pinnedVertices()`
   /// order) is at the end of the next advance, world space (physics::Cloth::setPinTargets).
   Result<void> setPinTargets(std::span<const glm::vec3> positions);
+  /// The air's velocity on the cloth from now on, world m/s.
+  Result<void> setWind(const glm::vec3& velocity) { return cloth_.setWind(velocity); }
   /// Replaces what the cloth collides with (body frame), e.g. shapes carried by moving joints.
   Result<void> setColliders(physics::ColliderSet colliders);
 

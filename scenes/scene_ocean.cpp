@@ -46,17 +46,78 @@ Result<std::vector<physics::HullCell>> hullCells(const Mesh& mesh, float scale, 
   return hull;
 }
 
+namespace {
+
+// Spray: drops thrown up as the hull cuts the sea, up to a few metres at the speeds a ship
+// rolling in a swell meets, falling back within a second or two; a puff grows as it spreads.
+constexpr physics::EffectParticleSettings kSpray{.acceleration = {0.0f, -physics::kOceanGravity, 0.0f},
+                                                 .dragPerSecond = 0.4f,
+                                                 .lifeSeconds = 2.5f,
+                                                 .growthPerSecond = 0.25f,
+                                                 .capacity = 1200};
+constexpr float kSprayPerCut = 12.0f;    ///< drops per second per m/s of cut, per waterline column
+constexpr float kSprayLeastCut = 0.25f;  ///< m/s: slower, the hull only laps the water
+constexpr float kSprayRadius = 0.12f;    ///< metres, at birth
+constexpr glm::vec3 kSprayColour{0.92f, 0.95f, 0.97f};
+
+// Cannon smoke: blown out fast, stopped within a few metres by the air, then drifting with the
+// wind, rising a little as it is warm, growing and fading over seconds.
+constexpr physics::EffectParticleSettings kSmoke{.acceleration = {0.0f, 0.8f, 0.0f},
+                                                 .dragPerSecond = 2.0f,
+                                                 .lifeSeconds = 8.0f,
+                                                 .growthPerSecond = 1.2f,
+                                                 .capacity = 600};
+constexpr int kPuffsPerShot = 60;
+constexpr float kSmokeRadius = 1.2f;  ///< metres, at the muzzle
+// Black powder's smoke is a pale grey.
+constexpr glm::vec3 kSmokeColour{0.7f, 0.69f, 0.67f};
+
+// Foam where the hull meets the sea: a thin line where the water only laps it, whiter where the
+// hull cuts in (covering, with the map's half-life, once it cuts at a metre a second or more).
+constexpr float kWakeFoamRadius = 1.2f;      ///< metres
+constexpr float kWakeFoamPerSecond = 0.15f;  ///< where the water laps the hull
+constexpr float kWakeFoamPerCut = 0.5f;      ///< more per second per m/s of cut
+
+constexpr glm::vec3 kRiggingColour{0.09f, 0.07f, 0.05f};
+constexpr glm::vec3 kDebrisColour{0.33f, 0.22f, 0.12f};
+
+float highestCrest(const physics::OceanWaves& waves) {
+  float sum = 0.0f;
+  for (const physics::GerstnerWave& wave : waves.waves()) sum += wave.amplitude;
+  return sum;
+}
+
+float uniform(physics::SplitMix64& random, float low, float high) {
+  return low + (high - low) * random.nextFloat();
+}
+
+}  // namespace
+
 SceneOcean::SceneOcean(const Scene& scene, physics::OceanWaves waves)
     : settings_(*scene.ocean), waves_(std::move(waves)) {
   const glm::vec2 d = glm::normalize(settings_.waves.windDirection);
   wind_ = glm::vec3(d.x, 0.0f, d.y) * settings_.waves.windSpeed;
+  crestHeight_ = highestCrest(waves_);
+  steps_.emplace(scene.simulation.stepSeconds, scene.simulation.maxStepsPerFrame);
 }
 
 Result<SceneOcean> SceneOcean::create(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex) {
   auto waves = physics::OceanWaves::create(scene.ocean->waves);
   if (!waves) return fail("ocean: " + waves.error().message);
   SceneOcean ocean(scene, std::move(*waves));
-  if (!scene.ship || !shipMesh) return ocean;
+  if (auto created = ocean.addShip(scene, shipMesh, shipIndex); !created) return std::unexpected(created.error());
+  if (scene.ocean->debris) {
+    physics::FloatingDebrisSettings settings = *scene.ocean->debris;
+    settings.centre = ocean.foamCentre_;
+    auto debris = physics::FloatingDebris::create(settings, ocean.waves_, 0.0);
+    if (!debris) return fail("ocean: " + debris.error().message);
+    ocean.debris_ = std::move(*debris);
+  }
+  return ocean;
+}
+
+Result<void> SceneOcean::addShip(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex) {
+  if (!scene.ship || !shipMesh) return {};
   const Ship& ship = *scene.ship;
   const MeshInstance& instance = scene.meshes[shipIndex];
   const float scale = instance.transform.scale;
@@ -84,21 +145,132 @@ Result<SceneOcean> SceneOcean::create(const Scene& scene, const Mesh* shipMesh, 
       .sailArea = ship.sailArea};
   auto body = physics::FloatingBody::create(std::move(settings));
   if (!body) return fail("ship: " + body.error().message);
-  ocean.ship_ = std::move(*body);
-  ocean.shipIndex_ = shipIndex;
-  ocean.centreOfMass_ = centre;
-  ocean.shipScale_ = scale;
-  ocean.foamCentre_ = {ocean.ship_->settings().position.x, ocean.ship_->settings().position.z};
-  ocean.steps_.emplace(scene.simulation.stepSeconds, scene.simulation.maxStepsPerFrame);
-  return ocean;
+  ship_ = std::move(*body);
+  shipIndex_ = shipIndex;
+  centreOfMass_ = centre;
+  shipScale_ = scale;
+  foamCentre_ = {ship_->settings().position.x, ship_->settings().position.z};
+  shipScene_ = ship;
+  // The settings are constants known to be valid.
+  if (ship.spray) spray_ = *physics::EffectParticles::create(kSpray);
+  if (ship.cannon) {
+    smoke_ = *physics::EffectParticles::create(kSmoke);
+    nextShot_ = ship.cannon->firstSeconds;
+  }
+  return {};
+}
+
+Result<void> SceneOcean::setWindSpeed(float speed) {
+  physics::OceanSettings settings = settings_.waves;
+  settings.windSpeed = speed;
+  auto waves = physics::OceanWaves::create(settings);
+  if (!waves) return fail("ocean: " + waves.error().message);
+  waves_ = std::move(*waves);
+  crestHeight_ = highestCrest(waves_);
+  settings_.waves = settings;
+  wind_ = glm::normalize(wind_) * speed;
+  return {};
 }
 
 void SceneOcean::advance(double time, double frameDt) {
-  if (!ship_) return;
   const physics::StepPlan plan = steps_->plan(frameDt);
   const double start = time - frameDt;
   for (int k = 1; k <= plan.substeps; ++k)
-    ship_->step(waves_, start + plan.fractionAt(k) * frameDt, static_cast<float>(plan.fixedStep), wind_);
+    step(start + plan.fractionAt(k) * frameDt, static_cast<float>(plan.fixedStep));
+}
+
+void SceneOcean::step(double time, float dt) {
+  if (ship_) ship_->step(waves_, time, dt, wind_);
+  if (spray_) {
+    throwSpray(dt);
+    spray_->step(dt, wind_);
+    // A falling drop that reaches the sea is gone (the height under it taken at its own (x, z)
+    // as the rest point: within the waves' sideways motion of the true surface). Above the
+    // highest crest there is no need to ask.
+    spray_->removeIf([&](const physics::EffectParticle& p) {
+      return p.velocity.y < 0.0f && p.position.y < crestHeight_ &&
+             p.position.y < waves_.sample({p.position.x, p.position.z}, time).position.y;
+    });
+  }
+  if (smoke_) {
+    const bool due = nextShot_ >= 0.0 && time >= nextShot_;
+    if (due) {
+      const float interval = shipScene_->cannon->intervalSeconds;
+      nextShot_ = interval > 0.0f ? nextShot_ + interval : -1.0;
+    }
+    if (due || cannonFired_) shoot();
+    smoke_->step(dt, wind_);
+  }
+  cannonFired_ = false;
+  if (debris_) debris_->step(waves_, time, dt);
+}
+
+void SceneOcean::throwSpray(float dt) {
+  for (const physics::WaterlineContact& contact : ship_->waterline()) {
+    if (contact.cutSpeed < kSprayLeastCut) continue;
+    // Whole drops at the expected rate, the fraction by chance.
+    const float expected = kSprayPerCut * contact.cutSpeed * dt;
+    const int count = static_cast<int>(expected + random_.nextFloat());
+    for (int i = 0; i < count; ++i) {
+      // The faster the cut, the faster and higher the spray.
+      const float up = contact.cutSpeed * uniform(random_, 1.5f, 3.5f);
+      const float out = contact.cutSpeed * uniform(random_, 0.5f, 1.5f);
+      const glm::vec3 along(-contact.outward.z, 0.0f, contact.outward.x);
+      const glm::vec3 velocity =
+          glm::vec3(0.0f, up, 0.0f) + out * contact.outward + uniform(random_, -0.5f, 0.5f) * out * along;
+      const glm::vec3 at = contact.position + uniform(random_, -0.5f, 0.5f) * along;
+      spray_->emit(at, velocity, kSprayRadius * uniform(random_, 0.6f, 1.4f));
+    }
+  }
+}
+
+void SceneOcean::shoot() {
+  const Cannon& cannon = *shipScene_->cannon;
+  const glm::mat4 body = shipBody();
+  const glm::vec3 muzzle(body * glm::vec4(cannon.muzzle, 1.0f));
+  const glm::vec3 aim = glm::normalize(glm::vec3(body * glm::vec4(cannon.direction, 0.0f)));
+  for (int i = 0; i < kPuffsPerShot; ++i) {
+    // A cone of about 10°, the puffs from slow to fast so that the blast spreads along it.
+    const glm::vec3 scatter(uniform(random_, -0.18f, 0.18f), uniform(random_, -0.18f, 0.18f),
+                            uniform(random_, -0.18f, 0.18f));
+    const float speed = uniform(random_, 4.0f, 40.0f);
+    smoke_->emit(muzzle, speed * glm::normalize(aim + scatter), kSmokeRadius * uniform(random_, 0.7f, 1.3f));
+  }
+}
+
+render::EffectsFrame SceneOcean::effects() const {
+  render::EffectsFrame effects;
+  if (spray_) {
+    for (const physics::EffectParticle& p : spray_->particles()) {
+      const float fade = 1.0f - spray_->lifeShare(p);
+      effects.sprites.push_back(
+          {.centre = p.position, .radius = p.radius, .colour = kSprayColour, .opacity = 0.5f * fade});
+    }
+  }
+  if (smoke_) {
+    for (const physics::EffectParticle& p : smoke_->particles()) {
+      const float fade = 1.0f - smoke_->lifeShare(p);
+      effects.sprites.push_back({.centre = p.position,
+                                 .radius = p.radius,
+                                 .colour = kSmokeColour,
+                                 .opacity = 0.9f * fade * fade,
+                                 .underside = 0.55f});
+    }
+  }
+  if (ship_) {
+    const glm::mat4 body = shipBody();
+    for (const RiggingLine& line : shipScene_->rigging)
+      effects.lines.push_back({.from = glm::vec3(body * glm::vec4(line.from, 1.0f)),
+                               .to = glm::vec3(body * glm::vec4(line.to, 1.0f)),
+                               .width = line.width,
+                               .colour = kRiggingColour});
+  }
+  if (debris_) {
+    const std::span<const glm::vec3> corners = debris_->corners();
+    for (std::size_t i = 0; i + 2 < corners.size(); i += 3)
+      effects.triangles.push_back({.corners = {corners[i], corners[i + 1], corners[i + 2]}, .colour = kDebrisColour});
+  }
+  return effects;
 }
 
 render::OceanData SceneOcean::oceanData() const {
@@ -126,6 +298,14 @@ render::OceanData SceneOcean::oceanData() const {
 render::OceanFrame SceneOcean::frame(double time, float seconds) const {
   render::OceanFrame frame{.phases = std::vector<float>(waves_.waves().size()), .seconds = seconds};
   waves_.phasesAt(time, frame.phases);
+  if (ship_) {
+    // Every few contacts where the hull has more than the renderer takes, evenly round it.
+    const std::vector<physics::WaterlineContact>& line = ship_->waterline();
+    const std::size_t stride = (line.size() + render::kMaxFoamSources - 1) / render::kMaxFoamSources;
+    for (std::size_t i = 0; i < line.size(); i += std::max<std::size_t>(stride, 1))
+      frame.foamSources.emplace_back(line[i].rest.x, line[i].rest.y, kWakeFoamRadius,
+                                     kWakeFoamPerSecond + kWakeFoamPerCut * line[i].cutSpeed);
+  }
   return frame;
 }
 
@@ -139,6 +319,9 @@ glm::mat4 SceneOcean::shipModel() const {
 
 void SceneOcean::hash(physics::StateHasher& hasher) const {
   if (ship_) hasher.addValue(ship_->state());
+  if (spray_) hasher.add(std::span(spray_->particles()));
+  if (smoke_) hasher.add(std::span(smoke_->particles()));
+  if (debris_) hasher.add(debris_->corners());
 }
 
 }  // namespace mane::scenes

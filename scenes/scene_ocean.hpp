@@ -1,7 +1,8 @@
 #pragma once
 // A scene's sea and the ship that floats on it: the waves (physics/ocean_waves.hpp), the ship's
-// body (physics/floating_body.hpp) stepped at the scene's fixed step, and what the renderer is
-// given of both.
+// body (physics/floating_body.hpp), the spray it throws up and its cannon's smoke
+// (physics/effect_particles.hpp) and the debris afloat (physics/floating_debris.hpp), all stepped
+// at the scene's fixed step, and what the renderer is given of them.
 
 #include <cstdint>
 #include <optional>
@@ -10,7 +11,10 @@
 #include <glm/mat4x4.hpp>
 
 #include "common/error.hpp"
+#include "physics/effect_particles.hpp"
 #include "physics/floating_body.hpp"
+#include "physics/floating_debris.hpp"
+#include "physics/groom_generator.hpp"
 #include "physics/hash.hpp"
 #include "physics/ocean_waves.hpp"
 #include "physics/solver.hpp"
@@ -31,10 +35,19 @@ public:
   /// (the ship's mesh as loaded, of scene mesh `shipIndex`).
   [[nodiscard]] static Result<SceneOcean> create(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex);
 
-  /// Steps the ship over the frame that ends at `time`, lasting `frameDt` seconds.
+  /// Steps the ship, its spray and smoke and the debris over the frame that ends at `time`,
+  /// lasting `frameDt` seconds.
   void advance(double time, double frameDt);
+  /// A sea grown by a wind of `speed` m/s from now on, blowing the same way; the waves change at
+  /// once. Errors: a speed the waves refuse.
+  [[nodiscard]] Result<void> setWindSpeed(float speed);
+  [[nodiscard]] float windSpeed() const { return settings_.waves.windSpeed; }
+  /// Fires the ship's cannon at the next step (nothing without one).
+  void fireCannon() { cannonFired_ = true; }
 
   [[nodiscard]] const physics::OceanWaves& waves() const { return waves_; }
+  /// The air's velocity over the sea, m/s: on the sails, the spray and the smoke.
+  [[nodiscard]] glm::vec3 wind() const { return wind_; }
   [[nodiscard]] render::OceanData oceanData() const;
   /// The waves' phases at `time`, and the foam's step.
   [[nodiscard]] render::OceanFrame frame(double time, float seconds) const;
@@ -45,14 +58,24 @@ public:
   [[nodiscard]] glm::mat4 shipModel() const;
   [[nodiscard]] glm::mat4 shipBody() const;
   [[nodiscard]] const physics::FloatingBody* ship() const { return ship_ ? &*ship_ : nullptr; }
+  [[nodiscard]] const physics::EffectParticles* spray() const { return spray_ ? &*spray_ : nullptr; }
+  [[nodiscard]] const physics::EffectParticles* smoke() const { return smoke_ ? &*smoke_ : nullptr; }
+  [[nodiscard]] const physics::FloatingDebris* debris() const { return debris_ ? &*debris_ : nullptr; }
+  /// The spray, the smoke, the rigging and the debris, as the renderer draws them.
+  [[nodiscard]] render::EffectsFrame effects() const;
 
   void hash(physics::StateHasher& hasher) const;
 
 private:
   SceneOcean(const Scene& scene, physics::OceanWaves waves);
+  [[nodiscard]] Result<void> addShip(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex);
+  void step(double time, float dt);
+  void throwSpray(float dt);
+  void shoot();
 
   Ocean settings_;
   physics::OceanWaves waves_;
+  float crestHeight_ = 0.0f;  ///< no water rises higher: Σ A
   glm::vec3 wind_{0.0f};  ///< m/s, at the sails
   std::optional<physics::FloatingBody> ship_;
   std::size_t shipIndex_ = 0;
@@ -60,6 +83,13 @@ private:
   float shipScale_ = 1.0f;
   glm::vec2 foamCentre_{0.0f};
   std::optional<physics::FixedStepAccumulator> steps_;
+  std::optional<Ship> shipScene_;
+  std::optional<physics::EffectParticles> spray_;
+  std::optional<physics::EffectParticles> smoke_;
+  std::optional<physics::FloatingDebris> debris_;
+  physics::SplitMix64 random_{0x5EA5};  ///< where spray and smoke start, and how fast
+  double nextShot_ = -1.0;              ///< when the cannon fires by itself next; < 0: never
+  bool cannonFired_ = false;
 };
 
 }  // namespace mane::scenes

@@ -1,5 +1,7 @@
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include "scenes/detail/json_fields.hpp"
@@ -10,6 +12,49 @@ namespace {
 
 void requireColour(ObjectFields& fields, const std::string& key, const glm::vec3& colour) {
   require(colour.x >= 0.0f && colour.y >= 0.0f && colour.z >= 0.0f, fields.child(key), "expected a colour ≥ 0");
+}
+
+physics::FloatingDebrisSettings parseDebris(const nlohmann::json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  physics::FloatingDebrisSettings debris;
+  debris.pieces = fields.optional<int>("pieces", debris.pieces);
+  debris.radius = fields.optional<float>("radius", debris.radius);
+  debris.size = fields.optional<float>("size", debris.size);
+  const int seed = fields.optional<int>("seed", static_cast<int>(debris.seed));
+  fields.finish();
+  require(debris.pieces >= 1 && debris.pieces <= 4096, fields.child("pieces"), "expected 1 to 4096 pieces");
+  require(debris.radius >= 0.0f, fields.child("radius"), "expected metres ≥ 0");
+  require(debris.size > 0.0f && debris.size <= 100.0f, fields.child("size"), "expected metres in (0, 100]");
+  require(seed >= 0, fields.child("seed"), "expected a seed ≥ 0");
+  debris.seed = static_cast<std::uint64_t>(seed);
+  return debris;
+}
+
+RiggingLine parseRiggingLine(const nlohmann::json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  RiggingLine line;
+  line.from = fields.required<glm::vec3>("from");
+  line.to = fields.required<glm::vec3>("to");
+  line.width = fields.optional<float>("width", line.width);
+  fields.finish();
+  require(line.from != line.to, fields.child("to"), "expected a point other than `from`");
+  require(line.width > 0.0f && line.width <= 10.0f, fields.child("width"), "expected metres in (0, 10]");
+  return line;
+}
+
+Cannon parseCannon(const nlohmann::json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  Cannon cannon;
+  cannon.muzzle = fields.required<glm::vec3>("muzzle");
+  cannon.direction = fields.required<glm::vec3>("direction");
+  cannon.firstSeconds = fields.optional<float>("first_seconds", cannon.firstSeconds);
+  cannon.intervalSeconds = fields.optional<float>("interval_seconds", cannon.intervalSeconds);
+  fields.finish();
+  const float length = glm::length(cannon.direction);
+  require(length > 0.0f, fields.child("direction"), "expected a direction, not zero");
+  cannon.direction /= length;
+  require(cannon.intervalSeconds >= 0.0f, fields.child("interval_seconds"), "expected seconds ≥ 0");
+  return cannon;
 }
 
 }  // namespace
@@ -53,6 +98,7 @@ Ocean parseOcean(const nlohmann::json& json, const std::string& path) {
     require(ocean.foamResolution >= 16 && ocean.foamResolution <= 4096, foamFields.child("resolution"),
             "expected 16 to 4096 texels");
   }
+  if (const nlohmann::json* debris = fields.take("debris")) ocean.debris = parseDebris(*debris, fields.child("debris"));
   fields.finish();
   if (auto valid = physics::validateOcean(waves); !valid) throw FieldError{path, valid.error().message};
   require(ocean.grid >= 16 && ocean.grid <= 1024, fields.child("grid"), "expected 16 to 1024 cells");
@@ -81,6 +127,11 @@ Ship parseShip(const nlohmann::json& json, const std::string& path) {
   ship.drag = fields.optional<float>("drag", ship.drag);
   ship.sailArea = fields.optional<float>("sail_area", ship.sailArea);
   ship.sailCentre = fields.optional<glm::vec3>("sail_centre", ship.sailCentre);
+  ship.spray = fields.optional<bool>("spray", ship.spray);
+  const nlohmann::json& rigging = fields.array("rigging", false);
+  for (std::size_t i = 0; i < rigging.size(); ++i)
+    ship.rigging.push_back(parseRiggingLine(rigging[i], indexPath(fields.child("rigging"), i)));
+  if (const nlohmann::json* cannon = fields.take("cannon")) ship.cannon = parseCannon(*cannon, fields.child("cannon"));
   fields.finish();
   require(ship.mass > 0.0f, fields.child("mass"), "expected kilograms > 0");
   require(ship.drag >= 0.0f, fields.child("drag"), "expected a rate ≥ 0 per second");

@@ -484,6 +484,22 @@ std::vector<World::HairGuides> World::hairGuides() const {
   return result;
 }
 
+bool World::fireCannon() {
+  if (!ocean_ || !ocean_->smoke()) return false;
+  ocean_->fireCannon();
+  return true;
+}
+
+Result<void> World::setWindSpeed(float speed) {
+  if (!ocean_) return fail("the scene has no sea for the wind to blow on");
+  const float scale = speed / scene_.ocean->waves.windSpeed;
+  if (auto set = ocean_->setWindSpeed(speed); !set) return set;
+  for (std::size_t i = 0; i < cloths_.size(); ++i)
+    if (const std::optional<glm::vec3>& wind = scene_.cloths[i].wind)
+      if (auto set = cloths_[i].setWind(*wind * scale); !set) return set;
+  return {};
+}
+
 glm::mat4 World::meshModel(std::size_t mesh) const {
   if (ocean_ && ocean_->shipMesh() == mesh) return ocean_->shipModel();
   const MeshInstance& instance = scene_.meshes[mesh];
@@ -688,7 +704,10 @@ std::vector<World::DynamicMesh> World::dynamicMeshes() const {
 render::FrameInput World::frameInput() const {
   render::FrameInput frame;
   frame.post = scene_.post;
-  if (ocean_) frame.ocean = ocean_->frame(time_, static_cast<float>(lastFrameDt_));
+  if (ocean_) {
+    frame.ocean = ocean_->frame(time_, static_cast<float>(lastFrameDt_));
+    frame.effects = ocean_->effects();
+  }
   const Camera& camera = scene_.camera;
   frame.camera = render::Camera{.position = cameraPositionAt(camera, time_),
                                 .target = camera.target,

@@ -59,6 +59,8 @@ public:
   const std::vector<std::string>& notes() const { return notes_; }
   /// Seconds of animation played so far.
   double time() const { return time_; }
+  /// The sea and its ship, where the scene has one.
+  const SceneOcean* ocean() const { return ocean_ ? &*ocean_ : nullptr; }
 
   /// Animates the head and the characters to `time() + frameDt`, moves hair roots, cloth pins
   /// and colliders with them and simulates.
@@ -136,6 +138,12 @@ public:
   /// For viewers: every character blends the expression it shows out and its next morph target
   /// in (in file order; after the last, none) over `seconds`. Returns what now shows, for people.
   std::string nextExpression(float seconds);
+  /// For viewers: fires the ship's cannon at the next step. False where the scene has none.
+  bool fireCannon();
+  /// For viewers: the sea's wind blows at `speed` m/s from now on; the waves change at once (hand
+  /// the renderer the new staticScene()), and the sails' wind grows in proportion. Errors: no
+  /// sea, or a speed the waves refuse.
+  Result<void> setWindSpeed(float speed);
 
   /// The scene's characters, posed at time().
   const std::vector<SceneCharacter>& characters() const { return characters_; }

@@ -40,10 +40,6 @@ const float kEnvironmentSpecularLevels = 8.0;
 // What a white Lambertian surface facing `normal` (unit) shows of the environment, band by band
 // (ℓ = 0, 1, 2): 0 without one.
 void environmentLightBands(vec3 normal, out vec3 band0, out vec3 band1, out vec3 band2) {
-  if (frame.lightCount.y == 0) {
-    band0 = band1 = band2 = vec3(0.0);
-    return;
-  }
   vec3 n = normal;
   // The real harmonics' normalisations, as on the CPU.
   band0 = frame.environmentIrradiance[0].rgb * 0.282094792;
@@ -53,6 +49,12 @@ void environmentLightBands(vec3 normal, out vec3 band0, out vec3 band1, out vec3
            frame.environmentIrradiance[7].rgb * (n.x * n.z)) * 1.092548431 +
           frame.environmentIrradiance[6].rgb * (0.315391565 * (3.0 * n.z * n.z - 1.0)) +
           frame.environmentIrradiance[8].rgb * (0.546274215 * (n.x * n.x - n.y * n.y));
+  // Selected, not branched on: lavapipe compiles a shader again at every bind where a branch
+  // depends on a uniform alone (docs/lavapipe.md, "Shader recompiles on bind").
+  bvec3 lit = bvec3(frame.lightCount.y != 0);
+  band0 = mix(vec3(0.0), band0, lit);
+  band1 = mix(vec3(0.0), band1, lit);
+  band2 = mix(vec3(0.0), band2, lit);
 }
 
 // The share of the environment's diffuse light the hair leaves to a surface at `position` facing

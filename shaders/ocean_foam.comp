@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The foam map, over the sea at rest (the water a texel holds only circles about it, so foam
-// stays with its water as the waves pass): each frame the foam fades by 2^(−Δt/T½) and breaking
-// crests (J under the threshold, over 0.2 of J) add to it, up to 1.
+// stays with its water as the waves pass): each frame the foam fades by 2^(−Δt/T½), and breaking
+// crests (J under the threshold, over 0.2 of J) and the frame's sources (a ship's wake, each
+// falling off as exp(−d²/r²)) add to it, up to 1.
 layout(local_size_x = 8, local_size_y = 8) in;
 #define OCEAN_SET 0
 #include "ocean_uniforms.glsl"
@@ -21,6 +22,15 @@ void main() {
     OceanPoint point = oceanWaves(rest, metresPerTexel);
     breaking = clamp((ocean.foam.a - point.jacobian) / 0.2, 0.0, 1.0);
   }
-  float foam = imageLoad(foamMap, texel).r * ocean.foamStep.x + breaking * ocean.foamStep.y;
+  float laid = 0.0;
+  int sources = int(ocean.foamStep.z);
+  for (int i = 0; i < sources; ++i) {
+    vec4 source = ocean.foamSources[i];
+    vec2 d = rest - source.xy;
+    float spread = dot(d, d) * source.z;
+    // Beyond 3 r it adds less than 1e-4 of its centre's.
+    if (spread < 9.0) laid += source.w * exp(-spread);
+  }
+  float foam = imageLoad(foamMap, texel).r * ocean.foamStep.x + breaking * ocean.foamStep.y + laid;
   imageStore(foamMap, texel, vec4(min(foam, 1.0)));
 }

@@ -4,6 +4,7 @@
 // std140 would).
 
 const int kMaxOceanWaves = 64;
+const int kMaxFoamSources = 64;
 
 #ifndef OCEAN_SET
 #define OCEAN_SET 1
@@ -22,8 +23,9 @@ layout(set = OCEAN_SET, binding = 0, std430) readonly buffer Ocean {
   vec4 fog;              // rgb: its colour where there is no environment; a: its density, 1/m
   vec4 foam;             // rgb: its albedo; a: J under which crests break
   vec4 foamMap;          // xy: the foam map's lowest corner (x, z) at rest, m; z: 1/its side, 1/m; w: texels a side
-  vec4 foamStep;         // x: what the foam keeps this frame, 2^(−Δt/T½); y: what a breaking crest adds
+  vec4 foamStep;         // x: what the foam keeps this frame, 2^(−Δt/T½); y: what a breaking crest adds; z: foam sources
   vec4 reachOfWaves;     // x: the farthest the waves move water sideways, λ Σ A, metres
+  vec4 foamSources[kMaxFoamSources];  // (x, z) at rest, m; 1/r², 1/m²; what it adds this frame at its centre
 } ocean;
 
 float oceanPhase(int wave) { return ocean.phases[wave / 4][wave % 4]; }

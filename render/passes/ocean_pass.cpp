@@ -28,6 +28,7 @@ struct OceanUniforms {
   glm::vec4 foamMap{0.0f};
   glm::vec4 foamStep{0.0f};
   glm::vec4 reachOfWaves{0.0f};
+  std::array<glm::vec4, kMaxFoamSources> foamSources{};
 };
 
 constexpr std::uint32_t kFoamWorkgroup = 8;                         // shaders/ocean_foam.comp
@@ -208,8 +209,21 @@ Result<void> OceanPass::prepare(const FrameInput& frame, float aspect) {
   u.clipToWorld = glm::inverse(frame.camera.projection(aspect) * frame.camera.view());
   u.eye = glm::vec4(frame.camera.position, data_.reach);
   for (std::size_t i = 0; i < data_.waves.size(); ++i) u.phases[i / 4][int(i % 4)] = frame.ocean->phases[i];
+  const std::vector<glm::vec4>& sources = frame.ocean->foamSources;
+  if (sources.size() > kMaxFoamSources)
+    return fail("ocean: the frame lays foam from " + std::to_string(sources.size()) + " sources, more than " +
+                std::to_string(kMaxFoamSources) + ".");
   const double seconds = frame.ocean->seconds;
-  u.foamStep = {float(std::exp2(-seconds / data_.foamHalfLife)), float(data_.foamGrowth * seconds), 0.0f, 0.0f};
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    const glm::vec4 s = sources[i];
+    if (!(std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z) && s.z > 0.0f && std::isfinite(s.w) &&
+          s.w >= 0.0f))
+      return fail("ocean: foam source " + std::to_string(i) +
+                  " must have a finite place, a radius > 0 and a rate ≥ 0.");
+    u.foamSources[i] = {s.x, s.y, 1.0f / (s.z * s.z), float(s.w * seconds)};
+  }
+  u.foamStep = {float(std::exp2(-seconds / data_.foamHalfLife)), float(data_.foamGrowth * seconds),
+                float(sources.size()), 0.0f};
   writeUniforms(uniforms_, u);
   return {};
 }

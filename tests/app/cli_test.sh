@@ -203,6 +203,19 @@ PY
     grep -q "^clips: robot: Wave$" "$scratch/log" || fail "C did not go on to Wave: $(cat "$scratch/log")"
     grep -q "^Keys: .*C a character's next animation clip" "$scratch/log" || fail "C is not in the key list"
     ;;
+  view-ship-keys)
+    # W and Q make the sea's wind stronger and calmer (new waves), B fires the cannon; each is
+    # printed. A scene without a sea says so.
+    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view scenes/clear_sailing.json --frames 5 --press WQB \
+      >"$scratch/log" 2>&1 || fail "mane view failed: $(cat "$scratch/log")"
+    grep -q "^wind 17.5 m/s$" "$scratch/log" || fail "W did not raise the wind from 14 to 17.5 m/s: $(cat "$scratch/log")"
+    grep -q "^wind 14 m/s$" "$scratch/log" || fail "Q did not calm it back to 14 m/s: $(cat "$scratch/log")"
+    grep -q "^cannon fired$" "$scratch/log" || fail "B did not fire the cannon: $(cat "$scratch/log")"
+    xvfb-run -a -s "-screen 0 1280x800x24" "$mane" view scenes/sphere.json --frames 3 --press WB \
+      >"$scratch/log" 2>&1 || fail "mane view failed: $(cat "$scratch/log")"
+    grep -q "^the scene has no sea$" "$scratch/log" || fail "W on a scene without a sea: $(cat "$scratch/log")"
+    grep -q "^the scene has no cannon$" "$scratch/log" || fail "B on a scene without a cannon: $(cat "$scratch/log")"
+    ;;
   render-writes-png)
     "$mane" render --out "$scratch/out" --size 160x90 --msaa 1 >"$scratch/log" 2>&1 || fail "render failed: $(cat "$scratch/log")"
     png=$(ls "$scratch"/out/*.png) || fail "no PNG written"

@@ -3,12 +3,16 @@
 // built or refused by name (scenes/glasses.hpp), and its sea must grow from its settings, with a
 // finite surface.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <string_view>
 
+#include <glm/geometric.hpp>
+
+#include "physics/floating_debris.hpp"
 #include "physics/ocean_waves.hpp"
 #include "render/lens.hpp"
 #include "scenes/glasses.hpp"
@@ -90,6 +94,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!waves) std::abort();  // the parser has checked the settings
     const auto water = waves->surfaceAt({3.0f, -7.0f}, 12.5);
     if (!finite(water.position) || !finite(water.normal) || !std::isfinite(water.jacobian)) std::abort();
+    if (scene->ocean->debris) {
+      mane::physics::FloatingDebrisSettings settings = *scene->ocean->debris;
+      settings.pieces = std::min(settings.pieces, 8);  // each piece costs a surface query
+      auto debris = mane::physics::FloatingDebris::create(settings, *waves, 12.5);
+      if (!debris) std::abort();  // the parser has checked the settings
+      debris->step(*waves, 12.5 + 1.0 / 60.0, 1.0f / 60.0f);
+      for (const glm::vec3& corner : debris->corners())
+        if (!finite(corner)) std::abort();
+    }
+  }
+  if (scene->ship) {
+    for (const auto& line : scene->ship->rigging)
+      if (!finite(line.from) || !finite(line.to) || !(line.width > 0.0f)) std::abort();
+    if (scene->ship->cannon && !(std::abs(glm::length(scene->ship->cannon->direction) - 1.0f) < 1e-3f)) std::abort();
   }
   for (const auto& glasses : scene->glasses) {
     if (!finite(glasses.transform) || !finite(glasses.tint)) std::abort();

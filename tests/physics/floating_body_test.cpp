@@ -175,6 +175,38 @@ TEST(FloatingBody, OnARoughSeaItHeavesPitchesAndRollsButNeitherDriftsNorTurns) {
   EXPECT_LT(largestRoll, 0.6f);
 }
 
+TEST(FloatingBody, ItsWaterlineRunsRoundTheHullsSideAndCutsAtTheSpeedItSinks) {
+  auto body = FloatingBody::create(boxSettings(0.0f));
+  ASSERT_TRUE(body);
+  FloatingBodyState state;
+  state.height = 0.5f * kBox.y - kDraft;
+  state.heaveVelocity = -1.5f;
+  body->setState(state);
+  body->step(calmSea(), 0.0, 1e-6f, glm::vec3(0.0f));
+  // 10 × 16 columns: the outline holds 2·10 + 2·16 − 4 of them.
+  const std::vector<WaterlineContact>& line = body->waterline();
+  ASSERT_EQ(line.size(), 2u * 10u + 2u * 16u - 4u);
+  for (const WaterlineContact& contact : line) {
+    EXPECT_NEAR(contact.position.y, 0.0f, 1e-6f);
+    // In still water everything rests where it is.
+    EXPECT_NEAR(contact.rest.x, contact.position.x, 1e-5f);
+    EXPECT_NEAR(contact.rest.y, contact.position.z, 1e-5f);
+    // On the box's side, facing out of it.
+    const bool endOn = std::abs(std::abs(contact.position.x) - 0.5f * kBox.x) < 1e-4f;
+    const bool sideOn = std::abs(std::abs(contact.position.z) - 0.5f * kBox.z) < 1e-4f;
+    EXPECT_TRUE(endOn || sideOn) << contact.position.x << ", " << contact.position.z;
+    EXPECT_GT(glm::dot(contact.outward, glm::vec3(contact.position.x, 0.0f, contact.position.z)), 0.0f);
+    EXPECT_NEAR(glm::length(contact.outward), 1.0f, 1e-6f);
+    // Sinking at 1.5 m/s into still water: the cut is the sinking speed.
+    EXPECT_NEAR(contact.cutSpeed, 1.5f, 1e-5f);
+  }
+  // Out of the water, nothing cuts it.
+  state.height = 10.0f;
+  body->setState(state);
+  body->step(calmSea(), 0.0, 1e-6f, glm::vec3(0.0f));
+  EXPECT_TRUE(body->waterline().empty());
+}
+
 TEST(FloatingBody, RefusesSettingsOutOfRangeByName) {
   const auto refused = [](FloatingBodySettings s, const char* field) {
     const auto body = FloatingBody::create(std::move(s));

@@ -242,6 +242,9 @@ TEST(OceanWaves, SurfaceAtFindsTheWaterOverAPoint) {
           continue;
         }
         worst = std::max(worst, std::hypot(s.position.x - x, s.position.z - z));
+        // It says where that water rests: sampled there, it is the same water.
+        const OceanSample again = ocean->sample(s.rest, 42.0);
+        ASSERT_EQ(again.position, s.position);
       }
     }
     // Within a millimetre: far closer than the hull cells that ask (decimetres).

@@ -1,11 +1,13 @@
 // The sea on the GPU.
 //
 // Oracles: the CPU's sum of the same waves (physics/ocean_waves.hpp), in double precision; the
-// foam's exponential fade, 2^(−t/T½), over frames in which nothing breaks; and the horizon line
-// computed from the camera alone, below which every pixel must show water.
+// foam's exponential fade, 2^(−t/T½), over frames in which nothing breaks; a foam source's
+// Gaussian and its integral π r²; and the horizon line computed from the camera alone, below
+// which every pixel must show water.
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -115,6 +117,54 @@ TEST_F(OceanTest, FoamFadesWithItsHalfLifeWhereNothingBreaks) {
     ++checked;
   }
   EXPECT_GT(checked, 10);
+}
+
+TEST_F(OceanTest, AFoamSourceLaysItsGaussianAtItsRestPoint) {
+  // A still sea (one wave of no height), so nothing breaks and only the source lays foam.
+  const auto waves = physics::OceanWaves::fromWaves(
+      {physics::GerstnerWave{.direction = {1.0f, 0.0f}, .wavenumber = 0.1f, .angularFrequency = 1.0f}}, 0.0f);
+  ASSERT_TRUE(waves);
+  OceanData data = oceanData(*waves);
+  data.foamExtent = 64.0f;
+  data.foamResolution = 128;  // half a metre a texel
+  auto pass = OceanPass::create(device(), data);
+  ASSERT_TRUE(pass) << pass.error().message;
+  struct FoamStep {
+    const OceanPass* pass;
+    void declare(FrameGraph::Builder& builder) const { pass->declareFoam(builder); }
+    void execute(const vk::raii::CommandBuffer& commands) const { pass->recordFoam(commands); }
+  };
+  // 2 per second at (10, −5) with r = 3 m, over 0.1 s: 0.2 at its centre.
+  FrameInput frame = frameAt(*waves, 0.0, 0.1f);
+  frame.ocean->foamSources = {{10.0f, -5.0f, 3.0f, 2.0f}};
+  ASSERT_TRUE((*pass)->prepare(frame, 1.0f));
+  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    FrameGraph::recordAlone(commands, PassName::kOcean, FoamStep{pass->get()});
+  });
+  const std::vector<float> foam = (*pass)->readFoam();
+  ASSERT_EQ(foam.size(), 128u * 128u);
+  double sum = 0.0;
+  float worst = 0.0f;
+  for (int row = 0; row < 128; ++row) {
+    for (int column = 0; column < 128; ++column) {
+      const glm::vec2 rest(-32.0f + 0.5f * (float(column) + 0.5f), -32.0f + 0.5f * (float(row) + 0.5f));
+      const glm::vec2 d = rest - glm::vec2(10.0f, -5.0f);
+      const float expected = 0.2f * std::exp(-glm::dot(d, d) / 9.0f);
+      const float laid = foam[std::size_t(row) * 128 + std::size_t(column)];
+      worst = std::max(worst, std::abs(laid - expected));
+      sum += laid * 0.25;
+    }
+  }
+  EXPECT_LT(worst, 0.2f * 2e-3f);
+  // Its integral, 0.2 π r², within the share beyond 3 r that is left out (e⁻⁹).
+  EXPECT_NEAR(sum / (0.2 * std::numbers::pi * 9.0), 1.0, 1e-3);
+  // More sources than the pass holds, or a bad one, are refused by name.
+  frame.ocean->foamSources.assign(kMaxFoamSources + 1, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+  EXPECT_FALSE((*pass)->prepare(frame, 1.0f));
+  frame.ocean->foamSources = {{0.0f, 0.0f, 0.0f, 1.0f}};
+  const auto refused = (*pass)->prepare(frame, 1.0f);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("foam source 0"), std::string::npos) << refused.error().message;
 }
 
 class OceanRender : public testing::VulkanTest {};

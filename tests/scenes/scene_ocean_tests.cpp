@@ -38,6 +38,32 @@ TEST(SceneOcean, AnOceanAndAShipGetTheDocumentedDefaults) {
   EXPECT_EQ(scene->ocean->foamHalfLife, 3.0f);
   EXPECT_EQ(scene->ship->cells, glm::ivec3(24, 8, 8));
   EXPECT_EQ(scene->ship->drag, 0.5f);
+  EXPECT_TRUE(scene->ship->spray);
+  EXPECT_TRUE(scene->ship->rigging.empty());
+  EXPECT_FALSE(scene->ship->cannon);
+  EXPECT_FALSE(scene->ocean->debris);
+}
+
+TEST(SceneOcean, RiggingACannonAndDebrisAreReadAsWritten) {
+  auto scene = parseScene(sceneWith(R"(, "ocean": {"debris": {"pieces": 5, "radius": 12, "size": 0.8}},
+      "ship": {"mesh": "boat", "mass": 5000, "spray": false,
+               "rigging": [{"from": [1, 10, 0], "to": [4, 1, 0], "width": 0.1}, {"from": [1, 10, 0], "to": [0, 1, 2]}],
+               "cannon": {"muzzle": [0, 1, 2], "direction": [0, 0, 2], "first_seconds": 3, "interval_seconds": 5}})"),
+                          "sea.json");
+  ASSERT_TRUE(scene) << scene.error().message;
+  EXPECT_FALSE(scene->ship->spray);
+  ASSERT_EQ(scene->ship->rigging.size(), 2u);
+  EXPECT_EQ(scene->ship->rigging[0].to, glm::vec3(4.0f, 1.0f, 0.0f));
+  EXPECT_EQ(scene->ship->rigging[0].width, 0.1f);
+  EXPECT_EQ(scene->ship->rigging[1].width, 0.05f);
+  ASSERT_TRUE(scene->ship->cannon);
+  EXPECT_EQ(scene->ship->cannon->direction, glm::vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_EQ(scene->ship->cannon->firstSeconds, 3.0f);
+  EXPECT_EQ(scene->ship->cannon->intervalSeconds, 5.0f);
+  ASSERT_TRUE(scene->ocean->debris);
+  EXPECT_EQ(scene->ocean->debris->pieces, 5);
+  EXPECT_EQ(scene->ocean->debris->radius, 12.0f);
+  EXPECT_EQ(scene->ocean->debris->size, 0.8f);
 }
 
 TEST(SceneOcean, BadBlocksNameTheirField) {
@@ -55,6 +81,14 @@ TEST(SceneOcean, BadBlocksNameTheirField) {
   EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"foam": {"half_life": 0}})")),
             "sea.json: ocean.foam.half_life: expected seconds > 0");
   EXPECT_NE(errorOf(sceneWith(R"(, "ocean": {"swell": 1})")).find("ocean.swell: unknown field"), std::string::npos);
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"debris": {"pieces": 0}})")),
+            "sea.json: ocean.debris.pieces: expected 1 to 4096 pieces");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {}, "ship": {"mesh": "boat", "mass": 1,
+                                 "rigging": [{"from": [0, 1, 0], "to": [0, 2, 0]}, {"from": [0, 1, 0], "to": [0, 1, 0]}]})")),
+            "sea.json: ship.rigging[1].to: expected a point other than `from`");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {}, "ship": {"mesh": "boat", "mass": 1,
+                                 "cannon": {"muzzle": [0, 1, 0], "direction": [0, 0, 0]}})")),
+            "sea.json: ship.cannon.direction: expected a direction, not zero");
   const std::string turned = std::string(R"({"name": "sea", )") + kCamera +
                              R"(, "meshes": [{"name": "boat", "source": "procedural:hull",
                                  "transform": {"rotation_degrees": [10, 0, 0]}}],

@@ -1,9 +1,12 @@
 // clear_sailing.json's sea and ship through the World.
 //
 // Oracles: the constraints the demo sets (the ship keeps its place and heading), the drawn hull
-// placed by the body's frame, the sea the renderer is given being the physics' waves, and one
-// state hash for 1, 2 and 4 threads.
+// placed by the body's frame, the sea the renderer is given being the physics' waves; the
+// rigging riding the hull; the cannon's puffs stopped by the air within their speed over its
+// drag (beyond the wind's drift); spray leaving the hull's side at the sea; and one state hash
+// for the ship, sails, spray, smoke and debris with 1, 2 and 4 threads.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -55,6 +58,109 @@ TEST(OceanWorld, TheShipRidesTheSeaInItsPlaceAndTheHullIsDrawnWhereItFloats) {
   // It heaves on waves of 4 m significant height (a 14 m/s wind), and stays afloat.
   EXPECT_GT(highest - lowest, 0.3f);
   EXPECT_LT(highest - lowest, 8.0f);
+}
+
+TEST(OceanWorld, TheRiggingRidesTheHullAndTheDebrisFloatsRoundIt) {
+  World world = loadClearSailing();
+  const Scene& scene = world.scene();
+  for (int frame = 0; frame < 60; ++frame) ASSERT_TRUE(world.advance(1.0 / 30.0, 1));
+  const render::FrameInput input = world.frameInput();
+  const render::MeshInstance& hull = input.instances.at(0);
+  const float scale = scene.findMesh("ship")->transform.scale;
+  ASSERT_EQ(input.effects.lines.size(), scene.ship->rigging.size());
+  for (std::size_t i = 0; i < input.effects.lines.size(); ++i) {
+    const glm::vec3 from = glm::vec3(hull.model * glm::vec4(scene.ship->rigging[i].from / scale, 1.0f));
+    EXPECT_NEAR(glm::distance(input.effects.lines[i].from, from), 0.0f, 1e-3f);
+    EXPECT_EQ(input.effects.lines[i].width, scene.ship->rigging[i].width);
+  }
+  // The sea foams where the hull's side meets it: each source's water lies at the hull's side.
+  ASSERT_FALSE(input.ocean->foamSources.empty());
+  ASSERT_LE(input.ocean->foamSources.size(), render::kMaxFoamSources);
+  for (const glm::vec4& source : input.ocean->foamSources) {
+    const physics::OceanSample water = world.ocean()->waves().sample({source.x, source.y}, world.time());
+    const glm::vec3 inHull = glm::vec3(glm::inverse(hull.model) * glm::vec4(water.position, 1.0f)) * scale;
+    // Within the hull's 30 m × 8.4 m waterplane, within a cell of its side: procedural:hull's
+    // half beam is 4.2 m · √(1 − t²) forward and √(1 − t⁴) aft, t = x / 15 m.
+    const float t = inHull.x / 15.0f;
+    const float halfBeam = 4.2f * std::sqrt(std::max(0.0f, 1.0f - (t < 0.0f ? t * t * t * t : t * t)));
+    EXPECT_LT(std::abs(inHull.x), 15.0f + 1.3f);
+    EXPECT_LT(std::abs(inHull.z), halfBeam + 1.1f) << inHull.x << ", " << inHull.z;
+    EXPECT_TRUE(std::abs(inHull.x) > 15.0f - 2.6f || std::abs(inHull.z) > halfBeam - 1.6f)
+        << inHull.x << ", " << inHull.z;
+  }
+  ASSERT_EQ(input.effects.triangles.size(), std::size_t(scene.ocean->debris->pieces));
+  const physics::OceanWaves& sea = world.ocean()->waves();
+  for (const render::EffectTriangle& piece : input.effects.triangles) {
+    const glm::vec3 centroid = (piece.corners[0] + piece.corners[1] + piece.corners[2]) / 3.0f;
+    const float surface = sea.surfaceAt({centroid.x, centroid.z}, world.time()).position.y;
+    EXPECT_LT(std::abs(centroid.y - surface), 0.3f);
+  }
+}
+
+TEST(OceanWorld, TheCannonsSmokeStopsWithinItsSpeedOverTheDragAndDriftsWithTheWind) {
+  World world = loadClearSailing();
+  const Cannon& cannon = *world.scene().ship->cannon;
+  const physics::EffectParticles& smoke = *world.ocean()->smoke();
+  // Until it fires by itself there is none; then a shot's puffs.
+  while (world.time() + 1.0 / 60.0 < cannon.firstSeconds) {
+    ASSERT_TRUE(world.advance(1.0 / 60.0, 1));
+    ASSERT_TRUE(smoke.particles().empty()) << world.time();
+  }
+  ASSERT_TRUE(world.advance(2.0 / 60.0, 1));
+  ASSERT_EQ(smoke.particles().size(), 60u);
+  // Where they were fired from: the oldest puff's start, traced back through its closed form.
+  const physics::EffectParticleSettings& air = smoke.settings();
+  const glm::vec3 wind = world.ocean()->wind();
+  const glm::vec3 terminal = wind + air.acceleration / air.dragPerSecond;
+  const auto launchedFrom = [&](const physics::EffectParticle& p) {
+    const float decay = std::exp(-air.dragPerSecond * p.age);
+    const glm::vec3 v0 = terminal + (p.velocity - terminal) / decay;
+    return p.position - terminal * p.age - (v0 - terminal) * (1.0f - decay) / air.dragPerSecond;
+  };
+  const glm::vec3 muzzle = launchedFrom(smoke.particles()[0]);
+  ASSERT_TRUE(world.advance(3.0, 1));
+  for (const physics::EffectParticle& puff : smoke.particles()) {
+    // Beyond the drift of the wind (and the warm air's lift), at most 40 m/s over 2 per second.
+    const glm::vec3 blown = puff.position - muzzle - terminal * puff.age;
+    EXPECT_LT(glm::length(blown), 40.0f / air.dragPerSecond + 0.5f);
+    EXPECT_NEAR(glm::distance(launchedFrom(puff), muzzle), 0.0f, 0.05f);
+  }
+}
+
+TEST(OceanWorld, SprayLeavesTheHullsSideAtTheSea) {
+  World world = loadClearSailing();
+  std::size_t most = 0;
+  for (int frame = 0; frame < 150; ++frame) {
+    ASSERT_TRUE(world.advance(1.0 / 30.0, 1));
+    const physics::EffectParticles& spray = *world.ocean()->spray();
+    most = std::max(most, spray.particles().size());
+    for (const physics::EffectParticle& drop : spray.particles()) {
+      if (drop.velocity.y >= 0.0f) continue;
+      // A falling drop that reaches the sea is gone: none lies under it by more than a step's fall
+      // (the frame's time may run ahead of the last step's).
+      const float surface = world.ocean()->waves().sample({drop.position.x, drop.position.z}, world.time()).position.y;
+      EXPECT_GE(drop.position.y, surface - 0.3f);
+    }
+  }
+  EXPECT_GT(most, 20u);
+}
+
+TEST(OceanWorld, AStrongerWindGrowsTheSeaOfItsSpectrum) {
+  World world = loadClearSailing();
+  ASSERT_TRUE(world.advance(1.0 / 30.0, 1));
+  ASSERT_TRUE(world.setWindSpeed(20.0f));
+  // The waves the renderer is given now hold the energy of a 20 m/s sea: 4√(Σ A²/2) is its
+  // significant height within the 1 % the bands leave out.
+  const render::StaticScene drawn = world.staticScene();
+  double energy = 0.0;
+  for (const glm::vec4& wave : drawn.ocean->waves) energy += 0.5 * double(wave.w) * wave.w;
+  EXPECT_NEAR(4.0 * std::sqrt(energy) / physics::piersonMoskowitzSignificantHeight(20.0), 1.0, 0.01);
+  EXPECT_NEAR(glm::length(world.ocean()->wind()), 20.0f, 1e-4f);
+  const glm::vec3 before = glm::normalize(world.ocean()->wind());
+  EXPECT_NEAR(before.z / before.x, 0.4f, 1e-5f);  // the scene's direction, kept
+  ASSERT_TRUE(world.advance(1.0 / 30.0, 1));
+  EXPECT_EQ(world.frameInput().ocean->phases.size(), world.staticScene().ocean->waves.size());
+  EXPECT_FALSE(world.setWindSpeed(-3.0f));
 }
 
 TEST(OceanWorld, TheShipsStateIsTheSameForOneTwoAndFourThreads) {
