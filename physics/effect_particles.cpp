@@ -32,22 +32,26 @@ bool EffectParticles::emit(const glm::vec3& position, const glm::vec3& velocity,
 }
 
 void EffectParticles::step(float dt, const glm::vec3& wind) {
-  const glm::vec3 g = settings_.acceleration;
-  const float c = settings_.dragPerSecond;
-  // With drag: v∞ = w + g/c, v(dt) = v∞ + (v − v∞)·decay, x(dt) = x + v∞ dt + (v − v∞)(1 − decay)/c.
-  // Without: the parabola.
-  const float decay = static_cast<float>(detail::exponential(-static_cast<double>(c) * dt));
-  const glm::vec3 terminal = c > 0.0f ? wind + g / c : glm::vec3(0.0f);
-  const float reach = c > 0.0f ? (1.0f - decay) / c : dt;
+  // With a = g + c w, dv/dt = a − c v gives v(dt) = v e^{−c dt} + a·reach and
+  // x(dt) = x + v·reach + a·lag, where reach = (1 − e^{−c dt})/c and lag = (dt − reach)/c; at
+  // c = 0 they are dt and dt²/2, the parabola. Where c dt is small the differences would cancel,
+  // so there they come from their series (the terms left out are below 1e-13 of them).
+  const double c = settings_.dragPerSecond;
+  const double x = c * dt;
+  const double decay = detail::exponential(-x);
+  double reach = 0.0;
+  double lag = 0.0;
+  if (x < 1e-3) {
+    reach = dt * (1.0 - x / 2.0 + x * x / 6.0 - x * x * x / 24.0);
+    lag = double(dt) * dt * (0.5 - x / 6.0 + x * x / 24.0 - x * x * x / 120.0);
+  } else {
+    reach = (1.0 - decay) / c;
+    lag = (dt - reach) / c;
+  }
+  const glm::vec3 a = settings_.acceleration + settings_.dragPerSecond * wind;
   for (EffectParticle& p : particles_) {
-    if (c > 0.0f) {
-      const glm::vec3 transient = p.velocity - terminal;
-      p.position += terminal * dt + transient * reach;
-      p.velocity = terminal + transient * decay;
-    } else {
-      p.position += p.velocity * dt + g * (0.5f * dt * dt);
-      p.velocity += g * dt;
-    }
+    p.position += p.velocity * static_cast<float>(reach) + a * static_cast<float>(lag);
+    p.velocity = p.velocity * static_cast<float>(decay) + a * static_cast<float>(reach);
     p.radius += settings_.growthPerSecond * dt;
     p.age += dt;
   }

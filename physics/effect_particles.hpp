@@ -5,8 +5,9 @@
 // over a set life.
 //
 // dv/dt = g + c (w − v) has the closed form v(t) = v∞ + (v₀ − v∞) e^{−ct}, v∞ = w + g/c, whose
-// integral gives the position: the step is exact for any dt, so the fast-then-damped flight of
-// a cannon's smoke does not depend on the step (with c = 0 it is the parabola of free flight).
+// integral gives the position: the step follows it for any dt (to float's rounding), so the
+// fast-then-damped flight of a cannon's smoke does not depend on the step (with c = 0 it is the
+// parabola of free flight).
 // The exponential is physics/detail/portable_math.hpp's: deterministic on every platform.
 
 #include <cstddef>

@@ -73,11 +73,11 @@ Result<FloatingBody> FloatingBody::create(FloatingBodySettings settings) {
       columns.push_back({.axis = {c.x, 0.0f, c.z}, .first = i, .end = i});
     columns.back().end = i + 1;
   }
-  // The cells' grid: a column is on the hull's side where a neighbour a cell away is missing.
-  const auto has = [&columns](float x, float z) {
-    return std::ranges::any_of(columns, [x, z](const Column& c) {
-      return std::abs(c.axis.x - x) < 1e-3f * std::abs(x) + 1e-6f &&
-             std::abs(c.axis.z - z) < 1e-3f * std::abs(z) + 1e-6f;
+  // The cells' grid: a column is on the hull's side where a neighbour a cell away is missing
+  // (within a quarter of a cell, far beyond the rounding of the cells' centres).
+  const auto has = [&columns](float x, float z, const glm::vec3& size) {
+    return std::ranges::any_of(columns, [&](const Column& c) {
+      return std::abs(c.axis.x - x) < 0.25f * size.x && std::abs(c.axis.z - z) < 0.25f * size.z;
     });
   };
   for (Column& column : columns) {
@@ -90,10 +90,10 @@ Result<FloatingBody> FloatingBody::create(FloatingBodySettings settings) {
     }
     glm::vec3 out(0.0f);
     const glm::vec3 a = column.axis;
-    if (!has(a.x + size.x, a.z)) out.x += 1.0f;
-    if (!has(a.x - size.x, a.z)) out.x -= 1.0f;
-    if (!has(a.x, a.z + size.z)) out.z += 1.0f;
-    if (!has(a.x, a.z - size.z)) out.z -= 1.0f;
+    if (!has(a.x + size.x, a.z, size)) out.x += 1.0f;
+    if (!has(a.x - size.x, a.z, size)) out.x -= 1.0f;
+    if (!has(a.x, a.z + size.z, size)) out.z += 1.0f;
+    if (!has(a.x, a.z - size.z, size)) out.z -= 1.0f;
     const float length = std::sqrt(dot(out, out));
     if (length > 0.0f) column.outward = out / length;
   }

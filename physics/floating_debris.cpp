@@ -64,7 +64,7 @@ Result<FloatingDebris> FloatingDebris::create(const FloatingDebrisSettings& sett
     debris.restLengths_.push_back(distance(p[1], p[2]));
     debris.restLengths_.push_back(distance(p[2], p[0]));
   }
-  // At rest with the water: the last step moved them as the water moves.
+  // They start still; the water's drag takes them up within a second.
   debris.previous_ = debris.positions_;
   return debris;
 }

@@ -37,7 +37,7 @@ struct FloatingDebrisSettings {
 
 class FloatingDebris {
 public:
-  /// The pieces, each lying flat on the sea's surface at `time`, at rest with the water there.
+  /// The pieces, each lying still on the sea's surface at `time`, in the plane of its normal there.
   /// Fails on settings out of the documented ranges, naming the field.
   [[nodiscard]] static Result<FloatingDebris> create(const FloatingDebrisSettings& settings, const OceanWaves& ocean,
                                                      double time);

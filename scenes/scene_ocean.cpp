@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -72,10 +73,11 @@ constexpr float kSmokeRadius = 1.2f;  ///< metres, at the muzzle
 // Black powder's smoke is a pale grey.
 constexpr glm::vec3 kSmokeColour{0.7f, 0.69f, 0.67f};
 
-// Foam where the hull meets the sea: a thin line where the water only laps it, whiter where the
-// hull cuts in (covering, with the map's half-life, once it cuts at a metre a second or more).
+// Foam where the hull meets the sea: a faint line where the water only laps it (with the scene's
+// 3 s half-life a source alone keeps 0.05·3/ln 2 ≈ 0.2 of cover, its neighbours' overlap about
+// as much again), whiter where the hull cuts in.
 constexpr float kWakeFoamRadius = 1.2f;      ///< metres
-constexpr float kWakeFoamPerSecond = 0.15f;  ///< where the water laps the hull
+constexpr float kWakeFoamPerSecond = 0.05f;  ///< where the water laps the hull
 constexpr float kWakeFoamPerCut = 0.5f;      ///< more per second per m/s of cut
 
 constexpr glm::vec3 kRiggingColour{0.09f, 0.07f, 0.05f};
@@ -299,12 +301,15 @@ render::OceanFrame SceneOcean::frame(double time, float seconds) const {
   render::OceanFrame frame{.phases = std::vector<float>(waves_.waves().size()), .seconds = seconds};
   waves_.phasesAt(time, frame.phases);
   if (ship_) {
-    // Every few contacts where the hull has more than the renderer takes, evenly round it.
-    const std::vector<physics::WaterlineContact>& line = ship_->waterline();
-    const std::size_t stride = (line.size() + render::kMaxFoamSources - 1) / render::kMaxFoamSources;
-    for (std::size_t i = 0; i < line.size(); i += std::max<std::size_t>(stride, 1))
-      frame.foamSources.emplace_back(line[i].rest.x, line[i].rest.y, kWakeFoamRadius,
-                                     kWakeFoamPerSecond + kWakeFoamPerCut * line[i].cutSpeed);
+    // Where the hull has more contacts than the renderer takes, those that cut fastest.
+    std::vector<physics::WaterlineContact> line = ship_->waterline();
+    if (line.size() > render::kMaxFoamSources) {
+      std::ranges::stable_sort(line, std::greater{}, &physics::WaterlineContact::cutSpeed);
+      line.resize(render::kMaxFoamSources);
+    }
+    for (const physics::WaterlineContact& contact : line)
+      frame.foamSources.emplace_back(contact.rest.x, contact.rest.y, kWakeFoamRadius,
+                                     kWakeFoamPerSecond + kWakeFoamPerCut * contact.cutSpeed);
   }
   return frame;
 }

@@ -66,7 +66,11 @@ void main() {
     vec3 toEye = eye - end;
     float distance = max(length(toEye), 1e-6);
     vec3 axis = r.b.xyz - r.a.xyz;
-    vec3 side = normalize(cross(axis, toEye));
+    // Seen end on, a rope has no side of its own: any square to it will do.
+    vec3 across = cross(axis, toEye);
+    if (dot(across, across) < 1e-12 * dot(axis, axis) * dot(toEye, toEye))
+      across = cross(axis, abs(axis.y) < 0.9 * length(axis) ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0));
+    vec3 side = normalize(across);
     // One pixel wide at least, fainter by as much; drawn half a pixel wider each side for the
     // ramp of its edge.
     float pixelSize = constants.pixel.x * distance;

@@ -28,7 +28,7 @@ void main() {
     vec4 source = ocean.foamSources[i];
     vec2 d = rest - source.xy;
     float spread = dot(d, d) * source.z;
-    // Beyond 3 r it adds less than 1e-4 of its centre's.
+    // Beyond 3 r it adds less than 2e-4 of its centre's.
     if (spread < 9.0) laid += source.w * exp(-spread);
   }
   float foam = imageLoad(foamMap, texel).r * ocean.foamStep.x + breaking * ocean.foamStep.y + laid;

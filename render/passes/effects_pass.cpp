@@ -1,8 +1,8 @@
 #include "render/passes/effects_pass.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -132,22 +132,25 @@ Result<void> EffectsPass::prepare(const FrameInput& frame, std::uint32_t height)
   std::vector<std::size_t> order(unsorted.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::ranges::stable_sort(order, [&distances](std::size_t a, std::size_t b) { return distances[a] > distances[b]; });
-  count_ = static_cast<std::uint32_t>(order.size());
   pixelAngle_ = 2.0f * std::tan(0.5f * frame.camera.verticalFovRadians) / float(std::max(height, 1u));
-  if (count_ == 0) return {};
-  const vk::DeviceSize bytes = count_ * sizeof(Record);
+  count_ = 0;
+  if (order.empty()) return {};
+  const vk::DeviceSize bytes = order.size() * sizeof(Record);
+  // The renderer waits for each frame before it prepares the next, so the buffer and its
+  // descriptor are free to be replaced here.
   if (records_.size() < bytes) {
     try {
       records_ = Buffer(*device_, std::bit_ceil(bytes), vk::BufferUsageFlagBits::eStorageBuffer,
                         vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
     } catch (const std::exception& error) {
-      return fail(std::string("effects: allocating room for ") + std::to_string(count_) +
+      return fail(std::string("effects: allocating room for ") + std::to_string(order.size()) +
                   " effects failed: " + error.what());
     }
     writeStorageBuffer(*device_, set_, 0, records_);
   }
   auto* out = reinterpret_cast<Record*>(records_.mapped().data());
   for (std::size_t i = 0; i < order.size(); ++i) out[i] = unsorted[order[i]];
+  count_ = static_cast<std::uint32_t>(order.size());
   return {};
 }
 

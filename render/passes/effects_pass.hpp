@@ -1,14 +1,13 @@
 #pragma once
-// Effects over the opaque scene, drawn last in the main pass with blending, far to near: round
-// particles (spray, smoke) as soft discs facing the eye, lines (rigging) and flat triangles
-// (debris). Each is six vertices made in shaders/effects.vert from one record of a storage
-// buffer (no vertex buffers) and lit there, at its vertices, by the frame's lights, ambient and
-// environment: spray and smoke cover much of the screen several times over, so their fragments
-// only blend.
+// Effects over the opaque scene, drawn in the main pass after it (before any hair) with blending
+// and no depth written, far to near: round particles (spray, smoke) as soft discs facing the eye,
+// lines (rigging) and flat triangles (debris). Each is six vertices made in shaders/effects.vert from one record of a
+// storage buffer (no vertex buffers) and lit there, at its vertices, by the frame's lights, ambient and environment:
+// spray and smoke cover much of the screen several times over, so their fragments only blend.
 //
 // A line's width follows its distance. Where it would be thinner than a pixel it is drawn one
 // pixel wide and as much fainter (alpha × width in pixels), so that a far rope keeps its
-// brightness on average instead of breaking into dashes; particles are kept a pixel wide the
+// brightness on average instead of breaking into dashes; discs are kept a pixel in radius the
 // same way (Persson, "Phone-wire AA", GPU Pro 5, 2014).
 //
 // The shaders bind the surfaces' frame set (SurfaceScene::frameLayout) as set 0, their records

@@ -37,6 +37,21 @@ TEST(EffectParticles, WithoutDragAParticleFliesTheParabola) {
   EXPECT_NEAR(highest, 144.0f / (2.0f * 9.81f), 0.5f * 9.81f / (60.0f * 60.0f));
 }
 
+TEST(EffectParticles, AVanishingDragFliesTheParabolaStill) {
+  // At c = 1e-7 per second the drag moves a particle by v₀ c t²/2 ≈ 1e-6 m over 2 s: the step
+  // must not lose the parabola to rounding as c dt nears 0.
+  for (float drag : {0.0f, 1e-7f, 1e-4f}) {
+    EffectParticles particles =
+        make({.acceleration = {0.0f, -9.81f, 0.0f}, .dragPerSecond = drag, .lifeSeconds = 10.0f});
+    particles.emit(glm::vec3(0.0f), {3.0f, 12.0f, 0.0f}, 0.1f);
+    for (int i = 0; i < 120; ++i) particles.step(1.0f / 60.0f, glm::vec3(0.0f));
+    const EffectParticle& p = particles.particles()[0];
+    // The drag's share over 2 s: x loses about v₀ c t²/2, y about (v₀ t²/2 − g t³/6) c.
+    EXPECT_NEAR(p.position.x, 6.0f, 1e-4f + 3.0f * drag * 2.0f) << drag;
+    EXPECT_NEAR(p.position.y, 24.0f - 0.5f * 9.81f * 4.0f, 1e-3f + 20.0f * drag) << drag;
+  }
+}
+
 TEST(EffectParticles, DragStopsALaunchedParticleAtItsSpeedOverTheRate) {
   EffectParticles particles = make({.acceleration = glm::vec3(0.0f), .dragPerSecond = 2.0f, .lifeSeconds = 100.0f});
   particles.emit(glm::vec3(0.0f), {20.0f, 0.0f, 0.0f}, 0.5f);
