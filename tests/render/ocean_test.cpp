@@ -38,6 +38,18 @@ FrameInput frameAt(const physics::OceanWaves& waves, double time, float seconds)
   return frame;
 }
 
+// The foam step alone, waited for (it leaves the map in GENERAL, where it rests).
+struct FoamStep {
+  const OceanPass* pass;
+  void declare(FrameGraph::Builder& builder) const { pass->declareFoam(builder); }
+  void execute(const vk::raii::CommandBuffer& commands) const { pass->recordFoam(commands); }
+};
+void recordFoamAlone(const Device& device, const OceanPass& pass) {
+  device.submitAndWait([&](const vk::raii::CommandBuffer& commands) {
+    FrameGraph::recordAlone(commands, PassName::kOcean, FoamStep{&pass});
+  });
+}
+
 class OceanTest : public testing::VulkanTest {};
 
 TEST_F(OceanTest, TheGpuSumsTheWavesAsTheCpuDoesWithinATenthOfAMillimetre) {
@@ -85,17 +97,9 @@ TEST_F(OceanTest, FoamFadesWithItsHalfLifeWhereNothingBreaks) {
   data.foamResolution = 64;
   auto pass = OceanPass::create(device(), data);
   ASSERT_TRUE(pass) << pass.error().message;
-  // The foam step alone (it leaves the map in GENERAL, where it rests).
-  struct FoamStep {
-    const OceanPass* pass;
-    void declare(FrameGraph::Builder& builder) const { pass->declareFoam(builder); }
-    void execute(const vk::raii::CommandBuffer& commands) const { pass->recordFoam(commands); }
-  };
   const auto runFoam = [&](const FrameInput& frame) {
     ASSERT_TRUE((*pass)->prepare(frame, 1.0f));
-    device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-      FrameGraph::recordAlone(commands, PassName::kOcean, FoamStep{pass->get()});
-    });
+    recordFoamAlone(device(), **pass);
   };
   // Breaking where J < threshold − 0.2 at the first phases, fully; then half a period later
   // J = 1 + 1.5 cos θ there, and nothing breaks where it did.
@@ -129,18 +133,11 @@ TEST_F(OceanTest, AFoamSourceLaysItsGaussianAtItsRestPoint) {
   data.foamResolution = 128;  // half a metre a texel
   auto pass = OceanPass::create(device(), data);
   ASSERT_TRUE(pass) << pass.error().message;
-  struct FoamStep {
-    const OceanPass* pass;
-    void declare(FrameGraph::Builder& builder) const { pass->declareFoam(builder); }
-    void execute(const vk::raii::CommandBuffer& commands) const { pass->recordFoam(commands); }
-  };
   // 2 per second at (10, −5) with r = 3 m, over 0.1 s: 0.2 at its centre.
   FrameInput frame = frameAt(*waves, 0.0, 0.1f);
   frame.ocean->foamSources = {{10.0f, -5.0f, 3.0f, 2.0f}};
   ASSERT_TRUE((*pass)->prepare(frame, 1.0f));
-  device().submitAndWait([&](const vk::raii::CommandBuffer& commands) {
-    FrameGraph::recordAlone(commands, PassName::kOcean, FoamStep{pass->get()});
-  });
+  recordFoamAlone(device(), **pass);
   const std::vector<float> foam = (*pass)->readFoam();
   ASSERT_EQ(foam.size(), 128u * 128u);
   double sum = 0.0;
