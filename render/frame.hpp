@@ -187,6 +187,13 @@ struct OceanData {
   std::uint32_t foamResolution = 256;          ///< texels a side, 1 … 4096
 };
 
+/// A body above the sea that hides the sky in the water's reflection (a ship's hull), as the
+/// ellipsoid `worldFromUnitSphere` makes of the unit sphere.
+struct OceanReflector {
+  glm::mat4 worldFromUnitSphere{1.0f};  ///< invertible
+  glm::vec3 albedo{0.2f};               ///< lit by the frame's ambient and environment where reflected
+};
+
 /// The sea this frame.
 struct OceanFrame {
   /// Each wave's phase φ − ω t reduced to [0, 2π), one per OceanData wave
@@ -197,6 +204,7 @@ struct OceanFrame {
   /// rest (metres), a radius r (metres, > 0) and the foam it adds per second at its centre (≥ 0),
   /// falling off as exp(−d²/r²); at most kMaxFoamSources.
   std::vector<glm::vec4> foamSources;
+  std::optional<OceanReflector> reflector;
 };
 
 /// What OceanFrame::foamSources holds at most (shaders/ocean_uniforms.glsl).

@@ -153,6 +153,13 @@ Result<void> SceneOcean::addShip(const Scene& scene, const Mesh* shipMesh, std::
   shipScale_ = scale;
   foamCentre_ = {ship_->settings().position.x, ship_->settings().position.z};
   shipScene_ = ship;
+  // The ellipsoid inscribed in the hull's bounds, in its model's units; the default material's
+  // albedo where it names none.
+  const Bounds bounds = shipMesh->bounds();
+  hullEllipsoid_ = glm::translate(glm::mat4(1.0f), 0.5f * (bounds.min + bounds.max)) *
+                   glm::scale(glm::mat4(1.0f), 0.5f * (bounds.max - bounds.min));
+  const auto material = std::ranges::find(scene.materials, instance.material, &Material::name);
+  hullAlbedo_ = material != scene.materials.end() ? material->baseColour : Material{}.baseColour;
   // The settings are constants known to be valid.
   if (ship.spray) spray_ = *physics::EffectParticles::create(kSpray);
   if (ship.cannon) {
@@ -310,6 +317,8 @@ render::OceanFrame SceneOcean::frame(double time, float seconds) const {
     for (const physics::WaterlineContact& contact : line)
       frame.foamSources.emplace_back(contact.rest.x, contact.rest.y, kWakeFoamRadius,
                                      kWakeFoamPerSecond + kWakeFoamPerCut * contact.cutSpeed);
+    frame.reflector =
+        render::OceanReflector{.worldFromUnitSphere = shipModel() * hullEllipsoid_, .albedo = hullAlbedo_};
   }
   return frame;
 }

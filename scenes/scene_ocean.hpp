@@ -42,6 +42,11 @@ public:
   /// once. Errors: a speed the waves refuse.
   [[nodiscard]] Result<void> setWindSpeed(float speed);
   [[nodiscard]] float windSpeed() const { return settings_.waves.windSpeed; }
+  /// Drops the spray thrown while the world settled (the ship finding its draft, the clock held
+  /// at 0): the first frame shows the sea as it is, not the ship's fall into it.
+  void forgetSettlingSpray() {
+    if (spray_) spray_->removeIf([](const physics::EffectParticle&) { return true; });
+  }
   /// Fires the ship's cannon at the next step (nothing without one).
   void fireCannon() { cannonFired_ = true; }
 
@@ -81,6 +86,8 @@ private:
   std::size_t shipIndex_ = 0;
   glm::vec3 centreOfMass_{0.0f};  ///< in the mesh's model space × scale
   float shipScale_ = 1.0f;
+  glm::mat4 hullEllipsoid_{1.0f};  ///< in the hull's model space, from the unit sphere
+  glm::vec3 hullAlbedo_{0.0f};
   glm::vec2 foamCentre_{0.0f};
   std::optional<physics::FixedStepAccumulator> steps_;
   std::optional<Ship> shipScene_;

@@ -111,6 +111,7 @@ Result<World> World::create(Scene scene, const AssetResolver& resolver, const Wo
   const int settleFrames = static_cast<int>(std::lround(world.scene_.simulation.settleSeconds * 60.0f));
   for (int frame = 0; frame < settleFrames; ++frame)
     if (auto settled = world.simulate(1.0 / 60.0, 1); !settled) return std::unexpected(settled.error());
+  if (world.ocean_) world.ocean_->forgetSettlingSpray();
   return world;
 }
 

@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Deep water (NVIDIA's "Clear Sailing", 2004): the sky's reflection and the sun's, mixed by
-// Fresnel with the light the water scatters up from below; foam where crests break; fog.
+// Deep water (NVIDIA's "Clear Sailing", 2004): the sky's reflection (and the ship's, where it
+// hides the sky) and the sun's, mixed by Fresnel with the light the water scatters up from below;
+// foam where crests break; fog.
 //
 // Fresnel's factor is Schlick's form F₀ + (1 − F₀)(1 − n·v)^p with F₀ = 0.02 (water) and a
 // lower exponent than Schlick's 5, as the demo found: at 5 the water looked right at grazing
@@ -73,6 +74,17 @@ void main() {
   vec3 r = reflect(-v, n);
   r.y = abs(r.y);
   vec3 reflected = skyAlong(r);
+  // The ship hides the sky it stands in front of: the reflected ray against the ellipsoid round
+  // its hull, whose side facing the water is lit by the sky across it.
+  if (ocean.reflector.a > 0.0) {
+    vec3 o = (ocean.reflectorFromWorld * vec4(inWorld, 1.0)).xyz;
+    vec3 d = (ocean.reflectorFromWorld * vec4(r, 0.0)).xyz;
+    float b = dot(o, d);
+    float c = dot(o, o) - 1.0;
+    float discriminant = b * b - dot(d, d) * c;
+    if (discriminant > 0.0 && (c < 0.0 || b < 0.0))
+      reflected = ocean.reflector.rgb * (frame.ambient.rgb + environmentLight(normalize(vec3(-r.x, 1e-3, -r.z))));
+  }
   vec3 fromBelow = frame.ambient.rgb + environmentLight(vec3(0.0, 1.0, 0.0));
   vec3 foamLight = frame.ambient.rgb + environmentLight(n);
   if (frame.lightCount.x > 0) {

@@ -26,6 +26,8 @@ layout(set = OCEAN_SET, binding = 0, std430) readonly buffer Ocean {
   vec4 foamStep;         // x: what the foam keeps this frame, 2^(−Δt/T½); y: what a breaking crest adds; z: foam sources
   vec4 reachOfWaves;     // x: the farthest the waves move water sideways, λ Σ A, metres
   vec4 foamSources[kMaxFoamSources];  // (x, z) at rest, m; 1/r², 1/m²; what it adds this frame at its centre
+  mat4 reflectorFromWorld;  // the ellipsoid round what hides the sky in the reflection, to the unit sphere
+  vec4 reflector;           // rgb: its albedo; a: 1 where there is one
 } ocean;
 
 float oceanPhase(int wave) { return ocean.phases[wave / 4][wave % 4]; }

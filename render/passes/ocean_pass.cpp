@@ -29,6 +29,8 @@ struct OceanUniforms {
   glm::vec4 foamStep{0.0f};
   glm::vec4 reachOfWaves{0.0f};
   std::array<glm::vec4, kMaxFoamSources> foamSources{};
+  glm::mat4 reflectorFromWorld{1.0f};
+  glm::vec4 reflector{0.0f};  // rgb albedo, a: 1 where there is one
 };
 
 constexpr std::uint32_t kFoamWorkgroup = 8;                         // shaders/ocean_foam.comp
@@ -221,6 +223,16 @@ Result<void> OceanPass::prepare(const FrameInput& frame, float aspect) {
       return fail("ocean: foam source " + std::to_string(i) +
                   " must have a finite place, a radius > 0 and a rate ≥ 0.");
     u.foamSources[i] = {s.x, s.y, 1.0f / (s.z * s.z), float(s.w * seconds)};
+  }
+  if (const std::optional<OceanReflector>& reflector = frame.ocean->reflector) {
+    const glm::mat4 inverse = glm::inverse(reflector->worldFromUnitSphere);
+    bool finiteMatrix = true;
+    for (int column = 0; column < 4; ++column)
+      finiteMatrix = finiteMatrix && finite(glm::vec3(inverse[column])) && std::isfinite(inverse[column].w);
+    if (!finiteMatrix) return fail("ocean: the reflector's matrix must be invertible.");
+    if (!colour(reflector->albedo)) return fail("ocean: the reflector's albedo must be finite and ≥ 0.");
+    u.reflectorFromWorld = inverse;
+    u.reflector = glm::vec4(reflector->albedo, 1.0f);
   }
   u.foamStep = {float(std::exp2(-seconds / data_.foamHalfLife)), float(data_.foamGrowth * seconds),
                 float(sources.size()), 0.0f};

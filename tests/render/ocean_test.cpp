@@ -2,8 +2,8 @@
 //
 // Oracles: the CPU's sum of the same waves (physics/ocean_waves.hpp), in double precision; the
 // foam's exponential fade, 2^(−t/T½), over frames in which nothing breaks; a foam source's
-// Gaussian and its integral π r²; and the horizon line computed from the camera alone, below
-// which every pixel must show water.
+// Gaussian and its integral π r²; the horizon line computed from the camera alone, below which
+// every pixel must show water; and a flat sea's mirror image of an ellipsoid, traced on the CPU.
 
 #include <cmath>
 #include <numbers>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 #include <glm/matrix.hpp>
 #include <gtest/gtest.h>
@@ -235,6 +236,76 @@ TEST_F(OceanRender, TheProjectedGridLeavesNoBackgroundBelowTheHorizon) {
     EXPECT_GT(water, 1000);
     (void)sky;
   }
+}
+
+TEST_F(OceanRender, TheShipHidesTheSkyInTheWatersReflection) {
+  // A flat sea (one wave of no height) mirrors the sky, and a red ellipsoid above it hides the sky
+  // along the rays it mirrors: where the eye's ray, mirrored at the water, passes well inside
+  // the ellipsoid, the water is red; where it passes well outside, it shows the sky.
+  const auto waves = physics::OceanWaves::fromWaves(
+      {physics::GerstnerWave{.direction = {1.0f, 0.0f}, .wavenumber = 0.1f, .angularFrequency = 1.0f}}, 0.0f);
+  ASSERT_TRUE(waves);
+  constexpr vk::Extent2D extent{160, 96};
+  auto renderer = Renderer::create(device(), {.extent = extent});
+  ASSERT_TRUE(renderer) << renderer.error().message;
+  StaticScene scene;
+  scene.ocean = oceanData(*waves);
+  scene.ocean->fogDensity = 0.0f;
+  scene.ocean->fresnelPower = 1.0f;  // a strong reflection at every angle
+  ASSERT_TRUE((*renderer)->setScene(scene));
+  const Camera camera{.position = {0.0f, 3.0f, 0.0f},
+                      .target = {30.0f, -1.0f, 0.0f},
+                      .verticalFovRadians = 0.8f,
+                      .nearPlane = 0.1f,
+                      .farPlane = 30000.0f};
+  const glm::vec3 centre(30.0f, 5.0f, 0.0f);
+  const glm::vec3 radii(8.0f, 4.0f, 8.0f);
+  FrameInput frame = frameAt(*waves, 0.0, 1.0f / 30.0f);
+  frame.camera = camera;
+  frame.ambient = glm::vec3(1.0f);
+  frame.ocean->reflector = OceanReflector{
+      .worldFromUnitSphere = glm::translate(glm::mat4(1.0f), centre) * glm::scale(glm::mat4(1.0f), radii),
+      .albedo = {1.0f, 0.0f, 0.0f}};
+  ASSERT_TRUE((*renderer)->render(frame));
+  const auto hdr = (*renderer)->readHdrOutput();
+  ASSERT_TRUE(hdr);
+  const float aspect = float(extent.width) / float(extent.height);
+  const glm::mat4 clipToWorld = glm::inverse(camera.projection(aspect) * camera.view());
+  // Whether the ray from `origin` along `direction` meets the ellipsoid grown by `scale`.
+  const auto meets = [&](glm::vec3 origin, glm::vec3 direction, float scale) {
+    const glm::vec3 o = (origin - centre) / (radii * scale);
+    const glm::vec3 d = direction / (radii * scale);
+    const float b = glm::dot(o, d);
+    const float c = glm::dot(o, o) - 1.0f;
+    return b * b - glm::dot(d, d) * c > 0.0f && (c < 0.0f || b < 0.0f);
+  };
+  int red = 0;
+  int sky = 0;
+  for (int y = 0; y < int(extent.height); ++y) {
+    for (int x = 0; x < int(extent.width); ++x) {
+      const glm::vec2 ndc((float(x) + 0.5f) / float(extent.width) * 2.0f - 1.0f,
+                          (float(y) + 0.5f) / float(extent.height) * 2.0f - 1.0f);
+      const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
+      const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
+      const glm::vec3 ray = glm::normalize(glm::vec3(far) / far.w - glm::vec3(near) / near.w);
+      if (ray.y > -0.02f) continue;  // the sky, or water too far off to tell
+      const glm::vec3 water = camera.position + ray * (-camera.position.y / ray.y);
+      const glm::vec3 mirrored(ray.x, -ray.y, ray.z);
+      const std::size_t i = (std::size_t(y) * extent.width + std::size_t(x)) * 4;
+      const float r = glm::unpackHalf1x16((*hdr)[i]);
+      const float g = glm::unpackHalf1x16((*hdr)[i + 1]);
+      // The ripples tilt the water by a few hundredths: half and twice the ellipsoid leave room.
+      if (meets(water, mirrored, 0.5f)) {
+        EXPECT_GT(r, 2.0f * g) << "pixel " << x << ", " << y << " mirrors the ship but shows no red";
+        ++red;
+      } else if (!meets(water, mirrored, 2.0f)) {
+        EXPECT_LT(r, g) << "pixel " << x << ", " << y << " mirrors the sky but shows red";
+        ++sky;
+      }
+    }
+  }
+  EXPECT_GT(red, 20);
+  EXPECT_GT(sky, 1000);
 }
 
 }  // namespace

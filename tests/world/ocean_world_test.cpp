@@ -88,6 +88,14 @@ TEST(OceanWorld, TheRiggingRidesTheHullAndTheDebrisFloatsRoundIt) {
     EXPECT_TRUE(std::abs(inHull.x) > 15.0f - 2.6f || std::abs(inHull.z) > halfBeam - 1.6f)
         << inHull.x << ", " << inHull.z;
   }
+  // The hull hides the sky in the water's reflection: the ellipsoid inscribed in its bounds,
+  // placed where it floats.
+  ASSERT_TRUE(input.ocean->reflector.has_value());
+  const glm::mat4 hullFromSphere = glm::inverse(hull.model) * input.ocean->reflector->worldFromUnitSphere;
+  const glm::vec3 middle(hullFromSphere * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  const glm::vec3 bow(hullFromSphere * glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+  EXPECT_NEAR(glm::distance(bow, middle) * scale, 15.0f, 0.05f);  // half the hull's 30 m
+  EXPECT_NEAR(middle.x * scale, 0.0f, 0.05f);
   ASSERT_EQ(input.effects.triangles.size(), std::size_t(scene.ocean->debris->pieces));
   const physics::OceanWaves& sea = world.ocean()->waves();
   for (const render::EffectTriangle& piece : input.effects.triangles) {
