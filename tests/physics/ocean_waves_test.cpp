@@ -1,6 +1,6 @@
 // Gerstner waves from the wind, and the portable sine, cosine, exponential and logarithm.
 //
-// Oracles: the C library's functions (for the portable ones, on this machine), one Gerstner
+// Oracles: the C library's sin, cos, exp and log (for the portable ones), one Gerstner
 // wave's closed form (position, normal, Jacobian), the velocity as the time derivative of the
 // position, the Pierson–Moskowitz spectrum's integral between the bands' edges, the cos²
 // spreading's mean, and the surface's variance sampled in space against Σ A²/2.

@@ -167,6 +167,15 @@ TEST_F(OceanTest, AFoamSourceLaysItsGaussianAtItsRestPoint) {
 
 class OceanRender : public testing::VulkanTest {};
 
+// The direction of the eye's ray through the centre of pixel (x, y).
+glm::vec3 eyeRay(const glm::mat4& clipToWorld, vk::Extent2D extent, int x, int y) {
+  const glm::vec2 ndc((float(x) + 0.5f) / float(extent.width) * 2.0f - 1.0f,
+                      (float(y) + 0.5f) / float(extent.height) * 2.0f - 1.0f);
+  const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
+  const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
+  return glm::normalize(glm::vec3(far) / far.w - glm::vec3(near) / near.w);
+}
+
 // The background's colour, which no water shows.
 constexpr glm::vec3 kBackground{1.0f, 0.0f, 1.0f};
 
@@ -214,11 +223,7 @@ TEST_F(OceanRender, TheProjectedGridLeavesNoBackgroundBelowTheHorizon) {
     int sky = 0;
     for (int y = 0; y < int(extent.height); ++y) {
       for (int x = 0; x < int(extent.width); ++x) {
-        const glm::vec2 ndc((float(x) + 0.5f) / float(extent.width) * 2.0f - 1.0f,
-                            (float(y) + 0.5f) / float(extent.height) * 2.0f - 1.0f);
-        const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
-        const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
-        const glm::vec3 ray = glm::normalize(glm::vec3(far) / far.w - glm::vec3(near) / near.w);
+        const glm::vec3 ray = eyeRay(clipToWorld, extent, x, y);
         const std::size_t i = (std::size_t(y) * extent.width + std::size_t(x)) * 4;
         const glm::vec3 colour(glm::unpackHalf1x16((*hdr)[i]), glm::unpackHalf1x16((*hdr)[i + 1]),
                                glm::unpackHalf1x16((*hdr)[i + 2]));
@@ -283,11 +288,7 @@ TEST_F(OceanRender, TheShipHidesTheSkyInTheWatersReflection) {
   int sky = 0;
   for (int y = 0; y < int(extent.height); ++y) {
     for (int x = 0; x < int(extent.width); ++x) {
-      const glm::vec2 ndc((float(x) + 0.5f) / float(extent.width) * 2.0f - 1.0f,
-                          (float(y) + 0.5f) / float(extent.height) * 2.0f - 1.0f);
-      const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
-      const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
-      const glm::vec3 ray = glm::normalize(glm::vec3(far) / far.w - glm::vec3(near) / near.w);
+      const glm::vec3 ray = eyeRay(clipToWorld, extent, x, y);
       if (ray.y > -0.02f) continue;  // the sky, or water too far off to tell
       const glm::vec3 water = camera.position + ray * (-camera.position.y / ray.y);
       const glm::vec3 mirrored(ray.x, -ray.y, ray.z);

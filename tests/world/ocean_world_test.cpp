@@ -21,6 +21,16 @@ namespace {
 
 const std::filesystem::path kClearSailing = std::filesystem::path(MANE_SOURCE_DIR) / "scenes" / "clear_sailing.json";
 
+// Whether `p` (the hull's frame, metres) lies within a cell of the waterplane's side, plus
+// `slack` metres: procedural:hull is 30 m long, its half beam 4.2 m · √(1 − t²) forward and
+// √(1 − t⁴) aft, t = x / 15 m; its cells are 1.25 m long and 1.05 m wide.
+bool nearHullSide(glm::vec3 p, float slack) {
+  const float t = p.x / 15.0f;
+  const float halfBeam = 4.2f * std::sqrt(std::max(0.0f, 1.0f - (t < 0.0f ? t * t * t * t : t * t)));
+  const bool within = std::abs(p.x) < 15.0f + 1.3f + slack && std::abs(p.z) < halfBeam + 1.1f + slack;
+  return within && (std::abs(p.x) > 15.0f - 2.6f - slack || std::abs(p.z) > halfBeam - 1.6f - slack);
+}
+
 World loadClearSailing() {
   auto scene = loadScene(kClearSailing);
   EXPECT_TRUE(scene) << scene.error().message;
@@ -79,14 +89,7 @@ TEST(OceanWorld, TheRiggingRidesTheHullAndTheDebrisFloatsRoundIt) {
   for (const glm::vec4& source : input.ocean->foamSources) {
     const physics::OceanSample water = world.ocean()->waves().sample({source.x, source.y}, world.time());
     const glm::vec3 inHull = glm::vec3(glm::inverse(hull.model) * glm::vec4(water.position, 1.0f)) * scale;
-    // Within the hull's 30 m × 8.4 m waterplane, within a cell of its side: procedural:hull's
-    // half beam is 4.2 m · √(1 − t²) forward and √(1 − t⁴) aft, t = x / 15 m.
-    const float t = inHull.x / 15.0f;
-    const float halfBeam = 4.2f * std::sqrt(std::max(0.0f, 1.0f - (t < 0.0f ? t * t * t * t : t * t)));
-    EXPECT_LT(std::abs(inHull.x), 15.0f + 1.3f);
-    EXPECT_LT(std::abs(inHull.z), halfBeam + 1.1f) << inHull.x << ", " << inHull.z;
-    EXPECT_TRUE(std::abs(inHull.x) > 15.0f - 2.6f || std::abs(inHull.z) > halfBeam - 1.6f)
-        << inHull.x << ", " << inHull.z;
+    EXPECT_TRUE(nearHullSide(inHull, 0.0f)) << inHull.x << ", " << inHull.z;
   }
   // The hull hides the sky in the water's reflection: the ellipsoid inscribed in its bounds,
   // placed where it floats.
@@ -138,11 +141,20 @@ TEST(OceanWorld, TheCannonsSmokeStopsWithinItsSpeedOverTheDragAndDriftsWithTheWi
 TEST(OceanWorld, SprayLeavesTheHullsSideAtTheSea) {
   World world = loadClearSailing();
   std::size_t most = 0;
+  int fresh = 0;
   for (int frame = 0; frame < 150; ++frame) {
     ASSERT_TRUE(world.advance(1.0 / 30.0, 1));
     const physics::EffectParticles& spray = *world.ocean()->spray();
     most = std::max(most, spray.particles().size());
+    const glm::mat4 hullModel = world.frameInput().instances.at(0).model;
+    const float scale = world.scene().findMesh("ship")->transform.scale;
     for (const physics::EffectParticle& drop : spray.particles()) {
+      // Thrown in the last step: from the hull's side, half a metre along it, a step's flight away.
+      if (drop.age <= 1.0f / 60.0f + 1e-6f) {
+        const glm::vec3 inHull = glm::vec3(glm::inverse(hullModel) * glm::vec4(drop.position, 1.0f)) * scale;
+        EXPECT_TRUE(nearHullSide(inHull, 0.8f)) << inHull.x << ", " << inHull.z;
+        ++fresh;
+      }
       if (drop.velocity.y >= 0.0f) continue;
       // A falling drop that reaches the sea is gone: none lies under it by more than a step's fall
       // (the frame's time may run ahead of the last step's).
@@ -151,6 +163,7 @@ TEST(OceanWorld, SprayLeavesTheHullsSideAtTheSea) {
     }
   }
   EXPECT_GT(most, 20u);
+  EXPECT_GT(fresh, 20);
 }
 
 TEST(OceanWorld, AStrongerWindGrowsTheSeaOfItsSpectrum) {
