@@ -197,6 +197,23 @@ Result<Cloth> Cloth::create(const ClothSettings& settings) {
         addConstraint(std::min(opposite[0], opposite[1]), std::max(opposite[0], opposite[1]),
                       settings.bendingStiffness);
 
+  std::vector<bool> isHeld(positions.size(), false);
+  for (std::size_t i = 0; i < settings.shapeHolds.size(); ++i) {
+    const ClothShapeHold& hold = settings.shapeHolds[i];
+    const std::string name = "ClothSettings.shapeHolds[" + std::to_string(i) + "]";
+    if (hold.vertex >= positions.size())
+      return fail(name + " holds vertex " + std::to_string(hold.vertex) + " but the mesh has " +
+                  std::to_string(positions.size()));
+    if (isPinned[hold.vertex] || isHeld[hold.vertex])
+      return fail(name + ": vertex " + std::to_string(hold.vertex) +
+                  (isHeld[hold.vertex] ? " is held twice" : " is pinned"));
+    if (!(hold.stiffness > 0.0f && hold.stiffness <= 1.0f))
+      return fail(name + ".stiffness must be in (0, 1], got " + std::to_string(hold.stiffness));
+    isHeld[hold.vertex] = true;
+    cloth.shapeHolds_.push_back(hold);
+    cloth.heldLocal_.push_back(positions[hold.vertex]);
+  }
+
   if (settings.solver.tethers && !cloth.pinned_.empty()) cloth.tethers_ = attachToPins(cloth);
   if (settings.selfCollisionThickness > 0.0f)
     cloth.selfCollision_.emplace(triangles, positions.size(), settings.selfCollisionThickness);
@@ -354,6 +371,13 @@ Result<void> Cloth::advanceWith(double frameDt, const TaskRunner& tasks) {
             particles_.positions[i] += wind_->acceleration(static_cast<std::uint32_t>(i)) * (step * step);
       if (!colliders_.empty()) collide(k, first, end, true);
     });
+    if (!shapeHolds_.empty()) {
+      const glm::mat4 placement = previousBody_ + (body_ - previousBody_) * t;
+      for (std::size_t h = 0; h < shapeHolds_.size(); ++h) {
+        glm::vec3& position = particles_.positions[shapeHolds_[h].vertex];
+        position += (transformPoint(placement, heldLocal_[h]) - position) * shapeHolds_[h].stiffness;
+      }
+    }
     for (int iteration = 0; iteration < settings_.solver.constraintIterations; ++iteration)
       for (std::size_t colour = 0; colour < colourCount; ++colour)
         runPhase([&](std::uint32_t w) {

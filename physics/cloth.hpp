@@ -6,6 +6,9 @@
 //   between the two vertices opposite the edge, relaxed with a stiffness in [0, 1] (the
 //   "bend spring" of Provot 1995 in position-based form; 0 folds freely, 1 keeps the rest
 //   dihedral as well as the iteration count allows);
+// - shape holds: vertices pulled each step part of the way to where the body carries their rest
+//   position (TressFX's global shape constraints, Han & Harada 2012), so that a fin's rays keep
+//   its shape as the muscle at their base does, while the membrane between them moves;
 // - pinned vertices with infinite mass that follow the body transform, or per-pin targets (a
 //   host's skinned vertices);
 // - optionally, each free vertex kept off the cloth's other triangles and each edge in a fold off
@@ -39,6 +42,13 @@
 
 namespace mane::physics {
 
+/// A vertex pulled after each step's integration by `stiffness` of the way to where the body
+/// carries its rest position (`ClothSettings::positions`).
+struct ClothShapeHold {
+  std::uint32_t vertex = 0;
+  float stiffness = 0.0f;  ///< share of the gap closed per step, (0, 1]
+};
+
 /// Everything a `Cloth` is made from. Plain data: fill it, keep it, make several cloths from it.
 struct ClothSettings {
   SolverSettings solver;          ///< step, gravity, damping, iterations, tethers (to the pins)
@@ -55,6 +65,8 @@ struct ClothSettings {
   /// `bodyTransform`, so the cloth rests in the shape it starts in. A sewing pattern laid flat
   /// gives cloth that starts curved and still hangs in folds rather than keeping its curve.
   std::vector<glm::vec3> pattern;
+  /// Free vertices held towards their rest position on the body, each at most once.
+  std::vector<ClothShapeHold> shapeHolds;
   /// Vertices that follow the body (or `Cloth::setPinTargets`); repeats count once.
   std::vector<std::uint32_t> pinnedVertices;
   /// Body-local → world transform at rest (finite).
@@ -80,7 +92,8 @@ public:
   /// runner. Fails with a message that starts with the settings field at fault and names the
   /// triangle or vertex: an index out of range, a degenerate triangle (repeated vertex or zero
   /// area), a non-finite position, an empty mesh, a pattern whose size is not the mesh's or with
-  /// a non-finite point, or invalid solver settings, bending stiffness, self-collision thickness,
+  /// a non-finite point, a shape hold out of range, repeated, on a pin or of a stiffness outside (0, 1],
+  /// or invalid solver settings, bending stiffness, self-collision thickness,
   /// body transform, colliders or task runner.
   [[nodiscard]] static Result<Cloth> create(const ClothSettings& settings);
 
@@ -169,6 +182,8 @@ private:
   std::vector<std::uint32_t> triangles_;  // kept for a wind set after creation
   std::vector<std::uint32_t> pinned_;
   std::vector<glm::vec3> pinnedLocal_;
+  std::vector<ClothShapeHold> shapeHolds_;
+  std::vector<glm::vec3> heldLocal_;   // per shape hold, body-local rest position
   std::vector<glm::vec3> pinTargets_;  // per pin, world: empty while pins follow the body
   std::vector<glm::vec3> pinFrom_;     // per pin, world: where the current advance starts it ...
   std::vector<glm::vec3> pinTo_;       // ... and ends it

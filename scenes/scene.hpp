@@ -366,19 +366,39 @@ struct CapeShape {
   int rows = 40;               ///< vertices from collar to hem, 2..512
 };
 
+/// The shape of a "procedural:fin": rays fanning from a straight root at y = 0 (along x, centred
+/// on the origin) down towards −y, a membrane between them, the rays standing out of it
+/// alternately on its +z and −z side, its edge cut back between their tips. The first ray
+/// (towards −x) is the longest; the root and the row after it are the fin's base, held by the
+/// body as a fin's rays are held at their base.
+struct FinShape {
+  int rays = 7;                 ///< 3..32
+  float length = 0.065f;        ///< metres, [0.001, 1]: the first ray, root to tip
+  float root = 0.035f;          ///< metres, [0.001, 1]: the root's length
+  float spreadDegrees = 70.0f;  ///< (0, 150]: the angle between the first and the last ray
+  float taper = 0.55f;          ///< (0, 1]: the last ray's length over the first's (linear between)
+  float scallop = 0.12f;        ///< [0, 0.5]: how far the edge recedes midway between two rays, share of their length
+  float pleat = 0.3f;           ///< [0, 0.5]: how far a ray stands out of the membrane, share of the gap beside it
+  int rows = 12;                ///< vertices along each ray, 4..128
+  /// (0, 1]: the share of the way back to their shape on the body the rays are pulled each step
+  /// at their base, half that at their tips (physics::ClothShapeHold).
+  float rayStiffness = 0.3f;
+};
+
 /// Cloth (a fin, a scarf, a cape): a triangle mesh whose edges become constraints, moving with
 /// a mesh (the body). Its `transform` places the cloth relative to the body's pivot in metres,
 /// following the body's motion but not its scale; on a character part, relative to the
 /// character's placement (its axes, metres) at time 0.
 struct Cloth {
   std::string name;
-  /// Mesh asset, file path, "procedural:grid" (1 m × 1 m, top edge at y = 0) or "procedural:cape"
-  /// (`cape`).
+  /// Mesh asset, file path, "procedural:grid" (1 m × 1 m, top edge at y = 0), "procedural:cape"
+  /// (`cape`) or "procedural:fin" (`fin`).
   std::string source;
   std::string attachedMesh;  ///< name of a `MeshInstance`; pins follow it
   std::string material;      ///< name of a `Material` (empty: the default material)
   Transform transform;
-  bool pinTopEdge = true;                 ///< pin the vertices at the highest local y (the grid's top edge)
+  /// Pin the vertices at the highest local y (the grid's top edge; a fin's base, `FinShape`).
+  bool pinTopEdge = true;
   /// Pin these vertices of the cloth mesh as well (indices into its vertices, checked at load).
   std::vector<std::uint32_t> pinVertices;
   /// Pin every vertex inside these boxes too: cloth-local coordinates (before `transform`), metres.
@@ -393,6 +413,7 @@ struct Cloth {
   float arealDensity = 0.3f;              ///< kg/m², what the wind pushes against, > 0
   Colliders colliders;                    ///< in the attached mesh's body frame (not the cloth's transform)
   CapeShape cape;                         ///< the cut of a "procedural:cape"
+  FinShape fin;                           ///< the shape of a "procedural:fin"
 };
 
 /// A clip of a character's file played on the scene's clock.

@@ -352,19 +352,52 @@ CapeShape parseCapeShape(const Json& json, const std::string& path) {
   return cape;
 }
 
+FinShape parseFinShape(const Json& json, const std::string& path) {
+  ObjectFields fields(json, path);
+  FinShape fin;
+  fin.rays = fields.optional<int>("rays", fin.rays);
+  fin.length = fields.optional<float>("length", fin.length);
+  fin.root = fields.optional<float>("root", fin.root);
+  fin.spreadDegrees = fields.optional<float>("spread_degrees", fin.spreadDegrees);
+  fin.taper = fields.optional<float>("taper", fin.taper);
+  fin.scallop = fields.optional<float>("scallop", fin.scallop);
+  fin.pleat = fields.optional<float>("pleat", fin.pleat);
+  fin.rows = fields.optional<int>("rows", fin.rows);
+  fin.rayStiffness = fields.optional<float>("ray_stiffness", fin.rayStiffness);
+  fields.finish();
+  require(fin.rays >= 3 && fin.rays <= 32, fields.child("rays"), "expected 3..32 rays");
+  // Below a millimetre the membrane's triangles near the root lose their area to rounding.
+  require(fin.length >= 0.001f && fin.length <= 1.0f, fields.child("length"), "expected a length in [0.001, 1] metres");
+  require(fin.root >= 0.001f && fin.root <= 1.0f, fields.child("root"), "expected a length in [0.001, 1] metres");
+  require(fin.spreadDegrees > 0.0f && fin.spreadDegrees <= 150.0f, fields.child("spread_degrees"),
+          "expected an angle in (0, 150] degrees");
+  require(fin.taper > 0.0f && fin.taper <= 1.0f, fields.child("taper"), "expected a share in (0, 1]");
+  require(fin.scallop >= 0.0f && fin.scallop <= 0.5f, fields.child("scallop"), "expected a share in [0, 0.5]");
+  require(fin.pleat >= 0.0f && fin.pleat <= 0.5f, fields.child("pleat"), "expected a share in [0, 0.5]");
+  require(fin.rows >= 4 && fin.rows <= 128, fields.child("rows"), "expected 4..128 vertices");
+  require(fin.rayStiffness > 0.0f && fin.rayStiffness <= 1.0f, fields.child("ray_stiffness"),
+          "expected a stiffness in (0, 1]");
+  return fin;
+}
+
 Cloth parseCloth(const Json& json, const std::string& path) {
   ObjectFields fields(json, path);
   Cloth cloth;
   cloth.name = fields.required<std::string>("name");
   require(!cloth.name.empty(), fields.child("name"), "expected a non-empty name");
   cloth.source = fields.required<std::string>("source");
-  const bool isCape = cloth.source == "procedural:cape";
+  const bool isCape = cloth.source == "procedural:cape", isFin = cloth.source == "procedural:fin";
   require(!cloth.source.empty() &&
-              (!cloth.source.starts_with(kProceduralPrefix) || cloth.source == "procedural:grid" || isCape),
-          fields.child("source"), "expected a mesh asset, a file path, \"procedural:grid\" or \"procedural:cape\"");
+              (!cloth.source.starts_with(kProceduralPrefix) || cloth.source == "procedural:grid" || isCape || isFin),
+          fields.child("source"),
+          "expected a mesh asset, a file path, \"procedural:grid\", \"procedural:cape\" or \"procedural:fin\"");
   if (const Json* cape = fields.take("cape")) {
     require(isCape, fields.child("cape"), "applies to \"procedural:cape\" cloths only");
     cloth.cape = parseCapeShape(*cape, fields.child("cape"));
+  }
+  if (const Json* fin = fields.take("fin")) {
+    require(isFin, fields.child("fin"), "applies to \"procedural:fin\" cloths only");
+    cloth.fin = parseFinShape(*fin, fields.child("fin"));
   }
   cloth.attachedMesh = fields.required<std::string>("attached_mesh");
   cloth.material = fields.optional<std::string>("material", "");

@@ -6,6 +6,7 @@
 #include <glm/trigonometric.hpp>
 #include <glm/vector_relational.hpp>
 
+#include "scenes/fin_cloth.hpp"
 #include "scenes/obj_loader.hpp"
 
 namespace mane::scenes {
@@ -96,6 +97,7 @@ Result<Mesh> loadClothMesh(const Cloth& cloth, const AssetResolver& resolver,
                            const std::filesystem::path& sceneDirectory) {
   if (cloth.source == "procedural:grid") return makeClothGrid();
   if (cloth.source == "procedural:cape") return makeCape(cloth.cape);
+  if (cloth.source == "procedural:fin") return makeFin(cloth.fin).mesh;
   auto found = resolver.lookupForScene(cloth.source, sceneDirectory);
   if (!found) return fail("cloth '" + cloth.name + "': " + found.error().message);
   if (!found->path) return fail("cloth '" + cloth.name + "': " + found->missingReason);
@@ -107,10 +109,14 @@ Result<Mesh> loadClothMesh(const Cloth& cloth, const AssetResolver& resolver,
 Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const SimulationSettings& simulation,
                                       const glm::mat4& body, physics::ColliderSet colliders) {
   // Pins: the vertices on the highest row of the rest mesh, in its own space (within a
-  // millionth of its height, so a flat top edge is found exactly despite rounding), the listed
-  // vertices and those inside the pinned regions; each once, in vertex order.
+  // millionth of its height, so a flat top edge is found exactly despite rounding) or a fin's
+  // base, the listed vertices and those inside the pinned regions; each once, in vertex order.
+  const bool isFin = cloth.source == "procedural:fin";
+  const FinCloth fin = isFin ? makeFin(cloth.fin) : FinCloth{};
   std::vector<bool> pin(rest.positions.size(), false);
-  if (cloth.pinTopEdge && !rest.positions.empty()) {
+  if (cloth.pinTopEdge && isFin) {
+    for (std::uint32_t v : fin.base) pin[v] = true;
+  } else if (cloth.pinTopEdge && !rest.positions.empty()) {
     const Bounds bounds = rest.bounds();
     const float tolerance = 1e-6f * std::max(bounds.size().y, 1e-3f);
     for (std::uint32_t v = 0; v < rest.positions.size(); ++v)
@@ -140,6 +146,7 @@ Result<SceneCloth> SceneCloth::create(const Cloth& cloth, Mesh rest, const Simul
     settings.pattern = capePattern(cloth.cape);
     for (glm::vec3& point : settings.pattern) point *= cloth.transform.scale;
   }
+  settings.shapeHolds = fin.holds;
   settings.solver.fixedStep = simulation.stepSeconds;
   settings.solver.maxSubstepsPerFrame = simulation.maxStepsPerFrame;
   settings.solver.constraintIterations = cloth.iterations;

@@ -18,7 +18,8 @@ namespace mane::scenes {
 
 /// The cloth entry's rest mesh in its own local space (before `Cloth::transform`): the 16 × 16
 /// "procedural:grid" (1 m square in the XY plane, top edge at y = 0, hanging to y = −1), the
-/// "procedural:cape" cut as `cloth.cape` says, or a mesh file resolved like the scene's meshes.
+/// "procedural:cape" cut as `cloth.cape` says, the "procedural:fin" `cloth.fin` describes
+/// (scenes/fin_cloth.hpp), or a mesh file resolved like the scene's meshes.
 Result<Mesh> loadClothMesh(const Cloth& cloth, const AssetResolver& resolver,
                            const std::filesystem::path& sceneDirectory);
 

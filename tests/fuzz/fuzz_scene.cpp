@@ -1,7 +1,7 @@
 // libFuzzer harness: scene JSON text → parseScene. Must return a value or an error, never
 // crash, hang or leak; a scene it accepts must hold only finite numbers, its glasses must be
-// built or refused by name (scenes/glasses.hpp), and its sea must grow from its settings, with a
-// finite surface.
+// built or refused by name (scenes/glasses.hpp), its fins must make valid cloth, and its sea must
+// grow from its settings, with a finite surface.
 
 #include <algorithm>
 #include <cmath>
@@ -12,9 +12,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "physics/cloth.hpp"
 #include "physics/floating_debris.hpp"
 #include "physics/ocean_waves.hpp"
 #include "render/lens.hpp"
+#include "scenes/fin_cloth.hpp"
 #include "scenes/glasses.hpp"
 #include "scenes/scene.hpp"
 
@@ -87,6 +89,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!finite(cloth.colliders)) std::abort();
     for (const auto& [lower, upper] : cloth.pinRegions)
       if (!finite(lower) || !finite(upper)) std::abort();
+    if (cloth.source == "procedural:fin") {
+      mane::scenes::FinShape shape = cloth.fin;
+      shape.rays = std::min(shape.rays, 8);  // the counts cost time; the sizes are what can break it
+      shape.rows = std::min(shape.rows, 16);
+      const mane::scenes::FinCloth fin = mane::scenes::makeFin(shape);
+      mane::physics::ClothSettings settings;
+      settings.shapeHolds = fin.holds;
+      if (!mane::physics::Cloth::create(fin.mesh.positions, fin.mesh.indices, fin.base, settings)) std::abort();
+    }
   }
   if (scene->ship && !scene->ocean) std::abort();
   if (scene->ocean) {

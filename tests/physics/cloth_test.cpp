@@ -1,6 +1,6 @@
 // Cloth from a triangle mesh: constraint construction, colouring, free fall of the centre of
-// mass, pins following the body, low stretch when hanging, bending stiffness, determinism
-// across thread counts, and bad input.
+// mass, pins following the body, low stretch when hanging, bending stiffness, shape holds, determinism across thread
+// counts, and bad input.
 
 #include <algorithm>
 #include <cmath>
@@ -166,6 +166,35 @@ TEST(Cloth, StifferBendingDroopsLess) {
   EXPECT_GT(medium, stiff);
 }
 
+// A free triangle whose vertices are all held towards the body with stiffness k settles where each
+// step's fall under gravity, g·dt², less the share k pulled back, leaves it: k·(x − rest + g·dt²)
+// = g·dt², so it hangs g·dt²·(1 − k)/k below its rest (its edges stay at rest length). The body
+// then moves and the triangle follows it.
+TEST(Cloth, ShapeHoldsSettleWhereTheirPullBalancesGravity) {
+  const std::vector<glm::vec3> positions = {{0, 0, 0}, {0.1f, 0, 0}, {0, 0, 0.1f}};
+  const std::vector<std::uint32_t> triangles = {0, 1, 2};
+  ClothSettings settings;
+  settings.solver.fixedStep = 1.0 / 60.0;
+  settings.solver.damping = 0.05f;
+  const float k = 0.2f;
+  for (std::uint32_t v = 0; v < 3; ++v) settings.shapeHolds.push_back({v, k});
+  const glm::mat4 body = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  auto cloth = Cloth::create(positions, triangles, {}, settings, body);
+  ASSERT_TRUE(cloth.has_value()) << cloth.error().message;
+  for (int i = 0; i < 600; ++i) ASSERT_TRUE(cloth->advance(1.0 / 60.0).has_value());
+  const double dt = settings.solver.fixedStep, g = 9.81;
+  const double sag = g * dt * dt * (1.0 - k) / k;
+  for (std::uint32_t v = 0; v < 3; ++v) {
+    const glm::vec3 p = cloth->particles().positions[v];
+    EXPECT_NEAR(p.y, 1.0 - sag, 1e-5) << v;
+    EXPECT_NEAR(p.x, positions[v].x, 1e-6) << v;
+    EXPECT_NEAR(p.z, positions[v].z, 1e-6) << v;
+  }
+  ASSERT_TRUE(cloth->setBodyTransform(glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 1.0f, 0.0f))).has_value());
+  for (int i = 0; i < 600; ++i) ASSERT_TRUE(cloth->advance(1.0 / 60.0).has_value());
+  EXPECT_NEAR(cloth->particles().positions[1].x, 0.6f, 1e-5);
+}
+
 // A free sheet dropped onto a ball that moves with the body: after every step no particle is
 // inside the ball (signed distance ≥ −1e-4 m, the frictionless last pass puts them on the
 // surface), and the sheet ends up draped over it rather than falling through.
@@ -231,6 +260,18 @@ TEST(Cloth, BadInputIsNamed) {
   EXPECT_NE(message(nan, grid.triangles, {}).find("vertex 4 is NaN"), std::string::npos);
   EXPECT_NE(message(grid.positions, grid.triangles, {99}).find("pinned cloth vertex 99"), std::string::npos);
   EXPECT_NE(message({}, {}, {}).find("empty"), std::string::npos);
+
+  auto withHolds = [&](std::vector<ClothShapeHold> holds) {
+    ClothSettings settings;
+    settings.shapeHolds = std::move(holds);
+    auto cloth = Cloth::create(grid.positions, grid.triangles, Pins{0}, settings);
+    return cloth ? std::string("(created)") : cloth.error().message;
+  };
+  EXPECT_EQ(withHolds({{9, 0.5f}}), "ClothSettings.shapeHolds[0] holds vertex 9 but the mesh has 9");
+  EXPECT_EQ(withHolds({{0, 0.5f}}), "ClothSettings.shapeHolds[0]: vertex 0 is pinned");
+  EXPECT_EQ(withHolds({{4, 0.5f}, {4, 0.5f}}), "ClothSettings.shapeHolds[1]: vertex 4 is held twice");
+  EXPECT_EQ(withHolds({{4, 1.5f}}), "ClothSettings.shapeHolds[0].stiffness must be in (0, 1], got 1.500000");
+  EXPECT_EQ(withHolds({{4, 1.0f}}), "(created)");
 }
 
 }  // namespace

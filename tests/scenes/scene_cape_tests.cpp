@@ -18,12 +18,7 @@
 namespace mane::scenes {
 namespace {
 
-std::string sceneWithCloth(const std::string& cloth) {
-  return R"({"name": "c", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
-    "meshes": [{"name": "body", "source": "procedural:sphere", "transform": {"scale": 0.1}}],
-    "cloths": [{"name": "cape", "attached_mesh": "body", )" +
-         cloth + "}]}";
-}
+using testing::sceneWithCloth;
 
 std::string errorOf(const std::string& cloth) {
   auto scene = parseScene(sceneWithCloth(cloth), "dir/bad.json");
@@ -57,8 +52,9 @@ TEST(SceneCape, MistakesAreReportedAtTheirField) {
     const std::string message = errorOf(cloth);
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   };
-  expectError(R"("source": "procedural:cloak")",
-              R"(cloths[0].source: expected a mesh asset, a file path, "procedural:grid" or "procedural:cape")");
+  expectError(
+      R"("source": "procedural:cloak")",
+      R"(cloths[0].source: expected a mesh asset, a file path, "procedural:grid", "procedural:cape" or "procedural:fin")");
   expectError(R"("source": "procedural:grid", "cape": {})",
               R"(cloths[0].cape: applies to "procedural:cape" cloths only)");
   expectError(R"("source": "procedural:cape", "cape": {"collar_radius": 0})",

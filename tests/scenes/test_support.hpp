@@ -51,6 +51,15 @@ inline std::string readFile(const std::filesystem::path& file) {
 }
 
 /// The project's resolver without downloads: tests never touch the network.
+/// A scene of one small sphere, "body", wearing one cloth named "cloth" whose fields after its
+/// name and body are `clothFields` (JSON members, comma-separated).
+inline std::string sceneWithCloth(const std::string& clothFields) {
+  return R"({"name": "c", "camera": {"position": [0, 0, 1], "target": [0, 0, 0]},
+    "meshes": [{"name": "body", "source": "procedural:sphere", "transform": {"scale": 0.1}}],
+    "cloths": [{"name": "cloth", "attached_mesh": "body", )" +
+         clothFields + "}]}";
+}
+
 inline AssetResolver sharedResolver() {
   AssetResolverSettings settings = defaultAssetResolverSettings();
   settings.allowDownload = false;
