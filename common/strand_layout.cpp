@@ -60,6 +60,12 @@ Result<void> validateStrandLayout(const DenseStrandLayout& layout) {
       return fail(where(s) + ": root offset or tip jitter is not finite.");
     if (!(strand.clump >= 0.0f && strand.clump <= 1.0f))
       return fail(where(s) + ": clump " + std::to_string(strand.clump) + " is outside [0, 1].");
+    if (!(strand.curlRadius >= 0.0f && std::isfinite(strand.curlRadius) && strand.curlTurns >= 0.0f &&
+          std::isfinite(strand.curlTurns) && strand.curlPhase >= 0.0f && strand.curlPhase < 1.0f &&
+          strand.frizz >= 0.0f && std::isfinite(strand.frizz)))
+      return fail(where(s) + ": curl (radius " + std::to_string(strand.curlRadius) + ", turns " +
+                  std::to_string(strand.curlTurns) + ", phase " + std::to_string(strand.curlPhase) + ") or frizz " +
+                  std::to_string(strand.frizz) + " is out of range.");
     if (!(strand.vertexScale >= 0.0f && denseSpan * strand.vertexScale <= guideSpan))
       return fail(where(s) + ": vertexScale " + std::to_string(strand.vertexScale) +
                   " is negative, not finite, or reaches past the guides' tips.");

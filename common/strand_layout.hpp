@@ -32,8 +32,9 @@ struct GuideFrameRef {
 };
 static_assert(sizeof(GuideFrameRef) == 8, "GuideFrameRef is a std430 uvec2");
 
-/// One dense strand: a 64-byte std430 element, read by the shader as uvec4 (guides, guideCount),
-/// vec4 (weights, vertexScale), vec4 (rootOffset, clump), vec4 (tipJitter, lengthScale).
+/// One dense strand: an 80-byte std430 element, read by the shader as uvec4 (guides, guideCount),
+/// vec4 (weights, vertexScale), vec4 (rootOffset, clump), vec4 (tipJitter, lengthScale),
+/// vec4 (curlRadius, curlTurns, curlPhase, frizz).
 struct DenseStrand {
   std::uint32_t guides[3] = {0, 0, 0};    ///< guide indices; entries k ≥ guideCount are unused
   std::uint32_t guideCount = 1;           ///< K: 1 (single) to 3 (barycentric)
@@ -43,8 +44,12 @@ struct DenseStrand {
   float clump = 0.0f;                     ///< c in [0, 1]: 1 puts the tip on the primary guide
   glm::vec3 tipJitter{0.0f};              ///< j, metres, in the primary guide's frame
   float lengthScale = 1.0f;               ///< the strand's length relative to its guides (information)
+  float curlRadius = 0.0f;                ///< metres ≥ 0: the helix the strand winds round its guides
+  float curlTurns = 0.0f;                 ///< turns of the helix from root to tip, ≥ 0
+  float curlPhase = 0.0f;                 ///< where the helix starts, in turns, [0, 1)
+  float frizz = 0.0f;                     ///< metres ≥ 0: the largest random offset of a vertex, at the tip
 };
-static_assert(sizeof(DenseStrand) == 64, "DenseStrand is a 64-byte std430 element");
+static_assert(sizeof(DenseStrand) == 80, "DenseStrand is an 80-byte std430 element");
 
 /// How a dense vertex between two guide vertices is placed along each guide.
 enum class StrandCurve : std::uint32_t {
@@ -67,7 +72,8 @@ struct DenseStrandLayout {
 
 /// Checks a layout: not empty, vertex counts in range, a known curve, one frame per guide, guide
 /// indices and frame partners in range, weights finite and summing to 1 within 1e-5, offsets
-/// finite, clump in [0, 1], vertexScale keeping every dense vertex on its guides. The message
+/// finite, clump in [0, 1], vertexScale keeping every dense vertex on its guides, curl radius,
+/// turns and frizz finite and ≥ 0, curl phase in [0, 1). The message
 /// names the first bad guide or dense strand and starts in lower case, for the caller to put its
 /// own subject before.
 [[nodiscard]] Result<void> validateStrandLayout(const DenseStrandLayout& layout);

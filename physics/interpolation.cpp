@@ -44,6 +44,34 @@ glm::vec3 normalize(const glm::vec3& a) {
   return {a.x / length, a.y / length, a.z / length};
 }
 
+// The header's hash: Wellons' lowbias32, an integer mixer with exact operations only.
+std::uint32_t lowbias32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// The header's cosSinTurns: cos and sin of 2π·w, from a Taylor series on a quarter turn.
+std::pair<float, float> cosSinTurns(float w) {
+  w = w - std::floor(w);
+  const float y = 4.0f * w;
+  const float k = std::floor(y + 0.5f);
+  const float x = (y - k) * 1.57079637f;
+  const float x2 = x * x;
+  const float sine =
+      x * (1.0f + x2 * (-0.166666672f + x2 * (0.00833333377f + x2 * (-0.000198412701f + x2 * 2.75573188e-06f))));
+  const float cosine = 1.0f + x2 * (-0.5f + x2 * (0.0416666679f + x2 * (-0.00138888892f + x2 * 2.48015876e-05f)));
+  switch (static_cast<int>(k) & 3) {
+    case 0: return {cosine, sine};
+    case 1: return {-sine, cosine};
+    case 2: return {-cosine, -sine};
+    default: return {sine, -cosine};
+  }
+}
+
 struct Frame {
   glm::vec3 e1{1.0f, 0.0f, 0.0f};
   glm::vec3 e2{0.0f, 1.0f, 0.0f};
@@ -163,6 +191,11 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
   if (!(settings.clumpVariation >= 0.0f && settings.clumpVariation <= 1.0f)) return bad("clumpVariation", "in [0, 1]");
   if (!(settings.tipJitter >= 0.0f && std::isfinite(settings.tipJitter)))
     return bad("tipJitter", "a non-negative number of metres");
+  if (!(settings.curlRadius >= 0.0f && settings.curlRadius <= 0.05f)) return bad("curlRadius", "in [0, 0.05] metres");
+  if (!(settings.curlPeriod >= 0.001f && settings.curlPeriod <= 10.0f))
+    return bad("curlPeriod", "in [0.001, 10] metres");
+  if (!(settings.curlVariation >= 0.0f && settings.curlVariation <= 1.0f)) return bad("curlVariation", "in [0, 1]");
+  if (!(settings.frizz >= 0.0f && settings.frizz <= 0.01f)) return bad("frizz", "in [0, 0.01] metres");
   if (settings.neighbourCandidates < 2 || settings.neighbourCandidates > kMaxNeighbours)
     return bad("neighbourCandidates", "in [2, 8]");
   if (!(settings.minBlendCosine >= -1.0f && settings.minBlendCosine <= 1.0f))
@@ -255,6 +288,12 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     }
   }
 
+  // Each guide's length at rest: a strand's curl turns once per curlPeriod of it.
+  std::vector<float> guideLength(guideCount, 0.0f);
+  for (std::size_t g = 0; g < guideCount; ++g)
+    for (std::size_t v = 0; v + 1 < guideVertices; ++v)
+      guideLength[g] += static_cast<float>(std::sqrt(distanceSquared(restGuides[g][v], restGuides[g][v + 1])));
+
   const std::size_t denseVertices = layout.vertexCount;
   const float guideSpan = static_cast<float>(guideVertices - 1);
   const float denseSpan = static_cast<float>(denseVertices - 1);
@@ -310,6 +349,13 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
       strand.weights[1] = strand.weights[2] = 0.0f;
       strand.rootOffset = (settings.rootSpread * spreadRadius[home]) * randomInDisc(rng);
     }
+    // Drawn last, so that a groom without curl keeps the layout it had before curl existed.
+    if (settings.curlRadius > 0.0f) {
+      strand.curlRadius = settings.curlRadius * (1.0f + settings.curlVariation * rng.nextFloat(-1.0f, 1.0f));
+      strand.curlTurns = strand.lengthScale * guideLength[home] / settings.curlPeriod;
+      strand.curlPhase = rng.nextFloat();
+    }
+    strand.frizz = settings.frizz;
   }
   return layout;
 }
@@ -356,33 +402,91 @@ glm::vec3 alongGuide(const glm::vec3* guide, std::uint32_t v, std::uint32_t last
   }
 }
 
+// The curl's side carried down a strand: the primary guide's point, way and side at the last
+// vertex (the header's x', d', a').
+struct CurlSide {
+  glm::vec3 x{0.0f}, d{0.0f}, a{0.0f};
+};
+
+// The header's v − (2·dot(v1, v) / c1)·v1: v reflected in the plane normal to v1 (c1 = dot(v1, v1)).
+glm::vec3 reflect(const glm::vec3& v, const glm::vec3& v1, float c1) {
+  return v - ((2.0f * dot(v1, v)) / c1) * v1;
+}
+
+// The header's W + F, the curl and frizz of dense vertex i (`vertex` = s·Nd + i) at t, fraction f
+// of segment v of the primary guide `primary` (Ng − 1 = `last`), whose point there is `l0`;
+// `side` holds vertex i − 1's and takes vertex i's.
+glm::vec3 curlAndFrizz(const DenseStrand& strand, const Frame& frame, const glm::vec3* primary, std::uint32_t v,
+                       std::uint32_t last, float f, float t, const glm::vec3& l0, std::uint32_t i, std::uint32_t vertex,
+                       CurlSide& side) {
+  const auto wayAt = [&](std::uint32_t k) { return primary[std::min(k + 1, last)] - primary[std::max(k, 1u) - 1]; };
+  const glm::vec3 along = (1.0f - f) * wayAt(v) + f * wayAt(v + 1);
+  const glm::vec3 d = dot(along, along) > 0.0f ? normalize(along) : frame.n;
+  glm::vec3 a;
+  if (i == 0) {
+    const glm::vec3 across = cross(d, frame.n);
+    a = dot(across, across) > 0.0f ? normalize(across) : frame.e1;
+  } else {
+    const glm::vec3 v1 = l0 - side.x;
+    const float c1 = dot(v1, v1);
+    const glm::vec3 aL = c1 > 0.0f ? reflect(side.a, v1, c1) : side.a;
+    const glm::vec3 dL = c1 > 0.0f ? reflect(side.d, v1, c1) : side.d;
+    const glm::vec3 v2 = d - dL;
+    const float c2 = dot(v2, v2);
+    const glm::vec3 r = c2 > 0.0f ? reflect(aL, v2, c2) : aL;
+    const glm::vec3 across = r - dot(r, d) * d;
+    a = dot(across, across) > 0.0f ? normalize(across) : side.a;
+  }
+  side = {l0, d, a};
+  const glm::vec3 b = cross(d, a);
+  const auto [co, si] = cosSinTurns(strand.curlPhase + strand.curlTurns * t);
+  const float radius = strand.curlRadius * std::min(4.0f * t, 1.0f);
+  const glm::vec3 curl = (co * radius) * a + (si * radius) * b;
+  float x[3];
+  for (std::uint32_t k = 0; k < 3; ++k)
+    x[k] = static_cast<float>(lowbias32(3u * vertex + k) >> 8) * 1.1920929e-07f - 1.0f;
+  const glm::vec3 frizz = (strand.frizz * t) * ((x[0] * frame.e1 + x[1] * frame.e2) + x[2] * frame.n);
+  return curl + frizz;
+}
+
 // Step 2 of the header's formula for one strand with K guides. K and the curve are template
 // parameters only so that the compiler unrolls the guide loop and drops the other curve; the
-// operations are those of the formula, in order.
+// operations are those of the formula, in order. `first` is the strand's first vertex, s·Nd.
 template <std::uint32_t K, StrandCurve Curve>
 void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std::uint32_t lastSegment, const float* t,
-                       std::size_t nd, const glm::vec3& offset, const glm::vec3& jitter, glm::vec3* p) {
+                       std::size_t nd, const Frame& frame, std::uint32_t first, glm::vec3* p) {
   const std::uint32_t last = lastSegment + 1;
+  const glm::vec3 o = strand.rootOffset;
+  const glm::vec3 j = strand.tipJitter;
+  const glm::vec3 offset = (o.x * frame.e1 + o.y * frame.e2) + o.z * frame.n;
+  const glm::vec3 jitter = (j.x * frame.e1 + j.y * frame.e2) + j.z * frame.n;
+  const bool curled = strand.curlRadius > 0.0f || strand.frizz > 0.0f;
+  CurlSide side;
   for (std::size_t i = 0; i < nd; ++i) {
     const float u = static_cast<float>(i) * strand.vertexScale;
     const std::uint32_t v = std::min(static_cast<std::uint32_t>(u), lastSegment);
-    const CurveWeights w = curveWeights<Curve>(u - static_cast<float>(v));
+    const float f = u - static_cast<float>(v);
+    const CurveWeights w = curveWeights<Curve>(f);
     const glm::vec3 l0 = alongGuide<Curve>(g[0], v, last, w);
     glm::vec3 b = strand.weights[0] * l0;
     for (std::uint32_t k = 1; k < K; ++k) b = b + strand.weights[k] * alongGuide<Curve>(g[k], v, last, w);
     const float h = strand.clump * t[i];
     const float q = 1.0f - h;
     p[i] = (b + h * (l0 - b)) + q * (offset + t[i] * jitter);
+    if (curled) {
+      const auto index = static_cast<std::uint32_t>(i);
+      p[i] = p[i] + curlAndFrizz(strand, frame, g[0], v, last, f, t[i], l0, index, first + index, side);
+    }
   }
 }
 
 template <StrandCurve Curve>
 void interpolateStrand(const DenseStrand& strand, const glm::vec3* const* g, std::uint32_t lastSegment, const float* t,
-                       std::size_t nd, const glm::vec3& offset, const glm::vec3& jitter, glm::vec3* p) {
+                       std::size_t nd, const Frame& frame, std::uint32_t first, glm::vec3* p) {
   switch (strand.guideCount) {
-    case 1: interpolateStrand<1, Curve>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
-    case 2: interpolateStrand<2, Curve>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
-    default: interpolateStrand<3, Curve>(strand, g, lastSegment, t, nd, offset, jitter, p); break;
+    case 1: interpolateStrand<1, Curve>(strand, g, lastSegment, t, nd, frame, first, p); break;
+    case 2: interpolateStrand<2, Curve>(strand, g, lastSegment, t, nd, frame, first, p); break;
+    default: interpolateStrand<3, Curve>(strand, g, lastSegment, t, nd, frame, first, p); break;
   }
 }
 
@@ -408,18 +512,15 @@ void interpolateRange(std::span<const glm::vec3> guides, const DenseStrandLayout
         frame = frameOf(guides[primary * ng], guides[ref.partnerA * ng], guides[ref.partnerB * ng]);
       framePrimary = primary;
     }
-    const glm::vec3 o = strand.rootOffset;
-    const glm::vec3 j = strand.tipJitter;
-    const glm::vec3 offset = (o.x * frame.e1 + o.y * frame.e2) + o.z * frame.n;
-    const glm::vec3 jitter = (j.x * frame.e1 + j.y * frame.e2) + j.z * frame.n;
-
     const glm::vec3* g[3] = {nullptr, nullptr, nullptr};
     for (std::uint32_t k = 0; k < strand.guideCount; ++k) g[k] = guides.data() + strand.guides[k] * ng;
     glm::vec3* p = out.data() + s * nd;
+    // Vertex indices wrap modulo 2^32 in the frizz's hash, as the shader's do.
+    const auto first = static_cast<std::uint32_t>(s * nd);
     if (layout.curve == StrandCurve::kLinear)
-      interpolateStrand<StrandCurve::kLinear>(strand, g, lastSegment, t, nd, offset, jitter, p);
+      interpolateStrand<StrandCurve::kLinear>(strand, g, lastSegment, t, nd, frame, first, p);
     else
-      interpolateStrand<StrandCurve::kCatmullRom>(strand, g, lastSegment, t, nd, offset, jitter, p);
+      interpolateStrand<StrandCurve::kCatmullRom>(strand, g, lastSegment, t, nd, frame, first, p);
 
     if (tangents.empty()) continue;
     glm::vec3* tangent = tangents.data() + s * nd;

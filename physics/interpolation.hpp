@@ -61,6 +61,37 @@
 //        P[s][i] = C + q * (O + t * J)
 //    With K = 1 and w[0] = 1, B = L_0 exactly, so a single-guide strand is its guide plus the
 //    offset O + t·J scaled by (1 − c·t); with c = 1 the tip lies exactly on the guide at u.
+//    A strand with curl radius r > 0 or frizz f > 0 (`curlRadius`, `curlTurns` T, `curlPhase` φ,
+//    `frizz`) then adds, with G_p = G[g[0]]:
+//        T_k = G_p[min(k + 1, Ng − 1)] − G_p[max(k, 1) − 1]     the guide's way at its vertex k
+//        D  = (1 − f) * T_v + f * T_{v+1};  d = dot(D, D) > 0 ? normalize(D) : n
+//                                            (turning smoothly past the guide's vertices)
+//      the side a carried down the strand from vertex to vertex along the primary guide's curve by
+//      double reflection (Wang, Jüttler, Zheng & Liu 2008: a rotation-minimising frame, which
+//      neither spins where the guide turns towards n nor depends on the guide's vertices):
+//        i = 0:  A = cross(d, n);  a = dot(A, A) > 0 ? normalize(A) : e1
+//        i > 0:  with x = L_0 here and x', d', a' those of vertex i − 1:
+//          v1 = x − x';  c1 = dot(v1, v1)
+//          aL = c1 > 0 ? a' − ((2 * dot(v1, a')) / c1) * v1 : a'
+//          dL = c1 > 0 ? d' − ((2 * dot(v1, d')) / c1) * v1 : d'
+//          v2 = d − dL;  c2 = dot(v2, v2)
+//          R  = c2 > 0 ? aL − ((2 * dot(v2, aL)) / c2) * v2 : aL
+//          A  = R − dot(R, d) * d;  a = dot(A, A) > 0 ? normalize(A) : a'
+//        b  = cross(d, a)
+//        (co, si) = cosSinTurns(φ + T * t)
+//        R  = r * min(4 * t, 1)                      the helix widens over the first quarter
+//        W  = (co * R) * a + (si * R) * b
+//        x_k = float(hash(3 * (s * Nd + i) + k) >> 8) * 2^−23 − 1, k = 0, 1, 2   (uint32, wrapping)
+//        F  = (f * t) * ((x_0 * e1 + x_1 * e2) + x_2 * n)
+//        P[s][i] = P[s][i] + (W + F)
+//    where hash(x) is Wellons' lowbias32 (x ^= x >> 16; x *= 0x7feb352d; x ^= x >> 15;
+//    x *= 0x846ca68b; x ^= x >> 16) and cosSinTurns(w) the cosine and sine of 2π·w by exact
+//    operations only: w = w − floor(w); y = 4 * w; k = floor(y + 0.5); x = (y − k) * 1.57079637;
+//    x2 = x * x;
+//        S = x * (1 + x2 * (−0.166666672 + x2 * (0.00833333377 + x2 * (−0.000198412701 + x2 * 2.75573188e−06))))
+//        C = 1 + x2 * (−0.5 + x2 * (0.0416666679 + x2 * (−0.00138888892 + x2 * 2.48015876e−05)))
+//    (Taylor to x⁹ and x⁸ on [−π/4, π/4], within 4e-7 of the sine and cosine), turned by the
+//    quadrant k mod 4: (C, S), (−S, C), (−C, −S), (S, −C).
 // 3. Tangents (optional), unit vectors root → tip, from the dense positions P:
 //        T[i] = normalize(P[i + 1] − P[i − 1]), with P[−1] := P[0] and P[Nd] := P[Nd − 1];
 //    T[i] = (0, 0, 0) where those two points coincide.
@@ -110,6 +141,14 @@ struct DenseGroomSettings {
   /// Largest tip jitter, metres (≥ 0): a per-strand random vector in the ball of this radius,
   /// added in proportion to t (0 at the root, full at the tip) before clumping.
   float tipJitter = 0.002f;
+  /// Curl: each strand winds round its guides in a helix of this radius, metres in [0, 0.05]
+  /// (0: straight), one turn per `curlPeriod` metres of its length.
+  float curlRadius = 0.0f;
+  float curlPeriod = 0.02f;    ///< metres of strand per turn, in [0.001, 10]
+  float curlVariation = 0.3f;  ///< each strand's radius varies uniformly by ± this share, [0, 1]
+  /// Frizz: each dense vertex strays by a random vector in the cube of this half-side, metres in
+  /// [0, 0.01], in proportion to t (none at the root).
+  float frizz = 0.0f;
   /// Barycentric: the triangle's two other corners are picked among this many nearest guide
   /// roots of the strand's home guide; in [2, 8].
   std::size_t neighbourCandidates = 4;

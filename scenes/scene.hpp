@@ -260,7 +260,7 @@ struct Colliders {
 /// Most guide strands a procedural groom may ask for (memory stays in the hundreds of MB).
 inline constexpr int kMaxGuideStrands = 1'000'000;
 
-/// Most dense strands a groom may be drawn with (64 bytes each on the GPU, plus their vertices).
+/// Most dense strands a groom may be drawn with (80 bytes each on the GPU, plus their vertices).
 inline constexpr int kMaxDenseStrands = 1'000'000;
 
 /// Most vertices a dense strand may be drawn with (the dense-strand layout's limit).
@@ -296,6 +296,13 @@ struct GroomRendering {
   StrandCurve curve = StrandCurve::kCatmullRom;
   /// How far each dense strand's tip is pulled towards its first guide, in [0, 1].
   float clump = physics::DenseGroomSettings{}.clump;
+  /// Curl: the helix each dense strand winds round its guides (physics::DenseGroomSettings'
+  /// curl fields); radius 0: straight.
+  float curlRadius = physics::DenseGroomSettings{}.curlRadius;
+  float curlPeriod = physics::DenseGroomSettings{}.curlPeriod;
+  float curlVariation = physics::DenseGroomSettings{}.curlVariation;
+  /// Frizz: the largest random offset of a dense vertex, at the tip, metres; 0: none.
+  float frizz = physics::DenseGroomSettings{}.frizz;
 };
 
 /// Hair or fur on a mesh.

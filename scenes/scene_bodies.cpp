@@ -167,7 +167,23 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
           "expected \"catmull_rom\" or \"linear\", got \"" + curve + "\"");
   rendering.curve = curve == "linear" ? StrandCurve::kLinear : StrandCurve::kCatmullRom;
   rendering.clump = fields.optional<float>("clump", rendering.clump);
+  if (const Json* curl = fields.take("curl")) {
+    ObjectFields curlFields(*curl, fields.child("curl"));
+    rendering.curlRadius = curlFields.required<float>("radius");
+    rendering.curlPeriod = curlFields.optional<float>("period", rendering.curlPeriod);
+    rendering.curlVariation = curlFields.optional<float>("variation", rendering.curlVariation);
+    curlFields.finish();
+    require(rendering.curlRadius >= 0.0f && rendering.curlRadius <= 0.05f, curlFields.child("radius"),
+            "expected a radius in [0, 0.05] metres");
+    require(rendering.curlPeriod >= 0.001f && rendering.curlPeriod <= 10.0f, curlFields.child("period"),
+            "expected a length in [0.001, 10] metres per turn");
+    require(rendering.curlVariation >= 0.0f && rendering.curlVariation <= 1.0f, curlFields.child("variation"),
+            "expected a share in [0, 1]");
+  }
+  rendering.frizz = fields.optional<float>("frizz", rendering.frizz);
   fields.finish();
+  require(rendering.frizz >= 0.0f && rendering.frizz <= 0.01f, fields.child("frizz"),
+          "expected a frizz in [0, 0.01] metres");
   require(rendering.clump >= 0.0f && rendering.clump <= 1.0f, fields.child("clump"), "expected a clump in [0, 1]");
   require(!strands || (rendering.denseStrands >= 1 && rendering.denseStrands <= kMaxDenseStrands),
           fields.child("strands"), "expected a dense strand count in 1.." + std::to_string(kMaxDenseStrands));

@@ -472,6 +472,10 @@ std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<g
   settings.blend = rendering.guideBlend;
   settings.curve = rendering.curve;
   settings.clump = rendering.clump;
+  settings.curlRadius = rendering.curlRadius;
+  settings.curlPeriod = rendering.curlPeriod;
+  settings.curlVariation = rendering.curlVariation;
+  settings.frizz = rendering.frizz;
   auto layout = physics::buildDenseStrandLayout(guides, settings);
   if (!layout) return std::nullopt;  // unequal point counts: the only failure valid guides can give
   return std::move(*layout);

@@ -16,7 +16,7 @@
 // Buffers (std430), see render/passes/strand_interpolation_pass.hpp:
 //   0 guide positions   vec4 per guide vertex, guide after guide, root first: xyz metres, w unused
 //   1 guide frames      uvec2 per guide (partner A, partner B)
-//   2 dense strands     64-byte DenseStrand per strand
+//   2 dense strands     80-byte DenseStrand per strand
 //   3 positions         vec4 per dense vertex, strand-major: xyz metres, w = t (0 root, 1 tip)
 //   4 tangents          vec4 per dense vertex, strand-major: xyz unit tangent root → tip, w = 0
 
@@ -27,6 +27,7 @@ struct DenseStrand {
   vec4 weights;      // xyz: w[k]; w: vertexScale (guide vertices per dense vertex)
   vec4 rootOffset;   // xyz: o, metres, in the primary guide's frame; w: clump c
   vec4 tipJitter;    // xyz: j, metres, in the primary guide's frame; w: length scale (unused)
+  vec4 curl;         // x: curl radius r, metres; y: turns T; z: phase φ, turns; w: frizz f, metres
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer GuidePositions { vec4 guidePositions[]; };
@@ -111,8 +112,94 @@ vec3 alongGuide(uint guide, uint v, vec4 w) {
   return spline;
 }
 
-// Step 2 of the formula for dense vertex i; `offset` = O and `jitter` = J from step 1.
-vec3 densePoint(DenseStrand strand, uint i, vec3 offset, vec3 jitter) {
+// The formula's hash: Wellons' lowbias32.
+uint lowbias32(uint x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+// The formula's cosSinTurns: cos and sin of 2π·w, from a Taylor series on a quarter turn.
+vec2 cosSinTurns(float w) {
+  precise float turn = w - floor(w);
+  precise float y = 4.0 * turn;
+  const float k = floor(y + 0.5);
+  precise float x = (y - k) * 1.57079637;
+  precise float x2 = x * x;
+  precise float sine =
+      x * (1.0 + x2 * (-0.166666672 + x2 * (0.00833333377 + x2 * (-0.000198412701 + x2 * 2.75573188e-06))));
+  precise float cosine = 1.0 + x2 * (-0.5 + x2 * (0.0416666679 + x2 * (-0.00138888892 + x2 * 2.48015876e-05)));
+  const uint quadrant = uint(k) & 3u;
+  if (quadrant == 0u) return vec2(cosine, sine);
+  if (quadrant == 1u) return vec2(-sine, cosine);
+  if (quadrant == 2u) return vec2(-cosine, -sine);
+  return vec2(sine, -cosine);
+}
+
+// The formula's T_k: the primary guide's way at its vertex k.
+vec3 wayAt(uint guide, uint k) {
+  precise vec3 way = guidePoint(guide, min(k + 1u, counts.guideVertexCount - 1u)) - guidePoint(guide, max(k, 1u) - 1u);
+  return way;
+}
+
+// The curl's side carried down a strand: the primary guide's point, way and side at the last
+// vertex (the formula's x', d', a').
+struct CurlSide {
+  vec3 x;
+  vec3 d;
+  vec3 a;
+};
+
+// The formula's v − (2·dot(v1, v) / c1)·v1.
+vec3 reflect3(vec3 v, vec3 v1, float c1) {
+  precise float scale = (2.0 * dot3(v1, v)) / c1;
+  precise vec3 reflected = v - scale * v1;
+  return reflected;
+}
+
+// The formula's W + F: the curl and frizz of dense vertex i (`vertex` = s·Nd + i) at t, fraction f
+// of segment v of the primary guide, whose point there is `l0`, in the frame (e1, e2, n); `side`
+// holds vertex i − 1's and takes vertex i's.
+vec3 curlAndFrizz(DenseStrand strand, uint v, float f, float t, vec3 l0, uint i, uint vertex, vec3 e1, vec3 e2,
+                  vec3 n, inout CurlSide side) {
+  precise vec3 along = (1.0 - f) * wayAt(strand.guides.x, v) + f * wayAt(strand.guides.x, v + 1u);
+  const vec3 d = dot3(along, along) > 0.0 ? normalize3(along) : n;
+  vec3 a;
+  if (i == 0u) {
+    const vec3 across = cross3(d, n);
+    a = dot3(across, across) > 0.0 ? normalize3(across) : e1;
+  } else {
+    precise vec3 v1 = l0 - side.x;
+    const float c1 = dot3(v1, v1);
+    const vec3 aL = c1 > 0.0 ? reflect3(side.a, v1, c1) : side.a;
+    const vec3 dL = c1 > 0.0 ? reflect3(side.d, v1, c1) : side.d;
+    precise vec3 v2 = d - dL;
+    const float c2 = dot3(v2, v2);
+    const vec3 r = c2 > 0.0 ? reflect3(aL, v2, c2) : aL;
+    precise vec3 across = r - dot3(r, d) * d;
+    a = dot3(across, across) > 0.0 ? normalize3(across) : side.a;
+  }
+  side = CurlSide(l0, d, a);
+  const vec3 b = cross3(d, a);
+  precise float w = strand.curl.z + strand.curl.y * t;
+  const vec2 cs = cosSinTurns(w);
+  precise float radius = strand.curl.x * min(4.0 * t, 1.0);
+  precise vec3 curl = (cs.x * radius) * a + (cs.y * radius) * b;
+  precise float x0 = float(lowbias32(3u * vertex) >> 8) * 1.1920929e-07 - 1.0;
+  precise float x1 = float(lowbias32(3u * vertex + 1u) >> 8) * 1.1920929e-07 - 1.0;
+  precise float x2 = float(lowbias32(3u * vertex + 2u) >> 8) * 1.1920929e-07 - 1.0;
+  precise vec3 frizz = (strand.curl.w * t) * ((x0 * e1 + x1 * e2) + x2 * n);
+  precise vec3 sum = curl + frizz;
+  return sum;
+}
+
+// Step 2 of the formula for dense vertex i; `offset` = O and `jitter` = J from step 1, `first`
+// the strand's first vertex s·Nd.
+vec3 densePoint(DenseStrand strand, uint i, vec3 offset, vec3 jitter, uint first, vec3 e1, vec3 e2, vec3 n,
+                inout CurlSide side) {
   precise float u = float(i) * strand.weights.w;
   const uint v = min(uint(u), counts.guideVertexCount - 2u);
   precise float f = u - float(v);
@@ -125,6 +212,7 @@ vec3 densePoint(DenseStrand strand, uint i, vec3 offset, vec3 jitter) {
   precise float h = strand.rootOffset.w * t;
   precise float q = 1.0 - h;
   precise vec3 p = (b + h * (l0 - b)) + q * (offset + t * jitter);
+  if (strand.curl.x > 0.0 || strand.curl.w > 0.0) p = p + curlAndFrizz(strand, v, f, t, l0, i, first + i, e1, e2, n, side);
   return p;
 }
 
@@ -156,10 +244,12 @@ void main() {
   // P[Nd] := P[Nd − 1].
   const uint nd = counts.vertexCount;
   const uint first = s * nd;
-  vec3 current = densePoint(strand, 0u, offset, jitter);
+  // Vertices are placed in order, root to tip: the curl's side is carried from each to the next.
+  CurlSide side = CurlSide(vec3(0.0), vec3(0.0), vec3(0.0));
+  vec3 current = densePoint(strand, 0u, offset, jitter, first, e1, e2, n, side);
   vec3 previous = current;
   for (uint i = 0u; i < nd; ++i) {
-    const vec3 next = i + 1u < nd ? densePoint(strand, i + 1u, offset, jitter) : current;
+    const vec3 next = i + 1u < nd ? densePoint(strand, i + 1u, offset, jitter, first, e1, e2, n, side) : current;
     precise vec3 delta = next - previous;
     const vec3 tangent = dot3(delta, delta) > 0.0 ? normalize3(delta) : vec3(0.0);
     precise float t = float(i) / float(nd - 1u);

@@ -95,9 +95,14 @@ double boundingSize(std::span<const glm::vec3> points) {
 
 void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<glm::vec3>>& rest,
                      std::span<const glm::vec3> moved, physics::GuideBlend blend, std::size_t verticesPerStrand,
-                     StrandCurve curve = StrandCurve::kCatmullRom) {
+                     StrandCurve curve = StrandCurve::kCatmullRom, bool curled = false) {
   physics::DenseGroomSettings settings;
   settings.curve = curve;
+  if (curled) {
+    settings.curlRadius = 0.004f;
+    settings.curlPeriod = 0.02f;
+    settings.frizz = 0.0005f;
+  }
   settings.seed = 7;
   settings.strandCount = 10000;
   settings.blend = blend;
@@ -120,12 +125,12 @@ void checkAgainstCpu(StrandInterpolation& test, const std::vector<std::vector<gl
   const Comparison error = compare(gpu, positions, tangents);
   const double size = boundingSize(positions);
   std::printf(
-      "  %s, %s, %zu dense strands x %u vertices: max position error %.3g m (%.3g of the %.3f m groom), "
+      "  %s, %s%s, %zu dense strands x %u vertices: max position error %.3g m (%.3g of the %.3f m groom), "
       "max tangent error %.3g, %zu of %zu floats differ in any bit\n",
       blend == physics::GuideBlend::kSingle ? "single guide" : "barycentric",
-      curve == StrandCurve::kLinear ? "linear" : "Catmull-Rom", layout->strands.size(), layout->vertexCount,
-      error.positionError, error.positionError / size, size, error.tangentError, error.differingBits,
-      positions.size() * 6);
+      curve == StrandCurve::kLinear ? "linear" : "Catmull-Rom", curled ? ", curled and frizzed" : "",
+      layout->strands.size(), layout->vertexCount, error.positionError, error.positionError / size, size,
+      error.tangentError, error.differingBits, positions.size() * 6);
   // Positions: per coordinate, relative to the groom's bounding-box diagonal. Tangents: per
   // coordinate of a unit vector, so relative to its length 1.
   EXPECT_LE(error.positionError, kRelativeTolerance * size);
@@ -167,6 +172,7 @@ TEST_F(StrandInterpolation, MatchesTheCpuReferenceOnTheSimulatedPonytail) {
   checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kSingle, 0);
   checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kBarycentric, 24);
   checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kBarycentric, 24, StrandCurve::kLinear);
+  checkAgainstCpu(*this, rest, moved, physics::GuideBlend::kBarycentric, 48, StrandCurve::kCatmullRom, true);
 }
 
 // ---- Synthetic layouts with closed-form answers ---------------------------------------------

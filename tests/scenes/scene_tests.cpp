@@ -278,6 +278,8 @@ TEST(Scene, GroomRenderDefaultsAreBlondeRibbons04MmWideAndOpacityShadowsAt512) {
   EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kSingle);
   EXPECT_EQ(rendering.curve, StrandCurve::kCatmullRom);
   EXPECT_FLOAT_EQ(rendering.clump, 0.3f);
+  EXPECT_EQ(rendering.curlRadius, 0.0f) << "straight unless the scene curls it";
+  EXPECT_EQ(rendering.frizz, 0.0f);
   // Nothing given: a groom file's own widths, opacities and colours may fill them in.
   EXPECT_FALSE(rendering.colour.has_value());
   EXPECT_FALSE(rendering.given.width || rendering.given.tipWidthScale || rendering.given.opacity);
@@ -290,7 +292,8 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
       "render": {"look": "dark", "width": 1e-4, "tip_width_scale": 0.25, "opacity": 0.5,
                  "colour": [0.5, 0.25, 0], "min_pixel_width": 0.25, "shadow_extinction": 3.5, "lod_pixel_width": 2,
                  "strands": 1000000, "vertices_per_strand": 4096, "guide_blend": "barycentric",
-                 "curve": "linear", "clump": 1})"),
+                 "curve": "linear", "clump": 1, "curl": {"radius": 0.003, "period": 0.01, "variation": 0.5},
+                 "frizz": 0.0002})"),
                           "x.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering& rendering = scene->grooms[0].rendering;
@@ -306,6 +309,10 @@ TEST(Scene, GroomRenderBlockSetsEveryField) {
   EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kBarycentric);
   EXPECT_EQ(rendering.curve, StrandCurve::kLinear);
   EXPECT_FLOAT_EQ(rendering.clump, 1.0f);
+  EXPECT_FLOAT_EQ(rendering.curlRadius, 0.003f);
+  EXPECT_FLOAT_EQ(rendering.curlPeriod, 0.01f);
+  EXPECT_FLOAT_EQ(rendering.curlVariation, 0.5f);
+  EXPECT_FLOAT_EQ(rendering.frizz, 0.0002f);
   EXPECT_EQ(rendering.colour, glm::vec3(0.5f, 0.25f, 0.0f));
   EXPECT_TRUE(rendering.given.width && rendering.given.tipWidthScale && rendering.given.opacity);
   // The closed ends of the ranges are accepted.
@@ -439,6 +446,15 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
     EXPECT_EQ(renderError(std::string(R"({"clump": )") + clump + "}"),
               "dir/bad.json: grooms[0].render.clump: expected a clump in [0, 1]")
         << clump;
+  EXPECT_EQ(renderError(R"({"curl": {"radius": 0.1}})"),
+            "dir/bad.json: grooms[0].render.curl.radius: expected a radius in [0, 0.05] metres");
+  EXPECT_EQ(renderError(R"({"curl": {"radius": 0.001, "period": 0}})"),
+            "dir/bad.json: grooms[0].render.curl.period: expected a length in [0.001, 10] metres per turn");
+  EXPECT_EQ(renderError(R"({"curl": {"radius": 0.001, "variation": 2}})"),
+            "dir/bad.json: grooms[0].render.curl.variation: expected a share in [0, 1]");
+  EXPECT_NE(renderError(R"({"curl": {"period": 0.01}})").find("grooms[0].render.curl.radius"), std::string::npos);
+  EXPECT_EQ(renderError(R"({"frizz": -1})"),
+            "dir/bad.json: grooms[0].render.frizz: expected a frizz in [0, 0.01] metres");
   EXPECT_EQ(renderError(R"({"strands": 2.5})"),
             "dir/bad.json: grooms[0].render.strands: expected an integer, got a fraction");
   const std::string typo = renderError(R"({"color": [1, 0, 0]})");
