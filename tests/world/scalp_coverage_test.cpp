@@ -38,9 +38,9 @@ struct View {
   glm::vec3 direction;  ///< from the head towards the camera
   glm::vec3 up;
   /// The share of the scalp's pixels the hair must change: what nalu's groom reaches
-  /// (docs/look.md), a little rounded down. The goal is 0.97 from every side, which the side and the back reach;
-  /// from the front the strip behind the hairline, which only the hair rooted in it covers, and
-  /// from above the parting keep the others below it.
+  /// (docs/look.md), a little rounded down. The goal is 0.97 from every side, which the side, the
+  /// back and the top reach; from the front the strip behind the hairline, which only the hair
+  /// rooted in it covers, keeps it below.
   double leastCoverage;
 };
 
@@ -134,10 +134,10 @@ TEST_F(ScalpCoverage, NalusHairHidesItsScalpFromEverySide) {
   auto bald = World::create(std::move(*bare), testing::sharedResolver());
   ASSERT_TRUE(bald.has_value()) << bald.error().message;
 
-  const std::array<View, 4> views{{{"front", {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, 0.91},
+  const std::array<View, 4> views{{{"front", {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, 0.93},
                                    {"side", {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.97},
                                    {"back", {0.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, 0.97},
-                                   {"top", {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 0.92}}};
+                                   {"top", {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 0.97}}};
   for (const View& view : views) {
     render::FrameInput frame = hairy->frameInput();
     frame.camera.position = target + view.direction * distance;

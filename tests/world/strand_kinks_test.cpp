@@ -94,15 +94,16 @@ std::vector<KinkShares> naluKinks(int verticesPerStrand, bool curled = false) {
   return result;
 }
 
-// What nalu's groom, laid over the head, reaches (docs/look.md), a little rounded up: 3.7 % as shipped,
-// none at all with three dense vertices per guide segment (the sharpest turn then 26°), against
+// What nalu's groom, laid over the head, reaches (docs/look.md), a little rounded up: 7.1 % as
+// shipped (3.7 % when it was parted twice as hard, which left the parting bare from above), none
+// at all with three dense vertices per guide segment (the sharpest turn then 24° to 26°), against
 // 61 % for straight segments.
 TEST(StrandKinks, NalusDrawnStrandsBendSmoothlyOnceSettled) {
   const std::vector<KinkShares> shipped = naluKinks(0);
   if (shipped.empty()) MANE_SKIP_FOR_MISSING_ASSET("nalu's head or groom is not on this machine");
   for (const KinkShares& kinks : shipped) {
     EXPECT_GT(kinks.guides, 0.5);  // the guides do kink: what this measures is the curve's doing
-    EXPECT_LE(kinks.drawn, 0.05);
+    EXPECT_LE(kinks.drawn, 0.08);
   }
   for (const KinkShares& kinks : naluKinks(46)) {
     EXPECT_LE(kinks.drawn, 0.001);
