@@ -1,8 +1,12 @@
 #include "physics/floating_debris.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <string>
+
+#include <glm/matrix.hpp>
 
 #include "physics/detail/hair_math.hpp"
 #include "physics/detail/portable_math.hpp"
@@ -18,10 +22,38 @@ float distance(const glm::vec3& a, const glm::vec3& b) {
   return std::sqrt(glm::dot(d, d));
 }
 
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// The obstacle's map back to the unit sphere, or nothing when it has none.
+std::optional<glm::mat4> unitSphereFromWorld(const DebrisObstacle& obstacle) {
+  const glm::mat4& m = obstacle.worldFromUnitSphere;
+  if (!finite(m)) return std::nullopt;
+  const float determinant = glm::determinant(glm::mat3(m));
+  if (!(std::abs(determinant) > 0.0f) || !std::isfinite(determinant)) return std::nullopt;
+  return glm::inverse(m);
+}
+
+// `point` moved onto the obstacle's surface along the line from its centre if it lies inside;
+// true when it did.
+bool pushOut(const DebrisObstacle& obstacle, const glm::mat4& toSphere, glm::vec3& point) {
+  const glm::vec3 q = glm::vec3(toSphere * glm::vec4(point, 1.0f));
+  const float squared = glm::dot(q, q);
+  if (!(squared < 1.0f)) return false;
+  // At the very centre any way out will do.
+  const glm::vec3 out = squared > 0.0f ? q / std::sqrt(squared) : glm::vec3(1.0f, 0.0f, 0.0f);
+  point = glm::vec3(obstacle.worldFromUnitSphere * glm::vec4(out, 1.0f));
+  return true;
+}
+
 }  // namespace
 
 Result<FloatingDebris> FloatingDebris::create(const FloatingDebrisSettings& settings, const OceanWaves& ocean,
-                                              double time) {
+                                              double time, const DebrisObstacle* obstacle) {
   const auto bad = [](const char* field, const char* expected) {
     return fail(std::string("debris: ") + field + " must be " + expected + ".");
   };
@@ -35,30 +67,46 @@ Result<FloatingDebris> FloatingDebris::create(const FloatingDebrisSettings& sett
   if (!(std::isfinite(settings.dragPerSecond) && settings.dragPerSecond >= 0.0f))
     return bad("dragPerSecond", "finite and ≥ 0");
   if (settings.constraintIterations < 1) return bad("constraintIterations", "at least 1");
+  std::optional<glm::mat4> toSphere;
+  if (obstacle) {
+    toSphere = unitSphereFromWorld(*obstacle);
+    if (!toSphere) return fail("debris: the obstacle's map from the unit sphere is not finite and invertible.");
+  }
 
   FloatingDebris debris(settings);
   SplitMix64 random(settings.seed);
   const auto count = static_cast<std::size_t>(settings.pieces);
   debris.positions_.reserve(3 * count);
   debris.restLengths_.reserve(3 * count);
+  constexpr int kPlacements = 16;
   for (std::size_t piece = 0; piece < count; ++piece) {
-    // Uniform over the disc: radius ∝ √u.
-    const double r = settings.radius * std::sqrt(static_cast<double>(random.nextFloat()));
-    const detail::SineCosine place = detail::sineCosine(kTwoPi * random.nextFloat());
-    const glm::vec2 centre = settings.centre + glm::vec2(float(r * place.cosine), float(r * place.sine));
-    const OceanSample water = ocean.surfaceAt(centre, time);
-    // A triangle with corners at three angles about its centre, each at half to all of the size.
-    const double turn = kTwoPi * random.nextFloat();
-    for (int corner = 0; corner < 3; ++corner) {
-      const double angle = turn + kTwoPi * corner / 3.0 + 0.6 * (random.nextFloat() - 0.5f);
-      const float reach = settings.size * (0.3f + 0.28f * random.nextFloat());
-      const detail::SineCosine a = detail::sineCosine(angle);
-      const glm::vec2 offset(float(reach * a.cosine), float(reach * a.sine));
-      const glm::vec3 n = water.normal;
-      const float lift =
-          -(n.x * offset.x + n.z * offset.y) / n.y + (0.5f - settings.relativeDensity) * settings.thickness;
-      debris.positions_.push_back(water.position + glm::vec3(offset.x, lift, offset.y));
+    std::array<glm::vec3, 3> corners;
+    for (int attempt = 0; attempt < kPlacements; ++attempt) {
+      // Uniform over the disc: radius ∝ √u.
+      const double r = settings.radius * std::sqrt(static_cast<double>(random.nextFloat()));
+      const detail::SineCosine place = detail::sineCosine(kTwoPi * random.nextFloat());
+      const glm::vec2 centre = settings.centre + glm::vec2(float(r * place.cosine), float(r * place.sine));
+      const OceanSample water = ocean.surfaceAt(centre, time);
+      // A triangle with corners at three angles about its centre, each at half to all of the size.
+      const double turn = kTwoPi * random.nextFloat();
+      for (int corner = 0; corner < 3; ++corner) {
+        const double angle = turn + kTwoPi * corner / 3.0 + 0.6 * (random.nextFloat() - 0.5f);
+        const float reach = settings.size * (0.3f + 0.28f * random.nextFloat());
+        const detail::SineCosine a = detail::sineCosine(angle);
+        const glm::vec2 offset(float(reach * a.cosine), float(reach * a.sine));
+        const glm::vec3 n = water.normal;
+        const float lift =
+            -(n.x * offset.x + n.z * offset.y) / n.y + (0.5f - settings.relativeDensity) * settings.thickness;
+        corners[corner] = water.position + glm::vec3(offset.x, lift, offset.y);
+      }
+      if (!toSphere) break;
+      bool inside = false;
+      for (glm::vec3 corner : corners) inside = pushOut(*obstacle, *toSphere, corner) || inside;
+      if (!inside) break;
+      if (attempt + 1 == kPlacements)
+        for (glm::vec3& corner : corners) pushOut(*obstacle, *toSphere, corner);
     }
+    debris.positions_.insert(debris.positions_.end(), corners.begin(), corners.end());
     const glm::vec3* p = debris.positions_.data() + 3 * piece;
     debris.restLengths_.push_back(distance(p[0], p[1]));
     debris.restLengths_.push_back(distance(p[1], p[2]));
@@ -69,8 +117,9 @@ Result<FloatingDebris> FloatingDebris::create(const FloatingDebrisSettings& sett
   return debris;
 }
 
-void FloatingDebris::step(const OceanWaves& ocean, double time, float dt) {
+void FloatingDebris::step(const OceanWaves& ocean, double time, float dt, const DebrisObstacle* obstacle) {
   const FloatingDebrisSettings& s = settings_;
+  const std::optional<glm::mat4> toSphere = obstacle ? unitSphereFromWorld(*obstacle) : std::nullopt;
   const float lift = kOceanGravity / s.relativeDensity;
   for (std::size_t piece = 0; piece * 3 < positions_.size(); ++piece) {
     glm::vec3* p = positions_.data() + 3 * piece;
@@ -103,6 +152,9 @@ void FloatingDebris::step(const OceanWaves& ocean, double time, float dt) {
         b -= correction;
       }
     }
+    // Last, so that no corner ends the step inside it.
+    if (toSphere)
+      for (int corner = 0; corner < 3; ++corner) pushOut(*obstacle, *toSphere, p[corner]);
   }
 }
 

@@ -9,6 +9,10 @@
 // rests where s = d: (½ − d) × thickness above the surface. The surface under a piece is found
 // once a step at its centroid (OceanWaves::surfaceAt) and taken as the plane of the water's
 // normal there for its three corners.
+//
+// A floating body may stand among them as an ellipsoid (a ship's hull): no piece is strewn where
+// a corner would lie inside it, and a corner that drifts in is put back on its surface, along the
+// line from its centre.
 
 #include <cstdint>
 #include <span>
@@ -16,6 +20,7 @@
 
 #include <glm/vec2.hpp>
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
@@ -35,15 +40,24 @@ struct FloatingDebrisSettings {
   int constraintIterations = 4;  ///< ≥ 1
 };
 
+/// An ellipsoid the debris keeps out of: the unit sphere carried into the world by
+/// `worldFromUnitSphere`, an invertible affine map (finite, its determinant not 0).
+struct DebrisObstacle {
+  glm::mat4 worldFromUnitSphere{1.0f};
+};
+
 class FloatingDebris {
 public:
-  /// The pieces, each lying still on the sea's surface at `time`, in the plane of its normal there.
-  /// Fails on settings out of the documented ranges, naming the field.
+  /// The pieces, each lying still on the sea's surface at `time`, in the plane of its normal
+  /// there, and outside `obstacle` where given (a piece whose corners would fall inside it is
+  /// strewn again, up to 16 times, then pushed out where the last try put it). Fails on settings
+  /// out of the documented ranges or an obstacle that is not invertible, naming it.
   [[nodiscard]] static Result<FloatingDebris> create(const FloatingDebrisSettings& settings, const OceanWaves& ocean,
-                                                     double time);
+                                                     double time, const DebrisObstacle* obstacle = nullptr);
 
-  /// Advances by `dt` seconds (> 0) on `ocean` as it is at `time`.
-  void step(const OceanWaves& ocean, double time, float dt);
+  /// Advances by `dt` seconds (> 0) on `ocean` as it is at `time`, keeping every corner out of
+  /// `obstacle` (as it stands at `time`; invertible) where given.
+  void step(const OceanWaves& ocean, double time, float dt, const DebrisObstacle* obstacle = nullptr);
 
   /// The pieces' corners, three per piece.
   [[nodiscard]] std::span<const glm::vec3> corners() const { return positions_; }

@@ -111,7 +111,8 @@ Result<SceneOcean> SceneOcean::create(const Scene& scene, const Mesh* shipMesh, 
   if (scene.ocean->debris) {
     physics::FloatingDebrisSettings settings = *scene.ocean->debris;
     settings.centre = ocean.foamCentre_;
-    auto debris = physics::FloatingDebris::create(settings, ocean.waves_, 0.0);
+    const std::optional<physics::DebrisObstacle> hull = ocean.hullObstacle();
+    auto debris = physics::FloatingDebris::create(settings, ocean.waves_, 0.0, hull ? &*hull : nullptr);
     if (!debris) return fail("ocean: " + debris.error().message);
     ocean.debris_ = std::move(*debris);
   }
@@ -211,7 +212,10 @@ void SceneOcean::step(double time, float dt) {
     smoke_->step(dt, wind_);
   }
   cannonFired_ = false;
-  if (debris_) debris_->step(waves_, time, dt);
+  if (debris_) {
+    const std::optional<physics::DebrisObstacle> hull = hullObstacle();
+    debris_->step(waves_, time, dt, hull ? &*hull : nullptr);
+  }
 }
 
 void SceneOcean::throwSpray(float dt) {
@@ -318,13 +322,18 @@ render::OceanFrame SceneOcean::frame(double time, float seconds) const {
       frame.foamSources.emplace_back(contact.rest.x, contact.rest.y, kWakeFoamRadius,
                                      kWakeFoamPerSecond + kWakeFoamPerCut * contact.cutSpeed);
     frame.reflector =
-        render::OceanReflector{.worldFromUnitSphere = shipModel() * hullEllipsoid_, .albedo = hullAlbedo_};
+        render::OceanReflector{.worldFromUnitSphere = hullObstacle()->worldFromUnitSphere, .albedo = hullAlbedo_};
   }
   return frame;
 }
 
 glm::mat4 SceneOcean::shipBody() const {
   return ship_->transform() * glm::translate(glm::mat4(1.0f), -centreOfMass_);
+}
+
+std::optional<physics::DebrisObstacle> SceneOcean::hullObstacle() const {
+  if (!ship_) return std::nullopt;
+  return physics::DebrisObstacle{.worldFromUnitSphere = shipModel() * hullEllipsoid_};
 }
 
 glm::mat4 SceneOcean::shipModel() const {

@@ -61,6 +61,9 @@ public:
   [[nodiscard]] std::optional<std::size_t> shipMesh() const { return ship_ ? std::optional(shipIndex_) : std::nullopt; }
   /// The ship's mesh's model matrix now, and its body frame (the same without the scale).
   [[nodiscard]] glm::mat4 shipModel() const;
+  /// The ellipsoid inscribed in the hull's bounds where the ship is now, which the debris keeps
+  /// out of and the water reflects; none without a ship.
+  [[nodiscard]] std::optional<physics::DebrisObstacle> hullObstacle() const;
   [[nodiscard]] glm::mat4 shipBody() const;
   [[nodiscard]] const physics::FloatingBody* ship() const { return ship_ ? &*ship_ : nullptr; }
   [[nodiscard]] const physics::EffectParticles* spray() const { return spray_ ? &*spray_ : nullptr; }

@@ -2,8 +2,10 @@
 //
 // Oracles: in calm water a corner rests where its submerged share equals the wood's relative
 // density, (½ − d) × thickness above the surface; the pieces keep their shape (rest lengths);
-// on a wave they ride the surface; and equal settings give equal bits.
+// on a wave they ride the surface; none lies inside a body among them; and equal settings give
+// equal bits.
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -11,6 +13,8 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
 #include "physics/floating_debris.hpp"
@@ -97,6 +101,46 @@ TEST(FloatingDebris, EqualSettingsGiveEqualBits) {
     b->step(*sea, 3.0 + i / 60.0, 1.0f / 60.0f);
   }
   EXPECT_EQ(std::memcmp(a->corners().data(), b->corners().data(), a->corners().size_bytes()), 0);
+}
+
+// Where the disc's middle is a body's ellipsoid (a hull 30 m × 8 m × 6 m, bobbing a metre and
+// turning as it rides for ten seconds), none of the pieces is strewn inside it and no corner ends a step inside
+// it: each lies at 1 or more in the ellipsoid's own unit-sphere coordinates (less float rounding).
+TEST(FloatingDebris, APieceNeverLiesInsideTheBodyAmongThem) {
+  const auto sea = OceanWaves::create({.windSpeed = 12.0f});
+  ASSERT_TRUE(sea);
+  const auto hullAt = [](double t) {
+    const float bob = float(std::sin(0.8 * t)), yaw = 0.3f * float(std::sin(0.2 * t));
+    const glm::mat4 placed =
+        glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(5.0f, bob, -3.0f)), yaw, glm::vec3(0.0f, 1.0f, 0.0f));
+    return DebrisObstacle{.worldFromUnitSphere = glm::scale(placed, glm::vec3(15.0f, 3.0f, 4.0f))};
+  };
+  const auto deepest = [&](const FloatingDebris& debris, double t) {
+    const glm::mat4 toSphere = glm::inverse(hullAt(t).worldFromUnitSphere);
+    float least = 1e9f;
+    for (const glm::vec3& c : debris.corners())
+      least = std::min(least, glm::length(glm::vec3(toSphere * glm::vec4(c, 1.0f))));
+    return least;
+  };
+  FloatingDebrisSettings settings = pieces();
+  settings.pieces = 100;
+  const DebrisObstacle start = hullAt(0.0);
+  auto debris = FloatingDebris::create(settings, *sea, 0.0, &start);
+  ASSERT_TRUE(debris) << debris.error().message;
+  EXPECT_GE(deepest(*debris, 0.0), 1.0f - 1e-5f) << "strewn inside the body";
+  auto without = FloatingDebris::create(settings, *sea, 0.0);
+  ASSERT_TRUE(without);
+  EXPECT_LT(deepest(*without, 0.0), 1.0f) << "the test's disc should reach into the body";
+  float least = 1e9f;
+  for (int i = 1; i <= 60 * 10; ++i) {
+    const double t = i / 60.0;
+    const DebrisObstacle hull = hullAt(t);
+    debris->step(*sea, t, 1.0f / 60.0f, &hull);
+    least = std::min(least, deepest(*debris, t));
+  }
+  EXPECT_GE(least, 1.0f - 1e-5f) << "a corner ended a step inside the body";
+  const DebrisObstacle flat{.worldFromUnitSphere = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, 0.0f, 1.0f))};
+  EXPECT_FALSE(FloatingDebris::create(settings, *sea, 0.0, &flat)) << "an obstacle flattened to a disc";
 }
 
 TEST(FloatingDebris, RefusesSettingsOutOfRangeByName) {

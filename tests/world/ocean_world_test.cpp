@@ -101,10 +101,14 @@ TEST(OceanWorld, TheRiggingRidesTheHullAndTheDebrisFloatsRoundIt) {
   EXPECT_NEAR(middle.x * scale, 0.0f, 0.05f);
   ASSERT_EQ(input.effects.triangles.size(), std::size_t(scene.ocean->debris->pieces));
   const physics::OceanWaves& sea = world.ocean()->waves();
+  const glm::mat4 sphereFromWorld = glm::inverse(input.ocean->reflector->worldFromUnitSphere);
   for (const render::EffectTriangle& piece : input.effects.triangles) {
     const glm::vec3 centroid = (piece.corners[0] + piece.corners[1] + piece.corners[2]) / 3.0f;
     const float surface = sea.surfaceAt({centroid.x, centroid.z}, world.time()).position.y;
     EXPECT_LT(std::abs(centroid.y - surface), 0.3f);
+    // Round it: outside the hull's ellipsoid.
+    for (const glm::vec3& corner : piece.corners)
+      EXPECT_GE(glm::length(glm::vec3(sphereFromWorld * glm::vec4(corner, 1.0f))), 1.0f - 1e-4f);
   }
 }
 
