@@ -22,17 +22,10 @@ float distance(const glm::vec3& a, const glm::vec3& b) {
   return std::sqrt(glm::dot(d, d));
 }
 
-bool finite(const glm::mat4& m) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(m[c][r])) return false;
-  return true;
-}
-
 // The obstacle's map back to the unit sphere, or nothing when it has none.
 std::optional<glm::mat4> unitSphereFromWorld(const DebrisObstacle& obstacle) {
   const glm::mat4& m = obstacle.worldFromUnitSphere;
-  if (!finite(m)) return std::nullopt;
+  if (!detail::isFinite(m)) return std::nullopt;
   const float determinant = glm::determinant(glm::mat3(m));
   if (!(std::abs(determinant) > 0.0f) || !std::isfinite(determinant)) return std::nullopt;
   return glm::inverse(m);
@@ -41,12 +34,12 @@ std::optional<glm::mat4> unitSphereFromWorld(const DebrisObstacle& obstacle) {
 // `point` moved onto the obstacle's surface along the line from its centre if it lies inside;
 // true when it did.
 bool pushOut(const DebrisObstacle& obstacle, const glm::mat4& toSphere, glm::vec3& point) {
-  const glm::vec3 q = glm::vec3(toSphere * glm::vec4(point, 1.0f));
+  const glm::vec3 q = detail::transformPoint(toSphere, point);
   const float squared = glm::dot(q, q);
   if (!(squared < 1.0f)) return false;
   // At the very centre any way out will do.
   const glm::vec3 out = squared > 0.0f ? q / std::sqrt(squared) : glm::vec3(1.0f, 0.0f, 0.0f);
-  point = glm::vec3(obstacle.worldFromUnitSphere * glm::vec4(out, 1.0f));
+  point = detail::transformPoint(obstacle.worldFromUnitSphere, out);
   return true;
 }
 

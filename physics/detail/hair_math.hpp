@@ -1,6 +1,6 @@
 #pragma once
 // Small exact helpers shared by the hair system's setup (hair.cpp) and its step
-// (hair_step.cpp), the cloth's wind and the floating body: points, quaternions as (x, y, z, w),
+// (hair_step.cpp), the cloth's wind, the floating body and the debris: points, quaternions as (x, y, z, w),
 // rotations. Only + − × ÷ and sqrt, no
 // libm trigonometry, so they give the same bits everywhere (docs/design.md#determinism).
 
@@ -14,6 +14,13 @@ namespace mane::physics::detail {
 
 inline bool isFinite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+inline bool isFinite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
 }
 
 inline glm::vec3 transformPoint(const glm::mat4& m, const glm::vec3& p) {
