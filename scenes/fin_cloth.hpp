@@ -1,5 +1,5 @@
 #pragma once
-// A fin to simulate as cloth: rays fanning from a root, a pleated membrane between them, its edge
+// A fin to simulate as cloth: rays fanning from a root, a membrane folded along them, its edge
 // cut back between the rays' tips (the seed's fins are cloth, any mesh made so by constraining
 // its edges). Shape holds keep the rays where the body holds them, so that the membrane ripples
 // between rays that keep the fin open.
@@ -13,8 +13,8 @@
 
 namespace mane::scenes {
 
-/// Four membrane columns between two rays: enough for its pleat to curve, so that smooth normals
-/// shade the folds.
+/// Four membrane columns between two rays: each ray's ridge then spans a quarter of the gap on
+/// either side, narrow enough that smooth normals shade it as a line.
 inline constexpr int kFinColumnsPerGap = 4;
 
 struct FinCloth {
