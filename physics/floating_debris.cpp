@@ -10,7 +10,7 @@
 
 #include "physics/detail/hair_math.hpp"
 #include "physics/detail/portable_math.hpp"
-#include "physics/groom_generator.hpp"
+#include "physics/split_mix64.hpp"
 
 namespace mane::physics {
 namespace {

@@ -2,9 +2,8 @@
 // Procedural guide grooms for tests, benchmarks and the built-in demo content: roots scattered
 // over a spherical scalp cap, strands growing straight out of the scalp or as helical curls.
 //
-// Deterministic for a seed on every platform: the random numbers come from splitmix64 (Steele,
-// Lea & Flood 2014, "Fast Splittable Pseudorandom Number Generators"; the constants of Vigna's
-// reference implementation), floats are made from its top 24 bits, and the geometry uses only
+// Deterministic for a seed on every platform: the random numbers come from splitmix64
+// (physics/split_mix64.hpp), floats are made from its top 24 bits, and the geometry uses only
 // + − × ÷ and sqrt (all correctly rounded by IEEE 754) — no std::uniform_real_distribution
 // (implementation-defined) and no libm trigonometry (which may differ between libraries).
 
@@ -16,32 +15,9 @@
 #include <glm/vec3.hpp>
 
 #include "common/error.hpp"
+#include "physics/split_mix64.hpp"
 
 namespace mane::physics {
-
-/// splitmix64: a 64-bit state advanced by a Weyl increment and scrambled by two xor-shift-
-/// multiply rounds. Tiny, fast, passes BigCrush, and fully specified by its constants.
-class SplitMix64 {
-public:
-  explicit SplitMix64(std::uint64_t seed) noexcept : state_(seed) {}
-
-  /// Next 64 random bits.
-  std::uint64_t next() noexcept {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-
-  /// Uniform float in [0, 1): the top 24 bits of `next()` times 2⁻²⁴ (exact in a float).
-  float nextFloat() noexcept { return static_cast<float>(next() >> 40) * 0x1.0p-24f; }
-
-  /// Uniform float in [lo, hi).
-  float nextFloat(float lo, float hi) noexcept { return lo + (hi - lo) * nextFloat(); }
-
-private:
-  std::uint64_t state_;
-};
 
 /// Parameters of a procedural groom. Lengths in metres, angles in radians.
 struct GroomSettings {

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "physics/detail/parallel_tasks.hpp"
-#include "physics/groom_generator.hpp"
+#include "physics/split_mix64.hpp"
 
 namespace mane::physics {
 

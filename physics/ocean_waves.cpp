@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "physics/detail/portable_math.hpp"
-#include "physics/groom_generator.hpp"
+#include "physics/split_mix64.hpp"
 
 namespace mane::physics {
 

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "physics/groom_generator.hpp"
+#include "physics/split_mix64.hpp"
 
 namespace mane::scenes {
 namespace {

@@ -14,7 +14,7 @@
 #include "physics/effect_particles.hpp"
 #include "physics/floating_body.hpp"
 #include "physics/floating_debris.hpp"
-#include "physics/groom_generator.hpp"
+#include "physics/split_mix64.hpp"
 #include "physics/hash.hpp"
 #include "physics/ocean_waves.hpp"
 #include "physics/solver.hpp"
