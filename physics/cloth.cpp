@@ -319,13 +319,15 @@ Result<void> Cloth::advanceWith(double frameDt, const TaskRunner& tasks) {
   const auto runPhase = [&](auto&& phase) {
     if (auto done = detail::runTasks(tasks, workers, phase); !done && ran) ran = std::move(done);
   };
-  // Colliders live in body space: particles are taken there with the step's body placement
-  // (the two frame-end placements blended; exact at the frame's end), collided, and brought back.
+  // The body's placement at fraction t of the frame: the two frame-end placements blended (exact
+  // at the frame's end). Colliders live in body space: particles are taken there with the step's
+  // placement, collided, and brought back; shape holds pull towards it.
+  const auto placementAt = [&](float t) { return previousBody_ + (body_ - previousBody_) * t; };
   std::vector<glm::mat4> bodyAt, worldToBody;
   if (!colliders_.empty())
     for (int k = 0; k <= plan.substeps; ++k) {
       const float t = k == 0 ? 0.0f : plan.fractionAt(k);
-      bodyAt.push_back(previousBody_ + (body_ - previousBody_) * t);
+      bodyAt.push_back(placementAt(t));
       worldToBody.push_back(glm::inverse(bodyAt.back()));
     }
   auto collide = [&](int k, std::size_t first, std::size_t end, bool withFriction) {
@@ -372,7 +374,7 @@ Result<void> Cloth::advanceWith(double frameDt, const TaskRunner& tasks) {
       if (!colliders_.empty()) collide(k, first, end, true);
     });
     if (!shapeHolds_.empty()) {
-      const glm::mat4 placement = previousBody_ + (body_ - previousBody_) * t;
+      const glm::mat4 placement = placementAt(t);
       for (std::size_t h = 0; h < shapeHolds_.size(); ++h) {
         glm::vec3& position = particles_.positions[shapeHolds_[h].vertex];
         position += (transformPoint(placement, heldLocal_[h]) - position) * shapeHolds_[h].stiffness;
