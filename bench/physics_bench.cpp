@@ -480,7 +480,7 @@ void BM_FloatingBody(benchmark::State& state) {
   if (!body) return state.SkipWithError(body.error().message.c_str());
   double time = 0.0;
   for (auto _ : state) {
-    body->step(*ocean, time, 1.0f / 120.0f, glm::vec3(0.0f));
+    if (!body->step(*ocean, time, 1.0f / 120.0f, glm::vec3(0.0f))) return state.SkipWithError("the step failed");
     time += 1.0 / 120.0;
   }
 }

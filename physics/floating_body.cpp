@@ -9,11 +9,16 @@
 #include <glm/common.hpp>
 
 #include "physics/detail/hair_math.hpp"
+#include "physics/detail/parallel_tasks.hpp"
 #include "physics/detail/portable_math.hpp"
 
 namespace mane::physics {
 
 namespace {
+
+// A column's water takes a few evaluations of every wave: a handful of columns outweigh a task's
+// start.
+constexpr std::size_t kColumnsPerTask = 8;
 
 float dot(const glm::vec3& a, const glm::vec3& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
@@ -109,7 +114,8 @@ FloatingBody::FloatingBody(FloatingBodySettings settings, std::vector<Column> co
   state_.height = settings_.position.y;
 }
 
-void FloatingBody::step(const OceanWaves& ocean, double time, float dt, const glm::vec3& wind) {
+Result<void> FloatingBody::step(const OceanWaves& ocean, double time, float dt, const glm::vec3& wind,
+                                const TaskRunner& tasks) {
   const glm::mat3 turn = rotation(settings_.heading, state_.pitch, state_.roll);
   const glm::vec3 centre(settings_.position.x, state_.height, settings_.position.z);
   // ω = ṗ·(heading's z) + ṙ·(heading·pitch's x): exact for this order of turns.
@@ -120,12 +126,24 @@ void FloatingBody::step(const OceanWaves& ocean, double time, float dt, const gl
 
   const float gravity = kOceanGravity;
   const float rho = settings_.waterDensity;
+  // Finding the water over each column is most of a step, and each column's is its own; the
+  // forces are then summed in the columns' order, so the sum does not depend on the tasks.
+  columnWater_.resize(columns_.size());
+  const std::uint32_t taskCount = detail::taskCountFor(tasks, columns_.size(), kColumnsPerTask);
+  auto findWater = [&](std::uint32_t task) {
+    const std::size_t end = detail::taskRangeBegin(columns_.size(), taskCount, task + 1);
+    for (std::size_t c = detail::taskRangeBegin(columns_.size(), taskCount, task); c < end; ++c) {
+      const glm::vec3 axis = centre + turn * columns_[c].axis;
+      columnWater_[c] = ocean.surfaceAt({axis.x, axis.z}, time);
+    }
+  };
+  const Result<void> found = detail::runTasks(tasks, taskCount, findWater);
   glm::vec3 force(0.0f, -settings_.mass * gravity, 0.0f);
   glm::vec3 torque(0.0f);
   waterline_.clear();
-  for (const Column& column : columns_) {
-    const glm::vec3 axis = centre + turn * column.axis;
-    const OceanSample water = ocean.surfaceAt({axis.x, axis.z}, time);
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    const Column& column = columns_[c];
+    const OceanSample& water = columnWater_[c];
     if (column.outward != glm::vec3(0.0f)) recordWaterline(column, turn, centre, angularVelocity, water);
     for (std::size_t i = column.first; i < column.end; ++i) {
       const HullCell& cell = settings_.hull[i];
@@ -157,6 +175,8 @@ void FloatingBody::step(const OceanWaves& ocean, double time, float dt, const gl
   state_.height += dt * state_.heaveVelocity;
   state_.pitch += dt * state_.pitchRate;
   state_.roll += dt * state_.rollRate;
+  if (!found) return fail("floating body: " + found.error().message);
+  return {};
 }
 
 void FloatingBody::recordWaterline(const Column& column, const glm::mat3& turn, const glm::vec3& centre,

@@ -27,6 +27,7 @@
 
 #include "common/error.hpp"
 #include "physics/ocean_waves.hpp"
+#include "physics/task_runner.hpp"
 
 namespace mane::physics {
 
@@ -77,7 +78,10 @@ public:
   [[nodiscard]] static Result<FloatingBody> create(FloatingBodySettings settings);
 
   /// Advances by `dt` seconds on `ocean` as it is at `time`, with air moving at `wind` (m/s).
-  void step(const OceanWaves& ocean, double time, float dt, const glm::vec3& wind);
+  /// The sea's surface over the columns is found on `tasks` (by default on this thread); the
+  /// state does not depend on them. Errors: a failing runner, named (the step is still whole).
+  [[nodiscard]] Result<void> step(const OceanWaves& ocean, double time, float dt, const glm::vec3& wind,
+                                  const TaskRunner& tasks = {});
 
   /// Body to world.
   [[nodiscard]] glm::mat4 transform() const;
@@ -113,6 +117,7 @@ private:
   std::vector<Column> columns_;
   FloatingBodyState state_;
   std::vector<WaterlineContact> waterline_;
+  std::vector<OceanSample> columnWater_;  // the sea's surface over each column, this step
   float pitchInertia_;
   float rollInertia_;
 };

@@ -99,8 +99,8 @@ public:
   [[nodiscard]] OceanSample sample(glm::vec2 rest, double time) const;
 
   /// The water found at `position` = (x, z) at `time`: the rest point whose water lies over
-  /// `position`, found by at most kSurfaceSteps steps of Newton's method (to a millimetre or
-  /// better wherever the surface is not about to fold, J > 0.2). Its `position.y` is the sea's
+  /// `position`, found by at most kSurfaceSteps steps of Newton's method (to a tenth of a
+  /// millimetre wherever the surface is not about to fold, J > 0.2). Its `position.y` is the sea's
   /// height there. Where the surface folds over, one of the waters found there.
   [[nodiscard]] OceanSample surfaceAt(glm::vec2 position, double time) const;
 

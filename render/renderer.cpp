@@ -462,11 +462,13 @@ void Renderer::record(const vk::raii::CommandBuffer& commands, const FrameInput&
         const FramePlan& plan = plan_;
         target_.beginScenePart(c, plan.scene, plan.background, plan.skinDeferred);
         if (plan.skinDeferred) deferredSkin_.drawLighting(c, frame);
-        if (environment_) environment_->draw(c, frame.camera, target_.extent());
-        if (ocean_) ocean_->draw(c, scene_.frameSet(), target_.extent());
-        discs_.draw(c, frame.camera, frame.lights, target_.extent());
+        // Nearest first, so that lavapipe's early depth test skips the blocks they hide: the
+        // opaque surfaces, the sea, then the sky behind them all and the light discs in it.
         surfaces_.draw(c, frame, plan.skinDeferred);
         furs_.draw(c);
+        if (ocean_) ocean_->draw(c, scene_.frameSet(), target_.extent());
+        if (environment_) environment_->draw(c, frame.camera, target_.extent());
+        discs_.draw(c, frame.camera, frame.lights, target_.extent());
         if (effects_) effects_->draw(c, scene_.frameSet(), target_.extent());
         if (plan.hairBeforeMainPass) {
           timer_.handOff(c);

@@ -534,7 +534,7 @@ struct SimulationSettings {
 /// drawn on a projected grid (render/passes/ocean_pass.hpp).
 struct Ocean {
   physics::OceanSettings waves;
-  int grid = 150;                               ///< cells across and down the screen, 16 … 1024
+  glm::ivec2 grid{150, 150};                    ///< cells across and down the screen, 16 … 1024 each
   float reach = 20000.0f;                       ///< metres the grid reaches from the eye
   glm::vec3 waterColour{0.006f, 0.03f, 0.04f};  ///< light sent up from below, per unit of light
   float fresnelPower = 3.0f;                    ///< 1 … 5

@@ -182,15 +182,21 @@ Result<void> SceneOcean::setWindSpeed(float speed) {
   return {};
 }
 
-void SceneOcean::advance(double time, double frameDt) {
+Result<void> SceneOcean::advance(double time, double frameDt, unsigned threads) {
   const physics::StepPlan plan = steps_->plan(frameDt);
   const double start = time - frameDt;
-  for (int k = 1; k <= plan.substeps; ++k)
-    step(start + plan.fractionAt(k) * frameDt, static_cast<float>(plan.fixedStep));
+  const physics::TaskRunner tasks = physics::builtInTaskRunner(threads);
+  Result<void> stepped;
+  for (int k = 1; k <= plan.substeps; ++k) {
+    Result<void> step = this->step(start + plan.fractionAt(k) * frameDt, static_cast<float>(plan.fixedStep), tasks);
+    if (!step && stepped) stepped = std::move(step);
+  }
+  return stepped;
 }
 
-void SceneOcean::step(double time, float dt) {
-  if (ship_) ship_->step(waves_, time, dt, wind_);
+Result<void> SceneOcean::step(double time, float dt, const physics::TaskRunner& tasks) {
+  Result<void> stepped;
+  if (ship_) stepped = ship_->step(waves_, time, dt, wind_, tasks);
   if (spray_) {
     throwSpray(dt);
     spray_->step(dt, wind_);
@@ -216,6 +222,7 @@ void SceneOcean::step(double time, float dt) {
     const std::optional<physics::DebrisObstacle> hull = hullObstacle();
     debris_->step(waves_, time, dt, hull ? &*hull : nullptr);
   }
+  return stepped;
 }
 
 void SceneOcean::throwSpray(float dt) {
@@ -291,7 +298,7 @@ render::OceanData SceneOcean::oceanData() const {
   for (const physics::GerstnerWave& w : waves_.waves())
     data.waves.emplace_back(w.direction.x, w.direction.y, w.wavenumber, w.amplitude);
   data.choppiness = waves_.choppiness();
-  data.grid = glm::uvec2(static_cast<std::uint32_t>(settings_.grid));
+  data.grid = glm::uvec2(settings_.grid);
   data.reach = settings_.reach;
   data.waterColor = settings_.waterColour;
   data.fresnelPower = settings_.fresnelPower;

@@ -36,8 +36,9 @@ public:
   [[nodiscard]] static Result<SceneOcean> create(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex);
 
   /// Steps the ship, its spray and smoke and the debris over the frame that ends at `time`,
-  /// lasting `frameDt` seconds.
-  void advance(double time, double frameDt);
+  /// lasting `frameDt` seconds, the ship's water found on `threads` workers (the state does not
+  /// depend on them). Errors: the worker pool's, named (the frame is still stepped whole).
+  [[nodiscard]] Result<void> advance(double time, double frameDt, unsigned threads);
   /// A sea grown by a wind of `speed` m/s from now on, blowing the same way; the waves change at
   /// once. Errors: a speed the waves refuse.
   [[nodiscard]] Result<void> setWindSpeed(float speed);
@@ -77,7 +78,7 @@ public:
 private:
   SceneOcean(const Scene& scene, physics::OceanWaves waves);
   [[nodiscard]] Result<void> addShip(const Scene& scene, const Mesh* shipMesh, std::size_t shipIndex);
-  void step(double time, float dt);
+  [[nodiscard]] Result<void> step(double time, float dt, const physics::TaskRunner& tasks);
   void throwSpray(float dt);
   void shoot();
 

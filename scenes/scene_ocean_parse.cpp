@@ -73,7 +73,19 @@ Ocean parseOcean(const nlohmann::json& json, const std::string& path) {
   const int seed = fields.optional<int>("seed", static_cast<int>(waves.seed));
   require(seed >= 0, fields.child("seed"), "expected a seed ≥ 0");
   waves.seed = static_cast<std::uint64_t>(seed);
-  ocean.grid = fields.optional<int>("grid", ocean.grid);
+  if (const nlohmann::json* grid = fields.take("grid")) {
+    // One count for both ways, or [across, down].
+    const std::string where = fields.child("grid");
+    const char* expected = "expected 16 to 1024 cells, or [across, down] of 16 to 1024 each";
+    require(!grid->is_array() || grid->size() == 2, where, expected);
+    const glm::vec2 cells = grid->is_array() ? glm::vec2(read<float>((*grid)[0], indexPath(where, 0)),
+                                                         read<float>((*grid)[1], indexPath(where, 1)))
+                                             : glm::vec2(read<float>(*grid, where));
+    for (int axis = 0; axis < 2; ++axis)
+      require(cells[axis] == std::floor(cells[axis]) && cells[axis] >= 16.0f && cells[axis] <= 1024.0f, where,
+              expected);
+    ocean.grid = glm::ivec2(cells);
+  }
   ocean.reach = fields.optional<float>("reach", ocean.reach);
   ocean.waterColour = fields.optional<glm::vec3>("water_colour", ocean.waterColour);
   ocean.fresnelPower = fields.optional<float>("fresnel_power", ocean.fresnelPower);
@@ -101,7 +113,6 @@ Ocean parseOcean(const nlohmann::json& json, const std::string& path) {
   if (const nlohmann::json* debris = fields.take("debris")) ocean.debris = parseDebris(*debris, fields.child("debris"));
   fields.finish();
   if (auto valid = physics::validateOcean(waves); !valid) throw FieldError{path, valid.error().message};
-  require(ocean.grid >= 16 && ocean.grid <= 1024, fields.child("grid"), "expected 16 to 1024 cells");
   require(ocean.reach > 0.0f, fields.child("reach"), "expected metres > 0");
   requireColour(fields, "water_colour", ocean.waterColour);
   require(ocean.fresnelPower >= 1.0f && ocean.fresnelPower <= 5.0f, fields.child("fresnel_power"),

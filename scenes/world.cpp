@@ -602,7 +602,9 @@ Result<void> World::showTime(double time) {
 
 Result<void> World::simulate(double frameDt, unsigned threads) {
   // The ship first: what rides on it follows where it is at the end of the frame.
-  if (ocean_) ocean_->advance(time_, frameDt);
+  if (ocean_)
+    if (auto advanced = ocean_->advance(time_, frameDt, threads); !advanced)
+      return fail("ocean: " + advanced.error().message);
   std::vector<glm::vec3> targets, normals;
   for (SimulatedGroom& groom : grooms_) {
     const std::string& name = scene_.grooms[groom.sceneGroom].name;

@@ -11,26 +11,30 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 1, r32f) uniform image2D foamMap;
 
+// Each invocation updates a run of kJacobianRun texels along x.
 void main() {
-  ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 first = ivec2(gl_GlobalInvocationID.x * kJacobianRun, gl_GlobalInvocationID.y);
   int side = int(ocean.foamMap.w);
-  if (texel.x >= side || texel.y >= side) return;
+  if (first.x >= side || first.y >= side) return;
   float metresPerTexel = 1.0 / (ocean.foamMap.z * float(side));
-  vec2 rest = ocean.foamMap.xy + (vec2(texel) + 0.5) * metresPerTexel;
-  float breaking = 0.0;
-  if (ocean.foamStep.y > 0.0) {
-    OceanPoint point = oceanWaves(rest, metresPerTexel);
-    breaking = clamp((ocean.foam.a - point.jacobian) / 0.2, 0.0, 1.0);
-  }
-  float laid = 0.0;
+  vec2 firstRest = ocean.foamMap.xy + (vec2(first) + 0.5) * metresPerTexel;
+  float jacobians[kJacobianRun];
+  if (ocean.foamStep.y > 0.0) oceanJacobianRun(firstRest, metresPerTexel, metresPerTexel, jacobians);
   int sources = int(ocean.foamStep.z);
-  for (int i = 0; i < sources; ++i) {
-    vec4 source = ocean.foamSources[i];
-    vec2 d = rest - source.xy;
-    float spread = dot(d, d) * source.z;
-    // Beyond 3 r it adds less than 2e-4 of its centre's.
-    if (spread < 9.0) laid += source.w * exp(-spread);
+  for (int j = 0; j < kJacobianRun; ++j) {
+    ivec2 texel = first + ivec2(j, 0);
+    if (texel.x >= side) break;
+    vec2 rest = firstRest + vec2(float(j) * metresPerTexel, 0.0);
+    float breaking = ocean.foamStep.y > 0.0 ? clamp((ocean.foam.a - jacobians[j]) / 0.2, 0.0, 1.0) : 0.0;
+    float laid = 0.0;
+    for (int i = 0; i < sources; ++i) {
+      vec4 source = ocean.foamSources[i];
+      vec2 d = rest - source.xy;
+      float spread = dot(d, d) * source.z;
+      // Beyond 3 r it adds less than 2e-4 of its centre's.
+      if (spread < 9.0) laid += source.w * exp(-spread);
+    }
+    float foam = imageLoad(foamMap, texel).r * ocean.foamStep.x + breaking * ocean.foamStep.y + laid;
+    imageStore(foamMap, texel, vec4(min(foam, 1.0)));
   }
-  float foam = imageLoad(foamMap, texel).r * ocean.foamStep.x + breaking * ocean.foamStep.y + laid;
-  imageStore(foamMap, texel, vec4(min(foam, 1.0)));
 }

@@ -14,7 +14,7 @@ layout(set = 0, binding = 1, std430) writeonly buffer Grid { OceanGridVertex ver
 
 // The grid overhangs the screen by a tenth on each side, and its border vertices rest farther out
 // by as far as the waves can move water sideways, so that waves that move its edge keep the
-// screen covered.
+// screen covered. Each frame computes only the rows that hold sea (ocean.gridRows).
 const float kOverhang = 1.1;
 
 // Where the eye ray through `ndc` meets the sea at rest, (x, z): rays at or above the horizon,
@@ -34,8 +34,8 @@ vec2 restPoint(vec2 ndc) {
 void main() {
   int across = int(ocean.shape.z) + 1;
   int index = int(gl_GlobalInvocationID.x);
-  if (index >= across * (int(ocean.shape.w) + 1)) return;
-  ivec2 cell = ivec2(index % across, index / across);
+  if (index >= across * (int(ocean.gridRows.y) + 1)) return;
+  ivec2 cell = ivec2(index % across, index / across + int(ocean.gridRows.x));
   vec2 step = 2.0 * kOverhang / ocean.shape.zw;
   vec2 ndc = vec2(cell) * step - kOverhang;
   vec2 rest = restPoint(ndc);

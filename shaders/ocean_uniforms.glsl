@@ -28,6 +28,7 @@ layout(set = OCEAN_SET, binding = 0, std430) readonly buffer Ocean {
   vec4 foamSources[kMaxFoamSources];  // (x, z) at rest, m; 1/r², 1/m²; what it adds this frame at its centre
   mat4 reflectorFromWorld;  // the ellipsoid round what hides the sky in the reflection, to the unit sphere
   vec4 reflector;           // rgb: its albedo; a: 1 where there is one
+  vec4 gridRows;            // x: the grid's first row this frame holds (those above hold no sea); y: how many
 } ocean;
 
 float oceanPhase(int wave) { return ocean.phases[wave / 4][wave % 4]; }

@@ -1,5 +1,6 @@
 #include "render/passes/ocean_pass.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -31,9 +32,11 @@ struct OceanUniforms {
   std::array<glm::vec4, kMaxFoamSources> foamSources{};
   glm::mat4 reflectorFromWorld{1.0f};
   glm::vec4 reflector{0.0f};  // rgb albedo, a: 1 where there is one
+  glm::vec4 gridRows{0.0f};   // x: the first row this frame holds; y: how many
 };
 
 constexpr std::uint32_t kFoamWorkgroup = 8;                         // shaders/ocean_foam.comp
+constexpr std::uint32_t kFoamRun = 8;  // texels an invocation updates, kJacobianRun in shaders/ocean_waves.glsl
 constexpr std::uint32_t kGridWorkgroup = 64;                        // shaders/ocean_grid.comp
 constexpr vk::DeviceSize kGridVertexBytes = 3 * sizeof(glm::vec4);  // shaders/ocean_grid.glsl
 
@@ -96,6 +99,15 @@ std::vector<std::uint32_t> gridTriangles(glm::uvec2 cells) {
   return indices;
 }
 
+// Whether the eye ray through `ndc` meets the sea at rest (y = 0) within `reach` of the eye, as
+// shaders/ocean_grid.comp's restPoint() finds it.
+bool meetsTheSeaWithinReach(const glm::mat4& clipToWorld, glm::vec3 eye, float reach, glm::vec2 ndc) {
+  const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
+  const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
+  const glm::vec3 direction = glm::vec3(far) / far.w - glm::vec3(near) / near.w;
+  return direction.y < 0.0f && eye.y * glm::length(glm::vec2(direction.x, direction.z)) < -direction.y * reach;
+}
+
 void writeUniforms(const Buffer& buffer, const OceanUniforms& uniforms) {
   std::memcpy(buffer.mapped().data(), &uniforms, sizeof(uniforms));
 }
@@ -119,6 +131,28 @@ OceanUniforms staticUniforms(const OceanData& ocean) {
 
 }  // namespace
 
+// Below a plane the horizon is a line on the screen, so the rows it crosses are found at the
+// overhang's left and right edges.
+GridRows oceanGridRows(const glm::mat4& clipToWorld, glm::vec3 eye, float reach, glm::uvec2 cells) {
+  const GridRows every{0, cells.y};
+  if (!(eye.y > 0.0f)) return every;
+  const float step = 2.0f * kOceanGridOverhang / float(cells.y);
+  std::uint32_t lowest = cells.y;
+  std::uint32_t highest = 0;
+  for (std::uint32_t row = 0; row <= cells.y; ++row) {
+    const float y = -kOceanGridOverhang + float(row) * step;
+    if (meetsTheSeaWithinReach(clipToWorld, eye, reach, {-kOceanGridOverhang, y}) ||
+        meetsTheSeaWithinReach(clipToWorld, eye, reach, {kOceanGridOverhang, y})) {
+      lowest = std::min(lowest, row);
+      highest = std::max(highest, row);
+    }
+  }
+  if (lowest > highest) return every;
+  const std::uint32_t first = lowest > 0 ? lowest - 1 : 0;
+  const std::uint32_t last = std::min(highest + 1, cells.y);
+  return {first, std::max(last - first, 1u)};
+}
+
 OceanPass::OceanPass(const Device& device, const OceanData& ocean) : device_(&device), data_(ocean) {}
 
 Result<std::unique_ptr<OceanPass>> OceanPass::create(const Device& device, const OceanData& ocean) {
@@ -132,7 +166,6 @@ Result<std::unique_ptr<OceanPass>> OceanPass::create(const Device& device, const
                              vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent);
     writeUniforms(pass->uniforms_, staticUniforms(ocean));
     const std::vector<std::uint32_t> indices = gridTriangles(ocean.grid);
-    pass->indexCount_ = std::uint32_t(indices.size());
     pass->indices_ = Buffer::withData(device, std::as_bytes(std::span(indices)), vk::BufferUsageFlagBits::eIndexBuffer);
     pass->grid_ = Buffer(device, gridVertices(ocean.grid) * kGridVertexBytes, vk::BufferUsageFlagBits::eStorageBuffer,
                          vk::MemoryPropertyFlagBits::eDeviceLocal);
@@ -210,6 +243,8 @@ Result<void> OceanPass::prepare(const FrameInput& frame, float aspect) {
   OceanUniforms u = staticUniforms(data_);
   u.clipToWorld = glm::inverse(frame.camera.projection(aspect) * frame.camera.view());
   u.eye = glm::vec4(frame.camera.position, data_.reach);
+  rows_ = oceanGridRows(u.clipToWorld, frame.camera.position, data_.reach, data_.grid);
+  u.gridRows = {float(rows_.first), float(rows_.count), 0.0f, 0.0f};
   for (std::size_t i = 0; i < data_.waves.size(); ++i) u.phases[i / 4][int(i % 4)] = frame.ocean->phases[i];
   const std::vector<glm::vec4>& sources = frame.ocean->foamSources;
   if (sources.size() > kMaxFoamSources)
@@ -247,7 +282,7 @@ void OceanPass::declareGrid(FrameGraph::Builder& pass) const {
 void OceanPass::recordGrid(const vk::raii::CommandBuffer& commands) const {
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *gridPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *gridPipeline_.layout, 0, {*gridSet_}, {});
-  commands.dispatch((gridVertices(data_.grid) + kGridWorkgroup - 1) / kGridWorkgroup, 1, 1);
+  commands.dispatch((gridVertices({data_.grid.x, rows_.count}) + kGridWorkgroup - 1) / kGridWorkgroup, 1, 1);
 }
 
 void OceanPass::declareFoam(FrameGraph::Builder& pass) const {
@@ -257,8 +292,9 @@ void OceanPass::declareFoam(FrameGraph::Builder& pass) const {
 void OceanPass::recordFoam(const vk::raii::CommandBuffer& commands) const {
   commands.bindPipeline(vk::PipelineBindPoint::eCompute, *foamPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *foamPipeline_.layout, 0, {*foamSet_}, {});
-  const std::uint32_t groups = (data_.foamResolution + kFoamWorkgroup - 1) / kFoamWorkgroup;
-  commands.dispatch(groups, groups, 1);
+  const std::uint32_t rows = (data_.foamResolution + kFoamWorkgroup - 1) / kFoamWorkgroup;
+  const std::uint32_t runs = kFoamWorkgroup * kFoamRun;
+  commands.dispatch((data_.foamResolution + runs - 1) / runs, rows, 1);
 }
 
 void OceanPass::declareDrawReads(FrameGraph::Builder& pass) const {
@@ -276,7 +312,8 @@ void OceanPass::draw(const vk::raii::CommandBuffer& commands, const vk::raii::De
   commands.bindPipeline(vk::PipelineBindPoint::eGraphics, *drawPipeline_.pipeline);
   commands.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *drawPipeline_.layout, 0, {*frameSet, *drawSet_}, {});
   commands.bindIndexBuffer(*indices_.buffer(), 0, vk::IndexType::eUint32);
-  commands.drawIndexed(indexCount_, 1, 0, 0, 0);
+  // The index buffer lists the cells row by row, so the window's rows are its first ones.
+  commands.drawIndexed(6 * data_.grid.x * rows_.count, 1, 0, 0, 0);
 }
 
 std::vector<OceanProbeSample> OceanPass::probe(std::span<const glm::vec2> rests) const {

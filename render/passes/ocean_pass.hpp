@@ -5,9 +5,10 @@
 // - "ocean" (compute, before the main pass): the projected grid (shaders/ocean_grid.comp),
 //   OceanData::grid cells evenly spaced on the screen, each vertex moved to where its eye ray
 //   meets the sea and displaced by the waves (shaders/ocean_waves.glsl, the GPU copy of
-//   physics/ocean_waves.hpp's sum); then the foam map, a square over the sea at rest, fades by
-//   2^(−Δt/T½) and grows where crests break (shaders/ocean_foam.comp).
-// - In the main pass, after the background and before the surfaces: the grid's triangles
+//   physics/ocean_waves.hpp's sum); only the rows over the sea (oceanGridRows) are computed and
+//   drawn. Then the foam map, a square over the sea at rest, fades by 2^(−Δt/T½) and grows where
+//   crests break (shaders/ocean_foam.comp).
+// - In the main pass, after the surfaces and before the background: the grid's triangles
 //   (shaders/ocean.vert), shaded by shaders/ocean.frag: the sky or environment and the first
 //   light reflected by Fresnel, the light scattered up from below, foam, fog.
 //
@@ -35,6 +36,20 @@ struct OceanProbeSample {
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
   float jacobian = 1.0f;
 };
+
+/// The rows of the projected grid that a frame computes and draws: those over the sea.
+struct GridRows {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+};
+
+/// The projected grid's NDC extent: it overhangs the screen by a tenth on each side.
+inline constexpr float kOceanGridOverhang = 1.1f;
+
+/// The rows of a grid of `cells` over the overhanging screen whose eye rays meet the sea at rest
+/// within `reach` of `eye`, and one more on each side (the others all end at the reach, so their
+/// cells would collapse onto the horizon); every row with no sea in view or the eye not above it.
+[[nodiscard]] GridRows oceanGridRows(const glm::mat4& clipToWorld, glm::vec3 eye, float reach, glm::uvec2 cells);
 
 class OceanPass {
 public:
@@ -85,7 +100,7 @@ private:
   Buffer uniforms_;  // OceanUniforms, host-visible
   Buffer indices_;   // the grid's triangles
   Buffer grid_;      // its vertices (shaders/ocean_grid.glsl)
-  std::uint32_t indexCount_ = 0;
+  GridRows rows_{0, 0};  // this frame's, from prepare()
   Image foam_;  // R32F, GENERAL between frames
   vk::raii::Sampler foamSampler_{nullptr};
   vk::raii::DescriptorSetLayout drawLayout_{nullptr};

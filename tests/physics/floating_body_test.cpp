@@ -8,6 +8,7 @@
 // constraints the demo sets (no drift, no yaw).
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <vector>
 
@@ -65,7 +66,7 @@ TEST(FloatingBody, ABoxFloatsAtItsArchimedesDraft) {
   auto body = FloatingBody::create(boxSettings(2.0f));
   ASSERT_TRUE(body) << body.error().message;
   const OceanWaves sea = calmSea();
-  for (int i = 0; i < 120 * 60; ++i) body->step(sea, i / 120.0, 1.0f / 120.0f, glm::vec3(0.0f));
+  for (int i = 0; i < 120 * 60; ++i) ASSERT_TRUE(body->step(sea, i / 120.0, 1.0f / 120.0f, glm::vec3(0.0f)));
   const float draft = 0.5f * kBox.y - body->state().height;
   EXPECT_NEAR(draft, kDraft, 0.01f * kDraft);
   EXPECT_NEAR(body->state().pitch, 0.0f, 1e-5f);
@@ -83,7 +84,7 @@ TEST(FloatingBody, ABoxHeavesAtTheSpringFrequencyOfItsWaterplane) {
   const double dt = 1.0 / 240.0;
   std::vector<float> heights;
   for (int i = 0; i < 240 * 20; ++i) {
-    body->step(sea, i * dt, static_cast<float>(dt), glm::vec3(0.0f));
+    ASSERT_TRUE(body->step(sea, i * dt, static_cast<float>(dt), glm::vec3(0.0f)));
     heights.push_back(body->state().height);
   }
   const double expected = 2.0 * std::numbers::pi / std::sqrt(kOceanGravity / kDraft);
@@ -108,7 +109,7 @@ TEST(FloatingBody, ABoxRollsAtItsMetacentricFrequency) {
   const double dt = 1.0 / 240.0;
   std::vector<float> rolls;
   for (int i = 0; i < 240 * 30; ++i) {
-    body->step(sea, i * dt, static_cast<float>(dt), glm::vec3(0.0f));
+    ASSERT_TRUE(body->step(sea, i * dt, static_cast<float>(dt), glm::vec3(0.0f)));
     rolls.push_back(body->state().roll);
   }
   const double expected = 2.0 * std::numbers::pi / std::sqrt(mass * kOceanGravity * gm / body->rollInertia());
@@ -126,13 +127,34 @@ TEST(FloatingBody, ABeamWindHeelsItToLeewardAsItsMetacentreAllows) {
   FloatingBodyState state;
   state.height = 0.5f * kBox.y - kDraft;
   body->setState(state);
-  for (int i = 0; i < 120 * 60; ++i) body->step(sea, i / 120.0, 1.0f / 120.0f, wind);
+  for (int i = 0; i < 120 * 60; ++i) ASSERT_TRUE(body->step(sea, i / 120.0, 1.0f / 120.0f, wind));
   // The force ½ ρ_air A |w|² at 6 m over the centre of mass; GM as above.
   const double force = 0.5 * kAirDensity * settings.sailArea * 64.0;
   const double gm = kDraft / 2.0 + kBox.z * kBox.z / (12.0 * kDraft) - kBox.y / 2.0;
   const double expected = std::atan(force * 6.0 / (settings.mass * kOceanGravity * gm));
   EXPECT_GT(body->state().roll, 0.0f);  // starboard, the lee side, down
   EXPECT_NEAR(body->state().roll / expected, 1.0, 0.05);
+}
+
+TEST(FloatingBody, ItsStateHasTheSameBitsWhateverThreadsFindTheWater) {
+  const auto sea = OceanWaves::create({.windSpeed = 12.0f, .windDirection = {1.0f, 1.0f}});
+  ASSERT_TRUE(sea);
+  const glm::vec3 box(10.0f, 3.0f, 6.0f);
+  const FloatingBodySettings settings{.mass = kRho * box.x * box.z * kDraft,
+                                      .position = {30.0f, 0.3f, -12.0f},
+                                      .heading = 0.6f,
+                                      .waterDensity = kRho,
+                                      .hull = boxHull(box, {10, 6, 8})};
+  auto alone = FloatingBody::create(settings);
+  auto shared = FloatingBody::create(settings);
+  ASSERT_TRUE(alone && shared);
+  const TaskRunner three = builtInTaskRunner(3);
+  for (int i = 0; i < 240; ++i) {
+    ASSERT_TRUE(alone->step(*sea, i / 60.0, 1.0f / 60.0f, glm::vec3(3.0f, 0.0f, 3.0f)));
+    ASSERT_TRUE(shared->step(*sea, i / 60.0, 1.0f / 60.0f, glm::vec3(3.0f, 0.0f, 3.0f), three));
+  }
+  EXPECT_EQ(std::memcmp(&alone->state(), &shared->state(), sizeof(FloatingBodyState)), 0);
+  EXPECT_NE(alone->state().pitch, 0.0f);
 }
 
 TEST(FloatingBody, OnARoughSeaItHeavesPitchesAndRollsButNeitherDriftsNorTurns) {
@@ -153,7 +175,7 @@ TEST(FloatingBody, OnARoughSeaItHeavesPitchesAndRollsButNeitherDriftsNorTurns) {
   float largestPitch = 0.0f;
   float largestRoll = 0.0f;
   for (int i = 0; i < 60 * 60; ++i) {
-    body->step(*sea, i / 60.0, 1.0f / 60.0f, glm::vec3(3.0f, 0.0f, 3.0f));
+    ASSERT_TRUE(body->step(*sea, i / 60.0, 1.0f / 60.0f, glm::vec3(3.0f, 0.0f, 3.0f)));
     const glm::mat4 m = body->transform();
     ASSERT_EQ(m[3].x, 30.0f);
     ASSERT_EQ(m[3].z, -12.0f);
@@ -182,7 +204,7 @@ TEST(FloatingBody, ItsWaterlineRunsRoundTheHullsSideAndCutsAtTheSpeedItSinks) {
   state.height = 0.5f * kBox.y - kDraft;
   state.heaveVelocity = -1.5f;
   body->setState(state);
-  body->step(calmSea(), 0.0, 1e-6f, glm::vec3(0.0f));
+  ASSERT_TRUE(body->step(calmSea(), 0.0, 1e-6f, glm::vec3(0.0f)));
   // 10 × 16 columns: the outline holds 2·10 + 2·16 − 4 of them.
   const std::vector<WaterlineContact>& line = body->waterline();
   ASSERT_EQ(line.size(), 2u * 10u + 2u * 16u - 4u);
@@ -203,7 +225,7 @@ TEST(FloatingBody, ItsWaterlineRunsRoundTheHullsSideAndCutsAtTheSpeedItSinks) {
   // Out of the water, nothing cuts it.
   state.height = 10.0f;
   body->setState(state);
-  body->step(calmSea(), 0.0, 1e-6f, glm::vec3(0.0f));
+  ASSERT_TRUE(body->step(calmSea(), 0.0, 1e-6f, glm::vec3(0.0f)));
   EXPECT_TRUE(body->waterline().empty());
 }
 

@@ -1,10 +1,12 @@
 // The sea on the GPU.
 //
 // Oracles: the CPU's sum of the same waves (physics/ocean_waves.hpp), in double precision; the
-// foam's exponential fade, 2^(−t/T½), over frames in which nothing breaks; a foam source's
+// foam's exponential fade, 2^(−t/T½), over frames in which nothing breaks; the crests the CPU's
+// Jacobian finds breaking, laid into the foam map; a foam source's
 // Gaussian and its integral π r²; the horizon line computed from the camera alone, below which
 // every pixel must show water; and a flat sea's mirror image of an ellipsoid, traced on the CPU.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -165,6 +167,43 @@ TEST_F(OceanTest, AFoamSourceLaysItsGaussianAtItsRestPoint) {
   EXPECT_NE(refused.error().message.find("foam source 0"), std::string::npos) << refused.error().message;
 }
 
+TEST_F(OceanTest, CrestsBreakIntoTheFoamMapWhereTheCpusJacobianFallsUnderTheThreshold) {
+  // A rough sea whose shortest wave spans 8 texels, so that no wave is faded for the map's spacing;
+  // 100 texels a side, which the runs of texels the shader updates together do not divide.
+  const auto waves = physics::OceanWaves::create({.windSpeed = 14.0f, .choppiness = 1.0f, .shortestWavelength = 0.8f});
+  ASSERT_TRUE(waves) << waves.error().message;
+  OceanData data = oceanData(*waves);
+  data.foamThreshold = 0.9f;
+  data.foamGrowth = 10.0f;  // over 0.1 s a crest adds its whole breaking share
+  data.foamCenter = {3.0f, -7.0f};
+  data.foamExtent = 10.0f;
+  data.foamResolution = 100;
+  auto pass = OceanPass::create(device(), data);
+  ASSERT_TRUE(pass) << pass.error().message;
+  const double time = 41.3;
+  ASSERT_TRUE((*pass)->prepare(frameAt(*waves, time, 0.1f), 1.0f));
+  recordFoamAlone(device(), **pass);
+  const std::vector<float> foam = (*pass)->readFoam();
+  ASSERT_EQ(foam.size(), 100u * 100u);
+  float worst = 0.0f;
+  int breaking = 0;
+  for (int row = 0; row < 100; ++row) {
+    for (int column = 0; column < 100; ++column) {
+      const glm::vec2 rest = data.foamCenter - 5.0f + 0.1f * glm::vec2(float(column) + 0.5f, float(row) + 0.5f);
+      const float jacobian = waves->sample(rest, time).jacobian;
+      const float expected = std::clamp((data.foamThreshold - jacobian) / 0.2f, 0.0f, 1.0f);
+      worst = std::max(worst, std::abs(foam[std::size_t(row) * 100 + std::size_t(column)] - expected));
+      breaking += expected > 0.0f;
+    }
+  }
+  RecordProperty("breaking_texels", breaking);
+  RecordProperty("worst_difference", std::to_string(worst));
+  EXPECT_GT(breaking, 500);
+  EXPECT_LT(breaking, 9500);
+  // The GPU's Jacobian within 1e-4 of the CPU's, as the probe finds it, is 5e-4 of breaking.
+  EXPECT_LT(worst, 1e-3f);
+}
+
 class OceanRender : public testing::VulkanTest {};
 
 // The direction of the eye's ray through the centre of pixel (x, y).
@@ -240,6 +279,51 @@ TEST_F(OceanRender, TheProjectedGridLeavesNoBackgroundBelowTheHorizon) {
     }
     EXPECT_GT(water, 1000);
     (void)sky;
+  }
+}
+
+TEST(OceanGridRows, KeepEveryRowWhoseRaysMeetTheSeaAndFewMore) {
+  // Level, looking up, looking down, rolled, and under the sea; against the rays of 1,001 points
+  // across each row of the grid: no row left out meets the sea within reach.
+  const Camera cameras[] = {
+      {.position = {0.0f, 9.0f, 48.0f}, .target = {0.0f, 9.0f, 0.0f}, .verticalFovRadians = 0.8f},
+      {.position = {0.0f, 3.0f, 0.0f}, .target = {100.0f, 30.0f, 30.0f}, .verticalFovRadians = 0.8f},
+      {.position = {5.0f, 40.0f, -3.0f}, .target = {-60.0f, 0.0f, 40.0f}, .verticalFovRadians = 0.9f},
+      {.position = {0.0f, 12.0f, 0.0f}, .target = {0.0f, 11.0f, -100.0f}, .up = {0.6f, 1.0f, 0.0f}},
+      {.position = {0.0f, -2.0f, 0.0f}, .target = {10.0f, -2.0f, 0.0f}},
+  };
+  const glm::uvec2 cells{150, 150};
+  const float reach = 20000.0f;
+  // Level or looking up, the horizon crosses the screen and the sky's rows are left out; rolled,
+  // it spans every row; from under the sea every row is kept.
+  const bool fewerThanThreeQuarters[] = {true, true, false, false, false};
+  for (std::size_t c = 0; c < std::size(cameras); ++c) {
+    const Camera& camera = cameras[c];
+    const glm::mat4 clipToWorld = glm::inverse(camera.projection(16.0f / 9.0f) * camera.view());
+    const GridRows rows = oceanGridRows(clipToWorld, camera.position, reach, cells);
+    ASSERT_LE(rows.first + rows.count, cells.y) << c;
+    ASSERT_GE(rows.count, 1u) << c;
+    EXPECT_EQ(rows.count < cells.y * 3 / 4, fewerThanThreeQuarters[c]) << c;
+    if (camera.position.y <= 0.0f) {
+      EXPECT_EQ(rows.count, cells.y);
+      continue;
+    }
+    std::uint32_t wasted = 0;
+    for (std::uint32_t row = 0; row <= cells.y; ++row) {
+      const float y = -kOceanGridOverhang + 2.0f * kOceanGridOverhang * float(row) / float(cells.y);
+      bool sea = false;
+      for (int i = 0; i <= 1000; ++i) {
+        const glm::vec2 ndc(-kOceanGridOverhang + 2.0f * kOceanGridOverhang * float(i) / 1000.0f, y);
+        const glm::vec4 near = clipToWorld * glm::vec4(ndc, 0.0f, 1.0f);
+        const glm::vec4 far = clipToWorld * glm::vec4(ndc, 1.0f, 1.0f);
+        const glm::vec3 ray = glm::vec3(far) / far.w - glm::vec3(near) / near.w;
+        sea = sea || (ray.y < 0.0f && camera.position.y * glm::length(glm::vec2(ray.x, ray.z)) < -ray.y * reach);
+      }
+      const bool kept = row >= rows.first && row <= rows.first + rows.count;
+      EXPECT_TRUE(kept || !sea) << "camera " << c << ": row " << row << " meets the sea but is left out";
+      wasted += kept && !sea;
+    }
+    EXPECT_LE(wasted, 2u) << "camera " << c;
   }
 }
 

@@ -34,7 +34,7 @@ TEST(SceneOcean, AnOceanAndAShipGetTheDocumentedDefaults) {
   ASSERT_TRUE(scene->ocean && scene->ship);
   EXPECT_EQ(scene->ocean->waves.windSpeed, 10.0f);
   EXPECT_EQ(scene->ocean->waves.waveCount, 45);
-  EXPECT_EQ(scene->ocean->grid, 150);
+  EXPECT_EQ(scene->ocean->grid, glm::ivec2(150, 150));
   EXPECT_EQ(scene->ocean->foamHalfLife, 3.0f);
   EXPECT_EQ(scene->ship->cells, glm::ivec3(24, 8, 8));
   EXPECT_EQ(scene->ship->drag, 0.5f);
@@ -77,7 +77,19 @@ TEST(SceneOcean, BadBlocksNameTheirField) {
             "sea.json: ship.cells: expected three whole numbers of cells, 1 to 64 each");
   EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"choppiness": 2})")),
             "sea.json: ocean: Ocean settings: choppiness must be in [0, 1].");
-  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": 4})")), "sea.json: ocean.grid: expected 16 to 1024 cells");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": 4})")),
+            "sea.json: ocean.grid: expected 16 to 1024 cells, or [across, down] of 16 to 1024 each");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": [100, 2000]})")),
+            "sea.json: ocean.grid: expected 16 to 1024 cells, or [across, down] of 16 to 1024 each");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": [100.5, 150]})")),
+            "sea.json: ocean.grid: expected 16 to 1024 cells, or [across, down] of 16 to 1024 each");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": [100]})")),
+            "sea.json: ocean.grid: expected 16 to 1024 cells, or [across, down] of 16 to 1024 each");
+  EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"grid": [100, "x"]})")),
+            "sea.json: ocean.grid[1]: expected a number, got a string");
+  auto across = parseScene(sceneWith(R"(, "ocean": {"grid": [100, 150]})"), "sea.json");
+  ASSERT_TRUE(across) << across.error().message;
+  EXPECT_EQ(across->ocean->grid, glm::ivec2(100, 150));
   EXPECT_EQ(errorOf(sceneWith(R"(, "ocean": {"foam": {"half_life": 0}})")),
             "sea.json: ocean.foam.half_life: expected seconds > 0");
   EXPECT_NE(errorOf(sceneWith(R"(, "ocean": {"swell": 1})")).find("ocean.swell: unknown field"), std::string::npos);
