@@ -295,6 +295,10 @@ Result<void> Cloth::advance(double frameDt) {
   return advanceWith(frameDt, settings_.tasks);
 }
 
+WindPush Cloth::windPush(const glm::vec3& about) const {
+  return wind_ ? wind_->total(particles_.positions, about) : WindPush{};
+}
+
 Result<void> Cloth::advance(double frameDt, unsigned threads) {
   return advanceWith(frameDt, builtInTaskRunner(threads));
 }

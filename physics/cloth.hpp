@@ -121,6 +121,10 @@ public:
   /// The air's velocity from the next `advance` on (world m/s, finite; an error otherwise). A
   /// cloth made without `ClothSettings::wind` takes the wind's defaults for the rest.
   [[nodiscard]] Result<void> setWind(const glm::vec3& velocity);
+  /// The air's push on the cloth in its last step (none without wind or before the first), each
+  /// triangle's at its centroid where it is now; the moment about `about` (world). What the
+  /// pins hand on to the body that holds them.
+  [[nodiscard]] WindPush windPush(const glm::vec3& about) const;
   /// True when pins follow `setPinTargets` targets rather than the body transform.
   [[nodiscard]] bool pinsFollowTargets() const noexcept { return !pinTargets_.empty(); }
   /// The pinned vertices, each once, in the order they first appear in `create`'s list: the

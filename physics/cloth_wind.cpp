@@ -81,4 +81,16 @@ glm::vec3 ClothWindLoad::acceleration(std::uint32_t v) const {
   return force * inverseMass_[v];
 }
 
+WindPush ClothWindLoad::total(std::span<const glm::vec3> positions, const glm::vec3& about) const {
+  WindPush push;
+  for (std::size_t t = 0; t < cornerForce_.size(); ++t) {
+    const std::uint32_t a = triangles_[3 * t], b = triangles_[3 * t + 1], c = triangles_[3 * t + 2];
+    const glm::vec3 force = 3.0f * cornerForce_[t];
+    const glm::vec3 centroid = (positions[a] + positions[b] + positions[c]) / 3.0f;
+    push.force += force;
+    push.moment += detail::cross(centroid - about, force);
+  }
+  return push;
+}
+
 }  // namespace mane::physics

@@ -32,6 +32,12 @@ struct ClothWind {
 /// The density of air, kg/m³ (ISA at sea level).
 inline constexpr float kClothAirDensity = 1.225f;
 
+/// The air's push on a whole cloth: what the pins hand on to whatever holds them.
+struct WindPush {
+  glm::vec3 force{0.0f};   ///< N
+  glm::vec3 moment{0.0f};  ///< N m, about the point it was asked about
+};
+
 class ClothWindLoad {
 public:
   /// For a mesh of `vertexCount` vertices and `triangles` (three indices each, checked by the
@@ -49,6 +55,9 @@ public:
                      std::size_t first, std::size_t end);
   /// The acceleration of vertex `v` from the forces computed last (m/s²).
   [[nodiscard]] glm::vec3 acceleration(std::uint32_t v) const;
+  /// The forces computed last, each triangle's acting at its centroid in `positions`, summed in
+  /// the triangles' order; the moment about `about`.
+  [[nodiscard]] WindPush total(std::span<const glm::vec3> positions, const glm::vec3& about) const;
   [[nodiscard]] std::size_t triangleCount() const { return triangles_.size() / 3; }
 
 private:

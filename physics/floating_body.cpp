@@ -114,6 +114,14 @@ FloatingBody::FloatingBody(FloatingBodySettings settings, std::vector<Column> co
   state_.height = settings_.position.y;
 }
 
+Result<void> FloatingBody::setLoad(const glm::vec3& force, const glm::vec3& torque) {
+  if (!detail::isFinite(force) || !detail::isFinite(torque))
+    return fail("floating body: the load's force and torque must be finite.");
+  loadForce_ = force;
+  loadTorque_ = torque;
+  return {};
+}
+
 Result<void> FloatingBody::step(const OceanWaves& ocean, double time, float dt, const glm::vec3& wind,
                                 const TaskRunner& tasks) {
   const glm::mat3 turn = rotation(settings_.heading, state_.pitch, state_.roll);
@@ -168,6 +176,8 @@ Result<void> FloatingBody::step(const OceanWaves& ocean, double time, float dt, 
     force += push;
     torque += detail::cross(turn * settings_.sailCentre, push);
   }
+  force += loadForce_;
+  torque += loadTorque_;
   // The body keeps its (x, z) and heading: only the vertical force and the two torques act.
   state_.heaveVelocity += dt * force.y / settings_.mass;
   state_.pitchRate += dt * dot(torque, pitchAxis) / pitchInertia_;

@@ -83,6 +83,12 @@ public:
   [[nodiscard]] Result<void> step(const OceanWaves& ocean, double time, float dt, const glm::vec3& wind,
                                   const TaskRunner& tasks = {});
 
+  /// A load besides the sea's and the wind's on `sailArea`, as cloth hung on the body hands it
+  /// on: a force (N, world) and a torque about the centre of mass (N m, world), acting in every
+  /// step until replaced. Only its vertical force and its torques about the pitch and roll axes
+  /// move the body. Fails, changing nothing, on a value that is not finite.
+  [[nodiscard]] Result<void> setLoad(const glm::vec3& force, const glm::vec3& torque);
+
   /// Body to world.
   [[nodiscard]] glm::mat4 transform() const;
   [[nodiscard]] const FloatingBodyState& state() const { return state_; }
@@ -118,6 +124,8 @@ private:
   FloatingBodyState state_;
   std::vector<WaterlineContact> waterline_;
   std::vector<OceanSample> columnWater_;  // the sea's surface over each column, this step
+  glm::vec3 loadForce_{0.0f};             // setLoad's
+  glm::vec3 loadTorque_{0.0f};
   float pitchInertia_;
   float rollInertia_;
 };

@@ -48,6 +48,11 @@ public:
   void forgetSettlingSpray() {
     if (spray_) spray_->removeIf([](const physics::EffectParticle&) { return true; });
   }
+  /// What the sails hand to the ship from now on (physics::FloatingBody::setLoad); nothing
+  /// without a ship. Errors: a value that is not finite.
+  [[nodiscard]] Result<void> setShipLoad(const glm::vec3& force, const glm::vec3& torque) {
+    return ship_ ? ship_->setLoad(force, torque) : Result<void>{};
+  }
   /// Fires the ship's cannon at the next step (nothing without one).
   void fireCannon() { cannonFired_ = true; }
 

@@ -638,10 +638,29 @@ Result<void> World::simulate(double frameDt, unsigned threads) {
     }
     if (auto advanced = cloths_[i].advance(body, frameDt, threads); !advanced) return advanced;
   }
+  if (auto handed = handSailsToShip(); !handed) return handed;
   for (MovingFur& fur : movingFurs_)
     if (auto advanced = fur.dynamics.advance(bodyPlacement(fur.mesh, time_), frameDt, threads);
         !advanced)
       return fail("mesh " + scene_.meshes[fur.mesh].name + ": " + advanced.error().message);
+  return {};
+}
+
+Result<void> World::handSailsToShip() {
+  const std::optional<std::size_t> ship = ocean_ ? ocean_->shipMesh() : std::nullopt;
+  if (!ship) return {};
+  // The air's push on each sail reaches the hull through the yards it is pinned to: summed about
+  // the ship's centre of mass, it acts on the ship's next frame (its own is stepped first).
+  const glm::vec3 centre(ocean_->shipBody()[3]);
+  physics::WindPush push;
+  for (std::size_t i = 0; i < cloths_.size(); ++i) {
+    if (clothBodies_[i] != *ship) continue;
+    const physics::WindPush sail = cloths_[i].cloth().windPush(centre);
+    push.force += sail.force;
+    push.moment += sail.moment;
+  }
+  if (auto set = ocean_->setShipLoad(push.force, push.moment); !set)
+    return fail("ocean: sails: " + set.error().message);
   return {};
 }
 

@@ -247,6 +247,8 @@ private:
   glm::mat4 meshModel(std::size_t mesh) const;
   /// Simulates `frameDt` seconds of hair and cloth with the bodies where they are at time().
   Result<void> simulate(double frameDt, unsigned threads);
+  /// Hands the air's push on the cloths hung on the ship to its floating body.
+  Result<void> handSailsToShip();
   /// `strandCount` dense strands drawn for `guides` (rest shape, equal point counts) as
   /// `rendering` lays them out (vertices per strand, curve, guide blend, clump), or none.
   static std::optional<DenseStrandLayout> denseGroom(std::span<const std::vector<glm::vec3>> guides,

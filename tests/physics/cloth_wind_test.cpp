@@ -4,7 +4,7 @@
 // accelerates at ½ ρ C |w|² / σ at every vertex (Verlet moves it a·h² in its first step from
 // rest); a sheet along the wind feels nothing; turned 60° from square it feels cos² 60° of that,
 // along its normal; a sheet moving with the air feels nothing; and the state is the same for 1, 2
-// and 4 threads.
+// and 4 threads. The push on the whole sheet is the pressure on its area, at its centre.
 
 #include <cmath>
 
@@ -60,6 +60,27 @@ TEST(ClothWind, ASheetSquareToTheWindFeelsTheDynamicPressureEverywhere) {
     EXPECT_NEAR(a.x, 0.0f, 1e-3f * expected);
     EXPECT_NEAR(a.y, 0.0f, 1e-3f * expected);
   }
+}
+
+TEST(ClothWind, ThePushOnTheWholeSheetIsThePressureOnItsAreaAtItsCentre) {
+  const glm::vec3 wind(0.0f, 0.0f, 8.0f);
+  ClothSettings settings = freeSheet({0, 0, 1}, wind);
+  // Held along its top edge, as a sail is: the pins feel the air as the rest do.
+  for (std::uint32_t v = 72; v < 81; ++v) settings.pinnedVertices.push_back(v);
+  auto cloth = Cloth::create(settings);
+  ASSERT_TRUE(cloth) << cloth.error().message;
+  EXPECT_EQ(cloth->windPush(glm::vec3(0.0f)).force, glm::vec3(0.0f));  // before any step
+  ASSERT_TRUE(cloth->advance(settings.solver.fixedStep, 1u));
+  // ½ ρ C |w|² on its 1 m², at its centre: about a point 2 m below it, a moment of 2 m × F.
+  const float force = 0.5f * kClothAirDensity * 1.2f * 64.0f;
+  const WindPush atCentre = cloth->windPush(glm::vec3(0.0f));
+  EXPECT_NEAR(atCentre.force.z, force, 1e-4f * force);
+  EXPECT_NEAR(glm::length(glm::vec2(atCentre.force)), 0.0f, 1e-4f * force);
+  EXPECT_NEAR(glm::length(atCentre.moment), 0.0f, 1e-4f * force);
+  const WindPush below = cloth->windPush({0.0f, -2.0f, 0.0f});
+  EXPECT_NEAR(below.moment.x, 2.0f * force, 1e-4f * force);
+  EXPECT_NEAR(below.moment.y, 0.0f, 1e-4f * force);
+  EXPECT_NEAR(below.moment.z, 0.0f, 1e-4f * force);
 }
 
 TEST(ClothWind, ASheetAlongTheWindFeelsNothingAndATurnedOneItsNormalShare) {

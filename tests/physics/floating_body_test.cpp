@@ -136,6 +136,27 @@ TEST(FloatingBody, ABeamWindHeelsItToLeewardAsItsMetacentreAllows) {
   EXPECT_NEAR(body->state().roll / expected, 1.0, 0.05);
 }
 
+TEST(FloatingBody, ALoadHandedToItHeelsItAsItsMetacentreAllows) {
+  // What sails hanging from it hand on: 500 N to starboard, 6 m over the centre of mass (a
+  // torque about the long axis); the same heel as the beam wind's on `sailArea` above.
+  auto body = FloatingBody::create(boxSettings(3.0f));
+  ASSERT_TRUE(body);
+  const glm::vec3 force(0.0f, 0.0f, 500.0f);
+  ASSERT_TRUE(body->setLoad(force, glm::cross(glm::vec3(0.0f, 6.0f, 0.0f), force)));
+  const OceanWaves sea = calmSea();
+  FloatingBodyState state;
+  state.height = 0.5f * kBox.y - kDraft;
+  body->setState(state);
+  for (int i = 0; i < 120 * 60; ++i) ASSERT_TRUE(body->step(sea, i / 120.0, 1.0f / 120.0f, glm::vec3(0.0f)));
+  const double gm = kDraft / 2.0 + kBox.z * kBox.z / (12.0 * kDraft) - kBox.y / 2.0;
+  const double expected = std::atan(500.0 * 6.0 / (boxSettings(3.0f).mass * kOceanGravity * gm));
+  EXPECT_GT(body->state().roll, 0.0f);
+  EXPECT_NEAR(body->state().roll / expected, 1.0, 0.05);
+  // A load that is not finite is refused, and the one held kept.
+  EXPECT_FALSE(body->setLoad(glm::vec3(NAN), glm::vec3(0.0f)));
+  EXPECT_FALSE(body->setLoad(glm::vec3(0.0f), glm::vec3(INFINITY)));
+}
+
 TEST(FloatingBody, ItsStateHasTheSameBitsWhateverThreadsFindTheWater) {
   const auto sea = OceanWaves::create({.windSpeed = 12.0f, .windDirection = {1.0f, 1.0f}});
   ASSERT_TRUE(sea);
