@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "physics/detail/parallel_tasks.hpp"
+#include "physics/detail/portable_math.hpp"
 #include "physics/split_mix64.hpp"
 
 namespace mane::physics {
@@ -175,6 +176,16 @@ glm::vec3 randomInBall(SplitMix64& rng) {
 
 }  // namespace
 
+float clumpProfileScale(float rootRadius, float profile) {
+  const double rho = std::clamp(static_cast<double>(rootRadius), 0.0, 1.0);
+  const double p = profile;
+  if (rho == 0.0) return static_cast<float>(1.0 / std::sqrt(p + 1.0));  // the limit of ρ'/ρ
+  const double outside = 1.0 - rho * rho;
+  if (outside <= 0.0) return 1.0f;
+  const double inside = 1.0 - detail::exponential(detail::logarithm(outside) / (p + 1.0));
+  return static_cast<float>(std::sqrt(inside) / rho);
+}
+
 Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm::vec3>> restGuides,
                                                 const DenseGroomSettings& settings) {
   const auto bad = [](const char* field, const char* expected) {
@@ -189,6 +200,7 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     return bad("lengthVariation", "in [0, 1)");
   if (!(settings.clump >= 0.0f && settings.clump <= 1.0f)) return bad("clump", "in [0, 1]");
   if (!(settings.clumpVariation >= 0.0f && settings.clumpVariation <= 1.0f)) return bad("clumpVariation", "in [0, 1]");
+  if (!(settings.clumpProfile >= 0.0f && settings.clumpProfile <= 8.0f)) return bad("clumpProfile", "in [0, 8]");
   if (!(settings.tipJitter >= 0.0f && std::isfinite(settings.tipJitter)))
     return bad("tipJitter", "a non-negative number of metres");
   if (!(settings.curlRadius >= 0.0f && settings.curlRadius <= 0.05f)) return bad("curlRadius", "in [0, 0.05] metres");
@@ -315,6 +327,7 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
     strand.tipJitter = settings.tipJitter * randomInBall(rng);
 
     bool barycentric = false;
+    float rootRadius = 0.0f;  // the share of the clump's radius the root lies at (see clumpProfileScale)
     if (settings.blend == GuideBlend::kBarycentric) {
       const std::array<std::uint32_t, kMaxNeighbours>& partners = blendPartners.index[home];
       const std::uint32_t candidates = blendPartners.count[home];
@@ -340,6 +353,7 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
         strand.weights[2] = v;
         strand.guideCount = 3;
         barycentric = true;
+        rootRadius = u + v;
       }
     }
     if (!barycentric) {
@@ -347,8 +361,12 @@ Result<DenseStrandLayout> buildDenseStrandLayout(std::span<const std::vector<glm
       strand.guides[1] = strand.guides[2] = 0;
       strand.weights[0] = 1.0f;
       strand.weights[1] = strand.weights[2] = 0.0f;
-      strand.rootOffset = (settings.rootSpread * spreadRadius[home]) * randomInDisc(rng);
+      const glm::vec3 inDisc = randomInDisc(rng);
+      strand.rootOffset = (settings.rootSpread * spreadRadius[home]) * inDisc;
+      rootRadius = std::sqrt(inDisc.x * inDisc.x + inDisc.y * inDisc.y);
     }
+    if (settings.clumpProfile > 0.0f)
+      strand.clump = 1.0f - (1.0f - strand.clump) * clumpProfileScale(rootRadius, settings.clumpProfile);
     // Drawn last, so that a groom without curl keeps the layout it had before curl existed.
     if (settings.curlRadius > 0.0f) {
       strand.curlRadius = settings.curlRadius * (1.0f + settings.curlVariation * rng.nextFloat(-1.0f, 1.0f));

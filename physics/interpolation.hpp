@@ -138,6 +138,11 @@ struct DenseGroomSettings {
   float lengthVariation = 0.1f;
   float clump = 0.3f;           ///< mean clump factor c in [0, 1]: 1 puts the tip on the guide
   float clumpVariation = 0.1f;  ///< c varies uniformly by ± this, clamped to [0, 1]; ≥ 0
+  /// The clump's radial profile, an exponent p in [0, 8]: a clump's strands lie round its guide
+  /// at the tip with a density ∝ (1 − ρ²)^p over the radius ρ it reaches, gathered towards the
+  /// guide; 0 keeps the root's even spread, only shrunk. A strand's clump factor carries it (see
+  /// `clumpProfileScale`), so the interpolation's formula is the same either way.
+  float clumpProfile = 0.0f;
   /// Largest tip jitter, metres (≥ 0): a per-strand random vector in the ball of this radius,
   /// added in proportion to t (0 at the root, full at the tip) before clumping.
   float tipJitter = 0.002f;
@@ -158,6 +163,16 @@ struct DenseGroomSettings {
   /// crown's whorl); in [−1, 1], −1 blends any.
   float minBlendCosine = 0.0f;
 };
+
+/// How much of its root offset a strand keeps at a clumped tip, relative to an evenly spread
+/// clump, under the radial profile of exponent `profile` (DenseGroomSettings::clumpProfile):
+/// ρ'/ρ, where ρ in [0, 1] is the strand's root radius as a share of its clump's and ρ' the
+/// radius at which the profile puts the same share of the strands. The roots are spread evenly
+/// over the clump's area (ρ² is uniform: a disc round the guide, or 1 − w₀ in a guide triangle),
+/// so with ρ'² = 1 − (1 − ρ²)^(1/(p+1)), the inverse of the profile's share within ρ',
+/// 1 − (1 − ρ'²)^(p+1), the tips' density is ∝ (1 − ρ'²)^p. A strand then takes the clump factor
+/// 1 − (1 − c)·ρ'/ρ. Exact operations only (physics/detail/portable_math.hpp).
+[[nodiscard]] float clumpProfileScale(float rootRadius, float profile);
 
 /// Builds a dense groom layout from guide strands at rest (points root first, metres, in any
 /// frame: the layout is invariant under rigid motions of the guides). All guides must have the

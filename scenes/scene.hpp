@@ -296,6 +296,9 @@ struct GroomRendering {
   StrandCurve curve = StrandCurve::kCatmullRom;
   /// How far each dense strand's tip is pulled towards its first guide, in [0, 1].
   float clump = physics::DenseGroomSettings{}.clump;
+  /// The clumps' radial profile, an exponent in [0, 8] (physics::DenseGroomSettings::clumpProfile):
+  /// 0 shrinks each clump evenly, more gathers its strands towards its guide.
+  float clumpProfile = physics::DenseGroomSettings{}.clumpProfile;
   /// Curl: the helix each dense strand winds round its guides (physics::DenseGroomSettings'
   /// curl fields); radius 0: straight.
   float curlRadius = physics::DenseGroomSettings{}.curlRadius;

@@ -167,6 +167,7 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
           "expected \"catmull_rom\" or \"linear\", got \"" + curve + "\"");
   rendering.curve = curve == "linear" ? StrandCurve::kLinear : StrandCurve::kCatmullRom;
   rendering.clump = fields.optional<float>("clump", rendering.clump);
+  rendering.clumpProfile = fields.optional<float>("clump_profile", rendering.clumpProfile);
   if (const Json* curl = fields.take("curl")) {
     ObjectFields curlFields(*curl, fields.child("curl"));
     rendering.curlRadius = curlFields.required<float>("radius");
@@ -185,6 +186,8 @@ GroomRendering parseGroomRendering(const Json& json, const std::string& path) {
   require(rendering.frizz >= 0.0f && rendering.frizz <= 0.01f, fields.child("frizz"),
           "expected a frizz in [0, 0.01] metres");
   require(rendering.clump >= 0.0f && rendering.clump <= 1.0f, fields.child("clump"), "expected a clump in [0, 1]");
+  require(rendering.clumpProfile >= 0.0f && rendering.clumpProfile <= 8.0f, fields.child("clump_profile"),
+          "expected an exponent in [0, 8]");
   require(!strands || (rendering.denseStrands >= 1 && rendering.denseStrands <= kMaxDenseStrands),
           fields.child("strands"), "expected a dense strand count in 1.." + std::to_string(kMaxDenseStrands));
   require(!vertices || (rendering.verticesPerStrand >= 2 && rendering.verticesPerStrand <= kMaxDenseStrandVertices),

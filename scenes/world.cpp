@@ -472,6 +472,7 @@ std::optional<DenseStrandLayout> World::denseGroom(std::span<const std::vector<g
   settings.blend = rendering.guideBlend;
   settings.curve = rendering.curve;
   settings.clump = rendering.clump;
+  settings.clumpProfile = rendering.clumpProfile;
   settings.curlRadius = rendering.curlRadius;
   settings.curlPeriod = rendering.curlPeriod;
   settings.curlVariation = rendering.curlVariation;

@@ -446,6 +446,10 @@ TEST(Scene, GroomRenderErrorsNameTheFieldAndTheRange) {
     EXPECT_EQ(renderError(std::string(R"({"clump": )") + clump + "}"),
               "dir/bad.json: grooms[0].render.clump: expected a clump in [0, 1]")
         << clump;
+  for (const char* profile : {"-1", "9", "\"deep\""})
+    EXPECT_THAT(renderError(std::string(R"({"clump_profile": )") + profile + "}"),
+                ::testing::HasSubstr("dir/bad.json: grooms[0].render.clump_profile: expected"))
+        << profile;
   EXPECT_EQ(renderError(R"({"curl": {"radius": 0.1}})"),
             "dir/bad.json: grooms[0].render.curl.radius: expected a radius in [0, 0.05] metres");
   EXPECT_EQ(renderError(R"({"curl": {"radius": 0.001, "period": 0}})"),
@@ -712,7 +716,8 @@ TEST(Scene, PonytailIsOneGroomOfFourFilesDrawnAs50000Strands) {
 
 TEST(Scene, NaluWritesOutItsLookAndShadows) {
   // The defaults but for the layout: rooted over the whole scalp between three guides and drawn
-  // only a little towards them, so that 4,095 strands read as a mass rather than as tufts.
+  // towards them a little, each clump gathered towards its centre, so that 4,095 strands fall in
+  // locks rather than as an even sheet, without parting into tufts (as clump 0.5, profile 3 did).
   auto scene = loadScene(kScenes / "nalu.json");
   ASSERT_TRUE(scene.has_value()) << scene.error().message;
   const GroomRendering defaults;
@@ -721,7 +726,8 @@ TEST(Scene, NaluWritesOutItsLookAndShadows) {
   EXPECT_EQ(rendering.settings.width, defaults.settings.width);
   EXPECT_EQ(rendering.settings.tipWidthScale, defaults.settings.tipWidthScale);
   EXPECT_EQ(rendering.guideBlend, physics::GuideBlend::kBarycentric);
-  EXPECT_FLOAT_EQ(rendering.clump, 0.1f);
+  EXPECT_FLOAT_EQ(rendering.clump, 0.3f);
+  EXPECT_FLOAT_EQ(rendering.clumpProfile, 2.0f);
   EXPECT_EQ(rendering.settings.opacity, defaults.settings.opacity);
   EXPECT_EQ(rendering.settings.minimumPixelWidth, defaults.settings.minimumPixelWidth);
   EXPECT_EQ(rendering.settings.shadowExtinction, defaults.settings.shadowExtinction);
