@@ -37,8 +37,8 @@
 //   BM_RobotFrame/variant:2  animated, 4× MSAA (`mane render`'s default)
 //   BM_RobotFrame/variant:3  the body frozen, 4× MSAA
 //
-// The same frame of scenes/clear_sailing.json: the sea (45 Gerstner waves on a 150 × 150
-// projected grid, foam) and the 30 m ship floating on it, its cannon fired before the first
+// The same frame of scenes/clear_sailing.json: the sea (45 Gerstner waves on a projected grid
+// of 100 × 150 cells, foam) and the 30 m ship floating on it, its cannon fired before the first
 // frame so that its smoke is in every one. The row without the sea hands the renderer no ocean
 // (the ship still floats): the first row over it is what the sea costs; the row without effects
 // hands it no spray, smoke, rigging or debris (still simulated).

@@ -426,7 +426,8 @@ BENCHES: list[Bench] = [
                      ratio_to("ratio to no sea", clear_sailing_bare_row, "frame_ms"),
                      Column("simulation", "sim_ms"), Column("uploads", "upload_ms"), Column("GPU span", "gpu_ms")],
                     about="`scenes/clear_sailing.json` the same way, at 1280×720 and 1× MSAA: 45 Gerstner "
-                          "waves on a 150 × 150 projected grid with foam, a ship floating by its hull's cells "
+                          "waves on a projected grid of 100 × 150 cells (the rows over the sea built and "
+                          "drawn) with foam, a ship floating by its hull's cells "
                           "on them, two cloth sails in the wind, 19 ropes of rigging, spray, 30 pieces of "
                           "debris, the sky's environment, and the cannon fired before the first frame so that "
                           "its smoke is in every one. The second row hands the renderer no sea (the ship still "
