@@ -15,7 +15,7 @@ layout(set = 0, binding = 1, std430) writeonly buffer Grid { OceanGridVertex ver
 // The grid overhangs the screen by a tenth on each side, and its border vertices rest farther out
 // by as far as the waves can move water sideways, so that waves that move its edge keep the
 // screen covered. Each frame computes only the rows that hold sea (ocean.gridRows).
-const float kOverhang = 1.1;
+const float kOverhang = 1.1;  // kOceanGridOverhang (render/passes/ocean_pass.hpp)
 
 // Where the eye ray through `ndc` meets the sea at rest, (x, z): rays at or above the horizon,
 // and those that would meet the sea beyond the grid's reach, end at the reach.

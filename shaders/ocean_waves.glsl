@@ -13,6 +13,12 @@ struct OceanPoint {
   float jacobian;     // < 0 where the surface folds over
 };
 
+// A wave's amplitude (direction, k, A) as samples `footprint` apart carry it.
+float oceanAmplitude(vec4 wave, float footprint) {
+  float wavelength = 6.28318531 / wave.z;
+  return footprint > 0.0 ? wave.w * clamp(wavelength / (2.0 * footprint) - 1.0, 0.0, 1.0) : wave.w;
+}
+
 OceanPoint oceanWaves(vec2 rest, float footprint) {
   float lambda = ocean.shape.x;
   int count = int(ocean.shape.y);
@@ -25,8 +31,7 @@ OceanPoint oceanWaves(vec2 rest, float footprint) {
     vec4 wave = ocean.waves[i];
     vec2 d = wave.xy;
     float k = wave.z;
-    float wavelength = 6.28318531 / k;
-    float a = footprint > 0.0 ? wave.w * clamp(wavelength / (2.0 * footprint) - 1.0, 0.0, 1.0) : wave.w;
+    float a = oceanAmplitude(wave, footprint);
     float theta = k * dot(d, rest) + oceanPhase(i);
     float s = sin(theta);
     float c = cos(theta);
@@ -68,8 +73,7 @@ void oceanJacobianRun(vec2 rest, float spacing, float footprint, out float jacob
     vec4 wave = ocean.waves[i];
     vec2 d = wave.xy;
     float k = wave.z;
-    float wavelength = 6.28318531 / k;
-    float a = footprint > 0.0 ? wave.w * clamp(wavelength / (2.0 * footprint) - 1.0, 0.0, 1.0) : wave.w;
+    float a = oceanAmplitude(wave, footprint);
     float theta = k * dot(d, rest) + oceanPhase(i);
     vec2 phase = vec2(cos(theta), sin(theta));
     float advance = k * d.x * spacing;
