@@ -169,7 +169,9 @@ TEST(DenseStrands, ClumpedTipsLieRoundTheirGuideWithTheProfilesDensity) {
   settings.blend = GuideBlend::kBarycentric;
   settings.clumpVariation = 0.0f;
   settings.clumpProfile = 2.0f;
-  for (const DenseStrand& strand : buildDenseStrandLayout(guides, settings)->strands) {
+  const auto triangles = buildDenseStrandLayout(guides, settings);
+  ASSERT_TRUE(triangles) << triangles.error().message;
+  for (const DenseStrand& strand : triangles->strands) {
     if (strand.guideCount != 3) continue;
     const float scale = clumpProfileScale(1.0f - strand.weights[0], 2.0f);
     ASSERT_NEAR(1.0f - strand.clump, (1.0f - settings.clump) * scale, 1e-6f);
