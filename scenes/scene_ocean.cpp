@@ -188,8 +188,9 @@ Result<void> SceneOcean::advance(double time, double frameDt, unsigned threads) 
   const physics::TaskRunner tasks = physics::builtInTaskRunner(threads);
   Result<void> stepped;
   for (int k = 1; k <= plan.substeps; ++k) {
-    Result<void> step = this->step(start + plan.fractionAt(k) * frameDt, static_cast<float>(plan.fixedStep), tasks);
-    if (!step && stepped) stepped = std::move(step);
+    // Every substep runs; the first error is the one reported.
+    Result<void> substep = step(start + plan.fractionAt(k) * frameDt, static_cast<float>(plan.fixedStep), tasks);
+    if (!substep && stepped) stepped = std::move(substep);
   }
   return stepped;
 }
